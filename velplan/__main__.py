@@ -1,0 +1,5 @@
+import sys
+
+from velplan.cli import main
+
+sys.exit(main())

@@ -1,0 +1,180 @@
+"""Extreme (dead-centre) positions found to round-off, the stroke H and the coefficient K.
+
+An extreme of a link angle θ(φ) or of a slide s(φ) is a root of its velocity analogue
+(ω/ω1 or ṡ/ω1). Roots are bracketed on a grid and refined by Newton steps on the analytic
+derivative (the acceleration analogue at ε1 = 0), safeguarded by bisection.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from velplan.analysis.solver import Kinematics, solve
+from velplan.errors import MechanismError
+from velplan.mechanism.model import PRP, RPP, RRP, Mechanism
+
+GRID = 1440
+
+
+@dataclass(frozen=True)
+class Extreme:
+    """One extreme position: crank angle ``phi`` (rad, in [0, 2π)), the value of the quantity
+    there (rad or m), and whether it is a ``"max"`` or ``"min"``."""
+
+    phi: float
+    value: float
+    kind: str
+
+
+@dataclass(frozen=True)
+class Stroke:
+    """Stroke of the output between its two extreme positions.
+
+    Attributes
+    ----------
+    quantity : str
+        ``"point F"`` (displacement along its guide, m) or ``"link 5"`` (angle, rad).
+    H : float
+        Stroke, m (or the swing angle, rad, for a link).
+    start, end : Extreme
+        Extremes at the start and end of the slow (working) stroke.
+    theta : float
+        Angle of overlap θ (rad): the crank turns π + θ in the slow stroke, π − θ in the return.
+    """
+
+    quantity: str
+    H: float
+    start: Extreme
+    end: Extreme
+    theta: float
+
+    @property
+    def K(self) -> float:
+        """Time-ratio coefficient K = (180° + θ)/(180° − θ)."""
+        return (math.pi + self.theta) / (math.pi - self.theta)
+
+
+def _quantities(mech: Mechanism, kin: Kinematics) -> dict[str, tuple[str, int, int]]:
+    """Name → (kind "link"/"slide", index, component) for every quantity whose extremes matter."""
+    out = {f"link {k}": ("link", i, 0) for k, i in kin.link_index.items() if k != mech.crank.link}
+    out.update({f"slide {k}": ("slide", i, 0) for k, i in kin.slide_index.items()})
+    return out
+
+
+def _values(kin: Kinematics, kind: str, i: int):
+    if kind == "link":
+        return np.unwrap(kin.angles[:, i]), kin.omegas[:, i], kin.epsilons[:, i]
+    return kin.slides[:, i, 0], kin.slides[:, i, 1], kin.slides[:, i, 2]
+
+
+def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[Extreme]:
+    """Crank angles in [0, 2π) where the rate of quantity (kind, i) vanishes, to round-off."""
+    # The grid is shifted off round angles so that no sample lands on a root exactly.
+    phi = (np.arange(grid + 1) + 0.3819660112501051) * (2 * np.pi / grid)
+    kin = solve(mech, phi, omega1=1.0, epsilon1=0.0)
+    _, rate, _ = _values(kin, kind, i)
+    sign = np.sign(rate)
+    brackets = np.flatnonzero(sign[:-1] * sign[1:] < 0)
+    lo, hi = phi[brackets], phi[brackets + 1]
+    flo = rate[brackets]
+    for _ in range(100):
+        if lo.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        k = solve(mech, mid, omega1=1.0, epsilon1=0.0)
+        _, f, df = _values(k, kind, i)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton = mid - f / df
+        inside = (newton > lo) & (newton < hi) & np.isfinite(newton)
+        same = np.sign(f) == np.sign(flo)
+        lo, flo = np.where(same, mid, lo), np.where(same, f, flo)
+        hi = np.where(same, hi, mid)
+        # Newton point replaces the side it lands on when it is inside the bracket.
+        kn = solve(mech, np.where(inside, newton, mid), omega1=1.0, epsilon1=0.0)
+        _, fn, _ = _values(kn, kind, i)
+        move_lo = inside & (np.sign(fn) == np.sign(flo))
+        move_hi = inside & ~move_lo
+        lo = np.where(move_lo, newton, lo)
+        flo = np.where(move_lo, fn, flo)
+        hi = np.where(move_hi, newton, hi)
+        if np.all(hi - lo <= 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(hi))):
+            break
+    roots = (0.5 * (lo + hi)) % (2 * np.pi)
+    roots = np.sort(roots)
+    if roots.size == 0:
+        return []
+    k = solve(mech, roots, omega1=1.0, epsilon1=0.0)
+    val, _, acc = _values(k, kind, i)
+    return [Extreme(float(r), float(v), "max" if a < 0 else "min") for r, v, a in zip(roots, val, acc)]
+
+
+def extremes(mech: Mechanism) -> dict[str, list[Extreme]]:
+    """Extreme positions of every link angle (but the crank's) and every prismatic slide."""
+    kin = solve(mech, np.zeros(1))
+    return {name: find_roots(mech, kind, i) for name, (kind, i, _) in _quantities(mech, kin).items()}
+
+
+def output_quantity(mech: Mechanism) -> tuple[str, str, int] | None:
+    """(label, kind, index) of the mechanism's output quantity, or None without an output."""
+    out = mech.output
+    if out is None:
+        return None
+    kin = solve(mech, np.zeros(1))
+    if out.link is not None:
+        return f"link {out.link}", "link", kin.link_index[out.link]
+    for g in mech.groups:
+        if isinstance(g, RRP) and g.point == out.point:
+            pair = f"P:{g.links[1]}/{g.guide.link}"
+            return f"point {out.point}", "slide", kin.slide_index[pair]
+        if isinstance(g, PRP) and g.point == out.point:
+            pair = f"P:{g.links[0]}/{g.guides[0].link}"
+            return f"point {out.point}", "slide", kin.slide_index[pair]
+        if isinstance(g, RPP) and out.point in (g.coincident, g.origin_name):
+            pair = f"P:{g.links[1]}/{g.guide.link}"
+            return f"point {out.point}", "slide", kin.slide_index[pair]
+    raise MechanismError(
+        f"output point {out.point!r} is not a slider on a guide; give output = {{link = ...}} for a rocker"
+    )
+
+
+def stroke(mech: Mechanism) -> Stroke | None:
+    """Stroke H, extremes and K of the mechanism's output (None without an output).
+
+    The slow stroke (the crank turns through π + θ) is taken as the working stroke.
+    """
+    q = output_quantity(mech)
+    if q is None:
+        return None
+    label, kind, i = q
+    roots = find_roots(mech, kind, i)
+    if len(roots) < 2:
+        raise MechanismError(f"output {label} has no extreme positions (it turns or slides without reversing)")
+    hi = max(roots, key=lambda e: e.value)
+    lo = min(roots, key=lambda e: e.value)
+    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    span_lo_hi = (sense * (hi.phi - lo.phi)) % (2 * np.pi)
+    if span_lo_hi >= np.pi:
+        start, end, span = lo, hi, span_lo_hi
+    else:
+        start, end, span = hi, lo, 2 * np.pi - span_lo_hi
+    return Stroke(label, abs(hi.value - lo.value), start, end, float(span - np.pi))
+
+
+def reference_angle(mech: Mechanism) -> float:
+    """Crank angle of position 1, rad: ``reference_deg`` if given, else the start of the slow
+    stroke of the output, else 0."""
+    if mech.reference_deg is not None:
+        return math.radians(mech.reference_deg)
+    s = stroke(mech)
+    return 0.0 if s is None else s.start.phi
+
+
+def positions(mech: Mechanism, n: int = 12) -> np.ndarray:
+    """``n`` crank angles (rad) evenly spaced from the reference position in the sense of ω1."""
+    if n < 1:
+        raise MechanismError(f"number of positions must be ≥ 1, not {n}")
+    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    return reference_angle(mech) + sense * np.arange(n) * (2 * np.pi / n)

@@ -1,0 +1,51 @@
+"""The ``velplan`` command: a thin layer of argument parsing over the library.
+
+Every error is one line on stderr (``velplan: error: …``), exit status 2, no traceback and
+no partial output file. Subcommands live in small modules, each with ``register(subparsers)``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from importlib import import_module
+
+from velplan.errors import VelplanError
+
+COMMANDS = ("kinematics", "plan", "sheet", "forces")
+"""Modules of `velplan.cli` that register subcommands (a missing one is skipped)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit 2, as every other error
+        sys.stderr.write(f"velplan: error: {message}\n")
+        raise SystemExit(2)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="velplan", description="Velocity and acceleration plans of planar linkages.")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+    for name in COMMANDS:
+        try:
+            module = import_module(f"velplan.cli.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"velplan.cli.{name}":
+                raise
+            continue
+        module.register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the console script; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.run(args) or 0)
+    except VelplanError as exc:
+        sys.stderr.write(f"velplan: error: {exc}\n")
+        return 2
+    except KeyboardInterrupt:
+        sys.stderr.write("velplan: interrupted\n")
+        return 130

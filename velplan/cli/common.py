@@ -1,0 +1,58 @@
+"""Argument helpers shared by the subcommands."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+
+import numpy as np
+
+from velplan.errors import VelplanError
+from velplan.io import write_atomic
+
+
+def add_mechanism(p: argparse.ArgumentParser, *, optional: bool = False) -> None:
+    """The MECH argument: a bundled example name or a TOML path."""
+    if optional:
+        p.add_argument("mechanism", metavar="MECH", nargs="?", default="shaper",
+                       help="bundled example name or TOML file (default: shaper)")
+    else:
+        p.add_argument("mechanism", metavar="MECH", help="bundled example name or TOML file")
+
+
+def add_output(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of standard output")
+
+
+def emit(text: str, output: str | None) -> None:
+    """Print ``text`` or write it atomically to ``output``."""
+    if output:
+        write_atomic(output, text if text.endswith("\n") else text + "\n")
+    else:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+def parse_angles(text: str) -> np.ndarray:
+    """``"0,30,45.5"`` → radians; a one-line error naming the bad item."""
+    out = []
+    for item in text.split(","):
+        item = item.strip()
+        try:
+            value = float(item)
+        except ValueError:
+            raise VelplanError(f"--angles: {item!r} is not a number of degrees") from None
+        if not math.isfinite(value):
+            raise VelplanError(f"--angles: {item!r} is not a finite angle")
+        out.append(value)
+    return np.radians(out)
+
+
+def positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be ≥ 1, not {value}")
+    return value

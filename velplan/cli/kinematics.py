@@ -1,0 +1,170 @@
+"""``velplan examples``, ``velplan info`` and ``velplan analyze``."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+
+import numpy as np
+
+from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
+from velplan.analysis.solver import Kinematics, solve, transfer_functions
+from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
+from velplan.mechanism.loader import example_names, load
+from velplan.mechanism.structure import analyse
+
+
+def register(sub) -> None:
+    p = sub.add_parser("examples", help="list the bundled example mechanisms")
+    p.set_defaults(run=run_examples)
+
+    p = sub.add_parser("info", help="structure, mobility, groups, extreme positions, stroke, K")
+    add_mechanism(p)
+    p.set_defaults(run=run_info)
+
+    p = sub.add_parser("analyze", help="positions, velocities, accelerations at crank angles")
+    add_mechanism(p)
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--angles", metavar="DEG,DEG,…", help="absolute crank angles in degrees")
+    where.add_argument("--positions", metavar="N", type=positive_int, default=12,
+                       help="N positions evenly spaced from the reference position (default 12)")
+    p.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    add_output(p)
+    p.set_defaults(run=run_analyze)
+
+
+def run_examples(args) -> int:
+    lines = []
+    for name in example_names():
+        mech = load(name, check_assembly=False)
+        lines.append(f"{name:<14} {mech.description or mech.title}")
+    emit("\n".join(lines), None)
+    return 0
+
+
+def run_info(args) -> int:
+    mech = load(args.mechanism)
+    st = analyse(mech)
+    out = [f"{mech.name}: {mech.title}".rstrip(": "), ""]
+    c = mech.crank
+    out.append(f"crank {c.link}: {c.pivot}{c.tip} = {c.length:g} m, ω1 = {c.omega:+.6g} rad/s ({c.rpm:+.4g} rpm)")
+    out.append(f"moving links n = {st.n_links}, lower pairs p5 = {st.p5}, higher pairs p4 = {st.p4}")
+    out.append(f"mobility (Chebyshev): {st.formula()}")
+    out.append("groups:")
+    for name, kind, cls, order, links in st.groups:
+        out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}")
+    out.append("extreme positions (crank angle → value):")
+    for q, roots in extremes(mech).items():
+        unit = "°" if q.startswith("link") else " m"
+        vals = "; ".join(
+            f"{math.degrees(e.phi):.6f}° → {(math.degrees(e.value) if unit == '°' else e.value):.6g}{unit} ({e.kind})"
+            for e in roots
+        )
+        out.append(f"  {q:<10} {vals or 'none (full rotation or no reversal)'}")
+    s = stroke(mech)
+    if s is not None:
+        h = f"{math.degrees(s.H):.6g}°" if s.quantity.startswith("link") else f"{s.H:.9g} m"
+        out.append(f"output {s.quantity}: stroke H = {h}, θ = {math.degrees(s.theta):.6f}°, K = {s.K:.6f}")
+        out.append(f"  working (slow) stroke from φ = {math.degrees(s.start.phi):.6f}° to {math.degrees(s.end.phi):.6f}°")
+    out.append(f"reference position 1 at φ = {math.degrees(reference_angle(mech)):.6f}°")
+    emit("\n".join(out), None)
+    return 0
+
+
+def run_analyze(args) -> int:
+    mech = load(args.mechanism)
+    phi = parse_angles(args.angles) if args.angles else positions(mech, args.positions)
+    kin = solve(mech, phi)
+    render = {"json": to_json, "csv": to_csv, "table": to_table}[args.format]
+    emit(render(kin), args.output)
+    return 0
+
+
+def _num(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def to_json(kin: Kinematics) -> str:
+    """The analysis as JSON in SI units with radians (NaN → null where not assembled)."""
+    doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "epsilon1": kin.epsilon1, "positions": []}
+    for i in range(len(kin)):
+        pts = {
+            k: dict(zip(("x", "y", "vx", "vy", "ax", "ay"),
+                        map(_num, (*kin.positions[i, j], *kin.velocities[i, j], *kin.accelerations[i, j]))))
+            for k, j in kin.point_index.items()
+        }
+        links = {
+            k: {"angle": _num(kin.angles[i, j]), "omega": _num(kin.omegas[i, j]), "epsilon": _num(kin.epsilons[i, j])}
+            for k, j in kin.link_index.items()
+        }
+        slides = {
+            k: dict(zip(("s", "v", "a"), map(_num, kin.slides[i, j]))) for k, j in kin.slide_index.items()
+        }
+        cond = {k: _num(kin.condition[i, j]) for k, j in kin.group_index.items()}
+        doc["positions"].append({
+            "position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": bool(kin.valid[i]),
+            "points": pts, "links": links, "slides": slides, "condition": cond,
+        })
+    return json.dumps(doc, indent=1, ensure_ascii=False)
+
+
+def _rows(kin: Kinematics) -> tuple[list[str], list[list[float]]]:
+    head = ["position", "phi_deg"]
+    cols = [np.arange(1, len(kin) + 1), kin.phi_deg]
+    for k, j in kin.point_index.items():
+        for q, arr in (("x", kin.positions[:, j, 0]), ("y", kin.positions[:, j, 1]),
+                       ("vx", kin.velocities[:, j, 0]), ("vy", kin.velocities[:, j, 1]),
+                       ("ax", kin.accelerations[:, j, 0]), ("ay", kin.accelerations[:, j, 1])):
+            head.append(f"{k}.{q}")
+            cols.append(arr)
+    for k, j in kin.link_index.items():
+        for q, arr in (("angle", kin.angles[:, j]), ("omega", kin.omegas[:, j]), ("epsilon", kin.epsilons[:, j])):
+            head.append(f"{k}.{q}")
+            cols.append(arr)
+    return head, [list(r) for r in np.column_stack(cols)]
+
+
+def to_csv(kin: Kinematics) -> str:
+    """One row per position, one column per coordinate (SI units, radians)."""
+    head, rows = _rows(kin)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(head)
+    for r in rows:
+        w.writerow([int(r[0])] + [f"{x:.12g}" for x in r[1:]])
+    return buf.getvalue()
+
+
+def to_table(kin: Kinematics) -> str:
+    """Transfer functions |V|/ω1 (m) and ω/ω1 per position, then |V| and |a| of every point."""
+    tf = transfer_functions(kin) if kin.omega1 else {}
+    n = len(kin)
+    head = f"{'quantity':<14}" + "".join(f"{i + 1:>10}" for i in range(n))
+    lines = [f"{kin.mechanism.name}: ω1 = {kin.omega1:+.6g} rad/s", head,
+             f"{'φ, deg':<14}" + "".join(f"{x:>10.2f}" for x in kin.phi_deg)]
+
+    def row(label: str, values) -> str:
+        return f"{label:<14}" + "".join(f"{v:>10.4g}" if math.isfinite(v) else f"{'—':>10}" for v in values)
+
+    lines.append("transfer functions (velocity analogues)")
+    for k in kin.point_index:
+        if k in dict(kin.mechanism.ground):
+            continue
+        lines.append(row(f"V_{k}/ω1, m", tf.get(f"V_{k}", np.full(n, np.nan))))
+    for k in kin.link_index:
+        lines.append(row(f"ω{k}/ω1", tf.get(f"w_{k}", np.full(n, np.nan))))
+    lines.append("velocities |V|, m/s and accelerations |a|, m/s²")
+    for k, j in kin.point_index.items():
+        if k in dict(kin.mechanism.ground):
+            continue
+        lines.append(row(f"V_{k}", np.hypot(*kin.velocities[:, j].T)))
+        lines.append(row(f"a_{k}", np.hypot(*kin.accelerations[:, j].T)))
+    for k, j in kin.link_index.items():
+        lines.append(row(f"ω{k}, rad/s", kin.omegas[:, j]))
+        lines.append(row(f"ε{k}, rad/s²", kin.epsilons[:, j]))
+    if not kin.valid.all():
+        bad = ", ".join(str(i + 1) for i in np.flatnonzero(~kin.valid))
+        lines.append(f"not assembled at positions: {bad}")
+    return "\n".join(lines)

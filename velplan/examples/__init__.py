@@ -1,0 +1,1 @@
+"""Bundled example mechanisms (TOML files), loadable by name with `velplan.load`."""

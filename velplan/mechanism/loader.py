@@ -1,0 +1,366 @@
+"""Read a mechanism from TOML, validating every value at the boundary.
+
+The format is documented in ``docs/format.md``. Every problem raises `MechanismError` with a
+one-line message naming the element and the value.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from velplan.errors import MechanismError
+from velplan.mechanism.model import (
+    GROUND,
+    PRP,
+    RPP,
+    RPR,
+    RRP,
+    RRR,
+    Crank,
+    Group,
+    Guide,
+    LinkMass,
+    LinkPoint,
+    Mechanism,
+    Output,
+)
+from velplan.mechanism.structure import point_owners, schedule
+
+_TOP_KEYS = {
+    "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
+    "point", "link", "gravity", "load",
+}
+
+
+def example_names() -> list[str]:
+    """Names of the bundled example mechanisms."""
+    files = resources.files("velplan.examples")
+    return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
+
+
+def load(source: str | Path, *, check_assembly: bool = True) -> Mechanism:
+    """Load a mechanism: a bundled example name (``"shaper"``) or a path to a TOML file.
+
+    Parameters
+    ----------
+    source : str or Path
+    check_assembly : bool
+        Also check that every group closes over a whole crank revolution (sampled at 0.1°
+        steps) and raise naming the group and the angle ranges where it does not.
+    """
+    path = Path(source)
+    if path.suffix.lower() != ".toml" and str(source) in example_names():
+        text = resources.files("velplan.examples").joinpath(f"{source}.toml").read_text("utf-8")
+        name = str(source)
+    elif path.is_file():
+        try:
+            text = path.read_text("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise MechanismError(f"cannot read {path}: {exc}") from None
+        name = path.stem
+    else:
+        raise MechanismError(
+            f"unknown mechanism {str(source)!r}: not a bundled example ({', '.join(example_names())}) "
+            "and no such file"
+        )
+    return loads(text, name=name, check_assembly=check_assembly)
+
+
+def loads(text: str, *, name: str = "mechanism", check_assembly: bool = True) -> Mechanism:
+    """Parse and validate a mechanism from TOML text (see `load`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise MechanismError(f"malformed TOML in {name}: {exc}") from None
+    mech = from_dict(data, name=name)
+    if check_assembly:
+        from velplan.analysis.assembly import check_full_rotation
+
+        check_full_rotation(mech)
+    return mech
+
+
+def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
+    """Build a `Mechanism` from parsed TOML data (structure and values validated)."""
+    _no_unknown(data, _TOP_KEYS, "the file")
+    ground = _ground(_table(data, "ground", required=True))
+    crank = _crank(_table(data, "crank", required=True))
+    groups = tuple(_group(g, i) for i, g in enumerate(_list(data, "group")))
+    points = tuple(_point(p, i) for i, p in enumerate(_list(data, "point")))
+    masses = _masses(_table(data, "link"))
+    output = _output(data.get("output"))
+    ref = data.get("reference_deg")
+    mech = Mechanism(
+        name=str(data.get("name", name)),
+        title=str(data.get("title", "")),
+        description=str(data.get("description", "")),
+        ground=ground,
+        crank=crank,
+        groups=groups,
+        points=points,
+        masses=masses,
+        output=output,
+        reference_deg=None if ref is None else _finite(ref, "reference_deg"),
+        gravity=_finite(data.get("gravity", 9.81), "gravity"),
+        loads=tuple(_list(data, "load")),
+    )
+    _check_names(mech)
+    return mech
+
+
+# -- sections -------------------------------------------------------------------------------
+
+
+def _ground(table: dict) -> tuple[tuple[str, tuple[float, float]], ...]:
+    if not table:
+        raise MechanismError("[ground] needs at least one point, e.g. O = [0.0, 0.0]")
+    out = []
+    for key, xy in table.items():
+        if not (isinstance(xy, list) and len(xy) == 2):
+            raise MechanismError(f"ground point {key!r} must be [x, y] in m, not {xy!r}")
+        out.append((str(key), (_finite(xy[0], f"ground point {key} x"), _finite(xy[1], f"ground point {key} y"))))
+    return tuple(out)
+
+
+def _crank(t: dict) -> Crank:
+    _no_unknown(t, {"link", "pivot", "tip", "length", "omega", "rpm", "epsilon"}, "[crank]")
+    if ("omega" in t) == ("rpm" in t):
+        raise MechanismError("[crank] needs exactly one of omega (rad/s) or rpm (rev/min), sign = sense (+ counter-clockwise)")
+    omega = _finite(t["omega"], "crank omega") if "omega" in t else _finite(t["rpm"], "crank rpm") * math.pi / 30
+    return Crank(
+        link=_name(t, "link", "[crank]"),
+        pivot=_name(t, "pivot", "[crank]"),
+        tip=_name(t, "tip", "[crank]"),
+        length=_length(t, "length", "crank"),
+        omega=omega,
+        epsilon=_finite(t.get("epsilon", 0.0), "crank epsilon"),
+    )
+
+
+def _guide(t: Any, where: str) -> Guide:
+    if not isinstance(t, dict):
+        raise MechanismError(f"{where}: guide must be a table {{link, through, angle_deg, offset}}, not {t!r}")
+    _no_unknown(t, {"link", "through", "angle_deg", "offset"}, f"{where} guide")
+    return Guide(
+        link=str(t.get("link", GROUND)),
+        through=_name(t, "through", f"{where} guide"),
+        angle=math.radians(_finite(t.get("angle_deg", 0.0), f"{where} guide angle_deg")),
+        offset=_finite(t.get("offset", 0.0), f"{where} guide offset"),
+    )
+
+
+_GROUP_KEYS = {
+    "RRR": {"links", "joints", "point", "lengths", "branch"},
+    "RRP": {"links", "joint", "point", "length", "guide", "branch", "coincident"},
+    "RPR": {"links", "joint", "pivot", "offset", "branch", "coincident"},
+    "PRP": {"links", "point", "guides", "coincident"},
+    "RPP": {"links", "joint", "guide", "slot_angle_deg", "coincident", "origin"},
+}
+
+
+def _group(t: Any, i: int) -> Group:
+    if not isinstance(t, dict):
+        raise MechanismError(f"group #{i + 1} must be a table, not {t!r}")
+    kind = str(t.get("kind", "")).upper()
+    if kind not in _GROUP_KEYS:
+        raise MechanismError(f"group #{i + 1}: unknown kind {t.get('kind')!r}; known kinds: RRR, RRP, RPR, PRP, RPP")
+    links = _pair_of(t, "links", f"group #{i + 1}")
+    name = str(t.get("name", "-".join(links)))
+    where = f"group {name!r}"
+    _no_unknown(t, _GROUP_KEYS[kind] | {"kind", "name"}, where)
+    if kind == "RRR":
+        lengths = _pair_of(t, "lengths", where, kind=float)
+        for k, v in zip(links, lengths):
+            _positive(v, f"{where} length of link {k}")
+        return RRR(name, links, _pair_of(t, "joints", where), _name(t, "point", where), lengths, _branch(t, where))
+    if kind == "RRP":
+        return RRP(
+            name, links, _name(t, "joint", where), _name(t, "point", where), _length(t, "length", where),
+            _guide(t.get("guide"), where), _branch(t, where), _opt_name(t, "coincident"),
+        )
+    if kind == "RPR":
+        return RPR(
+            name, links, _name(t, "joint", where), _name(t, "pivot", where),
+            _finite(t.get("offset", 0.0), f"{where} offset"), _branch(t, where), _opt_name(t, "coincident"),
+        )
+    if kind == "PRP":
+        gs = t.get("guides")
+        if not (isinstance(gs, list) and len(gs) == 2):
+            raise MechanismError(f"{where}: guides must be a list of two guide tables")
+        co = t.get("coincident", [None, None])
+        if not (isinstance(co, list) and len(co) == 2):
+            raise MechanismError(f"{where}: coincident must be a list of two point names")
+        return PRP(name, links, _name(t, "point", where), (_guide(gs[0], where), _guide(gs[1], where)),
+                   tuple(None if c in (None, "") else str(c) for c in co))
+    slot = _finite(t.get("slot_angle_deg", 90.0), f"{where} slot_angle_deg")
+    if abs(math.sin(math.radians(slot))) < 1e-9:
+        raise MechanismError(f"{where}: slot_angle_deg = {slot} makes the slot parallel to the guide; the group cannot move")
+    return RPP(name, links, _name(t, "joint", where), _guide(t.get("guide"), where), math.radians(slot),
+               _opt_name(t, "coincident"), _opt_name(t, "origin"))
+
+
+def _point(t: Any, i: int) -> LinkPoint:
+    if not isinstance(t, dict):
+        raise MechanismError(f"point #{i + 1} must be a table, not {t!r}")
+    _no_unknown(t, {"name", "link", "along", "offset"}, f"point #{i + 1}")
+    name = _name(t, "name", f"point #{i + 1}")
+    return LinkPoint(name, _name(t, "link", f"point {name!r}"), _finite(t.get("along", 0.0), f"point {name!r} along"),
+                     _finite(t.get("offset", 0.0), f"point {name!r} offset"))
+
+
+def _masses(table: dict) -> tuple[LinkMass, ...]:
+    out = []
+    for link, t in table.items():
+        where = f"[link.{link}]"
+        if not isinstance(t, dict):
+            raise MechanismError(f"{where} must be a table with mass, centre and optional inertia")
+        _no_unknown(t, {"mass", "inertia", "centre"}, where)
+        mass = _finite(t.get("mass", 0.0), f"{where} mass")
+        if mass < 0:
+            raise MechanismError(f"{where} mass must be ≥ 0 kg, not {mass}")
+        inertia = t.get("inertia")
+        if inertia is not None:
+            inertia = _finite(inertia, f"{where} inertia")
+            if inertia < 0:
+                raise MechanismError(f"{where} inertia must be ≥ 0 kg·m², not {inertia}")
+        out.append(LinkMass(str(link), mass, _name(t, "centre", where), inertia))
+    return tuple(out)
+
+
+def _output(t: Any) -> Output | None:
+    if t is None:
+        return None
+    if isinstance(t, str):
+        return Output(point=t)
+    if isinstance(t, dict) and len(t) == 1 and ("point" in t or "link" in t):
+        return Output(point=t.get("point"), link=None if "link" not in t else str(t["link"]))
+    raise MechanismError(f"output must be a point name or {{point = ...}} or {{link = ...}}, not {t!r}")
+
+
+# -- cross-checks ---------------------------------------------------------------------------
+
+
+def _check_names(mech: Mechanism) -> None:
+    seen: dict[str, str] = {}
+
+    def claim(name: str, what: str) -> None:
+        if name in seen:
+            raise MechanismError(f"duplicate name {name!r}: used for {seen[name]} and for {what}")
+        seen[name] = what
+
+    for n, _ in mech.ground:
+        claim(n, "a ground point")
+    claim(mech.crank.tip, "the crank tip")
+    for g in mech.groups:
+        for n in _new_points(g):
+            claim(n, f"a point of group {g.name!r}")
+    for p in mech.points:
+        claim(p.name, f"point on link {p.link}")
+    links = [mech.crank.link] + [k for g in mech.groups for k in g.links]
+    if GROUND in links:
+        raise MechanismError(f"link name {GROUND!r} is reserved for the frame")
+    dup = sorted({k for k in links if links.count(k) > 1})
+    if dup:
+        raise MechanismError(f"duplicate link name {dup[0]!r}: each group brings two new links")
+    group_names = [g.name for g in mech.groups]
+    dupg = sorted({k for k in group_names if group_names.count(k) > 1})
+    if dupg:
+        raise MechanismError(f"duplicate group name {dupg[0]!r}")
+    schedule(mech)
+    owners = point_owners(mech)
+    for m in mech.masses:
+        if m.link not in links:
+            raise MechanismError(f"[link.{m.link}]: unknown link {m.link!r}; known links: {', '.join(links)}")
+        if m.centre not in owners:
+            raise MechanismError(f"[link.{m.link}]: unknown centre point {m.centre!r}; known points: {', '.join(owners)}")
+    if mech.output is not None:
+        if mech.output.point is not None and mech.output.point not in owners:
+            raise MechanismError(f"output: unknown point {mech.output.point!r}; known points: {', '.join(owners)}")
+        if mech.output.link is not None and mech.output.link not in links:
+            raise MechanismError(f"output: unknown link {mech.output.link!r}; known links: {', '.join(links)}")
+
+
+def _new_points(g: Group) -> list[str]:
+    from velplan.mechanism.structure import points_out
+
+    return list(points_out(g))
+
+
+# -- scalar helpers -------------------------------------------------------------------------
+
+
+def _table(data: dict, key: str, required: bool = False) -> dict:
+    t = data.get(key)
+    if t is None:
+        if required:
+            raise MechanismError(f"missing [{key}] section")
+        return {}
+    if not isinstance(t, dict):
+        raise MechanismError(f"[{key}] must be a table, not {type(t).__name__}")
+    return t
+
+
+def _list(data: dict, key: str) -> list:
+    t = data.get(key, [])
+    if not isinstance(t, list):
+        raise MechanismError(f"{key} must be an array of tables ([[{key}]]), not {type(t).__name__}")
+    return t
+
+
+def _no_unknown(t: dict, allowed: set[str], where: str) -> None:
+    extra = sorted(set(t) - allowed)
+    if extra:
+        raise MechanismError(f"{where}: unknown key {extra[0]!r}; allowed: {', '.join(sorted(allowed))}")
+
+
+def _name(t: dict, key: str, where: str) -> str:
+    v = t.get(key)
+    if v is None or str(v) == "":
+        raise MechanismError(f"{where}: missing {key}")
+    return str(v)
+
+
+def _opt_name(t: dict, key: str) -> str | None:
+    v = t.get(key)
+    return None if v in (None, "") else str(v)
+
+
+def _finite(v: Any, what: str) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise MechanismError(f"{what} must be a number, not {v!r}")
+    v = float(v)
+    if not math.isfinite(v):
+        raise MechanismError(f"{what} must be finite, not {v}")
+    return v
+
+
+def _positive(v: float, what: str) -> float:
+    if not v > 0:
+        raise MechanismError(f"{what} must be > 0 m, not {v}")
+    return v
+
+
+def _length(t: dict, key: str, where: str) -> float:
+    if key not in t:
+        raise MechanismError(f"{where}: missing {key} (m)")
+    return _positive(_finite(t[key], f"{where} {key}"), f"{where} {key}")
+
+
+def _branch(t: dict, where: str) -> int:
+    b = t.get("branch", 1)
+    if b not in (1, -1) or isinstance(b, bool):
+        raise MechanismError(f"{where}: branch must be +1 or -1, not {b!r}")
+    return int(b)
+
+
+def _pair_of(t: dict, key: str, where: str, kind=str) -> tuple:
+    v = t.get(key)
+    if not (isinstance(v, list) and len(v) == 2):
+        raise MechanismError(f"{where}: {key} must be a list of two values, not {v!r}")
+    if kind is float:
+        return tuple(_finite(x, f"{where} {key}") for x in v)
+    return tuple(str(x) for x in v)

@@ -1,0 +1,215 @@
+"""Structural analysis: solving order, kinematic pairs, point owners, mobility (Chebyshev).
+
+Everything here is derived from a `Mechanism` value; nothing is solved numerically.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Union
+
+from velplan.errors import MechanismError
+from velplan.mechanism.model import (
+    GROUND,
+    PRP,
+    RPP,
+    RPR,
+    RRP,
+    RRR,
+    Crank,
+    Group,
+    Guide,
+    LinkPoint,
+    Mechanism,
+    Pair,
+)
+
+Item = Union[Crank, Group, LinkPoint]
+
+
+def joints_in(group: Group) -> tuple[str, ...]:
+    """Known points a group attaches to (its outer joints and its guides' points)."""
+    if isinstance(group, RRR):
+        return group.joints
+    if isinstance(group, RRP):
+        return (group.joint, group.guide.through)
+    if isinstance(group, RPR):
+        return (group.joint, group.pivot)
+    if isinstance(group, PRP):
+        return (group.guides[0].through, group.guides[1].through)
+    return (group.joint, group.guide.through)
+
+
+def guides_of(group: Group) -> tuple[Guide, ...]:
+    """The guides a group slides on (empty for RRR and RPR)."""
+    if isinstance(group, (RRP, RPP)):
+        return (group.guide,)
+    if isinstance(group, PRP):
+        return group.guides
+    return ()
+
+
+def points_out(group: Group) -> dict[str, str]:
+    """Points a group determines → the link that owns each of them."""
+    a, b = group.links
+    out: dict[str, str] = {}
+    if isinstance(group, (RRR, RRP)):
+        out[group.point] = a
+    if isinstance(group, PRP):
+        out[group.point] = a
+        for guide, name in zip(group.guides, group.coincident):
+            if name:
+                out[name] = guide.link
+    elif isinstance(group, RRP) and group.coincident:
+        out[group.coincident] = group.guide.link
+    elif isinstance(group, RPR) and group.coincident:
+        out[group.coincident] = b
+    elif isinstance(group, RPP):
+        if group.coincident:
+            out[group.coincident] = b
+        out[group.origin_name] = b
+    return out
+
+
+def schedule(mech: Mechanism) -> tuple[Item, ...]:
+    """Solving order: crank, then each group followed by the points on its links.
+
+    Raises
+    ------
+    MechanismError
+        A group or point refers to a point or link that is not known before it.
+    """
+    owner: dict[str, str] = {name: GROUND for name, _ in mech.ground}
+    links = {GROUND}
+    order: list[Item] = [mech.crank]
+    if mech.crank.pivot not in owner:
+        raise MechanismError(
+            f"crank pivot {mech.crank.pivot!r} is not a ground point; ground points: {_names(owner)}"
+        )
+    owner[mech.crank.tip] = mech.crank.link
+    links.add(mech.crank.link)
+    pending = list(mech.points)
+
+    def attach_points() -> None:
+        for p in list(pending):
+            if p.link in links:
+                owner[p.name] = p.link
+                order.append(p)
+                pending.remove(p)
+
+    attach_points()
+    for g in mech.groups:
+        for name in joints_in(g):
+            if name not in owner:
+                raise MechanismError(
+                    f"group {g.name!r} uses point {name!r}, which is not solved before it; "
+                    f"known points: {_names(owner)}"
+                )
+        for guide in guides_of(g):
+            if guide.link not in links:
+                raise MechanismError(
+                    f"group {g.name!r}: guide link {guide.link!r} is not known before it; "
+                    f"known links: {_names(links)}"
+                )
+            if owner[guide.through] != guide.link:
+                raise MechanismError(
+                    f"group {g.name!r}: guide point {guide.through!r} is on link "
+                    f"{owner[guide.through]!r}, not on the guide's link {guide.link!r}"
+                )
+        order.append(g)
+        links.update(g.links)
+        owner.update(points_out(g))
+        attach_points()
+    if pending:
+        known = _names(links - {GROUND})
+        p = pending[0]
+        raise MechanismError(f"point {p.name!r} is on unknown link {p.link!r}; known links: {known}")
+    return tuple(order)
+
+
+def point_owners(mech: Mechanism) -> dict[str, str]:
+    """Every named point → the link it is fixed to (``"0"`` for the frame)."""
+    owner = {name: GROUND for name, _ in mech.ground}
+    for item in schedule(mech):
+        if isinstance(item, Crank):
+            owner[item.tip] = item.link
+        elif isinstance(item, LinkPoint):
+            owner[item.name] = item.link
+        else:
+            owner.update(points_out(item))
+    return owner
+
+
+def pairs(mech: Mechanism) -> tuple[Pair, ...]:
+    """All lower pairs, named after their point (``"P:<slider link>/<guide link>"`` for sliders)."""
+    owner = point_owners(mech)
+    c = mech.crank
+    out = [Pair(c.pivot, "R", (c.link, GROUND), c.pivot, "crank")]
+    for g in mech.groups:
+        a, b = g.links
+        if isinstance(g, RRR):
+            A, D = g.joints
+            out += [
+                Pair(A, "R", (a, owner[A]), A, g.name),
+                Pair(g.point, "R", (a, b), g.point, g.name),
+                Pair(D, "R", (b, owner[D]), D, g.name),
+            ]
+        elif isinstance(g, RRP):
+            out += [
+                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
+                Pair(g.point, "R", (a, b), g.point, g.name),
+                Pair(f"P:{b}/{g.guide.link}", "P", (b, g.guide.link), g.point, g.name),
+            ]
+        elif isinstance(g, RPR):
+            out += [
+                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
+                Pair(f"P:{a}/{b}", "P", (a, b), g.joint, g.name),
+                Pair(g.pivot, "R", (b, owner[g.pivot]), g.pivot, g.name),
+            ]
+        elif isinstance(g, PRP):
+            g1, g2 = g.guides
+            out += [
+                Pair(f"P:{a}/{g1.link}", "P", (a, g1.link), g.point, g.name),
+                Pair(g.point, "R", (a, b), g.point, g.name),
+                Pair(f"P:{b}/{g2.link}", "P", (b, g2.link), g.point, g.name),
+            ]
+        else:
+            out += [
+                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
+                Pair(f"P:{a}/{b}", "P", (a, b), g.joint, g.name),
+                Pair(f"P:{b}/{g.guide.link}", "P", (b, g.guide.link), g.joint, g.name),
+            ]
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Structure:
+    """Result of the structural analysis.
+
+    ``mobility`` W = 3·n − 2·p5 − p4 (Chebyshev), n moving links, p5 lower pairs, p4 higher.
+    ``groups`` lists (name, kind, class, order, links) for every Assur group.
+    """
+
+    n_links: int
+    p5: int
+    p4: int
+    groups: tuple[tuple[str, str, int, int, tuple[str, str]], ...]
+
+    @property
+    def mobility(self) -> int:
+        return 3 * self.n_links - 2 * self.p5 - self.p4
+
+    def formula(self) -> str:
+        """The Chebyshev formula with numbers, e.g. ``W = 3·5 − 2·7 − 0 = 1``."""
+        return f"W = 3·{self.n_links} − 2·{self.p5} − {self.p4} = {self.mobility}"
+
+
+def analyse(mech: Mechanism) -> Structure:
+    """Structural analysis of ``mech``: link and pair counts and the Assur groups (class II, order 2)."""
+    ps = pairs(mech)
+    groups = tuple((g.name, g.kind, 2, 2, g.links) for g in mech.groups)
+    return Structure(n_links=len(mech.links), p5=len(ps), p4=0, groups=groups)
+
+
+def _names(names) -> str:
+    return ", ".join(sorted(names)) or "(none)"
