@@ -1,0 +1,84 @@
+import pytest
+import shapely
+
+from velplan.errors import ScaleError
+from velplan.render.layout import (
+    fit_text, label_box, nudge_labels, overlapping_labels, place_views)
+from velplan.render.scene import Circle, Scene, Text
+from velplan.render.sheet import free_area
+
+
+def test_overlap_found_for_overlapping_pair_only():
+    a = Text((100, 100), "VA", "labels", 5.0)       # box x 100…107
+    b = Text((105, 102), "VB", "labels", 5.0)       # overlaps a
+    c = Text((200, 100), "VC", "labels", 5.0)       # far away
+    d = Text((107, 100), "VD", "labels", 5.0)       # touches c? no: touches a's right edge
+    scene = Scene((a, Circle((0, 0), 1, "mechanism"), b, c, d))
+    assert overlapping_labels(scene) == [(a, b), (b, d)]
+
+
+def test_separated_labels_do_not_overlap():
+    scene = Scene((Text((10, 10), "a", "labels"), Text((30, 10), "b", "labels"),
+                   Text((10, 30), "c", "plan-v-1")))
+    assert overlapping_labels(scene) == []
+
+
+def test_overlap_layer_filter():
+    a, b = Text((0, 0), "AAA", "labels"), Text((1, 0), "BBB", "title")
+    assert overlapping_labels(Scene((a, b)), layers=["labels"]) == []
+    assert overlapping_labels(Scene((a, b))) == [(a, b)]
+
+
+def test_nudge_moves_later_label_off_earlier_one():
+    a = Text((100, 100), "a", "labels", 3.5)
+    b = Text((100.5, 100.5), "b", "labels", 3.5)
+    placed = nudge_labels([a, b])
+    assert placed[0] == a
+    assert placed[1] != b
+    assert label_box(placed[0]).intersection(label_box(placed[1])).area == pytest.approx(0.0)
+    assert overlapping_labels(Scene(placed)) == []
+
+
+def test_nudge_avoids_obstacles():
+    t = Text((0, 0), "A", "labels", 3.5)
+    moved, = nudge_labels([t], [shapely.box(-1, -1, 3, 4)])
+    assert not label_box(moved).intersects(shapely.box(-1, -1, 3, 4).buffer(-1e-6))
+
+
+def test_views_fill_the_l_shaped_area_without_overlap():
+    area = free_area("A3", margin_mm=5.0)   # x 25…410, y 10…287, title block cut out
+    boxes = place_views([(150, 120), (150, 120), (150, 100), (200, 60)], area, gap_mm=10)
+    assert boxes[0] == (25.0, 167.0, 175.0, 287.0)
+    assert boxes[1] == (185.0, 167.0, 335.0, 287.0)
+    for i, a in enumerate(boxes):
+        assert area.buffer(1e-6).contains(shapely.box(*a))
+        for b in boxes[i + 1:]:
+            assert shapely.box(*a).distance(shapely.box(*b)) >= 10 - 1e-9
+
+
+def test_view_too_large_raises_scale_error():
+    with pytest.raises(ScaleError, match=r"view 2 \(500.0 × 100.0 mm\) does not fit"):
+        place_views([(10, 10), (500, 100)], free_area("A3"))
+
+
+def test_fit_text_keeps_size_when_it_fits():
+    lines = fit_text("1:2", (0, 0, 18, 15), layer="title", size_mm=5.0)
+    assert len(lines) == 1
+    assert lines[0].size_mm == 5.0 and lines[0].position == (9.0, 7.5)
+    assert lines[0].anchor == "middle" and lines[0].baseline == "middle"
+
+
+def test_fit_text_shrinks_then_wraps():
+    # 8 characters: 14 mm wide at 2.5 mm, too wide for 12 - 2 mm; 10.08 mm at 1.8 mm
+    date = fit_text("12.05.24", (0, 0, 12, 5), layer="title", size_mm=2.5)
+    assert [t.size_mm for t in date] == [1.8]
+    title = "Kinematic analysis of a crank slider mechanism"
+    lines = fit_text(title, (0, 0, 70, 25), layer="title", size_mm=5.0)
+    assert len(lines) > 1
+    assert " ".join(t.text for t in lines) == title
+    for t in lines:
+        assert shapely.box(0, 0, 70, 25).contains(label_box(t))
+
+
+def test_fit_text_empty():
+    assert fit_text("  ", (0, 0, 10, 5), layer="title") == ()

@@ -1,0 +1,126 @@
+"""Writing sheets to disk: SVG as is, PNG and PDF through cairosvg (optional).
+
+Every write is atomic: the bytes go to a temporary file in the target's directory, which
+then replaces the target with :func:`os.replace`. A failed conversion or write leaves the
+directory as it was — no half-written file, an existing file untouched.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import tempfile
+from pathlib import Path
+
+from velplan.errors import VelplanError
+
+_INSTALL_HINT = "pip install velplan[export]"
+
+
+def write_svg(svg_text: str, path: str | os.PathLike) -> Path:
+    """Write an SVG document atomically, UTF-8 encoded.
+
+    Parameters
+    ----------
+    svg_text : str
+        The SVG document, e.g. from :func:`velplan.render.svg.to_svg`.
+    path : str or PathLike
+        Target file.
+
+    Returns
+    -------
+    Path
+        The written file.
+    """
+    return write_bytes_atomic(svg_text.encode("utf-8"), path)
+
+
+def write_png(svg_text: str, path: str | os.PathLike, *, dpi: float = 150.0,
+              background: str = "white") -> Path:
+    """Rasterise an SVG document (sized in mm) to PNG at `dpi`, atomically.
+
+    Parameters
+    ----------
+    svg_text : str
+        The SVG document.
+    path : str or PathLike
+        Target file.
+    dpi : float
+        Resolution, dots per inch; an A3 sheet at 150 dpi is 2480 × 1754 px.
+    background : str
+        Colour under the drawing (paper).
+
+    Raises
+    ------
+    VelplanError
+        If cairosvg is missing or the conversion fails.
+    """
+    if not dpi > 0:
+        raise VelplanError(f"PNG resolution must be positive, got dpi={dpi!r}")
+    data = _convert("svg2png", svg_text, dpi=dpi, background_color=background)
+    return write_bytes_atomic(data, path)
+
+
+def write_pdf(svg_text: str, path: str | os.PathLike) -> Path:
+    """Convert an SVG document (sized in mm) to a vector PDF of the same size, atomically.
+
+    Raises
+    ------
+    VelplanError
+        If cairosvg is missing or the conversion fails.
+    """
+    return write_bytes_atomic(_convert("svg2pdf", svg_text), path)
+
+
+def write_bytes_atomic(data: bytes, path: str | os.PathLike) -> Path:
+    """Write `data` to `path` through a temporary file in the same directory.
+
+    Raises
+    ------
+    VelplanError
+        If the directory does not exist or the file cannot be written.
+    """
+    target = Path(path)
+    try:
+        handle = tempfile.NamedTemporaryFile(
+            dir=target.parent, prefix=f".{target.name}.", suffix=".tmp", delete=False)
+    except OSError as exc:
+        raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from exc
+    try:
+        with handle:
+            handle.write(data)
+        # mkstemp files are private (0600); a drawing is an ordinary document.
+        os.chmod(handle.name, _mode_for(target))
+        os.replace(handle.name, target)
+    except BaseException as exc:
+        Path(handle.name).unlink(missing_ok=True)
+        if isinstance(exc, OSError):
+            raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from exc
+        raise
+    return target
+
+
+def _mode_for(target: Path) -> int:
+    try:
+        return target.stat().st_mode & 0o777
+    except OSError:
+        return 0o644
+
+
+def _cairosvg():
+    try:
+        return importlib.import_module("cairosvg")
+    except (ImportError, OSError) as exc:  # OSError: cairosvg present, libcairo missing
+        raise VelplanError(f"PNG/PDF export needs cairosvg and the cairo library "
+                           f"({type(exc).__name__}: {exc}); install it with "
+                           f"`{_INSTALL_HINT}`") from exc
+
+
+def _convert(function: str, svg_text: str, **options) -> bytes:
+    converter = getattr(_cairosvg(), function)
+    try:
+        return converter(bytestring=svg_text.encode("utf-8"), **options)
+    except Exception as exc:
+        first_line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise VelplanError(f"cairosvg could not convert the sheet ({function}): "
+                           f"{first_line}") from exc

@@ -1,0 +1,121 @@
+"""Drawing labels in the languages velplan writes sheets in.
+
+A tiny, read-only dictionary: a key names the meaning (``"velocity_plan"``), the language
+picks the words. Everything here is immutable; nothing is configured at import time.
+
+Examples
+--------
+>>> label("velocity_plan", "ru")
+'План скоростей'
+>>> label("acceleration_plan", "zh")
+'加速度多边形'
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+from typing import Literal, Mapping
+
+from velplan.errors import VelplanError
+
+Language = Literal["en", "ru", "uk", "zh"]
+
+#: Languages a sheet can be labelled in, in a stable order (used in error messages).
+LANGUAGES: tuple[str, ...] = ("en", "ru", "uk", "zh")
+
+
+def _entry(en: str, ru: str, uk: str, zh: str) -> Mapping[str, str]:
+    return MappingProxyType({"en": en, "ru": ru, "uk": uk, "zh": zh})
+
+
+_LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
+    # Views and their captions.
+    "velocity_plan": _entry("Velocity plan", "План скоростей", "План швидкостей", "速度多边形"),
+    "acceleration_plan": _entry("Acceleration plan", "План ускорений", "План прискорень",
+                                "加速度多边形"),
+    "velocity_diagram": _entry("Velocity diagram", "Диаграмма скоростей",
+                               "Діаграма швидкостей", "速度图"),
+    "title_mechanism": _entry("Kinematic scheme of the mechanism",
+                              "Кинематическая схема механизма",
+                              "Кінематична схема механізму", "机构运动简图"),
+    "position": _entry("Position", "Положение", "Положення", "位置"),
+    "positions": _entry("Positions", "Положения", "Положення", "位置"),
+    "trajectory": _entry("Trajectory", "Траектория", "Траєкторія", "轨迹"),
+    "pole": _entry("Pole", "Полюс", "Полюс", "极点"),
+    "scale": _entry("Scale", "Масштаб", "Масштаб", "比例"),
+    "scale_label": _entry("Scale factor", "Масштабный коэффициент", "Масштабний коефіцієнт",
+                          "比例尺"),
+    "table_transfer": _entry("Transfer functions", "Передаточные функции",
+                             "Передавальні функції", "类速度表"),
+    "mass": _entry("Mass", "Масса", "Маса", "质量"),
+    # Title block (ESKD form 1 and the ISO-style variant).
+    "title": _entry("Title", "Наименование", "Найменування", "图名"),
+    "designation": _entry("Drawing No.", "Обозначение", "Позначення", "图号"),
+    "organisation": _entry("Organisation", "Организация", "Організація", "单位"),
+    "material": _entry("Material", "Материал", "Матеріал", "材料"),
+    "designed": _entry("Designed", "Разраб.", "Розроб.", "设计"),
+    "checked": _entry("Checked", "Пров.", "Перев.", "审核"),
+    "tech_control": _entry("Tech. ctrl", "Т.контр.", "Т.контр.", "工艺"),
+    "norm_control": _entry("Std. ctrl", "Н.контр.", "Н.контр.", "标准化"),
+    "approved": _entry("Approved", "Утв.", "Затв.", "批准"),
+    "change": _entry("Rev.", "Изм.", "Змн.", "标记"),
+    "sheet_short": _entry("Sheet", "Лист", "Арк.", "页"),
+    "document_no": _entry("Doc. No.", "№ докум.", "№ докум.", "文件号"),
+    "signature": _entry("Sign.", "Подп.", "Підпис", "签名"),
+    "date": _entry("Date", "Дата", "Дата", "日期"),
+    "literal": _entry("Lit.", "Лит.", "Літ.", "阶段"),
+    "sheet": _entry("Sheet", "Лист", "Аркуш", "张次"),
+    "sheets": _entry("Sheets", "Листов", "Аркушів", "总张数"),
+})
+
+
+def check_language(lang: str) -> str:
+    """Return `lang` if velplan has labels for it, else raise.
+
+    Parameters
+    ----------
+    lang : str
+        Language code, one of :data:`LANGUAGES`.
+
+    Raises
+    ------
+    VelplanError
+        For an unknown language; the message lists the known ones.
+    """
+    if lang not in LANGUAGES:
+        raise VelplanError(
+            f"unknown language {lang!r}; known languages: {', '.join(LANGUAGES)}")
+    return lang
+
+
+def label(key: str, lang: str) -> str:
+    """Return the drawing label `key` in language `lang`.
+
+    Parameters
+    ----------
+    key : str
+        Meaning of the label, e.g. ``"velocity_plan"``; see :func:`label_keys`.
+    lang : {"en", "ru", "uk", "zh"}
+        Language of the sheet.
+
+    Returns
+    -------
+    str
+        The label text.
+
+    Raises
+    ------
+    VelplanError
+        For an unknown language (the message lists the known ones) or an unknown key.
+    """
+    check_language(lang)
+    try:
+        return _LABELS[key][lang]
+    except KeyError:
+        raise VelplanError(
+            f"unknown label key {key!r}; known keys: {', '.join(label_keys())}") from None
+
+
+def label_keys() -> tuple[str, ...]:
+    """Return every label key, sorted."""
+    return tuple(sorted(_LABELS))

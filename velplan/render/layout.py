@@ -1,0 +1,238 @@
+"""Placing things on the sheet: views on the free area, text in cells, labels apart.
+
+Everything works on estimated boxes in sheet millimetres (see
+:func:`~velplan.render.shapes.text_extent`); shapely does the geometry.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Iterable, Literal, Sequence
+
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from velplan.errors import ScaleError
+from velplan.render.scene import Bounds, Scene, Text
+from velplan.render.shapes import DESCENDER_DEPTH, text_box, text_extent
+from velplan.render.style import ESKD_TEXT_HEIGHTS, MIN_TEXT_HEIGHT_MM
+
+__all__ = ["text_extent", "label_box", "overlapping_labels", "nudge_labels", "place_views",
+           "fit_text", "LINE_PITCH"]
+
+#: Distance between the baselines of wrapped lines, as a multiple of the text height.
+LINE_PITCH = 1.5
+_EPS = 1e-6
+
+
+def label_box(text: Text) -> shapely.Polygon:
+    """Estimated box of `text` as a shapely polygon, mm (rotated with the text)."""
+    return shapely.Polygon(text_box(text))
+
+
+def overlapping_labels(scene: Scene, *, layers: Sequence[str] | None = None,
+                       min_area: float = 0.0) -> list[tuple[Text, Text]]:
+    """Pairs of texts whose estimated boxes overlap.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene to check.
+    layers : sequence of str, optional
+        Only texts on these layers; all texts if omitted.
+    min_area : float
+        Overlap area, mm², a pair must exceed; boxes that only touch never count.
+
+    Returns
+    -------
+    list of (Text, Text)
+        Each pair once, earlier text first, in drawing order.
+    """
+    texts = [t for t in scene.of_kind(Text) if layers is None or t.layer in layers]
+    boxes = [label_box(t) for t in texts]
+    tree = shapely.STRtree(boxes)
+    pairs = []
+    for i, box in enumerate(boxes):
+        for j in sorted(int(k) for k in tree.query(box, predicate="intersects")):
+            if j > i and box.intersection(boxes[j]).area > min_area:
+                pairs.append((texts[i], texts[j]))
+    return pairs
+
+
+def nudge_labels(texts: Iterable[Text], obstacles: Iterable[BaseGeometry] = (), *,
+                 step_mm: float | None = None, rings: int = 6) -> tuple[Text, ...]:
+    """Move labels, in order, off the ones placed before them and off `obstacles`.
+
+    Each label that collides is tried at growing distances (multiples of `step_mm`) in
+    eight directions; it keeps its place if no free spot is found.
+
+    Parameters
+    ----------
+    texts : iterable of Text
+        Labels in order of priority (earlier ones stay put).
+    obstacles : iterable of shapely geometry
+        Areas labels must avoid, mm.
+    step_mm : float, optional
+        Ring spacing, mm; half the label's height if omitted.
+    rings : int
+        How many rings to try.
+
+    Returns
+    -------
+    tuple of Text
+        The labels, some moved.
+    """
+    taken = list(obstacles)
+    placed = []
+    for text in texts:
+        moved = _free_spot(text, taken, step_mm or 0.5 * text.size_mm, rings)
+        placed.append(moved)
+        taken.append(label_box(moved))
+    return tuple(placed)
+
+
+def _free_spot(text: Text, taken: list, step: float, rings: int) -> Text:
+    def collides(t: Text) -> bool:
+        box = label_box(t)
+        return any(box.intersection(o).area > _EPS for o in taken)
+
+    if not collides(text):
+        return text
+    x, y = text.position
+    for ring in range(1, rings + 1):
+        for k in range(8):
+            a = math.pi / 4 * k
+            candidate = replace(text, position=(x + ring * step * math.cos(a),
+                                                y + ring * step * math.sin(a)))
+            if not collides(candidate):
+                return candidate
+    return text
+
+
+def place_views(sizes: Sequence[tuple[float, float]], area: BaseGeometry, *,
+                gap_mm: float = 10.0) -> tuple[Bounds, ...]:
+    """Place rectangular views, in order, top-left first, without overlap.
+
+    A bottom-left style packer: each view goes to the highest, then leftmost, corner
+    formed by the area's top-left and the views already placed, where it lies inside
+    `area` and at least `gap_mm` from every other view. Works on L-shaped areas (the
+    frame minus the title block).
+
+    Parameters
+    ----------
+    sizes : sequence of (width, height)
+        View sizes, mm.
+    area : shapely geometry
+        Free drawing area, mm.
+    gap_mm : float
+        Least clearance between views, mm.
+
+    Returns
+    -------
+    tuple of (xmin, ymin, xmax, ymax)
+        One box per view, mm.
+
+    Raises
+    ------
+    ScaleError
+        If a view does not fit; the message names it and its size.
+    """
+    region = area.buffer(_EPS)
+    left, _, _, top = area.bounds
+    placed: list[Bounds] = []
+    for index, (width, height) in enumerate(sizes):
+        box = _first_fit(width, height, region, left, top, placed, gap_mm)
+        if box is None:
+            raise ScaleError(f"view {index + 1} ({width:.1f} × {height:.1f} mm) does not fit "
+                             f"the free drawing area; choose a smaller scale or a larger "
+                             f"sheet")
+        placed.append(box)
+    return tuple(placed)
+
+
+def _first_fit(width, height, region, left, top, placed, gap) -> Bounds | None:
+    xs = sorted({left, *(b[2] + gap for b in placed)})
+    tops = sorted({top, *(b[1] - gap for b in placed)}, reverse=True)
+    for y_top in tops:
+        for x in xs:
+            box = (x, y_top - height, x + width, y_top)
+            if region.contains(shapely.box(*box)) and all(
+                    _clear(box, other, gap) for other in placed):
+                return box
+    return None
+
+
+def _clear(a: Bounds, b: Bounds, gap: float) -> bool:
+    dx = max(b[0] - a[2], a[0] - b[2])
+    dy = max(b[1] - a[3], a[1] - b[3])
+    return dx >= gap - _EPS or dy >= gap - _EPS
+
+
+def fit_text(text: str, cell: Bounds, *, layer: str, size_mm: float = 3.5,
+             anchor: Literal["start", "middle"] = "middle",
+             padding_mm: float = 1.0) -> tuple[Text, ...]:
+    """Write `text` inside a rectangular cell, shrinking or wrapping it to fit.
+
+    The largest standard height not above `size_mm` is used at which the text fits the
+    cell on one line, else wrapped on word boundaries onto as many lines as the cell
+    height allows; if nothing fits, the smallest ESKD height (1.8 mm) on one line.
+
+    Parameters
+    ----------
+    text : str
+        What to write; empty gives no primitives.
+    cell : (xmin, ymin, xmax, ymax)
+        The cell, mm.
+    layer : str
+        Layer of the texts.
+    size_mm : float
+        Preferred (largest) text height, mm.
+    anchor : {"start", "middle"}
+        Left-aligned after `padding_mm`, or centred.
+    padding_mm : float
+        Clearance to the cell's sides, mm.
+
+    Returns
+    -------
+    tuple of Text
+        One Text per line, vertically centred in the cell.
+    """
+    if not text.strip():
+        return ()
+    room_w = cell[2] - cell[0] - 2 * padding_mm
+    room_h = cell[3] - cell[1] - 2 * padding_mm
+    sizes = [h for h in sorted(ESKD_TEXT_HEIGHTS, reverse=True) if h <= size_mm + _EPS]
+    for size in sizes or [MIN_TEXT_HEIGHT_MM]:
+        first = (1.0 + DESCENDER_DEPTH) * size  # one line, capitals plus descenders
+        if first > room_h + _EPS:
+            continue
+        most = int((room_h - first + _EPS) // (LINE_PITCH * size)) + 1
+        lines = _wrap(text, room_w, size, most)
+        if lines is not None:
+            return _cell_lines(lines, cell, layer, size, anchor, padding_mm)
+    return _cell_lines([text], cell, layer, MIN_TEXT_HEIGHT_MM, anchor, padding_mm)
+
+
+def _wrap(text: str, width: float, size: float, count: int) -> list[str] | None:
+    """Greedy word wrap onto at most `count` lines no wider than `width`; None if not."""
+    words = text.split()
+    lines: list[str] = []
+    for word in words:
+        trial = f"{lines[-1]} {word}" if lines else word
+        if lines and text_extent(trial, size)[0] <= width:
+            lines[-1] = trial
+        else:
+            lines.append(word)
+    if len(lines) > count or any(text_extent(line, size)[0] > width for line in lines):
+        return None
+    return lines
+
+
+def _cell_lines(lines, cell, layer, size, anchor, padding) -> tuple[Text, ...]:
+    x = cell[0] + padding if anchor == "start" else (cell[0] + cell[2]) / 2
+    centre = (cell[1] + cell[3]) / 2
+    offsets = (np.arange(len(lines)) - (len(lines) - 1) / 2) * LINE_PITCH * size
+    return tuple(Text((x, centre - dy), line, layer, size, anchor, "middle")
+                 for line, dy in zip(lines, offsets))

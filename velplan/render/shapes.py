@@ -1,0 +1,251 @@
+"""Shape computations shared by every canvas: arrowheads, hatching, text boxes, strokes.
+
+Backends only translate what these functions return into their own calls, so an SVG sheet
+and a matplotlib figure of the same scene show the same geometry. All lengths are sheet
+millimetres, origin at the bottom-left corner, y up; angles are degrees, counter-clockwise.
+"""
+
+from __future__ import annotations
+
+import math
+import unicodedata
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+import shapely
+
+if TYPE_CHECKING:
+    from velplan.render.scene import Text
+    from velplan.render.style import LineType, SheetStyle
+
+#: Estimated advance of a Latin/Cyrillic character, as a fraction of the text height.
+NARROW_CHAR_WIDTH = 0.7
+#: Estimated advance of a CJK (full-width) character, as a fraction of the text height.
+WIDE_CHAR_WIDTH = 1.0
+#: Depth of descenders below the baseline, as a fraction of the text height.
+DESCENDER_DEPTH = 0.25
+# Head length over full head width: an opening angle of 2·atan(1/6) ≈ 19°.
+_HEAD_LENGTH_PER_WIDTH = 3.0
+
+
+class ArrowShape(NamedTuple):
+    """An arrow split into what a backend draws.
+
+    Attributes
+    ----------
+    shaft : ndarray of shape (2, 2) or None
+        Start and end of the stroked shaft, mm; None when the head takes the whole arrow.
+    head : ndarray of shape (3, 2) or None
+        Filled triangle tip, left corner, right corner, mm; None for a zero-length arrow.
+    """
+
+    shaft: np.ndarray | None
+    head: np.ndarray | None
+
+
+class Stroke(NamedTuple):
+    """How a line is stroked.
+
+    Attributes
+    ----------
+    width : float
+        Stroke width, mm.
+    dash : tuple of float
+        Dash pattern, mm (dash, gap, …); empty for a solid line.
+    colour : str
+        SVG colour name.
+    cap : {"round", "butt"}
+        Line ends: round for solid lines (links meet cleanly at joints), butt for dashed
+        ones so that dashes keep their drawn length.
+    """
+
+    width: float
+    dash: tuple[float, ...]
+    colour: str
+    cap: str
+
+
+def stroke_for(line: LineType, layer: str, style: SheetStyle) -> Stroke:
+    """Return the stroke of line type `line` on `layer` under `style`."""
+    dash = style.dash(line)
+    return Stroke(style.width(line), dash, style.stroke_colour(layer),
+                  "butt" if dash else "round")
+
+
+def hatch_stroke(layer: str, style: SheetStyle) -> Stroke:
+    """Stroke of hatch lines: thin and solid, whatever the outline's line type."""
+    return stroke_for("thin", layer, style)
+
+
+def arrow_size(head_length: float | None, head_width: float | None,
+               style: SheetStyle, stroke_width: float) -> tuple[float, float]:
+    """Arrowhead length and width, mm.
+
+    Sizes given on the arrow are used as they are. Defaults come from the style, widened
+    to 2.5 stroke widths so that a thick shaft never looks wider than its head, and
+    lengthened to keep the head's opening angle near 20° (GOST 2.307).
+    """
+    width = head_width if head_width is not None else max(style.arrow_width_mm,
+                                                          2.5 * stroke_width)
+    if head_length is not None:
+        return head_length, width
+    return max(style.arrow_length_mm, width * _HEAD_LENGTH_PER_WIDTH), width
+
+
+def arrowhead(start, end, length: float, width: float) -> np.ndarray | None:
+    """Triangle of an arrowhead whose tip is at `end`, pointing from `start` to `end`.
+
+    Parameters
+    ----------
+    start, end : array_like of shape (2,)
+        Tail and tip of the vector, mm.
+    length, width : float
+        Head length along the vector and full width across it, mm. A head longer than
+        the vector is shrunk to the vector's length, keeping its proportions.
+
+    Returns
+    -------
+    ndarray of shape (3, 2) or None
+        Tip, left base corner, right base corner, mm; None for a zero-length vector.
+    """
+    start, end = np.asarray(start, float), np.asarray(end, float)
+    span = float(np.hypot(*(end - start)))
+    if span == 0.0:
+        return None
+    along = (end - start) / span
+    across = np.array([-along[1], along[0]])
+    scale = min(1.0, span / length)
+    base = end - along * length * scale
+    half = across * width * scale / 2.0
+    return np.array([end, base + half, base - half])
+
+
+def arrow_shape(start, end, head_length: float, head_width: float) -> ArrowShape:
+    """Split an arrow into a shaft ending at the base of its head, and the head.
+
+    The shaft stops at the head's base so that a butt- or round-capped stroke never
+    pokes past the tip; the round cap stays inside the triangle.
+    """
+    head = arrowhead(start, end, head_length, head_width)
+    if head is None:
+        return ArrowShape(None, None)
+    base = (head[1] + head[2]) / 2.0
+    start = np.asarray(start, float)
+    if np.allclose(base, start):
+        return ArrowShape(None, head)
+    return ArrowShape(np.array([start, base]), head)
+
+
+def circle_outline(centre, radius: float, *, segments: int = 72) -> np.ndarray:
+    """Closed polygon approximating a circle, shape (segments, 2), mm."""
+    t = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)
+    return np.asarray(centre, float) + radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def hatch_segments(outline, spacing: float, angle_deg: float = 45.0) -> np.ndarray:
+    """Hatch lines filling a polygon, clipped to it.
+
+    Lines are laid at multiples of `spacing` from the sheet origin, so neighbouring
+    hatched areas line up as on a hand drawing.
+
+    Parameters
+    ----------
+    outline : array_like of shape (n, 2)
+        Polygon vertices, mm (closing edge implied).
+    spacing : float
+        Distance between neighbouring lines, mm.
+    angle_deg : float
+        Direction of the lines, degrees from the x axis.
+
+    Returns
+    -------
+    ndarray of shape (m, 2, 2)
+        Segments (start, end), mm, sorted by their offset across the hatch.
+    """
+    area = shapely.Polygon(np.asarray(outline, float))
+    if area.is_empty or area.area == 0.0:
+        return np.empty((0, 2, 2))
+    a = math.radians(angle_deg)
+    along = np.array([math.cos(a), math.sin(a)])
+    normal = np.array([-along[1], along[0]])
+    corners = np.asarray(area.exterior.coords)
+    offsets = corners @ normal
+    reach = float(np.max(np.abs(corners @ along))) + 1.0
+    first, last = math.ceil(offsets.min() / spacing), math.floor(offsets.max() / spacing)
+    segments = []
+    for k in range(first, last + 1):
+        centre = normal * k * spacing
+        line = shapely.LineString([centre - along * reach, centre + along * reach])
+        segments.extend(_line_parts(area.intersection(line)))
+    return np.array(segments).reshape(-1, 2, 2)
+
+
+def _line_parts(geometry) -> list[np.ndarray]:
+    parts = getattr(geometry, "geoms", [geometry])
+    return [np.asarray(p.coords)[[0, -1]] for p in parts
+            if isinstance(p, shapely.LineString) and not p.is_empty and p.length > 1e-9]
+
+
+def is_wide_char(char: str) -> bool:
+    """True for a full-width (CJK) character, which is about as wide as it is tall."""
+    return unicodedata.east_asian_width(char) in ("W", "F")
+
+
+def text_extent(text: str, size_mm: float) -> tuple[float, float]:
+    """Estimated width and height of a one-line text, mm.
+
+    Parameters
+    ----------
+    text : str
+        The text (one line).
+    size_mm : float
+        Text height (capital letter height), mm.
+
+    Returns
+    -------
+    (float, float)
+        Width ≈ 0.7·h per Latin/Cyrillic character and 1.0·h per CJK character;
+        height from the descender line to the capital line, 1.25·h.
+    """
+    units = sum(WIDE_CHAR_WIDTH if is_wide_char(c) else NARROW_CHAR_WIDTH for c in text)
+    return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
+
+
+def text_origin(text: Text) -> np.ndarray:
+    """Point on the alphabetic baseline where a backend anchors `text`, mm.
+
+    ``baseline="middle"`` centres the capitals on `text.position`, ``"top"`` hangs them
+    from it; the shift is taken across the text's own direction, so rotated text moves
+    the same way relative to its letters.
+    """
+    drop = {"baseline": 0.0, "middle": 0.5, "top": 1.0}[text.baseline] * text.size_mm
+    a = math.radians(text.rotation_deg)
+    return np.asarray(text.position, float) - drop * np.array([-math.sin(a), math.cos(a)])
+
+
+def text_box(text: Text) -> np.ndarray:
+    """Corners of the estimated box of `text`, shape (4, 2), mm, counter-clockwise."""
+    width, _ = text_extent(text.text, text.size_mm)
+    x0 = -width * {"start": 0.0, "middle": 0.5, "end": 1.0}[text.anchor]
+    y0 = -DESCENDER_DEPTH * text.size_mm
+    local = np.array([[x0, y0], [x0 + width, y0],
+                      [x0 + width, text.size_mm], [x0, text.size_mm]])
+    return text_origin(text) + rotate(local, text.rotation_deg)
+
+
+def rotate(points, angle_deg: float, about=(0.0, 0.0)) -> np.ndarray:
+    """Rotate points (..., 2) by `angle_deg` counter-clockwise about `about`, mm."""
+    a = math.radians(angle_deg)
+    turn = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    about = np.asarray(about, float)
+    return (np.asarray(points, float) - about) @ turn.T + about
+
+
+def upright_angle(direction_deg: float) -> float:
+    """The text angle along `direction_deg` that reads left-to-right, in (-90, 90] degrees."""
+    a = (direction_deg + 180.0) % 360.0 - 180.0
+    if a > 90.0:
+        return a - 180.0
+    if a <= -90.0:
+        return a + 180.0
+    return a

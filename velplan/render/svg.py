@@ -1,0 +1,175 @@
+"""SVG backend: the only module that imports svgwrite.
+
+The output is deterministic — numbers with a fixed precision, group ids derived from layer
+names, no timestamps — so golden files compare byte for byte. Arrowheads are filled
+polygons and hatching is explicit lines (no markers, no patterns), so cairosvg, browsers
+and Inkscape render them alike. The sheet is sized in millimetres with a matching viewBox;
+y is flipped here, the scene keeps y up.
+
+Examples
+--------
+>>> from velplan.render.scene import Scene, Polyline
+>>> svg = to_svg(Scene((Polyline([(0, 0), (10, 5)], "mechanism", "thick"),), 420, 297))
+>>> 'width="420mm"' in svg and 'points="0,297 10,292"' in svg
+True
+"""
+
+from __future__ import annotations
+
+import svgwrite
+
+from velplan.render.canvas import render
+from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
+from velplan.render.shapes import (
+    Stroke, arrow_shape, arrow_size, circle_outline, hatch_segments, hatch_stroke,
+    stroke_for, text_origin)
+from velplan.render.style import SheetStyle
+
+_INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
+_PAPER = "white"
+
+
+class SvgCanvas:
+    """Draws a scene as an SVG document.
+
+    Parameters
+    ----------
+    style : SheetStyle, optional
+        Line widths, dashes, fonts and arrow sizes; the default ESKD style if omitted.
+    precision : int
+        Decimals kept in every coordinate and length (mm).
+
+    Notes
+    -----
+    Each run of consecutive primitives on one layer becomes an Inkscape layer group
+    ``<g id="layer-NAME" class="layer NAME" inkscape:groupmode="layer">``; a layer that
+    comes back later in the scene gets ``id="layer-NAME-2"`` and so on, so drawing order
+    is kept exactly.
+    """
+
+    def __init__(self, style: SheetStyle | None = None, *, precision: int = 3) -> None:
+        self.style = style if style is not None else SheetStyle()
+        self.precision = precision
+        self._drawing: svgwrite.Drawing | None = None
+        self._height = 0.0
+        self._group = None
+        self._group_layer: str | None = None
+        self._layer_runs: dict[str, int] = {}
+
+    # -- number and coordinate formatting -------------------------------------------
+
+    def _num(self, value: float) -> str:
+        text = f"{value:.{self.precision}f}".rstrip("0").rstrip(".")
+        return "0" if text in ("-0", "") else text
+
+    def _xy(self, point) -> tuple[str, str]:
+        return self._num(float(point[0])), self._num(self._height - float(point[1]))
+
+    def _points(self, points) -> list[tuple[str, str]]:
+        return [self._xy(p) for p in points]
+
+    def _path(self, segments) -> str:
+        return " ".join("M{},{} L{},{}".format(*self._xy(a), *self._xy(b))
+                        for a, b in segments)
+
+    # -- canvas protocol --------------------------------------------------------------
+
+    def begin(self, width_mm: float, height_mm: float) -> None:
+        w, h = self._num(width_mm), self._num(height_mm)
+        self._drawing = svgwrite.Drawing(size=(f"{w}mm", f"{h}mm"),
+                                         viewBox=f"0 0 {w} {h}", debug=False)
+        self._drawing.attribs["xmlns:inkscape"] = _INKSCAPE_NS
+        self._height = float(height_mm)
+        self._group, self._group_layer, self._layer_runs = None, None, {}
+
+    def draw_polyline(self, item: Polyline) -> None:
+        stroke = stroke_for(item.line, item.layer, self.style)
+        self._add(item.layer, self._drawing.polyline(
+            points=self._points(item.points), fill="none", **self._stroke(stroke)))
+
+    def draw_polygon(self, item: Polygon) -> None:
+        self._hatch(item.points, item.fill, item.layer)
+        stroke = stroke_for(item.line, item.layer, self.style)
+        self._add(item.layer, self._drawing.polygon(
+            points=self._points(item.points), fill=self._fill(item.fill, stroke),
+            **self._stroke(stroke)))
+
+    def draw_circle(self, item: Circle) -> None:
+        self._hatch(circle_outline(item.centre, item.radius), item.fill, item.layer)
+        stroke = stroke_for(item.line, item.layer, self.style)
+        cx, cy = self._xy(item.centre)
+        self._add(item.layer, self._drawing.circle(
+            center=(cx, cy), r=self._num(item.radius), fill=self._fill(item.fill, stroke),
+            **self._stroke(stroke)))
+
+    def draw_arrow(self, item: Arrow) -> None:
+        stroke = stroke_for(item.line, item.layer, self.style)
+        length, width = arrow_size(item.head_length, item.head_width, self.style,
+                                   stroke.width)
+        shape = arrow_shape(item.start, item.end, length, width)
+        if shape.shaft is not None:
+            (x1, y1), (x2, y2) = self._points(shape.shaft)
+            self._add(item.layer, self._drawing.line(
+                start=(x1, y1), end=(x2, y2), **self._stroke(stroke)))
+        if shape.head is not None:
+            self._add(item.layer, self._drawing.polygon(
+                points=self._points(shape.head), fill=stroke.colour, stroke="none"))
+
+    def draw_text(self, item: Text) -> None:
+        x, y = self._xy(text_origin(item))
+        attributes = {
+            "font-size": self._num(self.style.font_size_em(item.size_mm)),
+            "font-family": self.style.font_css,
+            "text-anchor": item.anchor,
+            "fill": self.style.stroke_colour(item.layer),
+        }
+        if self.style.italic:
+            attributes["font-style"] = "italic"
+        if item.rotation_deg:
+            attributes["transform"] = f"rotate({self._num(-item.rotation_deg)} {x} {y})"
+        self._add(item.layer, self._drawing.text(item.text, insert=(x, y), **attributes))
+
+    def finish(self) -> str:
+        """Return the SVG document as a string (UTF-8 XML with declaration)."""
+        body = self._drawing.tostring()
+        return f'<?xml version="1.0" encoding="utf-8" ?>\n{body}\n'
+
+    # -- helpers ----------------------------------------------------------------------
+
+    def _stroke(self, stroke: Stroke) -> dict[str, str]:
+        attributes = {"stroke": stroke.colour, "stroke-width": self._num(stroke.width),
+                      "stroke-linecap": stroke.cap, "stroke-linejoin": "round"}
+        if stroke.dash:
+            attributes["stroke-dasharray"] = ",".join(self._num(d) for d in stroke.dash)
+        return attributes
+
+    @staticmethod
+    def _fill(fill: str | None, stroke: Stroke) -> str:
+        return {"solid": stroke.colour, "white": _PAPER}.get(fill, "none")
+
+    def _hatch(self, outline, fill: str | None, layer: str) -> None:
+        if fill != "hatch":
+            return
+        segments = hatch_segments(outline, self.style.hatch_spacing_mm,
+                                  self.style.hatch_angle_deg)
+        if len(segments):
+            self._add(layer, self._drawing.path(
+                d=self._path(segments), fill="none",
+                **self._stroke(hatch_stroke(layer, self.style))))
+
+    def _add(self, layer: str, element) -> None:
+        if layer != self._group_layer:
+            run = self._layer_runs.get(layer, 0) + 1
+            self._layer_runs[layer] = run
+            group_id = f"layer-{layer}" if run == 1 else f"layer-{layer}-{run}"
+            self._group = self._drawing.g(id=group_id, class_=f"layer {layer}")
+            self._group.attribs["inkscape:groupmode"] = "layer"
+            self._group.attribs["inkscape:label"] = layer
+            self._drawing.add(self._group)
+            self._group_layer = layer
+        self._group.add(element)
+
+
+def to_svg(scene: Scene, style: SheetStyle | None = None, *, precision: int = 3) -> str:
+    """Render `scene` to an SVG string; same scene and style give identical text."""
+    return render(scene, SvgCanvas(style, precision=precision))
