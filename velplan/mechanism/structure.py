@@ -71,6 +71,24 @@ def points_out(group: Group) -> dict[str, str]:
     return out
 
 
+def revolute_joints(group: Group) -> dict[str, tuple[str, ...]]:
+    """Revolute joint centres of a group → the group's links they are a point of.
+
+    A joint centre is a material point of every link it joins, so a guide or a later group
+    may refer to it on either link.
+    """
+    a, b = group.links
+    if isinstance(group, RRR):
+        return {group.joints[0]: (a,), group.point: (a, b), group.joints[1]: (b,)}
+    if isinstance(group, RRP):
+        return {group.joint: (a,), group.point: (a, b)}
+    if isinstance(group, RPR):
+        return {group.joint: (a,), group.pivot: (b,)}
+    if isinstance(group, PRP):
+        return {group.point: (a, b)}
+    return {group.joint: (a,)}
+
+
 def schedule(mech: Mechanism) -> tuple[Item, ...]:
     """Solving order: crank, then each group followed by the points on its links.
 
@@ -80,6 +98,7 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
         A group or point refers to a point or link that is not known before it.
     """
     owner: dict[str, str] = {name: GROUND for name, _ in mech.ground}
+    on: dict[str, set[str]] = {name: {GROUND} for name in owner}
     links = {GROUND}
     order: list[Item] = [mech.crank]
     if mech.crank.pivot not in owner:
@@ -87,6 +106,8 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
             f"crank pivot {mech.crank.pivot!r} is not a ground point; ground points: {_names(owner)}"
         )
     owner[mech.crank.tip] = mech.crank.link
+    on[mech.crank.tip] = {mech.crank.link}
+    on[mech.crank.pivot].add(mech.crank.link)
     links.add(mech.crank.link)
     pending = list(mech.points)
 
@@ -94,6 +115,7 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
         for p in list(pending):
             if p.link in links:
                 owner[p.name] = p.link
+                on[p.name] = {p.link}
                 order.append(p)
                 pending.remove(p)
 
@@ -111,14 +133,18 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
                     f"group {g.name!r}: guide link {guide.link!r} is not known before it; "
                     f"known links: {_names(links)}"
                 )
-            if owner[guide.through] != guide.link:
+            if guide.link not in on[guide.through]:
                 raise MechanismError(
-                    f"group {g.name!r}: guide point {guide.through!r} is on link "
-                    f"{owner[guide.through]!r}, not on the guide's link {guide.link!r}"
+                    f"group {g.name!r}: guide point {guide.through!r} is on link(s) "
+                    f"{_names(on[guide.through])}, not on the guide's link {guide.link!r}"
                 )
         order.append(g)
         links.update(g.links)
-        owner.update(points_out(g))
+        for name, link in points_out(g).items():
+            owner[name] = link
+            on[name] = {link}
+        for name, on_links in revolute_joints(g).items():
+            on.setdefault(name, set()).update(on_links)
         attach_points()
     if pending:
         known = _names(links - {GROUND})

@@ -1,0 +1,112 @@
+"""The evaluation context of a plan: the mechanism in its positions, the scales, the drafting
+policy, and what the steps record (conditions, error bounds, segment lengths)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from velplan.analysis.solver import Kinematics
+from velplan.mechanism.model import GROUND
+from velplan.plans.drafting import Drafting
+
+EPS = np.finfo(float).eps
+
+
+@dataclass(frozen=True)
+class Figure:
+    """Two points of a link (``p1``, ``p2``: mechanism point names) and their velocity or
+    acceleration images (``img1``, ``img2``: step targets): enough to read the link's ω (or ε)
+    and to place any other point of it by similarity."""
+
+    link: str
+    p1: str
+    img1: str
+    p2: str
+    img2: str
+
+    @property
+    def inputs(self) -> tuple[str, str]:
+        return (self.img1, self.img2)
+
+
+class Context:
+    """Positions ``idx`` of a solved mechanism, the scales ``mu`` ({"v": μv, "a": μa}, units per
+    mm), and the drafting policy; collects conditions, bounds and segment lengths."""
+
+    def __init__(self, kin: Kinematics, idx: np.ndarray, mu: dict, drafting: Drafting,
+                 refuse_below: float, plan_steps: dict):
+        self.kin = kin
+        self.idx = idx
+        self.n = idx.shape[0]
+        self.mu = mu
+        self.drafting = drafting
+        self.refuse_below = refuse_below
+        self.plan_steps = plan_steps
+        self.omega1 = kin.omega1
+        self.epsilon1 = kin.epsilon1
+        self.conditions: dict[str, np.ndarray] = {}
+        self.bounds: dict[str, np.ndarray] = {}
+        self.segments: dict[str, np.ndarray] = {}
+        self.components: dict[str, tuple[str, str]] = {}
+        self._pos: dict[str, np.ndarray] = {}
+
+    def pos(self, name: str) -> np.ndarray:
+        """Complex position (m) of mechanism point ``name`` at the evaluated positions."""
+        z = self._pos.get(name)
+        if z is None:
+            xy = self.kin.positions[self.idx, self.kin._point(name)]
+            z = self._pos[name] = xy[:, 0] + 1j * xy[:, 1]
+        return z
+
+    def theta(self, link: str) -> np.ndarray:
+        """Angle (rad) of ``link``'s reference direction (0 for the frame)."""
+        if link == GROUND:
+            return np.zeros(self.n)
+        return self.kin.angles[self.idx, self.kin._link(link)]
+
+    def omega_of(self, f: Figure, vals) -> np.ndarray:
+        """ω (rad/s) of a link read off the velocity plan: ω = V_rel / l, its sign the sense
+        in which the relative velocity turns the link (counter-clockwise positive)."""
+        r = self.pos(f.p2) - self.pos(f.p1)
+        dv = (vals[f.img2] - vals[f.img1]) * self.mu["v"]
+        cross = r.real * dv.imag - r.imag * dv.real
+        if self.drafting.exact:
+            return cross / np.abs(r) ** 2
+        read = self.drafting.length(np.abs(vals[f.img2] - vals[f.img1])) * self.mu["v"]
+        return np.sign(cross) * read / np.abs(r)
+
+    def epsilon_of(self, f: Figure, vals) -> np.ndarray:
+        """ε (rad/s²) of a link read off the acceleration plan (tangential part / l)."""
+        r = self.pos(f.p2) - self.pos(f.p1)
+        da = (vals[f.img2] - vals[f.img1]) * self.mu["a"]
+        cross = r.real * da.imag - r.imag * da.real
+        return cross / np.abs(r) ** 2
+
+    def record_segment(self, step, label: str, length_mm: np.ndarray, component: str) -> None:
+        self.segments[label] = length_mm
+        if component:
+            self.components[component] = (label, step.target[0])
+
+    def record_intersection(self, step, sine: np.ndarray, x: np.ndarray, through) -> None:
+        """Condition |sin| and the implied error bound (mm) of the intersection ``x``.
+
+        Notes
+        -----
+        A lateral error δ of either line moves the intersection by about δ/sin along the other:
+        δ is round-off (8·eps·size) in exact mode, and the drafting length precision plus the
+        angular precision times the distance from the line's base point in drafting mode.
+        """
+        self.conditions[step.target] = sine
+        size = np.maximum.reduce([np.abs(x), np.abs(through[0]), np.abs(through[1]), np.ones(self.n)])
+        if self.drafting.exact:
+            delta = 8 * EPS * size
+        else:
+            arm = np.maximum(np.abs(x - through[0]), np.abs(x - through[1]))
+            delta = np.hypot(self.drafting.length_mm, np.radians(self.drafting.angle_deg) * arm)
+        with np.errstate(divide="ignore"):
+            self.bounds[step.target] = delta / sine
+
+    def refused_mask(self, target: str) -> np.ndarray:
+        return ~(self.conditions[target] >= self.refuse_below)

@@ -1,0 +1,354 @@
+"""A plan as data, evaluated lazily: only the steps a request depends on, only at the requested
+positions, exactly (float64) or with simulated drafting precision."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Iterable, Literal, Sequence
+
+import numpy as np
+
+from velplan.analysis.solver import Kinematics, solve
+from velplan.errors import MechanismError, ScaleError, SingularPositionError
+from velplan.mechanism.model import GROUND, Mechanism
+from velplan.plans import text as T
+from velplan.plans.build import construct
+from velplan.plans.context import Context, Figure
+from velplan.plans.drafting import EXACT, Drafting
+from velplan.plans.scale import check_scale, standard_scale
+from velplan.plans.steps import Intersect, Step
+
+Kind = Literal["velocity", "acceleration"]
+TARGET_MM = {"velocity": 100.0, "acceleration": 120.0}
+"""Default length (mm) of the longest vector when the scale is chosen automatically."""
+FLAG_BELOW = 0.1
+"""Intersections whose |sin| is below this are flagged (the lines meet at < 5.7°)."""
+REFUSE_BELOW = {"exact": 1e-8, "drafting": 0.02}
+"""Intersections whose |sin| is below this are refused (NaN and a mask)."""
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The velocity and acceleration plans of a mechanism as an ordered tuple of steps.
+
+    Build it with `Plan.of(mech)`; evaluate it with `evaluate`.
+    """
+
+    mechanism: Mechanism
+    steps: tuple[Step, ...]
+    images: dict
+    figures: dict
+    tangential: bool
+
+    @classmethod
+    def of(cls, mech: Mechanism, *, tangential: bool | None = None) -> "Plan":
+        """The plan of ``mech`` (``tangential``: include the crank's aᵗ step; default ε1 ≠ 0)."""
+        tang = mech.crank.epsilon != 0 if tangential is None else tangential
+        steps, images, figures = construct(mech, tangential=tang)
+        targets = [s.target for s in steps]
+        if len(set(targets)) != len(targets):
+            dup = next(t for t in targets if targets.count(t) > 1)
+            raise MechanismError(f"two construction steps would draw the same image {dup!r}; rename a point")
+        return cls(mech, steps, images, figures, tang)
+
+    @cached_property
+    def by_target(self) -> dict[str, Step]:
+        return {s.target: s for s in self.steps}
+
+    def targets_for(self, kind: Kind, only: Iterable[str] | None) -> list[str]:
+        """Step targets a request needs: images of points, or the figures of links (for ω, ε)."""
+        k = kind[0]
+        if only is None:
+            return [s.target for s in self.steps if s.target.startswith(k + ":")]
+        out = []
+        for name in only:
+            if name in self.images[k]:
+                out.append(self.images[k][name])
+            elif name in self.figures[k]:
+                fig = self.figures[k][name]
+                out.extend(fig.inputs if fig else [])
+                if fig is None:
+                    out.append(f"{k}:{'p' if k == 'v' else 'π'}")
+            else:
+                known = ", ".join(list(self.images[k]) + [f"link {x}" for x in self.figures[k]])
+                raise MechanismError(f"unknown point or link {name!r}; known: {known}")
+        return out
+
+    def needed(self, targets: Iterable[str]) -> list[Step]:
+        """The steps ``targets`` depend on, in construction order."""
+        need: set[str] = set()
+        stack = list(targets)
+        while stack:
+            t = stack.pop()
+            if t in need:
+                continue
+            need.add(t)
+            stack.extend(self.by_target[t].inputs)
+        return [s for s in self.steps if s.target in need]
+
+    def evaluate(
+        self,
+        kin: Kinematics,
+        *,
+        kind: Kind = "velocity",
+        positions: Sequence[int] | None = None,
+        only: Iterable[str] | None = None,
+        scale_v: float | None = None,
+        scale_a: float | None = None,
+        drafting: Drafting = EXACT,
+        refuse_below: float | None = None,
+        on_failure: Literal["nan", "raise"] = "nan",
+    ) -> "PlanResult":
+        """Construct the plan at ``positions`` (indices into ``kin``; all by default).
+
+        Parameters
+        ----------
+        kind : {"velocity", "acceleration"}
+        only : iterable of str, optional
+            Point or link names the request needs; only their steps are evaluated.
+        scale_v, scale_a : float, optional
+            μv in (m/s)/mm and μa in (m/s²)/mm; chosen from the standard series when omitted,
+            so that the longest vector is at most 100 mm (velocity) or 120 mm (acceleration).
+        drafting : Drafting
+            `EXACT` (float64) or a drafting precision.
+        refuse_below : float, optional
+            Refuse intersections whose |sin| is below this (default 1e-8 exact, 0.02 drafting).
+        on_failure : {"nan", "raise"}
+            What a refused intersection gives: NaN and a mask, or `SingularPositionError`.
+        """
+        if kind not in ("velocity", "acceleration"):
+            raise ValueError(f"kind must be 'velocity' or 'acceleration', not {kind!r}")
+        if kin.mechanism is not self.mechanism and kin.mechanism != self.mechanism:
+            raise MechanismError("the kinematics were solved for another mechanism")
+        if (kin.epsilon1 != 0) and not self.tangential:
+            raise MechanismError("ε1 ≠ 0: build the plan with tangential=True")
+        idx = np.arange(len(kin)) if positions is None else np.asarray(positions, dtype=int)
+        mu = {
+            "v": check_scale(scale_v, "scale μv") if scale_v is not None else auto_scale(kin, idx, "velocity"),
+            "a": 1.0,
+        }
+        if kind == "acceleration":
+            mu["a"] = check_scale(scale_a, "scale μa") if scale_a is not None else auto_scale(kin, idx, "acceleration")
+        refuse = REFUSE_BELOW[drafting.mode] if refuse_below is None else refuse_below
+        steps = self.needed(self.targets_for(kind, only))
+        ctx = Context(kin, idx, mu, drafting, refuse, self.by_target)
+        vals: dict = {}
+        for s in steps:
+            vals[s.target] = s.evaluate(ctx, vals)
+            if on_failure == "raise" and isinstance(s, Intersect) and ctx.refused_mask(s.target).any():
+                i = int(np.argmax(ctx.refused_mask(s.target)))
+                sine = float(ctx.conditions[s.target][i])
+                raise SingularPositionError(
+                    f"{kind} plan: the lines meeting at {T.label_of(s.target)} are nearly parallel at crank angle "
+                    f"{kin.phi_deg[idx[i]]:.6g}° (sine of their angle {sine:.3g} < {refuse:g}); refused",
+                    condition=sine,
+                )
+        return PlanResult(self, kin, kind, idx, mu, drafting, tuple(steps), vals, ctx)
+
+
+def auto_scale(kin: Kinematics, idx: np.ndarray, kind: Kind, target_mm: float | None = None) -> float:
+    """Standard scale so that the longest vector of ``kind`` at ``idx`` is ≤ ``target_mm``."""
+    arr = kin.velocities if kind == "velocity" else kin.accelerations
+    sizes = np.hypot(arr[idx, :, 0], arr[idx, :, 1])
+    sizes = sizes[np.isfinite(sizes)]
+    vmax = sizes.max(initial=0.0)
+    if vmax == 0:
+        raise ScaleError(f"every {kind} is zero at the requested positions; give the scale explicitly")
+    return standard_scale(vmax / (target_mm or TARGET_MM[kind]))
+
+
+@dataclass(frozen=True)
+class Flag:
+    """A near-parallel intersection: at position ``index`` (into the result's positions) the
+    lines meeting at ``image`` make an angle with sine ``condition``; the image may be off by
+    ``bound_mm`` on the plan (``refused``: no value was returned)."""
+
+    image: str
+    index: int
+    condition: float
+    bound_mm: float
+    refused: bool
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """A constructed plan at some positions: images (mm), readouts (SI), conditions and steps."""
+
+    plan: Plan
+    kin: Kinematics
+    kind: Kind
+    index: np.ndarray
+    scales: dict
+    drafting: Drafting
+    steps: tuple[Step, ...]
+    values: dict = field(repr=False)
+    ctx: Context = field(repr=False)
+
+    @property
+    def scale(self) -> float:
+        """μ of this plan: (m/s)/mm or (m/s²)/mm."""
+        return self.scales[self.kind[0]]
+
+    @property
+    def phi(self) -> np.ndarray:
+        """Crank angles (rad) of the evaluated positions."""
+        return self.kin.phi[self.index]
+
+    @property
+    def evaluated_steps(self) -> int:
+        """Number of construction steps evaluated for this request."""
+        return len(self.steps)
+
+    @property
+    def mode(self) -> str:
+        return self.drafting.mode
+
+    def _image_key(self, name: str) -> str:
+        k = self.kind[0]
+        try:
+            return self.plan.images[k][name]
+        except KeyError:
+            raise MechanismError(f"unknown point {name!r}; known points: {', '.join(self.plan.images[k])}") from None
+
+    def image(self, name: str) -> np.ndarray:
+        """(n, 2) image of point ``name`` on this plan, mm from the pole."""
+        z = self.values[self._image_key(name)]
+        return np.stack([z.real, z.imag], -1)
+
+    @cached_property
+    def images(self) -> dict[str, np.ndarray]:
+        """Every evaluated image of this plan (points by name, construction points by label), mm."""
+        k = self.kind[0]
+        out = {p: self.image(p) for p, t in self.plan.images[k].items() if t in self.values}
+        for t, z in self.values.items():
+            if t.startswith(k + ":") and not isinstance(z, tuple) and t not in self.plan.images[k].values():
+                out[T.label_of(t)] = np.stack([z.real, z.imag], -1)
+        return out
+
+    def vector(self, name: str) -> np.ndarray:
+        """(n, 2) velocity (m/s) or acceleration (m/s²) of point ``name`` read off the plan."""
+        z = self.values[self._image_key(name)]
+        d = self.drafting
+        read = d.length(np.abs(z)) * d.direction(np.where(z == 0, 1, z) / np.where(z == 0, 1, np.abs(z)))
+        read = np.where(z == 0, 0, read) if not d.exact else z
+        read = read * self.scale
+        return np.stack([read.real, read.imag], -1)
+
+    @cached_property
+    def vectors(self) -> dict[str, np.ndarray]:
+        """Every point whose image was evaluated → its vector (m/s or m/s²)."""
+        k = self.kind[0]
+        return {p: self.vector(p) for p, t in self.plan.images[k].items() if t in self.values}
+
+    def _figure_ready(self, fig: Figure | None) -> bool:
+        return fig is None or all(t in self.values for t in fig.inputs)
+
+    @cached_property
+    def omegas(self) -> dict[str, np.ndarray]:
+        """ω (rad/s, counter-clockwise positive) of every link whose figure was evaluated."""
+        out = {}
+        crank = self.plan.mechanism.crank.link
+        for link, fig in self.plan.figures["v"].items():
+            if link == crank:
+                out[link] = np.full(len(self.index), self.kin.omega1)  # given, not read off
+            elif link != GROUND and self._figure_ready(fig):
+                out[link] = np.zeros(len(self.index)) if fig is None else self.ctx.omega_of(fig, self.values)
+        return out
+
+    @cached_property
+    def epsilons(self) -> dict[str, np.ndarray]:
+        """ε (rad/s²) of every link whose acceleration figure was evaluated."""
+        if self.kind != "acceleration":
+            return {}
+        out = {}
+        for link, fig in self.plan.figures["a"].items():
+            if link != GROUND and self._figure_ready(fig):
+                out[link] = np.zeros(len(self.index)) if fig is None else self.ctx.epsilon_of(fig, self.values)
+        return out
+
+    @property
+    def segments(self) -> dict[str, np.ndarray]:
+        """Every segment laid off or cut by an intersection: label (``"pa"``, ``"ac"``) → mm."""
+        return {k: v for k, v in self.ctx.segments.items()}
+
+    @cached_property
+    def components(self) -> dict[str, tuple[str, np.ndarray]]:
+        """Named vector components (``"V_CA"``, ``"aⁿ_CA"``, ``"aᵏ_A4A"``, ``"aʳ_F"``) →
+        (segment label, magnitude in SI units), read as lengths × scale."""
+        out = {}
+        for name, (label, plan) in self.ctx.components.items():
+            mm = self.drafting.length(self.ctx.segments[label])
+            out[name] = (label, mm * self.scales[plan])
+        return out
+
+    @property
+    def conditions(self) -> dict[str, np.ndarray]:
+        """Image label → |sin| of the angle of the two lines fixing it, per position."""
+        return {T.label_of(k): v for k, v in self.ctx.conditions.items()}
+
+    @property
+    def bounds(self) -> dict[str, np.ndarray]:
+        """Image label → error bound of the intersection (mm on the plan), per position."""
+        return {T.label_of(k): v for k, v in self.ctx.bounds.items()}
+
+    @cached_property
+    def flags(self) -> list[Flag]:
+        """Flagged (|sin| < 0.1) and refused intersections, per position."""
+        out = []
+        for t, c in self.ctx.conditions.items():
+            refused = self.ctx.refused_mask(t)
+            for i in np.flatnonzero((c < FLAG_BELOW) | refused):
+                out.append(Flag(T.label_of(t), int(i), float(c[i]), float(self.ctx.bounds[t][i]), bool(refused[i])))
+        return out
+
+    @cached_property
+    def flagged(self) -> np.ndarray:
+        """(n,) True where some intersection is flagged or refused."""
+        m = np.zeros(len(self.index), dtype=bool)
+        for f in self.flags:
+            m[f.index] = True
+        return m
+
+    @cached_property
+    def refused(self) -> np.ndarray:
+        """(n,) True where some intersection was refused (values are NaN there)."""
+        m = np.zeros(len(self.index), dtype=bool)
+        for t in self.ctx.conditions:
+            m |= self.ctx.refused_mask(t)
+        return m
+
+    def describe(self, i: int = 0, lang: str = "en") -> list[str]:
+        """The worked solution at position ``i`` (of this result), one sentence per step."""
+        T.check_lang(lang)
+        return [s.describe(self.ctx, self.values, i, lang) for s in self.steps if s.target.startswith(self.kind[0])]
+
+
+def plan(
+    mech: Mechanism,
+    phi,
+    *,
+    kind: Kind = "velocity",
+    **options,
+) -> PlanResult:
+    """Solve ``mech`` at crank angles ``phi`` (rad) and construct its ``kind`` plan there.
+
+    A friendly shortcut for ``Plan.of(mech).evaluate(velplan.solve(mech, phi), kind=kind, …)``.
+    """
+    kin = solve(mech, phi)
+    return Plan.of(mech).evaluate(kin, kind=kind, **options)
+
+
+def relative_error(result: PlanResult, *, floor: float = 0.0) -> dict[str, np.ndarray]:
+    """Per point: |plan − analytic| / max(|analytic|, floor·largest) at each position."""
+    arr = result.kin.velocities if result.kind == "velocity" else result.kin.accelerations
+    out = {}
+    largest = np.abs(arr[result.index]).max()
+    for p, v in result.vectors.items():
+        ref = arr[result.index, result.kin.point_index[p]]
+        den = np.maximum(np.hypot(*ref.T), floor * largest)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out[p] = np.hypot(*(v - ref).T) / den
+    return out
+
+

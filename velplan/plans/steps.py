@@ -1,0 +1,311 @@
+"""Construction steps of a velocity or acceleration plan: one frozen value per textbook step.
+
+A step names its inputs by image (``"v:a"``: the image a on the velocity plan, ``"a:c"``:
+the image c on the acceleration plan) and by mechanism point, and evaluates on whole arrays
+of positions. Plan coordinates are complex numbers in mm with the pole at 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from velplan.plans.context import Context, Figure
+from velplan.plans import text as T
+
+
+# -- known vectors ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Rotation:
+    """V = ω1 × (P − C): velocity of the crank tip P about its pivot C, m/s (ω1 given)."""
+
+    link: str
+    point: str
+    centre: str
+    plan: str = "v"
+
+    inputs = ()
+
+    def value(self, ctx: Context, vals) -> np.ndarray:
+        return 1j * ctx.omega1 * (ctx.pos(self.point) - ctx.pos(self.centre))
+
+    def symbol(self) -> str:
+        return f"V_{self.point}"
+
+    def direction_text(self, lang: str) -> str:
+        return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ω{self.link}")
+
+
+@dataclass(frozen=True)
+class Normal:
+    """aⁿ = −ω²·(P − C): normal acceleration of P about C on a link, m/s², directed from P
+    towards C; ω from the velocity plan (``figure``), or ω1 for the crank (``figure=None``)."""
+
+    link: str
+    point: str
+    centre: str
+    figure: Figure | None = None
+    plan: str = "a"
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return self.figure.inputs if self.figure else ()
+
+    def value(self, ctx: Context, vals) -> np.ndarray:
+        w = ctx.omega1 if self.figure is None else ctx.omega_of(self.figure, vals)
+        return -(w**2) * (ctx.pos(self.point) - ctx.pos(self.centre))
+
+    def symbol(self) -> str:
+        return f"aⁿ_{self.point}{self.centre}"
+
+    def direction_text(self, lang: str) -> str:
+        return T.phrase("along_to", lang, T.seg(self.point, self.centre), self.point, self.centre)
+
+
+@dataclass(frozen=True)
+class Tangential:
+    """aᵗ = ε1 × (P − C): tangential acceleration of the crank tip, m/s² (ε1 given)."""
+
+    link: str
+    point: str
+    centre: str
+    plan: str = "a"
+
+    inputs = ()
+
+    def value(self, ctx: Context, vals) -> np.ndarray:
+        return 1j * ctx.epsilon1 * (ctx.pos(self.point) - ctx.pos(self.centre))
+
+    def symbol(self) -> str:
+        return f"aᵗ_{self.point}{self.centre}"
+
+    def direction_text(self, lang: str) -> str:
+        return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ε{self.link}")
+
+
+@dataclass(frozen=True)
+class Coriolis:
+    """aᵏ = 2·ω × V_rel: Coriolis acceleration of a point moving at V_rel (m/s, read off the
+    velocity plan as the segment ``rel_from → rel_to``) along a link turning at ω (``frame``)."""
+
+    frame: Figure
+    rel_from: str
+    rel_to: str
+    name: str
+    plan: str = "a"
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return tuple(dict.fromkeys(self.frame.inputs + (self.rel_from, self.rel_to)))
+
+    def value(self, ctx: Context, vals) -> np.ndarray:
+        w = ctx.omega_of(self.frame, vals)
+        v_rel = (vals[self.rel_to] - vals[self.rel_from]) * ctx.mu["v"]
+        return 2j * w * v_rel
+
+    def symbol(self) -> str:
+        return f"aᵏ_{self.name}"
+
+    def direction_text(self, lang: str) -> str:
+        return T.phrase("coriolis_dir", lang, f"ω{self.frame.link}")
+
+
+# -- directions of construction lines -------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Perpendicular:
+    """The direction ⊥ the segment AB of the mechanism (as drawn in the position)."""
+
+    a: str
+    b: str
+
+    def unit(self, ctx: Context) -> np.ndarray:
+        d = ctx.pos(self.b) - ctx.pos(self.a)
+        return 1j * d / np.abs(d)
+
+    def text(self, lang: str) -> str:
+        return T.phrase("perp", lang, T.seg(self.a, self.b))
+
+
+@dataclass(frozen=True)
+class Parallel:
+    """The direction ∥ a guide: the reference direction of ``link`` turned by ``angle`` (rad);
+    ``along`` names the guide for the sentence (e.g. ``"O3B"`` or ``"x"``)."""
+
+    link: str
+    angle: float
+    along: str
+
+    def unit(self, ctx: Context) -> np.ndarray:
+        return np.exp(1j * (ctx.theta(self.link) + self.angle))
+
+    def text(self, lang: str) -> str:
+        if self.along == "slot":
+            along = T.phrase("slot", lang)
+        elif self.along.startswith("guide:"):
+            along = T.phrase("guide", lang, self.along[6:])
+        else:
+            along = self.along
+        return T.phrase("parallel", lang, along)
+
+
+# -- steps ----------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Pole:
+    """The pole (p on the velocity plan, π on the acceleration plan): the image of every fixed
+    point and the origin of every absolute vector."""
+
+    target: str
+    label: str
+    points: tuple[str, ...]
+
+    inputs = ()
+
+    def evaluate(self, ctx: Context, vals) -> np.ndarray:
+        return np.zeros(ctx.n, dtype=complex)
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        return T.phrase("pole", lang, self.label, ", ".join(self.points))
+
+
+@dataclass(frozen=True)
+class LayOff:
+    """Lay off a known vector (``vector``, physical units) from the image ``origin`` at the plan's
+    scale: ``target = origin + vector / μ`` (mm)."""
+
+    target: str
+    label: str
+    origin: str
+    vector: Rotation | Normal | Tangential | Coriolis
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return tuple(dict.fromkeys((self.origin,) + tuple(self.vector.inputs)))
+
+    def evaluate(self, ctx: Context, vals) -> np.ndarray:
+        z = ctx.drafting.vector(self.vector.value(ctx, vals) / ctx.mu[self.vector.plan])
+        ctx.record_segment(self, T.label_of(self.origin) + self.label, np.abs(z), self.vector.symbol())
+        return vals[self.origin] + z
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        z = vals[self.target][i] - vals[self.origin][i]
+        value = abs(z) * ctx.mu[self.vector.plan]
+        return T.phrase(
+            "lay_off", lang, T.label_of(self.origin), T.label_of(self.origin) + self.label, T.mm(abs(z), lang),
+            self.vector.direction_text(lang), self.vector.symbol(), T.num(value, lang), T.unit(self.vector.plan, lang),
+        )
+
+
+@dataclass(frozen=True)
+class Line:
+    """A construction line through the image ``through`` in the direction ``direction``; the
+    segment it carries from ``through`` to the next intersection is the component ``component``."""
+
+    target: str
+    through: str
+    direction: Perpendicular | Parallel
+    component: str
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return (self.through,)
+
+    def evaluate(self, ctx: Context, vals) -> tuple[np.ndarray, np.ndarray]:
+        return vals[self.through], ctx.drafting.direction(self.direction.unit(ctx))
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        return T.phrase("line", lang, T.label_of(self.through), self.direction.text(lang), self.component)
+
+
+@dataclass(frozen=True)
+class Intersect:
+    """The image ``target`` where two construction lines cross.
+
+    Its condition estimate is |sin| of the angle between the lines; positions where it falls
+    below the context's refusal threshold are refused (NaN and a mask) rather than returned.
+    """
+
+    target: str
+    label: str
+    lines: tuple[str, str]
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return self.lines
+
+    def evaluate(self, ctx: Context, vals) -> np.ndarray:
+        (p1, u1), (p2, u2) = vals[self.lines[0]], vals[self.lines[1]]
+        cross = u1.real * u2.imag - u1.imag * u2.real
+        d = p2 - p1
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (d.real * u2.imag - d.imag * u2.real) / cross
+        x = p1 + t * u1
+        ctx.record_intersection(self, np.abs(cross), x, (p1, p2))
+        for line, p in zip(self.lines, (p1, p2)):
+            step = ctx.plan_steps[line]
+            ctx.record_segment(self, T.label_of(step.through) + self.label, np.abs(x - p), step.component)
+        return np.where(ctx.refused_mask(self.target), np.nan + 0j, x)
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        cond = ctx.conditions[self.target][i]
+        segs = []
+        for line in self.lines:
+            step = ctx.plan_steps[line]
+            length = abs(vals[self.target][i] - vals[step.through][i])
+            segs.append(f"{T.label_of(step.through)}{self.label} = {T.mm(length, lang)}")
+        return T.phrase("intersect", lang, self.label, "; ".join(segs), T.num(cond, lang, 3))
+
+
+@dataclass(frozen=True)
+class Similar:
+    """Place the image of ``point`` by the similarity theorem: the images of a link's points
+    form a figure similar to the link (turned by 90° in the sense of ω on the velocity plan).
+
+    ``x = anchor_image + (image2 − image1)·(P − A)/(P2 − P1)`` where (P1, P2) is a pair of the
+    link's points (or of a link turning with it) with known images. ``base = None`` means
+    the link does not turn (it translates): every point has the anchor's image.
+    """
+
+    target: str
+    label: str
+    link: str
+    point: str
+    anchor: str
+    anchor_image: str
+    base: Figure | None
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        extra = self.base.inputs if self.base else ()
+        return tuple(dict.fromkeys((self.anchor_image,) + extra))
+
+    def evaluate(self, ctx: Context, vals) -> np.ndarray:
+        a = vals[self.anchor_image]
+        if self.base is None:
+            return a
+        f = self.base
+        ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
+        z = ctx.drafting.vector((vals[f.img2] - vals[f.img1]) * ratio)
+        ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, np.abs(z), "")
+        return a + z
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        if self.base is None:
+            return T.phrase("same_image", lang, self.label, self.link, T.label_of(self.anchor_image))
+        f = self.base
+        length = abs(vals[self.target][i] - vals[self.anchor_image][i])
+        ratio = abs(ctx.pos(self.point)[i] - ctx.pos(self.anchor)[i]) / abs(ctx.pos(f.p2)[i] - ctx.pos(f.p1)[i])
+        return T.phrase(
+            "similar", lang, self.label, self.link, T.label_of(self.anchor_image) + self.label, T.mm(length, lang),
+            T.label_of(f.img1) + T.label_of(f.img2), T.seg(self.anchor, self.point) + "/" + T.seg(f.p1, f.p2),
+            T.num(ratio, lang, 4),
+        )
+
+
+Step = Pole | LayOff | Line | Intersect | Similar

@@ -1,0 +1,112 @@
+"""Sentences of the worked solution in en, ru, uk and zh, and number formatting per language."""
+
+from __future__ import annotations
+
+import math
+
+from velplan.errors import VelplanError
+
+LANGS = ("en", "ru", "uk", "zh")
+
+_PHRASES: dict[str, dict[str, str]] = {
+    "pole": {
+        "en": "Choose the pole {0}; the images of the fixed points {1} are at the pole.",
+        "ru": "Выбираем полюс {0}; изображения неподвижных точек {1} совпадают с полюсом.",
+        "uk": "Обираємо полюс {0}; зображення нерухомих точок {1} збігаються з полюсом.",
+        "zh": "选取极点 {0}；固定点 {1} 的影像与极点重合。",
+    },
+    "lay_off": {
+        "en": "From {0} lay off {1} = {2} {3} ({4} = {5} {6}).",
+        "ru": "Из точки {0} откладываем отрезок {1} = {2} {3} ({4} = {5} {6}).",
+        "uk": "З точки {0} відкладаємо відрізок {1} = {2} {3} ({4} = {5} {6}).",
+        "zh": "自 {0} 作 {1} = {2}，{3}（{4} = {5} {6}）。",
+    },
+    "line": {
+        "en": "Through {0} draw a line {1} (direction of {2}).",
+        "ru": "Через точку {0} проводим прямую {1} (направление {2}).",
+        "uk": "Через точку {0} проводимо пряму {1} (напрям {2}).",
+        "zh": "过 {0} 作直线 {1}（{2} 的方向）。",
+    },
+    "intersect": {
+        "en": "The two lines meet at {0}: {1} (sine of their angle {2}).",
+        "ru": "Пересечение прямых даёт точку {0}: {1} (синус угла между ними {2}).",
+        "uk": "Перетин прямих дає точку {0}: {1} (синус кута між ними {2}).",
+        "zh": "两直线交于 {0}：{1}（夹角正弦 {2}）。",
+    },
+    "similar": {
+        "en": "By similarity of link {1} place {0}: {2} = {3} ({4} · {5} = {4} · {6}).",
+        "ru": "По теореме подобия (звено {1}) находим точку {0}: {2} = {3} ({4} · {5} = {4} · {6}).",
+        "uk": "За теоремою подібності (ланка {1}) знаходимо точку {0}: {2} = {3} ({4} · {5} = {4} · {6}).",
+        "zh": "按影像原理（构件 {1}）求 {0}：{2} = {3}（{4} · {5} = {4} · {6}）。",
+    },
+    "same_image": {
+        "en": "Link {1} does not turn: the image {0} coincides with {2}.",
+        "ru": "Звено {1} движется поступательно: точка {0} совпадает с {2}.",
+        "uk": "Ланка {1} рухається поступально: точка {0} збігається з {2}.",
+        "zh": "构件 {1} 作平动：影像 {0} 与 {2} 重合。",
+    },
+    "slot": {"en": "the slot", "ru": "пазу", "uk": "пазу", "zh": "导槽"},
+    "guide": {"en": "the guide of link {0}", "ru": "направляющей звена {0}", "uk": "напрямної ланки {0}",
+              "zh": "构件 {0} 的导路"},
+    "perp": {"en": "⊥ {0}", "ru": "⊥ {0}", "uk": "⊥ {0}", "zh": "⊥ {0}"},
+    "parallel": {"en": "∥ {0}", "ru": "∥ {0}", "uk": "∥ {0}", "zh": "∥ {0}"},
+    "sense_of": {
+        "en": " in the sense of {0}", "ru": " в сторону {0}", "uk": " у бік {0}", "zh": "，沿 {0} 的转向",
+    },
+    "along_to": {
+        "en": "∥ {0}, from {1} towards {2}", "ru": "∥ {0}, от точки {1} к точке {2}",
+        "uk": "∥ {0}, від точки {1} до точки {2}", "zh": "∥ {0}，由 {1} 指向 {2}",
+    },
+    "coriolis_dir": {
+        "en": "along V_rel turned 90° in the sense of {0}",
+        "ru": "по V_отн, повёрнутой на 90° в сторону {0}",
+        "uk": "за V_відн, поверненою на 90° у бік {0}",
+        "zh": "沿相对速度按 {0} 转向转 90°",
+    },
+}
+
+_UNITS = {
+    "v": {"en": "m/s", "ru": "м/с", "uk": "м/с", "zh": "m/s"},
+    "a": {"en": "m/s²", "ru": "м/с²", "uk": "м/с²", "zh": "m/s²"},
+    "mm": {"en": "mm", "ru": "мм", "uk": "мм", "zh": "mm"},
+}
+
+
+def check_lang(lang: str) -> str:
+    if lang not in LANGS:
+        raise VelplanError(f"unknown language {lang!r}; known languages: {', '.join(LANGS)}")
+    return lang
+
+
+def phrase(key: str, lang: str, *args) -> str:
+    return _PHRASES[key][check_lang(lang)].format(*args)
+
+
+def num(x: float, lang: str, digits: int = 4) -> str:
+    """A number to ``digits`` significant figures, with a decimal comma in ru and uk."""
+    if not math.isfinite(x):
+        return "—"
+    s = f"{x:.{digits}g}" if abs(x) >= 1e-3 or x == 0 else f"{x:.3e}"
+    return s.replace(".", ",") if lang in ("ru", "uk") else s
+
+
+def mm(x: float, lang: str) -> str:
+    """A length on the drawing, mm to 0.1 mm."""
+    if not math.isfinite(x):
+        return "—"
+    s = f"{x:.1f}"
+    return (s.replace(".", ",") if lang in ("ru", "uk") else s) + " " + _UNITS["mm"][lang]
+
+
+def unit(plan: str, lang: str) -> str:
+    return _UNITS[plan][lang]
+
+
+def seg(a: str, b: str) -> str:
+    """A segment of the mechanism, named by its end points (``"CA"``)."""
+    return f"{a}{b}"
+
+
+def label_of(target: str) -> str:
+    """The letter written on the drawing for a step target (``"v:c"`` → ``"c"``, poles p, π)."""
+    return target.split(":", 1)[1]
