@@ -57,9 +57,13 @@ def mechanisms(draw, kind: str | None = None, scale=None, omega=None) -> "Mechan
             data["ground"]["Q"] = at(0.0, -d)
             data["group"].append({"kind": "RPR", "links": ["2", "3"], "joint": "A", "pivot": "Q", "coincident": "A3"})
             data["point"].append({"name": "T", "link": "3", "along": 0.0})
-            guide = {"link": "3", "through": "T", "angle_deg": draw(st.floats(20, 70)), "offset": 0.0}
+            alpha = draw(st.floats(20, 70))
+            guide = {"link": "3", "through": "T", "angle_deg": alpha, "offset": 0.0}
+            # A is on the bar, at most d + r from T: the rod reaches the slider's line if it is
+            # longer than (d + r)·sin α
+            rod = (d + r) * math.sin(math.radians(alpha)) + r * draw(st.floats(0.2, 2.0))
             data["group"].append({"kind": "RRP", "links": ["4", "5"], "joint": "A", "point": "C",
-                                  "length": r * draw(st.floats(0.5, 3.0)), "guide": guide, "coincident": "C3",
+                                  "length": rod, "guide": guide, "coincident": "C3",
                                   "branch": draw(st.sampled_from([1, -1]))})
         else:
             data["group"].append({"kind": "RRP", "links": ["2", "3"], "joint": "A", "point": "C", "length": rod,

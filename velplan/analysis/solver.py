@@ -180,6 +180,14 @@ def solve(
     scale = length_scale(mech)
     conditions: dict[str, np.ndarray] = {}
     valid = np.ones(n, dtype=bool)
+    with np.errstate(all="ignore"):  # singular positions give inf/NaN, masked by `valid`
+        _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure)
+    for c in conditions.values():
+        valid &= np.isfinite(c) & (c > 0)
+    return _pack(mech, phi, w1, e1, st, conditions, valid)
+
+
+def _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure) -> None:
     for item in schedule(mech):
         if isinstance(item, Crank):
             _solve_crank(item, st, phi, w1, e1)
@@ -194,9 +202,7 @@ def solve(
             st.points.update(res.points)
             st.links.update(res.links)
             st.slides.update(res.slides)
-            conditions[item.name] = res.condition
-            valid &= res.closed
-    return _pack(mech, phi, w1, e1, st, conditions, valid)
+            conditions[item.name] = np.where(res.closed, res.condition, np.nan)
 
 
 def _solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> None:

@@ -49,7 +49,7 @@ class Context:
         self.conditions: dict[str, np.ndarray] = {}
         self.bounds: dict[str, np.ndarray] = {}
         self.segments: dict[str, np.ndarray] = {}
-        self.components: dict[str, tuple[str, str]] = {}
+        self.components: dict[str, tuple[str, str, str]] = {}
         self._pos: dict[str, np.ndarray] = {}
 
     def pos(self, name: str) -> np.ndarray:
@@ -87,7 +87,7 @@ class Context:
     def record_segment(self, step, label: str, length_mm: np.ndarray, component: str) -> None:
         self.segments[label] = length_mm
         if component:
-            self.components[component] = (label, step.target[0])
+            self.components[component] = (label, step.target[0], step.target)
 
     def record_intersection(self, step, sine: np.ndarray, x: np.ndarray, through) -> None:
         """Condition |sin| and the implied error bound (mm) of the intersection ``x``.

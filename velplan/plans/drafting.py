@@ -57,7 +57,10 @@ class Drafting:
         """A vector (complex, mm) as laid off: its length and its direction each drafted."""
         if self.exact:
             return z
-        return self.length(np.abs(z)) * self.direction(np.where(z == 0, 1.0, z) / np.where(z == 0, 1.0, np.abs(z)))
+        size = np.abs(z)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            unit = np.where(size == 0, 1.0, z / np.where(size == 0, 1.0, size))
+        return np.where(size == 0, 0.0, self.length(size) * self.direction(unit))
 
 
 EXACT = Drafting(exact=True)

@@ -229,10 +229,8 @@ class PlanResult:
     def vector(self, name: str) -> np.ndarray:
         """(n, 2) velocity (m/s) or acceleration (m/s²) of point ``name`` read off the plan."""
         z = self.values[self._image_key(name)]
-        d = self.drafting
-        read = d.length(np.abs(z)) * d.direction(np.where(z == 0, 1, z) / np.where(z == 0, 1, np.abs(z)))
-        read = np.where(z == 0, 0, read) if not d.exact else z
-        read = read * self.scale
+        with np.errstate(invalid="ignore", divide="ignore"):
+            read = self.drafting.vector(z) * self.scale
         return np.stack([read.real, read.imag], -1)
 
     @cached_property
@@ -262,8 +260,11 @@ class PlanResult:
         if self.kind != "acceleration":
             return {}
         out = {}
+        crank = self.plan.mechanism.crank.link
         for link, fig in self.plan.figures["a"].items():
-            if link != GROUND and self._figure_ready(fig):
+            if link == crank:
+                out[link] = np.full(len(self.index), self.kin.epsilon1)  # given, not read off
+            elif link != GROUND and self._figure_ready(fig):
                 out[link] = np.zeros(len(self.index)) if fig is None else self.ctx.epsilon_of(fig, self.values)
         return out
 
@@ -275,12 +276,22 @@ class PlanResult:
     @cached_property
     def components(self) -> dict[str, tuple[str, np.ndarray]]:
         """Named vector components (``"V_CA"``, ``"aⁿ_CA"``, ``"aᵏ_A4A"``, ``"aʳ_F"``) →
-        (segment label, magnitude in SI units), read as lengths × scale."""
+        (segment label on the plan, magnitude in SI units read as length × scale)."""
         out = {}
-        for name, (label, plan) in self.ctx.components.items():
+        for name, (label, plan, _) in self.ctx.components.items():
             mm = self.drafting.length(self.ctx.segments[label])
             out[name] = (label, mm * self.scales[plan])
         return out
+
+    def component_point(self, name: str) -> str:
+        """The mechanism point whose construction a component belongs to."""
+        target = self.ctx.components[name][2]
+        step = self.plan.by_target[target]
+        vector = getattr(step, "vector", None)
+        if vector is not None:
+            return getattr(vector, "point", None) or vector.name
+        inverse = {t: p for p, t in self.plan.images[target[0]].items()}
+        return inverse.get(target, T.label_of(target))
 
     @property
     def conditions(self) -> dict[str, np.ndarray]:

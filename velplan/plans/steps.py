@@ -125,7 +125,8 @@ class Perpendicular:
 
     def unit(self, ctx: Context) -> np.ndarray:
         d = ctx.pos(self.b) - ctx.pos(self.a)
-        return 1j * d / np.abs(d)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return 1j * d / np.abs(d)
 
     def text(self, lang: str) -> str:
         return T.phrase("perp", lang, T.seg(self.a, self.b))

@@ -1,0 +1,209 @@
+"""``velplan plan``, ``velplan compare`` and ``velplan check``."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+from velplan.analysis.extremes import positions
+from velplan.analysis.solver import solve
+from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
+from velplan.errors import VelplanError
+from velplan.mechanism.loader import load
+from velplan.plans import EXACT, Drafting, Plan
+from velplan.plans.check import check_table
+from velplan.plans.engine import PlanResult
+from velplan.plans.text import LANGS
+
+
+def register(sub) -> None:
+    p = sub.add_parser("plan", help="construct a velocity or acceleration plan at one position")
+    add_mechanism(p)
+    where = p.add_mutually_exclusive_group(required=True)
+    where.add_argument("--position", metavar="K", type=positive_int, help="position number 1…N from the reference")
+    where.add_argument("--angle", metavar="DEG", help="absolute crank angle, degrees")
+    p.add_argument("--positions", metavar="N", type=positive_int, default=12, help="positions per revolution (default 12)")
+    p.add_argument("--kind", choices=("velocity", "acceleration"), default="velocity")
+    _add_plan_options(p)
+    p.add_argument("--only", metavar="POINT,…", help="evaluate only the steps these points or links need")
+    p.add_argument("--format", choices=("text", "json"), default="text")
+    p.add_argument("--lang", choices=LANGS, default="en", help="language of the worked solution")
+    add_output(p)
+    p.set_defaults(run=run_plan)
+
+    p = sub.add_parser("compare", help="graphical against analytic values, per quantity and position")
+    add_mechanism(p)
+    p.add_argument("--positions", metavar="N", type=positive_int, default=12)
+    p.add_argument("--kind", choices=("velocity", "acceleration", "both"), default="both")
+    _add_plan_options(p)
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    add_output(p)
+    p.set_defaults(run=run_compare)
+
+    p = sub.add_parser("check", help="check a hand-made table of transfer functions (CSV)")
+    add_mechanism(p)
+    p.add_argument("--table", metavar="FILE.csv", required=True)
+    p.add_argument("--scale-v", metavar="MU", type=float, help="μv the table was drawn at, (m/s)/mm")
+    p.add_argument("--precision", metavar="MM", type=float, default=0.5, help="drafting precision, mm (default 0.5)")
+    p.add_argument("--angle-precision", metavar="DEG", type=float, default=0.5, help="angular precision, deg (default 0.5)")
+    add_output(p)
+    p.set_defaults(run=run_check)
+
+
+def _add_plan_options(p) -> None:
+    p.add_argument("--scale-v", metavar="MU", type=float, help="μv, (m/s)/mm (default: from the standard series)")
+    p.add_argument("--scale-a", metavar="MU", type=float, help="μa, (m/s²)/mm (default: from the standard series)")
+    p.add_argument("--mode", choices=("exact", "drafting"), default="exact")
+    p.add_argument("--precision", metavar="MM", type=float, default=0.5, help="drafting precision, mm (default 0.5)")
+    p.add_argument("--angle-precision", metavar="DEG", type=float, default=0.5, help="angular precision, deg (default 0.5)")
+
+
+def _drafting(args) -> Drafting:
+    return EXACT if args.mode == "exact" else Drafting(args.precision, args.angle_precision)
+
+
+def run_plan(args) -> int:
+    mech = load(args.mechanism)
+    if args.angle is not None:
+        phi = parse_angles(args.angle)
+        if phi.size != 1:
+            raise VelplanError("--angle takes one angle")
+        number = None
+    else:
+        if args.position > args.positions:
+            raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
+        phi = positions(mech, args.positions)[args.position - 1: args.position]
+        number = args.position
+    kin = solve(mech, phi, on_failure="raise")
+    only = [x.strip() for x in args.only.split(",")] if args.only else None
+    res = Plan.of(mech).evaluate(kin, kind=args.kind, only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+                                 drafting=_drafting(args))
+    doc = plan_json(res, number)
+    emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),
+         args.output)
+    return 0
+
+
+def _f(x) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
+    """The plan at result position ``i`` as a JSON-ready dict (mm on the plan, SI readouts)."""
+    acc = res.kind == "acceleration"
+    key, comps = ("accelerations", ("ax", "ay")) if acc else ("velocities", ("vx", "vy"))
+    ref = res.kin.accelerations if acc else res.kin.velocities
+    j = res.index[i]
+    doc = {
+        "kind": res.kind,
+        "mechanism": res.plan.mechanism.name,
+        "position": number,
+        "phi_deg": float(res.kin.phi_deg[j]),
+        "mode": res.mode,
+        "scale": res.scale,
+        "scales": {"v": res.scales["v"], **({"a": res.scales["a"]} if acc else {})},
+        "images": {k: [_f(v[i, 0]), _f(v[i, 1])] for k, v in res.images.items()},
+        key: {k: dict(zip(comps, (_f(v[i, 0]), _f(v[i, 1])))) for k, v in res.vectors.items()},
+        "analytic": {k: dict(zip(comps, (_f(ref[j, res.kin.point_index[k], 0]), _f(ref[j, res.kin.point_index[k], 1]))))
+                     for k in res.vectors},
+        "omegas": {k: _f(v[i]) for k, v in res.omegas.items()},
+        "components": [
+            {"name": name, "of": res.component_point(name), "segment": label,
+             "length_mm": _f(res.segments[label][i]), "value": _f(value[i])}
+            for name, (label, value) in res.components.items()
+        ],
+        "conditions": {k: _f(v[i]) for k, v in res.conditions.items()},
+        "flags": [{"image": f.image, "condition": f.condition, "bound_mm": f.bound_mm, "refused": f.refused}
+                  for f in res.flags if f.index == i],
+        "steps": [{"kind": type(s).__name__, "target": s.target, "text": s.describe(res.ctx, res.values, i, "en")}
+                  for s in res.steps if s.target.startswith(res.kind[0])],
+        "evaluated_steps": res.evaluated_steps,
+    }
+    if acc:
+        doc["epsilons"] = {k: _f(v[i]) for k, v in res.epsilons.items()}
+    return doc
+
+
+def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
+    unit = "(m/s²)/mm" if res.kind == "acceleration" else "(m/s)/mm"
+    head = (f"{doc['mechanism']}: {res.kind} plan" + (f", position {doc['position']}" if doc["position"] else "")
+            + f", φ = {doc['phi_deg']:.3f}°, μ = {res.scale:g} {unit}, {res.mode}")
+    lines = [head, ""]
+    lines += [f"{n}. {s}" for n, s in enumerate(res.describe(0, lang), 1)]
+    lines.append("")
+    sym, key = ("a", "accelerations") if res.kind == "acceleration" else ("V", "velocities")
+    ground = dict(res.plan.mechanism.ground)
+    for k, v in doc[key].items():
+        if k in ground:
+            continue
+        mag = math.hypot(*(x or 0.0 for x in v.values()))
+        lines.append(f"{sym}_{k} = {mag:.6g}")
+    for k, w in doc["omegas"].items():
+        lines.append(f"ω{k} = {w:+.6g} rad/s")
+    for k, e in doc.get("epsilons", {}).items():
+        lines.append(f"ε{k} = {e:+.6g} rad/s²")
+    for f in doc["flags"]:
+        state = "refused" if f["refused"] else "flagged"
+        lines.append(f"{state}: lines at {f['image']} meet at sin = {f['condition']:.3g}; error bound {f['bound_mm']:.3g} mm")
+    lines.append(f"evaluated steps: {doc['evaluated_steps']}")
+    return "\n".join(lines)
+
+
+def run_compare(args) -> int:
+    mech = load(args.mechanism)
+    kin = solve(mech, positions(mech, args.positions))
+    plan = Plan.of(mech)
+    kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
+    rows = []
+    for kind in kinds:
+        res = plan.evaluate(kin, kind=kind, scale_v=args.scale_v, scale_a=args.scale_a, drafting=_drafting(args))
+        rows += compare_rows(res)
+    if args.format == "json":
+        emit(json.dumps({"mechanism": mech.name, "mode": args.mode, "rows": rows}, indent=1, ensure_ascii=False), args.output)
+        return 0
+    lines = [f"{'quantity':<12}{'pos':>4}{'φ, °':>9}{'graphical':>14}{'analytic':>14}{'abs error':>12}{'rel error':>11}{'  flag'}"]
+    for r in rows:
+        rel = "—" if r["rel_error"] is None else f"{r['rel_error']:.2e}"
+        lines.append(f"{r['quantity']:<12}{r['position']:>4}{r['phi_deg']:>9.2f}{r['graphical']:>14.6g}{r['analytic']:>14.6g}"
+                     f"{r['abs_error']:>12.2e}{rel:>11}{'  ' + r['flag'] if r['flag'] else ''}")
+    emit("\n".join(lines), args.output)
+    return 0
+
+
+def compare_rows(res: PlanResult) -> list[dict]:
+    """Per quantity and position: graphical, analytic, absolute and relative error."""
+    kin = res.kin
+    acc = res.kind == "acceleration"
+    ref = kin.accelerations if acc else kin.velocities
+    sym = "a" if acc else "V"
+    rows = []
+    quantities = [(f"{sym}_{p}", np.hypot(*v.T), np.hypot(*ref[res.index, kin.point_index[p]].T)) for p, v in res.vectors.items()
+                  if p not in dict(kin.mechanism.ground)]
+    if acc:
+        quantities += [(f"ε{k}", v, kin.epsilon(k)[res.index]) for k, v in res.epsilons.items()]
+    else:
+        quantities += [(f"ω{k}", v, kin.omega(k)[res.index]) for k, v in res.omegas.items()]
+    for name, got, exact in quantities:
+        for i, j in enumerate(res.index):
+            err = abs(got[i] - exact[i])
+            flag = ""
+            mine = [f for f in res.flags if f.index == i]
+            if mine:
+                flag = "refused" if any(f.refused for f in mine) else "flagged"
+            rows.append({
+                "quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                "graphical": _f(got[i]), "analytic": _f(exact[i]), "abs_error": _f(err),
+                "rel_error": _f(err / abs(exact[i])) if abs(exact[i]) > 1e-12 * max(1.0, np.nanmax(np.abs(exact))) else None,
+                "flag": flag,
+            })
+    return rows
+
+
+def run_check(args) -> int:
+    mech = load(args.mechanism)
+    report = check_table(mech, args.table, scale_v=args.scale_v, drafting=Drafting(args.precision, args.angle_precision))
+    emit(report.text(), args.output)
+    return 0
