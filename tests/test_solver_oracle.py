@@ -101,3 +101,22 @@ def test_seed_002_mobility():
     assert (st.n_links, st.p5, st.mobility) == (5, 7, 1)
     assert st.formula() == "W = 3·5 − 2·7 − 0 = 1"
     assert [g[1] for g in st.groups] == ["RPR", "RRP"]
+
+
+@pytest.mark.parametrize("delta", [1e-2, 1e-3, 1e-4, 1e-5, 1e-6])
+def test_error_near_a_toggle_stays_within_the_stated_bound(delta):
+    """Offset crank-slider with l = r + e: the rod stands ⊥ its guide at φ = 90°."""
+    from tests.plans.test_plan_features import _toggle_slider
+
+    mech = _toggle_slider()
+    phi = math.pi / 2 - delta
+    kin = velplan.solve(mech, [phi])
+    pts, _ = oracle.derivatives(mech, phi, mech.crank.omega)
+    L, w = velplan.analysis.solver.length_scale(mech), mech.crank.omega
+    x, y, vx, vy, ax, ay = (float(v) for v in pts["B"])
+    j = kin.point_index["B"]
+    assert abs(kin.positions[0, j, 0] - x) / L <= kin.error_bound("position")[0]
+    assert abs(kin.velocities[0, j, 0] - vx) / (w * L) <= kin.error_bound("velocity")[0]
+    assert abs(kin.accelerations[0, j, 0] - ax) / (w * w * L) <= kin.error_bound("acceleration")[0]
+    # and the condition estimate is the sine of the rod's angle to the guide's normal, ∝ δ
+    assert kin.condition[0, 0] == pytest.approx(0.845 * delta, rel=2e-2)

@@ -141,12 +141,15 @@ def to_table(kin: Kinematics) -> str:
     """Transfer functions |V|/ω1 (m) and ω/ω1 per position, then |V| and |a| of every point."""
     tf = transfer_functions(kin) if kin.omega1 else {}
     n = len(kin)
-    head = f"{'quantity':<14}" + "".join(f"{i + 1:>10}" for i in range(n))
+    head = f"{'quantity':<14}" + "".join(f"{i + 1:>11}" for i in range(n))
     lines = [f"{kin.mechanism.name}: ω1 = {kin.omega1:+.6g} rad/s", head,
-             f"{'φ, deg':<14}" + "".join(f"{x:>10.2f}" for x in kin.phi_deg)]
+             f"{'φ, deg':<14}" + "".join(f"{x:>11.2f}" for x in kin.phi_deg)]
 
     def row(label: str, values) -> str:
-        return f"{label:<14}" + "".join(f"{v:>10.4g}" if math.isfinite(v) else f"{'—':>10}" for v in values)
+        values = np.asarray(values, dtype=float)
+        big = np.nanmax(np.abs(values), initial=0.0)
+        values = np.where(np.abs(values) <= 1e-12 * big, 0.0, values)  # round-off at dead centres
+        return f"{label:<14}" + "".join(f"{v:>11.4g}" if math.isfinite(v) else f"{'—':>11}" for v in values)
 
     lines.append("transfer functions (velocity analogues)")
     for k in kin.point_index:
