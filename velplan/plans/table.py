@@ -11,7 +11,6 @@ import numpy as np
 from velplan.analysis.extremes import positions
 from velplan.analysis.solver import solve
 from velplan.mechanism.model import Mechanism
-from velplan.mechanism.structure import point_owners
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.engine import Plan, auto_scale
 
@@ -54,8 +53,8 @@ def transfer_table(
 ) -> TransferTable:
     """Transfer functions read off the velocity plans at ``n`` positions from the reference.
 
-    Points default to every named moving point (not the centres of mass S…), links to every link
-    that turns.
+    Points default to every named moving point but the centres of mass named S… (the usual
+    letter) and the runners' auxiliary origins K; links to every link that turns.
     """
     phi = positions(mech, n)
     kin = solve(mech, phi)
@@ -64,8 +63,9 @@ def transfer_table(
     w1 = abs(kin.omega1)
     ground = dict(mech.ground)
     if points is None:
-        centres = {m.centre for m in mech.masses} | {p for p in point_owners(mech) if p.startswith("S")}
-        points = [p for p in res.vectors if p not in ground and p not in centres]
+        centres = {m.centre for m in mech.masses if m.centre.startswith("S")}
+        origins = {g.origin_name for g in mech.groups if g.kind == "RPP"}
+        points = [p for p in res.vectors if p not in ground and p not in centres | origins]
     rows = {f"V_{p}": np.hypot(*res.vector(p).T) / w1 for p in points}
     for link, fig in res.plan.figures["v"].items():
         if link not in (mech.crank.link, "0") and fig is not None and link in res.omegas:

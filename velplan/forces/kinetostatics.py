@@ -1,0 +1,352 @@
+"""Kinetostatics (d'Alembert): pair reactions group by group, from the last group back to
+the crank, and the balancing moment on the crank — vectorised over positions.
+
+Conventions
+-----------
+A pair joins ``links = (k0, k1)`` (`velplan.mechanism.structure.pairs`; k0 is always the link
+of the group that brings the pair). Its reaction is the force **on k0 from k1**, N; k1 feels
+the opposite. A revolute pair's reaction acts at the joint. A prismatic pair's reaction is
+perpendicular to its guide (no friction): a force N·n through a reference point of the guide
+line plus a couple M (N·m), which is the same as the force N·n acting at the point
+reference + (M/N)·u along the guide (u the guide's direction, n = i·u). The balancing moment
+M_b is the moment the drive applies to the crank, counter-clockwise positive.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+
+from velplan.analysis.solver import Kinematics
+from velplan.forces.actions import Actions
+from velplan.forces.common import cross, dot, point
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Mechanism, Pair
+from velplan.mechanism.structure import pairs
+
+
+def reaction_label(frm: str, on: str) -> str:
+    """R<from><on> (R21: the force of link 2 on link 1), with a comma for long link names."""
+    return f"R{frm}{on}" if len(frm) == 1 and len(on) == 1 else f"R{frm},{on}"
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """The reaction in one pair over n positions.
+
+    Attributes
+    ----------
+    pair : Pair
+    force : ndarray, shape (n,), complex
+        Force on ``pair.links[0]`` from ``pair.links[1]``, N.
+    moment : ndarray, shape (n,)
+        Prismatic pairs: the couple on ``pair.links[0]`` about ``reference``, N·m; zeros for
+        revolute pairs.
+    reference : ndarray, shape (n,), complex
+        The joint (R) or the reference point on the guide line (P), m.
+    direction : ndarray, shape (n,), complex
+        Prismatic pairs: the guide's unit direction u; NaN for revolute pairs.
+    """
+
+    pair: Pair
+    force: np.ndarray
+    moment: np.ndarray
+    reference: np.ndarray
+    direction: np.ndarray
+
+    @property
+    def label(self) -> str:
+        """R<k1><k0>: the force of links[1] on links[0]."""
+        return reaction_label(self.pair.links[1], self.pair.links[0])
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        """|R|, N."""
+        return np.abs(self.force)
+
+    @property
+    def at(self) -> np.ndarray:
+        """Point of application, m: the joint, or reference + (M/N)·u along the guide (NaN where
+        N = 0)."""
+        if self.pair.kind == "R":
+            return self.reference
+        n = dot(self.force, 1j * self.direction)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(n != 0, self.reference + self.moment / n * self.direction, np.nan)
+
+
+@dataclass(frozen=True)
+class ForcePolygon:
+    """The force polygon of one group (or of the crank) as data, ready to draw at a scale μF.
+
+    The ``vectors`` are laid head to tail from the pole; the polygon is closed by two vectors
+    of known direction (``closing``, unit vectors) whose magnitudes come from intersecting the
+    line through the last vertex along the first direction with the line through the pole
+    along the second (``closing_vectors``). For the crank the closing vector (the frame's
+    reaction) is a single vector of unknown direction and ``closing`` is empty.
+
+    Attributes
+    ----------
+    group : str
+        Group name, or ``"crank"``.
+    vectors : tuple of (label, ndarray (n,) complex)
+        Known forces in drawing order, N: the components found from moment equations first,
+        then the loads, gravity and inertia forces and the reactions of later groups.
+    closing : tuple of (label, ndarray (n,) complex)
+        Unit directions of the two unknown components.
+    closing_vectors : tuple of (label, ndarray (n,) complex)
+        The closing vectors found by the intersection, N.
+    """
+
+    group: str
+    kind: str
+    vectors: tuple[tuple[str, np.ndarray], ...]
+    closing: tuple[tuple[str, np.ndarray], ...]
+    closing_vectors: tuple[tuple[str, np.ndarray], ...]
+
+    def vertices(self, mu_f: float = 1.0) -> np.ndarray:
+        """(n, k + 1) complex vertices from the pole, mm at the scale ``mu_f`` (N/mm): the pole,
+        then the end of each vector and closing vector (the last is back at the pole)."""
+        parts = [v for _, v in self.vectors] + [v for _, v in self.closing_vectors]
+        n = parts[0].shape[0] if parts else 0
+        z = np.cumsum(np.stack([np.zeros(n, complex)] + parts, axis=1), axis=1)
+        return z / mu_f
+
+    def misclosure(self) -> np.ndarray:
+        """(n,) |Σ of all vectors|, N (0 up to round-off)."""
+        return np.abs(self.vertices()[:, -1])
+
+
+@dataclass(frozen=True)
+class Kinetostatics:
+    """Result of `kinetostatics`.
+
+    Attributes
+    ----------
+    phi : ndarray, shape (n,)
+        Crank angles, rad.
+    reactions : Mapping[str, Reaction]
+        Pair name → reaction, in the order of `pairs`.
+    balancing_moment : ndarray, shape (n,)
+        M_b on the crank, N·m, counter-clockwise positive.
+    polygons : Mapping[str, ForcePolygon]
+        Group name (and ``"crank"``) → force polygon.
+    condition : Mapping[str, ndarray]
+        Group name → 1/cond of its 6×6 system (0 = singular, e.g. a toggle position).
+    """
+
+    mechanism: Mechanism = field(repr=False)
+    phi: np.ndarray
+    reactions: Mapping[str, Reaction]
+    balancing_moment: np.ndarray
+    polygons: Mapping[str, ForcePolygon]
+    condition: Mapping[str, np.ndarray]
+
+    def reaction(self, pair: str) -> Reaction:
+        """The `Reaction` of pair ``pair``."""
+        try:
+            return self.reactions[pair]
+        except KeyError:
+            from velplan.errors import MechanismError
+
+            raise MechanismError(f"unknown pair {pair!r}; known pairs: {', '.join(self.reactions)}") from None
+
+
+# -- the solver -----------------------------------------------------------------------------
+
+
+def _reference(g: Group, p: Pair, kin: Kinematics) -> np.ndarray:
+    if p.kind == "P" and isinstance(g, RPP) and p.links[0] == g.links[1]:
+        return point(kin, g.origin_name)  # the runner's guide line passes through K
+    return point(kin, p.point)
+
+
+class _Known:
+    """Known forces (labelled, at points) and moments on each link, accumulated as groups are
+    solved."""
+
+    def __init__(self, kin: Kinematics, actions: Actions):
+        self.forces: dict[str, list[tuple[str, np.ndarray, np.ndarray]]] = {}
+        self.moments: dict[str, list[np.ndarray]] = {}
+        for f in actions.forces:
+            self.add_force(f.link, f.label, f.vector, point(kin, f.point))
+        for m in actions.moments:
+            self.add_moment(m.link, m.moment)
+
+    def add_force(self, link: str, label: str, vector: np.ndarray, at: np.ndarray) -> None:
+        self.forces.setdefault(link, []).append((label, vector, at))
+
+    def add_moment(self, link: str, moment: np.ndarray) -> None:
+        self.moments.setdefault(link, []).append(moment)
+
+    def resultant(self, link: str, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Σ F (complex, N) and Σ M about ``ref`` (N·m) of the known actions on ``link``."""
+        f = np.zeros(ref.shape, complex)
+        m = np.zeros(ref.shape)
+        for _, v, at in self.forces.get(link, ()):
+            f = f + v
+            m = m + cross(at - ref, v)
+        for mm in self.moments.get(link, ()):
+            m = m + mm
+        return f, m
+
+
+def _solve6(a: np.ndarray, b: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
+    a = np.where(ok[:, None, None], a, eye)
+    b = np.where(ok[:, None], b, 0.0)
+    try:
+        x = np.linalg.solve(a, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        x = np.full(b.shape, np.nan)
+        for i in range(a.shape[0]):
+            try:
+                x[i] = np.linalg.solve(a[i], b[i])
+            except np.linalg.LinAlgError:
+                pass
+    x[~ok] = np.nan
+    return x
+
+
+def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetostatics:
+    """Pair reactions and the balancing moment by d'Alembert's principle.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    kin : Kinematics
+        Positions of ``mech`` (only positions and link angles are used).
+    actions : Actions
+        Loads, gravity and inertia forces/moments at the positions of ``kin``.
+
+    Returns
+    -------
+    Kinetostatics
+
+    Notes
+    -----
+    Each class-II group is statically determinate: its three pairs bring six unknowns (Rx, Ry
+    of a revolute pair; N and the couple M of a prismatic pair) and its two links give six
+    equations, ΣF = 0 (two each) and ΣM = 0 about a common point. The groups are solved from
+    the last to the first, each passing its reactions (reversed) to the links it is attached
+    to; the crank then gives R01 = −ΣF and M_b = −ΣM_O1 (moments about its pivot).
+    """
+    n = len(kin)
+    known = _Known(kin, actions)
+    all_pairs = pairs(mech)
+    reactions: dict[str, Reaction] = {}
+    polygons: dict[str, ForcePolygon] = {}
+    condition: dict[str, np.ndarray] = {}
+    finite = kin.valid.copy()
+    for g in reversed(mech.groups):
+        gp = [p for p in all_pairs if p.group == g.name]
+        refs = [_reference(g, p, kin) for p in gp]
+        dirs = [np.exp(1j * kin.angle(p.links[0])) if p.kind == "P" else np.full(n, np.nan + 0j) for p in gp]
+        origin = refs[1]
+        a = np.zeros((n, 6, 6))
+        b = np.zeros((n, 6))
+        for row, link in enumerate(g.links):
+            r0 = 3 * row
+            for j, p in enumerate(gp):
+                if link not in p.links:
+                    continue
+                s = 1.0 if p.links[0] == link else -1.0
+                r = refs[j] - origin
+                if p.kind == "R":
+                    a[:, r0, 2 * j] += s
+                    a[:, r0 + 1, 2 * j + 1] += s
+                    a[:, r0 + 2, 2 * j] += -s * r.imag
+                    a[:, r0 + 2, 2 * j + 1] += s * r.real
+                else:
+                    nrm = 1j * dirs[j]
+                    a[:, r0, 2 * j] += s * nrm.real
+                    a[:, r0 + 1, 2 * j] += s * nrm.imag
+                    a[:, r0 + 2, 2 * j] += s * cross(r, nrm)
+                    a[:, r0 + 2, 2 * j + 1] += s
+            f, m = known.resultant(link, origin)
+            b[:, r0], b[:, r0 + 1], b[:, r0 + 2] = -f.real, -f.imag, -m
+        ok = finite & np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
+        x = _solve6(a, b, ok)
+        with np.errstate(invalid="ignore"):
+            cond = np.where(ok, 1.0 / np.linalg.cond(np.where(ok[:, None, None], a, np.eye(6))), np.nan)
+        condition[g.name] = cond
+        group_known = {k: list(known.forces.get(k, ())) for k in g.links}
+        for j, p in enumerate(gp):
+            if p.kind == "R":
+                force, moment = x[:, 2 * j] + 1j * x[:, 2 * j + 1], np.zeros(n)
+            else:
+                force, moment = x[:, 2 * j] * 1j * dirs[j], x[:, 2 * j + 1]
+            rc = Reaction(p, force, moment, refs[j], dirs[j])
+            reactions[p.name] = rc
+            if p.links[1] not in g.links:
+                known.add_force(p.links[1], reaction_label(p.links[0], p.links[1]), -force, refs[j])
+                if p.kind == "P":
+                    known.add_moment(p.links[1], -moment)
+        polygons[g.name] = _polygon(g, gp, reactions, group_known, kin)
+    # The crank: R01 and M_b.
+    c = mech.crank
+    pivot = point(kin, c.pivot)
+    f, m = known.resultant(c.link, pivot)
+    crank_pair = next(p for p in all_pairs if p.group == "crank")
+    r01 = -f
+    reactions[crank_pair.name] = Reaction(crank_pair, r01, np.zeros(n), pivot, np.full(n, np.nan + 0j))
+    label = reaction_label(crank_pair.links[1], crank_pair.links[0])
+    polygons["crank"] = ForcePolygon(
+        "crank", "crank", tuple((lab, v) for lab, v, _ in known.forces.get(c.link, ())), (), ((label, r01),))
+    ordered = {p.name: reactions[p.name] for p in all_pairs}
+    return Kinetostatics(mech, kin.phi, ordered, -m, polygons, condition)
+
+
+# -- force polygons ---------------------------------------------------------------------------
+
+
+def _component(v: np.ndarray, e: np.ndarray) -> np.ndarray:
+    return dot(v, e) * e
+
+
+def _polygon(g: Group, gp: list[Pair], reactions: dict[str, Reaction],
+             known: dict[str, list[tuple[str, np.ndarray, np.ndarray]]], kin: Kinematics) -> ForcePolygon:
+    """Decompose the group's outer reactions as the graphical method does and close the polygon
+    by intersecting the two unknown directions."""
+    a, b = g.links
+    loads = [(lab, v) for k in (a, b) for lab, v, _ in known.get(k, ())]
+    r = [reactions[p.name] for p in gp]
+    lab = [x.label for x in r]
+
+    def unit(z):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return z / np.abs(z)
+
+    if isinstance(g, RRR):
+        c = point(kin, g.point)
+        ea, ed = unit(c - r[0].reference), unit(c - r[2].reference)
+        first = [(lab[0] + "τ", _component(r[0].force, 1j * ea))]
+        last = [(lab[2] + "τ", _component(r[2].force, 1j * ed))]
+        closing = ((lab[0] + "n", ea), (lab[2] + "n", ed))
+    elif isinstance(g, RRP):
+        ea = unit(point(kin, g.point) - r[0].reference)
+        first, last = [(lab[0] + "τ", _component(r[0].force, 1j * ea))], []
+        closing = ((lab[0] + "n", ea), (lab[2], 1j * r[2].direction))
+    elif isinstance(g, RPR):
+        u = r[1].direction
+        eo = unit(r[0].reference - r[2].reference)
+        first = [(lab[0] + "∥", _component(r[0].force, u))]
+        last = [(lab[2] + "τ", _component(r[2].force, 1j * eo))]
+        closing = ((lab[0] + "⊥", 1j * u), (lab[2] + "n", eo))
+    elif isinstance(g, PRP):
+        first, last = [], []
+        closing = ((lab[0], 1j * r[0].direction), (lab[2], 1j * r[2].direction))
+    else:  # RPP
+        v = r[1].direction
+        first, last = [(lab[0] + "∥", _component(r[0].force, v))], []
+        closing = ((lab[0] + "⊥", 1j * v), (lab[2], 1j * r[2].direction))
+    vectors = tuple(first + loads + last)
+    n = len(kin)
+    end = np.sum([vv for _, vv in vectors], axis=0) if vectors else np.zeros(n, complex)
+    (l1, d1), (l2, d2) = closing
+    with np.errstate(divide="ignore", invalid="ignore"):
+        den = cross(d1, d2)
+        alpha = cross(-end, d2) / den
+        beta = cross(d1, -end) / den
+    return ForcePolygon(g.name, g.kind, vectors, closing, ((l1, alpha * d1), (l2, beta * d2)))

@@ -1,0 +1,170 @@
+"""Zhukovsky's lever: the velocity plan turned by 90° as a rigid lever about its pole.
+
+The lever works from a narrow input — the velocity images of named points (mm from the pole
+on the plan, complex or (x, y)) with the plan's scale μv ((m/s)/mm), and the positions of
+points (m) for the directions of the crank and of couples — so that it can take the images of
+a drawn plan as well as exact ones (`images_from_kinematics`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from velplan.analysis.solver import Kinematics
+from velplan.errors import VelplanError
+from velplan.forces.actions import Actions
+from velplan.forces.common import as_complex, cross, material_points, rotation_class
+from velplan.mechanism.model import GROUND, Mechanism
+
+
+def images_from_kinematics(kin: Kinematics, i: int | None, mu_v: float) -> dict[str, complex | np.ndarray]:
+    """Velocity images of every point, mm from the pole: V/μv.
+
+    Parameters
+    ----------
+    kin : Kinematics
+    i : int or None
+        Position index; None gives (n,) arrays over all positions.
+    mu_v : float
+        Scale of the plan, (m/s)/mm.
+    """
+    if not mu_v > 0:
+        raise VelplanError(f"velocity scale μv must be > 0 (m/s)/mm, not {mu_v}")
+    z = as_complex(kin.velocities) / mu_v
+    return {k: (z[:, j] if i is None else complex(z[i, j])) for k, j in kin.point_index.items()}
+
+
+def positions_from_kinematics(kin: Kinematics, i: int | None) -> dict[str, complex | np.ndarray]:
+    """Positions of every point (complex, m) at position ``i`` (None: (n,) arrays)."""
+    z = as_complex(kin.positions)
+    return {k: (z[:, j] if i is None else complex(z[i, j])) for k, j in kin.point_index.items()}
+
+
+@dataclass(frozen=True)
+class LeverForce:
+    """A force carried to the lever: ``image`` is the point's image turned by 90° (mm) and
+    ``moment`` its moment about the pole, N·mm (counter-clockwise positive)."""
+
+    label: str
+    point: str
+    vector: np.ndarray
+    image: np.ndarray
+    moment: np.ndarray
+
+
+@dataclass(frozen=True)
+class Lever:
+    """Result of `zhukovsky_lever`.
+
+    Attributes
+    ----------
+    forces : tuple of LeverForce
+        Every force on the lever, the couples' pairs of forces included.
+    balancing_force : ndarray
+        F_b at the crank tip, perpendicular to the crank, N, signed along i·(A − O)/l_OA
+        (positive: pushing the crank counter-clockwise).
+    balancing_moment : ndarray
+        M_b = F_b·l_OA, N·m.
+    tip_image : ndarray
+        The crank tip's image turned by 90°, mm.
+    """
+
+    forces: tuple[LeverForce, ...]
+    balancing_force: np.ndarray
+    balancing_moment: np.ndarray
+    tip_image: np.ndarray
+
+
+def _get(m: Mapping, name: str, what: str, needed: str):
+    try:
+        return as_complex(np.asarray(m[name]))
+    except KeyError:
+        raise VelplanError(f"{what} has no point {name!r} (needed for {needed})") from None
+
+
+def _couple_points(mech: Mechanism, link: str, positions: Mapping, images: Mapping) -> tuple[str, str] | None:
+    """Two points of ``link``, or of a link turning with it, with images: the farthest apart."""
+    mp = material_points(mech)
+    for member in rotation_class(mech, link):
+        if member == GROUND:
+            continue
+        names = [p for p in mp.get(member, ()) if p in images and p in positions]
+        best, dist = None, 0.0
+        for i, p in enumerate(names):
+            for q in names[i + 1:]:
+                d = float(np.nanmean(np.abs(as_complex(np.asarray(positions[q])) - as_complex(np.asarray(positions[p])))))
+                if d > dist:
+                    best, dist = (p, q), d
+        if best is not None:
+            return best
+    return None
+
+
+def zhukovsky_lever(mech: Mechanism, positions: Mapping, images: Mapping, mu_v: float, actions: Actions) -> Lever:
+    """Balancing force and moment from the moment balance of the turned velocity plan.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    positions : Mapping[str, complex or (x, y)]
+        Point positions, m (scalars or (n,) arrays).
+    images : Mapping[str, complex or (x, y)]
+        Velocity images, mm from the pole (scalars or (n,) arrays).
+    mu_v : float
+        Scale of the plan, (m/s)/mm.
+    actions : Actions
+        Forces and moments, at the same positions.
+
+    Returns
+    -------
+    Lever
+
+    Notes
+    -----
+    Turned by +90°, the image of a point is i·v with v = V/μv, and the moment of F about the
+    pole is (i·v) × F = −F·V/μv: the lever balances exactly when the powers do. A couple M on a
+    link becomes ±F = ±i·M·(Q − P)/|Q − P|² at the images of two points P, Q of the link (or of a
+    link turning with it: a slider block turns with its guide), whose moment is −M·ω/μv; a link
+    that only translates carries no couple to the lever. The balancing force F_b ⊥ OA at the
+    crank tip's image gives Σ M_pole = 0, and M_b = F_b·l_OA.
+    """
+    if not mu_v > 0:
+        raise VelplanError(f"velocity scale μv must be > 0 (m/s)/mm, not {mu_v}")
+    out: list[LeverForce] = []
+    for f in actions.forces:
+        img = 1j * _get(images, f.point, "the velocity plan", f"force {f.label!r}")
+        out.append(LeverForce(f.label, f.point, f.vector, img, cross(img, f.vector)))
+    for m in actions.moments:
+        pq = _couple_points(mech, m.link, positions, images)
+        if pq is None:
+            if GROUND in rotation_class(mech, m.link):
+                continue  # the link only translates: ω = 0, the couple does no work
+            raise VelplanError(f"moment {m.label!r} on link {m.link!r}: the plan has no two points of that link "
+                               "to carry the couple")
+        p, q = pq
+        zp, zq = _get(positions, p, "positions", m.label), _get(positions, q, "positions", m.label)
+        ip, iq = 1j * _get(images, p, "the velocity plan", m.label), 1j * _get(images, q, "the velocity plan", m.label)
+        d = zq - zp
+        with np.errstate(divide="ignore", invalid="ignore"):
+            force = 1j * m.moment * d / np.abs(d) ** 2
+        out.append(LeverForce(f"{m.label}@{q}", q, force, iq, cross(iq, force)))
+        out.append(LeverForce(f"{m.label}@{p}", p, -force, ip, cross(ip, -force)))
+    c = mech.crank
+    o = _get(positions, c.pivot, "positions", "the crank")
+    a = _get(positions, c.tip, "positions", "the crank")
+    tip = 1j * _get(images, c.tip, "the velocity plan", "the balancing force")
+    l = np.abs(a - o)
+    total = sum((f.moment for f in out), np.zeros(np.broadcast(tip, a).shape))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = 1j * (a - o) / l
+        fb = -total / cross(tip, e)
+    return Lever(tuple(out), fb, fb * l, tip)
+
+
+def lever_balancing_moment(mech: Mechanism, kin: Kinematics, actions: Actions, mu_v: float = 1.0) -> np.ndarray:
+    """M_b (N·m) by the lever with exact images (V/μv) at every position of ``kin``."""
+    return zhukovsky_lever(mech, positions_from_kinematics(kin, None), images_from_kinematics(kin, None, mu_v),
+                           mu_v, actions).balancing_moment
