@@ -28,6 +28,10 @@ def register(sub) -> None:
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--no-inertia", action="store_true", help="leave out the inertia forces and moments")
     p.add_argument("--no-gravity", action="store_true", help="leave out gravity")
+    p.add_argument("--mode", choices=("exact", "drafting"), default="exact",
+                   help="velocity plan for the lever: exact, or at drafting precision")
+    p.add_argument("--scale-v", metavar="MU", type=float, help="μv of the lever's plan, (m/s)/mm")
+    p.add_argument("--precision", metavar="MM", type=float, default=0.5, help="drafting precision, mm (default 0.5)")
     p.add_argument("--plot", metavar="FILE", help="also plot M_b over a revolution to FILE (.png or .svg)")
     add_output(p)
     p.set_defaults(run=run_forces)
@@ -47,7 +51,11 @@ def run_forces(args) -> int:
     else:
         phi = positions(mech, args.positions)
         numbers = list(range(1, args.positions + 1))
-    res = analyse_forces(mech, phi, loads=loads, gravity=not args.no_gravity, inertia=not args.no_inertia)
+    from velplan.plans import EXACT, Drafting
+
+    drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.precision)
+    res = analyse_forces(mech, phi, loads=loads, gravity=not args.no_gravity, inertia=not args.no_inertia,
+                         mu_v=args.scale_v, drafting=drafting)
     text = (to_json if args.format == "json" else to_table)(res, numbers, [ld.name for ld in loads])
     if args.plot:
         from velplan.forces.plot import plot_balancing_moment
@@ -105,6 +113,9 @@ def to_table(res, numbers: list[int], load_names: list[str]) -> str:
     lines.append("balancing moment M_b, N·m")
     for k, v in bm.items():
         lines.append(row(f"  {k}", v))
+    from velplan.forces.agreement import lever_difference_percent
+
+    lines.append(row("  lever − kinetost., %", lever_difference_percent(bm["lever"], bm["kinetostatics"])))
     lines.append("reactions |R|, N (on the first link from the second)")
     for name, r in ks.reactions.items():
         lines.append(row(f"  {name} ({r.pair.links[0]}←{r.pair.links[1]})", np.abs(r.force)))

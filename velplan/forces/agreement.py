@@ -13,7 +13,7 @@ from velplan.analysis.solver import Kinematics, solve
 from velplan.forces.actions import Actions
 from velplan.forces.inertia import DEFAULT_K, inertia_actions
 from velplan.forces.kinetostatics import Kinetostatics, kinetostatics
-from velplan.forces.lever import Lever, images_from_kinematics, positions_from_kinematics, zhukovsky_lever
+from velplan.forces.lever import Lever, images_from_plan, positions_from_kinematics, zhukovsky_lever
 from velplan.forces.loads import gravity_actions, load_actions
 from velplan.forces.parse import parse_loads
 from velplan.forces.power import power_balancing_moment
@@ -71,7 +71,8 @@ class ForceAnalysis:
 
 
 def analyse_forces(mech: Mechanism, phi, *, loads: Sequence | None = None, gravity: bool = True,
-                   inertia: bool = True, k: float = DEFAULT_K, mu_v: float = 1.0) -> ForceAnalysis:
+                   inertia: bool = True, k: float = DEFAULT_K, mu_v: float | None = None,
+                   drafting=None) -> ForceAnalysis:
     """Kinetostatics, lever and power method at crank angles ``phi`` (rad).
 
     Parameters
@@ -85,14 +86,20 @@ def analyse_forces(mech: Mechanism, phi, *, loads: Sequence | None = None, gravi
         Include G = m·g and Φ, M_Φ.
     k : float
         K of J_S ≈ m·l²/K for links without a given inertia.
-    mu_v : float
-        Scale of the exact velocity plan used by the lever, (m/s)/mm (M_b does not depend on it).
+    mu_v : float, optional
+        Scale of the velocity plan the lever is drawn from, (m/s)/mm (default: the standard
+        scale that fits the plan in 100 mm; in exact mode M_b does not depend on it).
+    drafting : velplan.plans.Drafting, optional
+        The plan is constructed by the plan engine, exactly (default) or at drafting
+        precision; the lever then differs from the kinetostatics by what drafting implies.
     """
+    from velplan.plans import EXACT, Plan
+
     kin = solve(mech, phi)
     acts = mechanism_actions(mech, kin, loads, gravity=gravity, inertia=inertia, k=k)
     ks = kinetostatics(mech, kin, acts)
-    lv = zhukovsky_lever(mech, positions_from_kinematics(kin, None), images_from_kinematics(kin, None, mu_v),
-                         mu_v, acts)
+    plan = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=mu_v, drafting=drafting or EXACT)
+    lv = zhukovsky_lever(mech, positions_from_kinematics(kin, None), images_from_plan(plan), plan.scale, acts)
     return ForceAnalysis(kin, acts, ks, lv, power_balancing_moment(kin, acts))
 
 

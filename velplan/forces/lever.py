@@ -37,6 +37,15 @@ def images_from_kinematics(kin: Kinematics, i: int | None, mu_v: float) -> dict[
     return {k: (z[:, j] if i is None else complex(z[i, j])) for k, j in kin.point_index.items()}
 
 
+def images_from_plan(res, i: int | None = None) -> dict[str, complex | np.ndarray]:
+    """Velocity images of every point as constructed on a velocity plan (`velplan.plans.PlanResult`),
+    mm from the pole — exact or drafted, as the plan was built."""
+    if res.kind != "velocity":
+        raise VelplanError(f"Zhukovsky's lever is the velocity plan turned by 90°, not the {res.kind} plan")
+    z = {k: v[:, 0] + 1j * v[:, 1] for k, v in res.images.items() if k in res.plan.images["v"]}
+    return {k: (v if i is None else complex(v[i])) for k, v in z.items()}
+
+
 def positions_from_kinematics(kin: Kinematics, i: int | None) -> dict[str, complex | np.ndarray]:
     """Positions of every point (complex, m) at position ``i`` (None: (n,) arrays)."""
     z = as_complex(kin.positions)
