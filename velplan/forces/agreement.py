@@ -105,11 +105,14 @@ def analyse_forces(mech: Mechanism, phi, *, loads: Sequence | None = None, gravi
 
 def lever_difference_percent(lever, kinetostatics) -> np.ndarray:
     """Per-cent difference of the lever's balancing moment from the kinetostatic one,
-    100·(M_lever − M_kin)/|M_kin| (±inf or NaN where M_kin = 0) — the check course works
+    100·(M_lever − M_kin)/|M_kin| (NaN where M_kin ≈ 0, at dead centres) — the check course works
     make on drawn plans, where a few per cent is accepted."""
     lever, kinetostatics = np.asarray(lever, dtype=float), np.asarray(kinetostatics, dtype=float)
+    tiny = 1e-9 * np.nanmax(np.abs(kinetostatics), initial=0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return 100.0 * (lever - kinetostatics) / np.abs(kinetostatics)
+        pct = 100.0 * (lever - kinetostatics) / np.abs(kinetostatics)
+    # where M_b vanishes (a dead centre) a per-cent difference means nothing
+    return np.where(np.abs(kinetostatics) > tiny, pct, np.nan)
 
 
 def _nodes(breaks: Sequence[float], n: int, order: int = 16) -> tuple[np.ndarray, np.ndarray]:

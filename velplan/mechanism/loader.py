@@ -81,6 +81,10 @@ def loads(text: str, *, name: str = "mechanism", check_assembly: bool = True) ->
         from velplan.analysis.assembly import check_full_rotation
 
         check_full_rotation(mech)
+        if mech.loads:  # loads refer to strokes and points: check them once the mechanism closes
+            from velplan.forces.parse import parse_loads
+
+            parse_loads(mech)
     return mech
 
 
