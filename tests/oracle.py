@@ -11,7 +11,7 @@ import mpmath as mp
 
 from velplan.analysis.solver import solve
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism
-from velplan.mechanism.structure import schedule
+from velplan.mechanism.structure import coincident_points, schedule
 
 mp.mp.dps = 50
 
@@ -119,7 +119,7 @@ def derivatives(mech: Mechanism, phi: float, omega1: float):
         return memo[key]
 
     P0, T0, origin = at(phi0)
-    coincident = _coincident(mech)
+    coincident = coincident_points(mech)
 
     def material(name):
         """Coordinates of the material point at ``name`` now: a coincident point is the point
@@ -154,14 +154,3 @@ def derivatives(mech: Mechanism, phi: float, omega1: float):
         links[name] = (T0[name], d1 * omega1, d2 * omega1**2)
     return pts, links
 
-
-def _coincident(mech: Mechanism) -> dict[str, str]:
-    """Coincident point name → the link it is a material point of."""
-    from velplan.mechanism.structure import points_out
-
-    out = {}
-    for g in mech.groups:
-        names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
-        owners = points_out(g)
-        out.update({n: owners[n] for n in names if n})
-    return out

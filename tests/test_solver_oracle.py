@@ -57,7 +57,7 @@ def test_loop_closures_hold_over_a_revolution(name):
     # rigid links: every pair of material points on one link keeps its distance
     # (coincident points are a different material point at each position)
     owners = velplan.mechanism.structure.point_owners(mech)
-    for c in oracle._coincident(mech):
+    for c in velplan.mechanism.structure.coincident_points(mech):
         owners.pop(c)
     for link in mech.links:
         names = [k for k, v in owners.items() if v == link]

@@ -90,9 +90,9 @@ def test_relative_velocities_perpendicular_and_images_similar_turned_90(mech, ph
     if res.flagged[0]:
         return
     owners = velplan.mechanism.structure.point_owners(mech)
-    from tests.oracle import _coincident
-
-    for c in _coincident(mech):
+    
+    for c in velplan.mechanism.structure.coincident_points(mech):
+    
         owners.pop(c)
     for link in mech.links:
         pts = [p for p, l in owners.items() if l == link and p in res.vectors]
@@ -120,9 +120,9 @@ def test_acceleration_images_similar_and_normal_components_point_to_the_centre(m
         return
     # similarity: a rigid link's acceleration image is the link times (iε − ω²)/μa
     owners = velplan.mechanism.structure.point_owners(mech)
-    from tests.oracle import _coincident
-
-    for c in _coincident(mech):
+    
+    for c in velplan.mechanism.structure.coincident_points(mech):
+    
         owners.pop(c)
     for link in mech.links:
         pts = [p for p, l in owners.items() if l == link and p in res.vectors]

@@ -14,7 +14,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, Mechanism
-from velplan.mechanism.structure import pairs, point_owners, revolute_joints
+from velplan.mechanism.structure import material_points, pairs, point_owners
 
 
 def cross(a, b):
@@ -56,28 +56,6 @@ def link_motion(kin: Kinematics, link: str, at: np.ndarray) -> tuple[np.ndarray,
     r = at - o
     w, e = kin.omega(link), kin.epsilon(link)
     return as_complex(kin.velocity(origin)) + 1j * w * r, as_complex(kin.acceleration(origin)) + (1j * e - w * w) * r
-
-
-def material_points(mech: Mechanism) -> dict[str, tuple[str, ...]]:
-    """Moving link → the named points that are material points of it.
-
-    A point is a material point of a link when it is fixed to the link (`point_owners`), is a
-    revolute joint centre of the link (`revolute_joints`), or is the crank's pivot for the crank.
-    """
-    out: dict[str, list[str]] = {k: [] for k in mech.links}
-
-    def add(link: str, name: str) -> None:
-        if link in out and name not in out[link]:
-            out[link].append(name)
-
-    add(mech.crank.link, mech.crank.pivot)
-    for name, link in point_owners(mech).items():
-        add(link, name)
-    for g in mech.groups:
-        for name, links in revolute_joints(g).items():
-            for link in links:
-                add(link, name)
-    return {k: tuple(v) for k, v in out.items()}
 
 
 def check_point_of_link(mech: Mechanism, link: str, name: str, where: str) -> None:

@@ -166,6 +166,39 @@ def point_owners(mech: Mechanism) -> dict[str, str]:
     return owner
 
 
+def coincident_points(mech: Mechanism) -> dict[str, str]:
+    """Coincident point name → the guide's link it belongs to (the point of that link that is at
+    the slider's joint now: a different material point at each position)."""
+    out = {}
+    for g in mech.groups:
+        names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
+        owners = points_out(g)
+        out.update({n: owners[n] for n in names if n})
+    return out
+
+
+def material_points(mech: Mechanism) -> dict[str, tuple[str, ...]]:
+    """Moving link → the named points that are, at the current instant, points of that link.
+
+    A point is: fixed to the link (`point_owners`, coincident points included), a revolute
+    joint centre of the link (`revolute_joints`), or the crank's pivot for the crank.
+    """
+    out: dict[str, list[str]] = {k: [] for k in mech.links}
+
+    def add(link: str, name: str) -> None:
+        if link in out and name not in out[link]:
+            out[link].append(name)
+
+    add(mech.crank.link, mech.crank.pivot)
+    for name, link in point_owners(mech).items():
+        add(link, name)
+    for g in mech.groups:
+        for name, links in revolute_joints(g).items():
+            for link in links:
+                add(link, name)
+    return {k: tuple(v) for k, v in out.items()}
+
+
 def pairs(mech: Mechanism) -> tuple[Pair, ...]:
     """All lower pairs, named after their point (``"P:<slider link>/<guide link>"`` for sliders)."""
     owner = point_owners(mech)

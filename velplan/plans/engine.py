@@ -242,31 +242,27 @@ class PlanResult:
     def _figure_ready(self, fig: Figure | None) -> bool:
         return fig is None or all(t in self.values for t in fig.inputs)
 
+    def _rates(self, plan: str, given: float, read) -> dict[str, np.ndarray]:
+        """ω (plan "v") or ε (plan "a") of every link whose figure was evaluated: the crank's is
+        given, a link that does not turn has 0, the others are read off the plan."""
+        out = {}
+        crank = self.plan.mechanism.crank.link
+        for link, fig in self.plan.figures[plan].items():
+            if link == crank:
+                out[link] = np.full(len(self.index), given)
+            elif link != GROUND and self._figure_ready(fig):
+                out[link] = np.zeros(len(self.index)) if fig is None else read(fig, self.values)
+        return out
+
     @cached_property
     def omegas(self) -> dict[str, np.ndarray]:
         """ω (rad/s, counter-clockwise positive) of every link whose figure was evaluated."""
-        out = {}
-        crank = self.plan.mechanism.crank.link
-        for link, fig in self.plan.figures["v"].items():
-            if link == crank:
-                out[link] = np.full(len(self.index), self.kin.omega1)  # given, not read off
-            elif link != GROUND and self._figure_ready(fig):
-                out[link] = np.zeros(len(self.index)) if fig is None else self.ctx.omega_of(fig, self.values)
-        return out
+        return self._rates("v", self.kin.omega1, self.ctx.omega_of)
 
     @cached_property
     def epsilons(self) -> dict[str, np.ndarray]:
         """ε (rad/s²) of every link whose acceleration figure was evaluated."""
-        if self.kind != "acceleration":
-            return {}
-        out = {}
-        crank = self.plan.mechanism.crank.link
-        for link, fig in self.plan.figures["a"].items():
-            if link == crank:
-                out[link] = np.full(len(self.index), self.kin.epsilon1)  # given, not read off
-            elif link != GROUND and self._figure_ready(fig):
-                out[link] = np.zeros(len(self.index)) if fig is None else self.ctx.epsilon_of(fig, self.values)
-        return out
+        return self._rates("a", self.kin.epsilon1, self.ctx.epsilon_of) if self.kind == "acceleration" else {}
 
     @property
     def segments(self) -> dict[str, np.ndarray]:
