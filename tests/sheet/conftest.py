@@ -1,0 +1,25 @@
+"""Sheets shared by the tests of this directory: built once per session (about 1 s each)."""
+
+import pytest
+
+import velplan
+from velplan.drawings import OPTIONS
+from velplan.render.canvas import RecordingCanvas, render
+from velplan.sheet import build_sheet
+
+
+@pytest.fixture(scope="session")
+def sheets():
+    """Every bundled example's sheet, as `python -m velplan.drawings` draws it."""
+    return {name: build_sheet(name, **OPTIONS) for name in velplan.example_names()}
+
+
+@pytest.fixture(scope="session")
+def recorded(sheets):
+    """Each sheet drawn on a recording canvas: name → canvas."""
+    out = {}
+    for name, sheet in sheets.items():
+        canvas = RecordingCanvas()
+        render(sheet.scene, canvas)
+        out[name] = canvas
+    return out

@@ -1,0 +1,70 @@
+"""The chord method against closed forms, and the kinematic diagrams of the examples."""
+
+import math
+
+import numpy as np
+import pytest
+
+import velplan
+from velplan.diagrams import (
+    chord_method, chord_ordinates_mm, choose_scales, closed_form_diagrams, kinematic_diagrams)
+from velplan.render.diagram_view import diagram_view
+from velplan.render.scene import Text
+
+
+def test_chord_slopes_sit_at_mid_intervals():
+    h = 2 * math.pi / 12
+    mid, slope = chord_method(np.sin(np.arange(12) * h), h)
+    assert np.allclose(mid, (np.arange(12) + 0.5) * h)
+    # exact: the chord slope of sin is cos(mid)·sin(h/2)/(h/2)
+    assert np.allclose(slope, np.cos(mid) * math.sin(h / 2) / (h / 2))
+
+
+@pytest.mark.parametrize("n", [12, 24, 48, 96])
+def test_chord_error_of_sine_is_h2_over_24(n):
+    d = closed_form_diagrams(np.sin, np.cos, lambda x: -np.sin(x), n)
+    h = 2 * math.pi / n
+    shrink = 1 - math.sin(h / 2) / (h / 2)
+    assert d.error_v == pytest.approx(shrink * np.max(np.abs(np.cos(d.phi_mid))), rel=1e-9)
+    assert d.error_v == pytest.approx(h * h / 24 * np.max(np.abs(np.cos(d.phi_mid))), rel=0.02)
+
+
+def test_errors_fall_as_positions_increase():
+    errs = [closed_form_diagrams(np.sin, np.cos, lambda x: -np.sin(x), n) for n in (12, 24, 48)]
+    assert errs[0].error_v > errs[1].error_v > errs[2].error_v
+    assert errs[0].error_a > errs[1].error_a > errs[2].error_a
+    # second order: halving the step quarters the error
+    assert errs[0].error_v / errs[1].error_v == pytest.approx(4, rel=0.05)
+    shaper = [kinematic_diagrams(velplan.load("shaper"), n) for n in (12, 24, 48)]
+    assert shaper[0].error_v > shaper[1].error_v > shaper[2].error_v
+
+
+def test_drawn_ordinates_times_derived_scale_give_the_slope():
+    d = kinematic_diagrams(velplan.load("crank-slider"), 12)
+    sc = choose_scales(d, length_mm=180.0, height_mm=40.0)
+    assert sc.mu_phi == pytest.approx(2 * math.pi / 180.0)
+    assert sc.mu_v == pytest.approx(sc.mu_s / (sc.mu_phi * sc.H_v))
+    assert sc.mu_a == pytest.approx(sc.mu_v / (sc.mu_phi * sc.H_a))
+    y_mm = chord_ordinates_mm(d.s / sc.mu_s, d.step / sc.mu_phi, sc.H_v)
+    assert np.allclose(y_mm * sc.mu_v, d.v_chord)
+    assert np.max(np.abs(d.v_exact)) / sc.mu_v <= 40.0 + 1e-9
+
+
+def test_displacement_starts_at_zero_and_matches_the_stroke():
+    mech = velplan.load("shaper")
+    d = kinematic_diagrams(mech, 12)
+    assert d.s[0] == 0.0 and d.quantity == "point F"
+    assert np.max(d.s_exact) == pytest.approx(velplan.stroke(mech).H, rel=1e-3)
+    rocker = kinematic_diagrams(velplan.load("four-bar"), 12)
+    assert rocker.angular and np.max(rocker.s_exact) == pytest.approx(
+        velplan.stroke(velplan.load("four-bar")).H, rel=1e-3)
+
+
+def test_diagram_view_writes_h_scales_and_error():
+    d = kinematic_diagrams(velplan.load("press"), 12)
+    view = diagram_view(d, lang="en", arrangement="column")
+    texts = "\n".join(t.text for t in view.primitives if isinstance(t, Text))
+    sc = view.meta["scales"]
+    assert f"H = {sc.H_v:g} mm" in texts and f"H = {sc.H_a:g} mm" in texts
+    assert "μv = μs/(μφ·H)" in texts and "μa = μv/(μφ·H)" in texts
+    assert f"δ = {100 * d.error_v:.2g} %" in texts or f"δ = {100 * d.error_v:.3g} %" in texts

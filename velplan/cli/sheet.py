@@ -1,0 +1,177 @@
+"""``velplan sheet``, ``velplan diagrams`` and ``velplan steps``: drawings.
+
+Every file is written atomically (SVG always; PNG and PDF through cairosvg when asked) and
+named on standard output; an error leaves no file behind.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from velplan.cli.common import add_mechanism, positive_int
+from velplan.errors import VelplanError
+
+_FORMATS = ("A1", "A2", "A3")
+_KINDS = ("velocity", "acceleration", "both")
+_LANGS = ("en", "ru", "uk", "zh")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sheet", help="draw the kinematic-analysis sheet (scheme, plans, "
+                                     "diagrams, table) as SVG, PNG or PDF")
+    add_mechanism(p, optional=True)
+    p.add_argument("-o", "--output", metavar="FILE",
+                   help="SVG file to write (default: MECH-sheet.svg in the current directory); "
+                        "a .png or .pdf name writes that too, beside the SVG")
+    p.add_argument("--positions", metavar="N", type=positive_int, default=12,
+                   help="number of positions of the scheme, table and diagrams (default 12)")
+    p.add_argument("--plans", metavar="K,…",
+                   help="positions whose plans are drawn (default: two, about a quarter and "
+                        "three quarters of the turn)")
+    p.add_argument("--kind", choices=_KINDS, default="both", help="which plans (default both)")
+    p.add_argument("--format", choices=_FORMATS, default="A1", help="sheet format (default A1)")
+    p.add_argument("--diagrams", choices=("auto", "yes", "no"), default="auto",
+                   help="kinematic diagrams on the sheet: when they fit (auto, the default), "
+                        "always (an error if they do not fit), never")
+    p.add_argument("--no-table", action="store_true",
+                   help="leave out the table of transfer functions")
+    _common(p)
+    p.add_argument("--frame", choices=("eskd", "iso"),
+                   help="title block: ESKD form 1 (default for ru, uk) or the captioned "
+                        "ISO-style block (default for en, zh)")
+    for name, what in (("title", "name of the drawing"), ("designation", "document designation"),
+                       ("author", "designed by"), ("checker", "checked by"),
+                       ("approved", "approved by"), ("organisation", "university and group"),
+                       ("date", "date as it should be written")):
+        p.add_argument(f"--{name}", metavar="TEXT", help=f"title block: {what}")
+    p.set_defaults(run=run_sheet)
+
+    p = sub.add_parser("diagrams", help="kinematic diagrams of the output: analytic curves "
+                                        "and the chord method")
+    add_mechanism(p, optional=True)
+    p.add_argument("-o", "--output", metavar="FILE",
+                   help="SVG file to write (default: MECH-diagrams.svg)")
+    p.add_argument("--positions", metavar="N", type=positive_int, default=12,
+                   help="positions the chord method works from (default 12)")
+    p.add_argument("--length", metavar="MM", type=float, default=180.0,
+                   help="length of the φ axis for one turn, mm (default 180: μφ = 2°/mm)")
+    _common(p)
+    p.set_defaults(run=run_diagrams)
+
+    p = sub.add_parser("steps", help="one SVG per construction step of the plans at a position")
+    add_mechanism(p, optional=True)
+    p.add_argument("--position", metavar="K", type=positive_int, required=True,
+                   help="the position (1-based) whose plans are built")
+    p.add_argument("-o", "--output", metavar="DIR", required=True,
+                   help="directory to write step-v-01.svg, … into (created if missing)")
+    p.add_argument("--positions", metavar="N", type=positive_int, default=12,
+                   help="number of positions the crank circle is divided into (default 12)")
+    p.add_argument("--kind", choices=_KINDS, default="both", help="which plans (default both)")
+    _common(p)
+    p.set_defaults(run=run_steps)
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--lang", choices=_LANGS, default="ru", help="language of the drawing "
+                                                                "(default ru)")
+    p.add_argument("--png", action="store_true", help="also write a PNG (needs cairosvg)")
+    p.add_argument("--pdf", action="store_true", help="also write a PDF (needs cairosvg)")
+    p.add_argument("--dpi", type=float, default=150.0, help="PNG resolution (default 150)")
+
+
+def parse_plans(text: str | None) -> tuple[int, ...] | None:
+    """``"3,9"`` → (3, 9); a one-line error naming a bad item."""
+    if text is None:
+        return None
+    out = []
+    for item in text.split(","):
+        item = item.strip()
+        try:
+            out.append(int(item))
+        except ValueError:
+            raise VelplanError(f"--plans: {item!r} is not a position number") from None
+    return tuple(out)
+
+
+def _report(paths) -> None:
+    for path in paths:
+        sys.stdout.write(f"wrote {path}\n")
+
+
+def run_sheet(args) -> int:
+    from velplan.mechanism.loader import load
+    from velplan.render.sheet import TitleInfo
+    from velplan.sheet import build_sheet, default_title
+
+    mech = load(args.mechanism)
+    plans = parse_plans(args.plans)
+    fields = {k: getattr(args, k) for k in ("title", "designation", "author", "checker",
+                                             "approved", "organisation", "date")
+              if getattr(args, k)}
+    info = None
+    if fields:
+        frame = args.frame or ("eskd" if args.lang in ("ru", "uk") else "iso")
+        base = default_title(mech, args.lang, args.format, "", frame)
+        info = TitleInfo(**{**{f: getattr(base, f) for f in ("title", "designation")},
+                            **{("checker" if k == "checker" else k): v
+                               for k, v in fields.items()}})
+    sheet = build_sheet(mech, n=args.positions, plans=plans, kind=args.kind, fmt=args.format,
+                        lang=args.lang, frame_style=args.frame, info=info,
+                        diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
+                        table=not args.no_table)
+    output = args.output or f"{mech.name}-sheet.svg"
+    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    return 0
+
+
+def run_diagrams(args) -> int:
+    from velplan.diagrams import kinematic_diagrams
+    from velplan.mechanism.loader import load
+    from velplan.render.diagram_view import diagram_view
+    from velplan.render.scene import Scene
+    from velplan.render.style import SheetStyle
+    from velplan.render.svg import to_svg
+    from velplan.sheet import write_outputs
+
+    if not 60.0 <= args.length <= 600.0:
+        raise VelplanError(f"--length must be between 60 and 600 mm, not {args.length:g}")
+    mech = load(args.mechanism)
+    d = kinematic_diagrams(mech, args.positions)
+    view = diagram_view(d, length_mm=args.length, height_mm=40.0, lang=args.lang,
+                        arrangement="column")
+    margin = 10.0
+    scene = Scene(tuple(view.at(margin, margin).primitives), view.width_mm + 2 * margin,
+                  view.height_mm + 2 * margin)
+    svg = to_svg(scene, SheetStyle(language=args.lang))
+    output = args.output or f"{mech.name}-diagrams.svg"
+    _report(write_outputs(svg, output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    return 0
+
+
+def run_steps(args) -> int:
+    from velplan.mechanism.loader import load
+    from velplan.render.steps_view import step_figures
+    from velplan.render.style import SheetStyle
+    from velplan.render.svg import to_svg
+    from velplan.sheet import write_outputs
+
+    mech = load(args.mechanism)
+    figures = step_figures(mech, args.position, n=args.positions, kind=args.kind,
+                           lang=args.lang)
+    out = Path(args.output)
+    if out.exists() and not out.is_dir():
+        raise VelplanError(f"cannot write steps into {out}: it is a file, not a directory")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise VelplanError(f"cannot create {out}: {exc.strerror or exc}") from None
+    style = SheetStyle(language=args.lang)
+    written = []
+    for f in figures:
+        name = out / f"step-{f.kind}-{f.number:02d}.svg"
+        written += write_outputs(to_svg(f.scene, style), name, png=args.png, pdf=args.pdf,
+                                 dpi=args.dpi)
+    _report(written)
+    return 0

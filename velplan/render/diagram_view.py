@@ -1,0 +1,192 @@
+"""Kinematic diagrams on paper: displacement, velocity and acceleration of the output
+against crank angle, the chord-method construction beside the analytic curves (seed 003).
+
+Each diagram has its φ axis (positions 1…n marked), its ordinate axis, the pole P at the
+pole distance H to the left of the origin with the rays parallel to the chords of the
+diagram above it, the graphical curve (thick, through the chord-method points, shifted by
+half a step), the analytic curve (thin dashed), the scales and the error of the graphical
+curve written beside it. Layer ``"diagram"`` (curves and axes), ``"diagram-lines"``
+(construction rays) and ``"diagram-labels"`` (text).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from velplan.diagrams import DiagramScales, Diagrams, choose_scales
+from velplan.render.i18n import label
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.view import View, make_view, number, scale_text, unit
+
+Arrangement = Literal["row", "column"]
+
+
+@dataclass(frozen=True)
+class DiagramSizes:
+    """Text heights, mm."""
+
+    title_mm: float = 3.5
+    label_mm: float = 2.5
+
+
+def _names(d: Diagrams, lang: str) -> tuple[str, str, str, str]:
+    """Ordinate symbols of s, v, a and the unit of s."""
+    if d.angular:
+        return "ψ", "dψ/dφ", "d²ψ/dφ²", unit("rad", lang)
+    return "S", "dS/dφ", "d²S/dφ²", unit("m", lang)
+
+
+def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: str,
+          sizes: DiagramSizes, text_top: float | None = None) -> list[Primitive]:
+    """One diagram with its origin at (0, 0), mm."""
+    L = sc.length_mm
+    n = d.n
+    items: list[Primitive] = []
+    sym_s, sym_v, sym_a, u = _names(d, lang)
+    if kind == "s":
+        mu, sym, H = sc.mu_s, sym_s, None
+        gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.s, d.s[0])
+        fx, fy = d.phi_fine, d.s_exact
+        error = None
+        title = label("displacement_diagram", lang)
+    elif kind == "v":
+        mu, sym, H = sc.mu_v, sym_v, sc.H_v
+        # the mid-interval points, closed over the turn
+        gx = np.concatenate([[0.0], d.phi_mid, [2 * math.pi]])
+        edge = 0.5 * (d.v_chord[0] + d.v_chord[-1])
+        gy = np.concatenate([[edge], d.v_chord, [edge]])
+        fx, fy = d.phi_fine, d.v_exact
+        error = d.error_v
+        title = label("velocity_diagram", lang)
+    else:
+        mu, sym, H = sc.mu_a, sym_a, sc.H_a
+        gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.a_chord, d.a_chord[0])
+        fx, fy = d.phi_fine, d.a_exact
+        error = d.error_a
+        title = label("acceleration_diagram", lang)
+    top, bottom = _span(fy, gy, mu)
+    # axes with arrowheads
+    items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), "diagram", "thin", 3.0, 1.0))
+    items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), "diagram", "thin", 3.0, 1.0))
+    items.append(Text((L + 9.0, -1.0), "φ", "diagram-labels", sizes.label_mm, "start", "top"))
+    items.append(Text((-1.5, top + 6.0), f"{sym}, {u}" if kind != "v" or not d.angular else sym,
+                      "diagram-labels", sizes.label_mm, "end", "top"))
+    # positions on the φ axis
+    every = max(1, int(math.ceil(n / 12)))
+    for k in range(n + 1):
+        x = k * L / n
+        items.append(Polyline([(x, -1.0), (x, 1.0)], "diagram", "thin"))
+        if k % every == 0:
+            items.append(Text((x, -1.8), str(k % n + 1) if k < n else "1", "diagram-labels",
+                              sizes.label_mm * 0.8 if sizes.label_mm > 2.5 else sizes.label_mm,
+                              "middle", "top"))
+    # the pole and the rays parallel to the chords of the diagram above
+    if H is not None:
+        parent = d.s if kind == "v" else d.v_chord
+        parent_mu = sc.mu_s if kind == "v" else sc.mu_v
+        step = d.step / sc.mu_phi  # mm between positions
+        intercepts = H * (np.roll(parent, -1) - parent) / parent_mu / step
+        items.append(Polyline([(-H, 0.0), (0.0, 0.0)], "diagram", "thin"))
+        items.append(Circle((-H, 0.0), 0.6, "diagram", "thin", "solid"))
+        items.append(Text((-H, -1.5), "P", "diagram-labels", sizes.label_mm, "middle", "top"))
+        for yi in intercepts:
+            if abs(yi) > 1e-6:
+                items.append(Polyline([(-H, 0.0), (0.0, float(yi))], "diagram-lines",
+                                      "construction"))
+    # curves: analytic thin dashed, graphical thick through its points
+    items.append(Polyline(np.column_stack([fx / sc.mu_phi, fy / mu]), "diagram", "hidden"))
+    items.append(Polyline(np.column_stack([gx / sc.mu_phi, gy / mu]), "diagram", "thick"))
+    marks = (d.phi, d.s) if kind == "s" else ((d.phi_mid, d.v_chord) if kind == "v"
+                                              else (d.phi, d.a_chord))
+    for x, y in zip(*marks):
+        items.append(Circle((float(x / sc.mu_phi), float(y / mu)), 0.5, "diagram", "thin",
+                            "solid"))
+    # title, scales and error, above the plot
+    unit_key = "m/mm" if not d.angular else "rad/mm"
+    if kind == "s":
+        lines = [scale_text("μ" + ("ψ" if d.angular else "s"), mu, unit_key, lang),
+                 scale_text("μφ", sc.mu_phi, "rad/mm", lang) +
+                 f" ({number(math.degrees(sc.mu_phi), lang, 3)}°/{unit('mm', lang)})"]
+    else:
+        up = "μs" if kind == "v" else "μv"
+        sym_mu = "μv" if kind == "v" else "μa"
+        unit_txt = unit("m/mm", lang) if not d.angular else unit("1/mm", lang)
+        lines = [f"H = {number(H, lang, 3)} {unit('mm', lang)};  {sym_mu} = {up}/(μφ·H) = "
+                 f"{number(mu, lang, 3)} {unit_txt}",
+                 f"δ = {number(100 * error, lang, 2)} % ({label('error', lang)}, "
+                 f"{label('chord_method', lang)})"]
+    y = (top if text_top is None else text_top) + 8.0 + 1.6 * sizes.label_mm * len(lines)
+    items.append(Text((-(H or 0.0), y + 1.8 * sizes.label_mm), title, "diagram-labels",
+                      sizes.title_mm))
+    for k, line in enumerate(lines):
+        items.append(Text((-(H or 0.0), y - 1.6 * sizes.label_mm * k), line, "diagram-labels",
+                          sizes.label_mm))
+    return items
+
+
+def _span(fy, gy, mu) -> tuple[float, float]:
+    top = max(float(np.max(fy)) / mu, float(np.max(gy)) / mu, 5.0)
+    bottom = min(float(np.min(fy)) / mu, float(np.min(gy)) / mu, 0.0)
+    return top, bottom
+
+
+def _tops(d: Diagrams, sc: DiagramScales) -> list[float]:
+    edge = 0.5 * (d.v_chord[0] + d.v_chord[-1])
+    return [_span(d.s_exact, d.s, sc.mu_s)[0],
+            _span(d.v_exact, np.r_[d.v_chord, edge], sc.mu_v)[0],
+            _span(d.a_exact, d.a_chord, sc.mu_a)[0]]
+
+
+def _legend(x: float, y: float, lang: str, size: float) -> list[Primitive]:
+    return [Polyline([(x, y), (x + 10.0, y)], "diagram", "thick"),
+            Text((x + 12.0, y), label("chord_method", lang), "diagram-labels", size, "start",
+                 "middle"),
+            Polyline([(x + 45.0, y), (x + 55.0, y)], "diagram", "hidden"),
+            Text((x + 57.0, y), label("analytic", lang), "diagram-labels", size, "start",
+                 "middle")]
+
+
+def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40.0,
+                 lang: str = "ru", arrangement: Arrangement = "column",
+                 sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0) -> View:
+    """The three diagrams of `d` as one view.
+
+    Parameters
+    ----------
+    d : Diagrams
+        From :func:`velplan.diagrams.kinematic_diagrams`.
+    length_mm : float
+        Length of the φ axis for one crank turn, mm (μφ = 2π / length).
+    height_mm : float
+        Largest ordinate of each diagram, mm (the scales are chosen to keep within it).
+    arrangement : {"row", "column"}
+        Diagrams side by side, or one above the other (φ axes aligned).
+    """
+    sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
+    tops = _tops(d, sc)
+    common = max(tops) if arrangement == "row" else None
+    plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common)
+             for k in "sva"]
+    from velplan.render.view import bounds_of, shift
+
+    items: list[Primitive] = []
+    cursor = 0.0
+    for p in plots:
+        x0, y0, x1, y1 = bounds_of(p)
+        if arrangement == "row":
+            items += [shift(q, cursor - x0, 0.0) for q in p]
+            cursor += (x1 - x0) + gap_mm
+        else:
+            # stack downwards, φ axes aligned at x = 0
+            items += [shift(q, 0.0, cursor - y1) for q in p]
+            cursor += -(y1 - y0) - gap_mm
+    x0, y0, x1, y1 = bounds_of(items)
+    items += _legend(x0, y0 - 4.0, lang, sizes.label_mm)
+    return make_view("diagrams", items, pad_mm=2.0,
+                     meta={"scales": sc, "error_v": d.error_v, "error_a": d.error_a,
+                           "quantity": d.quantity})
+

@@ -1,0 +1,614 @@
+"""The kinematic scheme in its positions: one position thick, the others thin and numbered,
+with the trajectories of the characteristic points, at a standard scale μl (m/mm).
+
+GOST 2.770 symbols: fixed pivots on hatched ground, revolute joints as small circles,
+sliders as blocks on hatched guides (or in the slot of a moving link), links as thick lines.
+Positions are numbered 1…n at the crank tip and at the output point, in the sense of ω1
+from the reference position.
+
+Layers: ``"trajectory"`` (thin paths), ``"positions"`` (the thin positions),
+``"mechanism"`` (the thick position with its symbols), ``"labels"`` (letters, numbers,
+the title and the scale).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from velplan.analysis.extremes import positions as crank_positions
+from velplan.analysis.solver import Kinematics, solve
+from velplan.errors import ScaleError
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism
+from velplan.mechanism.structure import pairs, point_owners
+from velplan.render.i18n import label
+from velplan.render.scene import Polyline, Primitive, Text
+from velplan.render.symbols import (
+    JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
+    straight_guide)
+from velplan.render.view import (
+    View, bounds_of, digits_down, make_view, place_labels, ratio_text, scale_text, subscript)
+
+#: Slider block length and width, mm.
+BLOCK_MM = (12.0, 7.0)
+_HATCH_MM = 3.0
+_FINE = 240
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A straight piece of a link between two points of the mechanism at one position, m."""
+
+    link: str
+    a: np.ndarray
+    b: np.ndarray
+    joints: tuple[bool, bool]  # is there a revolute joint at a, at b (trim the line there)
+
+
+@dataclass(frozen=True)
+class Block:
+    """A slider block at `centre` (m) with its long side along `angle` (rad)."""
+
+    link: str
+    centre: np.ndarray
+    angle: float
+
+
+@dataclass(frozen=True)
+class GuideTrack:
+    """A fixed straight guide: the line through `base` (m) along `angle`, travelled over the
+    range [lo, hi] (m along the line) by the block of `link`."""
+
+    link: str
+    base: np.ndarray
+    angle: float
+    lo: float
+    hi: float
+    point: str = ""
+
+
+def _unit(angle: float) -> np.ndarray:
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+class _Geometry:
+    """Where every link, block and guide is, at the positions of a `Kinematics`, m."""
+
+    def __init__(self, mech: Mechanism, kin: Kinematics):
+        self.mech, self.kin = mech, kin
+        self.owner = point_owners(mech)
+        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
+        self.ground_pivots = [p.point for p in pairs(mech)
+                              if p.kind == "R" and GROUND in p.links]
+
+    def p(self, i: int, name: str) -> np.ndarray:
+        return self.kin.positions[i, self.kin.point_index[name]]
+
+    def theta(self, i: int, link_name: str) -> float:
+        return 0.0 if link_name == GROUND else float(self.kin.angles[i, self.kin.link_index[link_name]])
+
+    def _seg(self, link_name, a, b, i, joint_a=None, joint_b=None) -> Segment:
+        pa = self.p(i, a) if isinstance(a, str) else a
+        pb = self.p(i, b) if isinstance(b, str) else b
+        ja = joint_a if joint_a is not None else (isinstance(a, str) and a in self.revolute)
+        jb = joint_b if joint_b is not None else (isinstance(b, str) and b in self.revolute)
+        return Segment(link_name, pa, pb, (ja, jb))
+
+    def main_points(self) -> dict[str, tuple[str, str]]:
+        """Link → two named points its main line runs between (links that are lines)."""
+        c = self.mech.crank
+        out = {c.link: (c.pivot, c.tip)}
+        for g in self.mech.groups:
+            if isinstance(g, RRR):
+                out[g.links[0]] = (g.joints[0], g.point)
+                out[g.links[1]] = (g.joints[1], g.point)
+            elif isinstance(g, RRP):
+                out[g.links[0]] = (g.joint, g.point)
+            elif isinstance(g, RPR):
+                out[g.links[1]] = (g.pivot, g.coincident or g.joint)
+        return out
+
+    def segments(self, i: int) -> list[Segment]:
+        """Lines of every link at position i."""
+        segs: list[Segment] = []
+        c = self.mech.crank
+        segs.append(self._seg(c.link, c.pivot, c.tip, i))
+        for g in self.mech.groups:
+            if isinstance(g, RRR):
+                segs.append(self._seg(g.links[0], g.joints[0], g.point, i))
+                segs.append(self._seg(g.links[1], g.joints[1], g.point, i))
+            elif isinstance(g, RRP):
+                segs.append(self._seg(g.links[0], g.joint, g.point, i))
+                if g.guide.link != GROUND:
+                    segs.extend(self._moving_guide(g.guide, self.p(i, g.point), i))
+            elif isinstance(g, RPR):
+                segs.extend(self._bar(g, i))
+            elif isinstance(g, PRP):
+                for guide in g.guides:
+                    if guide.link != GROUND:
+                        segs.extend(self._moving_guide(guide, self.p(i, g.point), i))
+            elif isinstance(g, RPP):
+                k = self.p(i, g.origin_name)
+                b = self.p(i, g.joint)
+                direction = b - k
+                length = float(np.hypot(*direction))
+                if length > 0:
+                    far = b + direction / length * 0.25 * max(length, 1e-9)
+                    segs.append(Segment(g.links[1], k, far, (False, False)))
+        segs.extend(self._point_arms(i))
+        return segs
+
+    def _bar(self, g: RPR, i: int) -> list[Segment]:
+        bar = g.links[1]
+        o, a = self.p(i, g.pivot), self.p(i, g.joint)
+        direction = _unit(self.theta(i, bar))
+        foot = o + g.offset * np.array([-direction[1], direction[0]])
+        names = [n for n, owner in self.owner.items() if owner == bar]
+        reach = [float((self.p(i, n) - foot) @ direction) for n in names]
+        reach.append(float((a - foot) @ direction))
+        far = foot + direction * (max(reach) + (0.0 if names else 0.15 * max(reach)))
+        segs = []
+        if g.offset:
+            segs.append(Segment(bar, o, foot, (g.pivot in self.revolute, False)))
+        end_joint = any(float(np.hypot(*(self.p(i, n) - far))) < 1e-9 and n in self.revolute
+                        for n in names)
+        segs.append(Segment(bar, foot, far, (not g.offset and g.pivot in self.revolute,
+                                             end_joint)))
+        return segs
+
+    def _moving_guide(self, guide, at: np.ndarray, i: int) -> list[Segment]:
+        direction = _unit(self.theta(i, guide.link) + guide.angle)
+        through = self.p(i, guide.through)
+        base = through + guide.offset * np.array([-direction[1], direction[0]])
+        t = float((at - base) @ direction)
+        lo, hi = min(0.0, t), max(0.0, t)
+        span = max(hi - lo, 1e-6)
+        return [Segment(guide.link, base + direction * (lo - 0.2 * span),
+                        base + direction * (hi + 0.2 * span), (False, False))]
+
+    def _point_arms(self, i: int) -> list[Segment]:
+        """Lines to link points off a link's main line (triangular links, extensions)."""
+        main = self.main_points()
+        out = []
+        for lp in self.mech.points:
+            ends = main.get(lp.link)
+            if ends is None or lp.name in ends:
+                continue
+            p = self.p(i, lp.name)
+            a, b = self.p(i, ends[0]), self.p(i, ends[1])
+            d = b - a
+            length = float(np.hypot(*d))
+            if length == 0:
+                continue
+            t = float((p - a) @ d) / length**2
+            off = abs(float(d[0] * (p - a)[1] - d[1] * (p - a)[0])) / length
+            joint = lp.name in self.revolute
+            if off > 1e-6 * length:
+                out.append(Segment(lp.link, a, p, (ends[0] in self.revolute, joint)))
+                out.append(Segment(lp.link, b, p, (ends[1] in self.revolute, joint)))
+            elif t > 1 + 1e-9:
+                out.append(Segment(lp.link, b, p, (False, joint)))
+            elif t < -1e-9:
+                out.append(Segment(lp.link, a, p, (False, joint)))
+        return out
+
+    def blocks(self, i: int) -> list[Block]:
+        out = []
+        for g in self.mech.groups:
+            if isinstance(g, RRP):
+                out.append(Block(g.links[1], self.p(i, g.point),
+                                 self.theta(i, g.guide.link) + g.guide.angle))
+            elif isinstance(g, RPR):
+                out.append(Block(g.links[0], self.p(i, g.joint), self.theta(i, g.links[1])))
+            elif isinstance(g, PRP):
+                out.append(Block(g.links[0], self.p(i, g.point),
+                                 self.theta(i, g.guides[0].link) + g.guides[0].angle))
+            elif isinstance(g, RPP):
+                guide_angle = self.theta(i, g.guide.link) + g.guide.angle
+                out.append(Block(g.links[1], self.p(i, g.origin_name), guide_angle))
+                out.append(Block(g.links[0], self.p(i, g.joint), guide_angle + g.slot_angle))
+        return out
+
+    def tracks(self, fine: Kinematics) -> list[GuideTrack]:
+        """Fixed guides with the range their blocks travel over a whole turn."""
+        out = []
+        for g in self.mech.groups:
+            if isinstance(g, RRP) and g.guide.link == GROUND:
+                guides = [(g.links[1], g.guide, g.point)]
+            elif isinstance(g, PRP):
+                guides = [(lk, gd, g.point) for lk, gd in zip(g.links, g.guides)
+                          if gd.link == GROUND]
+            elif isinstance(g, RPP) and g.guide.link == GROUND:
+                guides = [(g.links[1], g.guide, g.origin_name)]
+            else:
+                guides = []
+            for lk, gd, point in guides:
+                direction = _unit(gd.angle)
+                through = np.asarray(self.mech.ground_points[gd.through], float)
+                base = through + gd.offset * np.array([-direction[1], direction[0]])
+                travel = (fine.position(point) - base) @ direction
+                travel = travel[np.isfinite(travel)]
+                out.append(GuideTrack(lk, base, gd.angle, float(travel.min()),
+                                      float(travel.max()), point))
+        return out
+
+
+def _centroid(kin: Kinematics) -> np.ndarray:
+    xy = kin.positions.reshape(-1, 2)
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    return xy.mean(axis=0)
+
+
+def output_point(mech: Mechanism) -> str | None:
+    """The point whose positions are numbered besides the crank's: the output slider, or the
+    moving joint of the output link."""
+    out = mech.output
+    if out is None:
+        return None
+    if out.point:
+        for g in mech.groups:
+            if isinstance(g, RPP) and out.point == g.coincident:
+                return g.origin_name  # the runner's positions are read on its guide
+        return out.point
+    for g in mech.groups:
+        if out.link in g.links and isinstance(g, (RRR, RRP)):
+            return g.point
+    return None
+
+
+def trajectory_points(mech: Mechanism) -> list[str]:
+    """Characteristic points whose paths are drawn: the crank tip, every joint a group
+    solves for and every named point on a moving link, without coincident duplicates."""
+    owner = point_owners(mech)
+    ground = set(mech.ground_points)
+    names = [mech.crank.tip]
+    for g in mech.groups:
+        if isinstance(g, (RRR, RRP, PRP)):
+            names.append(g.point)
+    names += [p.name for p in mech.points]
+    return [n for n in dict.fromkeys(names) if n not in ground and n in owner]
+
+
+@dataclass(frozen=True)
+class MechanismSizes:
+    """Text heights of the view, mm."""
+
+    title_mm: float = 5.0
+    label_mm: float = 3.5
+    number_mm: float = 2.5
+
+
+def mechanism_view(mech: Mechanism, *, mu_l: float, n: int = 12, thick: int = 1,
+                   lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
+                   kin: Kinematics | None = None, fine: Kinematics | None = None,
+                   title: bool = True, single: bool = False) -> View:
+    """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
+
+    Parameters
+    ----------
+    mu_l : float
+        Length scale, m of the mechanism per mm of the drawing (0.002 is 1:2).
+    n : int
+        Number of positions, evenly spaced from the reference position in the sense of ω1.
+    thick : int
+        Position drawn thick, 1-based.
+    lang : {"en", "ru", "uk", "zh"}
+    kin, fine : Kinematics, optional
+        The mechanism solved at the n positions and on a fine grid over a turn (trajectories);
+        solved here when omitted.
+    title : bool
+        Write the view's title and scale above it.
+    single : bool
+        Draw the thick position alone: no other positions, trajectories or numbers (the
+        step-by-step figures).
+
+    Returns
+    -------
+    View
+        ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
+        the crank angles (rad), ``meta["thick"]`` the thick position.
+    """
+    if not 1 <= thick <= n:
+        raise ScaleError(f"thick position {thick} is outside 1…{n}")
+    if kin is None:
+        kin = solve(mech, crank_positions(mech, n))
+    if fine is None:
+        sense = 1.0 if mech.crank.omega >= 0 else -1.0
+        fine = solve(mech, kin.phi[0] + sense * np.linspace(0.0, 2 * np.pi, _FINE + 1))
+    geo = _Geometry(mech, kin)
+    mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
+    t = thick - 1
+    items: list[Primitive] = []
+    obstacles: list = []
+
+    # trajectories, under everything
+    for name in ([] if single else trajectory_points(mech)):
+        path = fine.position(name)
+        path = path[np.all(np.isfinite(path), axis=1)]
+        if len(path) >= 2 and np.ptp(path, axis=0).max() / mu_l > 0.5:
+            items.append(Polyline(mm(path), "trajectory", "thin"))
+
+    # the thin positions
+    for i in range(len(kin)):
+        if i == t or not kin.valid[i] or single:
+            continue
+        for s in geo.segments(i):
+            items += link(mm(s.a), mm(s.b), trim_a_mm=0.0, trim_b_mm=0.0, layer="positions",
+                          line="thin")
+
+    # the thick position: guides, pivots, links, blocks, joints
+    centre = mm(_centroid(kin))
+    tracks = geo.tracks(fine)
+    thick_segments = geo.segments(t)
+    guide_sides = {}
+    for tr in tracks:
+        side = _guide_side(tr, mu_l, centre, mm(geo.p(t, tr.point)), thick_segments, mm)
+        guide_sides[tr.point] = side
+        guide = _guide(tr, mu_l, side)
+        items += guide
+        obstacles.append(shapely.box(*bounds_of(guide)).buffer(0.3))
+    for name in geo.ground_pivots:
+        support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
+                              layer="mechanism")
+        items += support
+        obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+    for s in thick_segments:
+        a, b = mm(s.a), mm(s.b)
+        items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
+                      trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
+        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+    blocks = geo.blocks(t)
+    for bl in blocks:
+        c = mm(bl.centre)
+        body = slider_block(c, math.degrees(bl.angle), length_mm=BLOCK_MM[0],
+                            width_mm=BLOCK_MM[1], layer="mechanism")
+        items += body
+        obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
+    joints = [p for p in geo.revolute if p not in geo.ground_pivots]
+    for name in sorted(joints, key=lambda p: list(kin.point_index).index(p)):
+        items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
+
+    # labels: points of the thick position, position numbers, ω1, links
+    labels: list[Text] = []
+    labels += _point_labels(geo, t, mm, sizes.label_mm, thick_segments, blocks)
+    if not single:
+        labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
+    out = output_point(mech)
+    if out is not None and out != mech.crank.tip and not single:
+        on_track = any(g.point == out for g in mech.groups if isinstance(g, (RRP, PRP))) or any(
+            out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP))
+        labels += _output_numbers(kin, out, mm, sizes.number_mm, on_track and bool(tracks),
+                                  centre, guide_sides.get(out))
+    omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
+    items += omega[:-1]
+    labels.append(omega[-1])
+    away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in guide_sides.items()]
+    labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, thick_segments, blocks, centre,
+                            away_from_guides)
+    items += place_labels(labels, obstacles, rings=8)
+
+    if title:
+        x0, _, _, y1 = bounds_of(items)
+        items.append(Text((x0, y1 + 4.0 + 1.6 * sizes.title_mm),
+                          f"{label('position', lang)} {thick}" if single
+                          else label("mechanism_positions", lang), "labels", sizes.title_mm))
+        items.append(Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) +
+                          f"  (M {ratio_text(mu_l)})", "labels", sizes.label_mm))
+    return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
+                     meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+def extent_m(mech: Mechanism, kin: Kinematics, fine: Kinematics) -> tuple[float, float]:
+    """Width and height of the scheme, m (positions and trajectories, no symbols)."""
+    xy = np.concatenate([kin.positions.reshape(-1, 2), fine.positions.reshape(-1, 2)])
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    span = np.ptp(xy, axis=0)
+    return float(span[0]), float(span[1])
+
+
+def _guide_side(tr: GuideTrack, mu_l: float, centre_mm, slider_mm, segs, mm) -> np.ndarray:
+    """Unit normal of the guide pointing to the side its hatched line is drawn on: away
+    from the rod that drives the slider in the thick position (so the rod never crosses
+    the ground), or away from the mechanism's centre when the rod lies along the guide."""
+    d = _unit(tr.angle)
+    n = np.array([-d[1], d[0]])
+    pull = np.zeros(2)
+    for seg in segs:
+        for here, other in ((mm(seg.a), mm(seg.b)), (mm(seg.b), mm(seg.a))):
+            if np.hypot(*(here - slider_mm)) < 0.5:
+                v = other - here
+                pull += v / max(np.hypot(*v), 1e-9)
+    if abs(float(pull @ n)) > 0.05:
+        return -n if float(pull @ n) > 0 else n
+    return -n if float((centre_mm - tr.base / mu_l) @ n) > 0 else n
+
+
+def _guide(tr: GuideTrack, mu_l: float, n: np.ndarray) -> list[Primitive]:
+    """A hatched guide line along the block's travel, on the side `n`, so the block rides
+    on it."""
+    d = _unit(tr.angle)
+    base = tr.base / mu_l
+    lo = tr.lo / mu_l - BLOCK_MM[0] / 2 - 6.0
+    hi = tr.hi / mu_l + BLOCK_MM[0] / 2 + 6.0
+    off = n * BLOCK_MM[1] / 2
+    a, b = base + d * lo + off, base + d * hi + off
+    # hatch on the outer side: `side` is relative to the direction a → b
+    side = "left" if float(d[0] * n[1] - d[1] * n[0]) > 0 else "right"
+    return list(straight_guide(a, b, side=side, depth_mm=_HATCH_MM, layer="mechanism"))
+
+
+def _ground_side(geo: _Geometry, name: str, t: int, mm) -> float:
+    """Direction (deg) from a fixed pivot to its ground: away from the links at it."""
+    dirs = []
+    for i in range(len(geo.kin)):
+        for s in geo.segments(i):
+            for here, other in ((s.a, s.b), (s.b, s.a)):
+                if np.allclose(here, geo.p(i, name), atol=1e-9):
+                    d = other - here
+                    if np.hypot(*d) > 0:
+                        dirs.append(d / np.hypot(*d))
+    if not dirs:
+        return -90.0
+    mean = np.mean(dirs, axis=0)
+    if np.hypot(*mean) < 0.3:  # a crank turning all round: the ground below, by custom
+        return -90.0
+    a = math.degrees(math.atan2(-mean[1], -mean[0]))
+    return float(90.0 * round(a / 90.0))  # supports stand square to the sheet
+
+
+def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks) -> list[Text]:
+    kin = geo.kin
+    placed: list[np.ndarray] = []
+    out = []
+    for name in kin.point_index:
+        if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
+            continue  # the runner's origin is a construction point, not lettered
+        p = mm(geo.p(t, name))
+        if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
+            continue  # a coincident point (A4 at A) takes the letter already written
+        placed.append(p)
+        away = np.zeros(2)
+        for s in segs:
+            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
+                if np.hypot(*(here - p)) < 0.5:
+                    d = other - here
+                    away -= d / max(np.hypot(*d), 1e-9)
+        if name in geo.ground_pivots:
+            g = math.radians(_ground_side(geo, name, t, mm))
+            away -= 1.5 * np.array([math.cos(g), math.sin(g)])
+        if np.hypot(*away) < 0.2:
+            away = np.array([1.0, 1.0])
+        away /= np.hypot(*away)
+        # point labels sit diagonally off the joint, clear of the lines meeting there
+        anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
+        reach = JOINT_RADIUS_MM + 1.5 + 0.5 * size
+        if any(np.hypot(*(mm(b.centre) - p)) < 0.5 for b in blocks):
+            reach = 0.5 * math.hypot(*BLOCK_MM) + 1.0  # clear of the slider's corners
+        pos = p + away * reach
+        out.append(Text(pos, subscript(name), "labels", size, anchor, "middle"))
+    return out
+
+
+def _crank_numbers(mech: Mechanism, kin: Kinematics, mm, size: float) -> list[Text]:
+    pivot = mm(kin.position(mech.crank.pivot)[0])
+    tips = mm(kin.position(mech.crank.tip))
+    out = []
+    for i, tip in enumerate(tips):
+        d = tip - pivot
+        d = d / max(np.hypot(*d), 1e-9)
+        out.append(Text(tip + d * (1.0 + 0.9 * size), str(i + 1), "labels", size, "middle",
+                        "middle"))
+    return out
+
+
+def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool,
+                    centre, guide_side=None) -> list[Text]:
+    """Numbers of the positions of the output point; close ones share one label."""
+    xy = mm(kin.position(point))
+    n = len(xy)
+    clusters: list[list[int]] = []
+    order = list(range(n))
+    for i in order:
+        for c in clusters:
+            if np.hypot(*(xy[i] - xy[c[0]])) < 2.2 * size:
+                c.append(i)
+                break
+        else:
+            clusters.append([i])
+    out = []
+    for c in clusters:
+        p = xy[c].mean(axis=0)
+        i = c[0]
+        tangent = xy[(i + 1) % n] - xy[(i - 1) % n]
+        if np.hypot(*tangent) < 1e-6 * max(np.ptp(xy, axis=0).max(), 1e-9):
+            # an extreme position: its neighbours coincide; take the path's main direction
+            _, _, vt = np.linalg.svd(xy - xy.mean(axis=0))
+            tangent = vt[0]
+        normal = np.array([-tangent[1], tangent[0]]) / np.hypot(*tangent)
+        if guide_side is not None:
+            if float(guide_side @ normal) < 0:
+                normal = -normal  # beyond the hatching of the guide
+        elif float((p - centre) @ normal) < 0:
+            normal = -normal
+        anchor = "start" if normal[0] > 0.35 else ("end" if normal[0] < -0.35 else "middle")
+        gap = (BLOCK_MM[1] / 2 + _HATCH_MM + 1.0) if on_track else 2.0
+        if anchor == "middle":
+            gap += 0.6 * size  # half the text's height, above or below the path
+        text = ",".join(str(k + 1) for k in sorted(c))
+        out.append(Text(p + normal * gap, text, "labels", size, anchor, "middle"))
+    return out
+
+
+def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> list:
+    """ω1's curved arrow about the crank pivot, in the widest gap between the lines that
+    meet there and the pivot's ground support."""
+    c = mech.crank
+    kin = geo.kin
+    pivot = mm(kin.position(c.pivot)[t])
+    length = np.hypot(*(mm(kin.position(c.tip)[t]) - pivot))
+    radius = float(np.clip(0.5 * length, 6.0, 16.0))
+    busy = [_ground_side(geo, c.pivot, t, mm)]
+    for s in geo.segments(t):
+        for here, other in ((s.a, s.b), (s.b, s.a)):
+            if np.hypot(*(mm(here) - pivot)) < 0.5:
+                d = mm(other) - pivot
+                busy.append(math.degrees(math.atan2(d[1], d[0])))
+            else:  # a line passing near the pivot (a guide bar) blocks both ways
+                a, b = mm(here), mm(other)
+                d = b - a
+                L = np.hypot(*d)
+                if L > 0 and abs(d[0] * (pivot - a)[1] - d[1] * (pivot - a)[0]) / L < radius and 0 < (pivot - a) @ d < L * L:
+                    ang = math.degrees(math.atan2(d[1], d[0]))
+                    busy += [ang, ang + 180.0]
+    best, gap = 0.0, -1.0
+    for k in range(72):
+        cand = 5.0 * k
+        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
+        if g > gap + 1e-9:
+            best, gap = cand, g
+    sweep = 70.0 if c.omega >= 0 else -70.0
+    start = best - sweep / 2
+    arrow = rotation_arrow(pivot, radius, start, sweep, layer="mechanism")
+    mid = math.radians(best)
+    where = pivot + (radius + 1.0 + 0.8 * size) * np.array([math.cos(mid), math.sin(mid)])
+    return [*arrow, Text(where, "ω" + digits_down(c.link), "labels", size, "middle", "middle")]
+
+
+def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs, blocks,
+                  centre, away_from_guides=()) -> list[Text]:
+    """Link numbers beside the middle of each link, or beside its block, on the side of the
+    mechanism's centre (away from guides and the numbers of positions)."""
+    out = []
+    done = set()
+    for s in segs:
+        if s.link in done:
+            continue
+        a, b = mm(s.a), mm(s.b)
+        d = b - a
+        length = np.hypot(*d)
+        if length < 4 * size:
+            continue
+        done.add(s.link)
+        normal = np.array([-d[1], d[0]]) / length
+        if float((centre - (a + 0.42 * d)) @ normal) < 0:
+            normal = -normal
+        where = a + 0.42 * d + normal * (0.9 * size)
+        out.append(Text(where, s.link, "labels", size, "middle", "middle"))
+    for bl in blocks:
+        if bl.link in done:
+            continue
+        done.add(bl.link)
+        u = _unit(bl.angle)
+        normal = np.array([-u[1], u[0]])
+        free = [side for where, side in away_from_guides if np.hypot(*(where - mm(bl.centre))) < 0.5]
+        if free:
+            if float(free[0] @ normal) < 0:
+                normal = -normal  # the side of the block away from its guide
+        elif float((centre - mm(bl.centre)) @ normal) < 0:
+            normal = -normal
+        where = mm(bl.centre) + normal * (BLOCK_MM[1] / 2 + 0.9 * size) - u * (BLOCK_MM[0] / 2)
+        out.append(Text(where, bl.link, "labels", size, "middle", "middle"))
+    return out

@@ -1,0 +1,294 @@
+"""One velocity or acceleration plan at one position, drawn from a `PlanResult`.
+
+Every construction step becomes what a draughtsman draws for it (Pole: the pole's dot;
+LayOff: the known vector with its arrowhead; Line: a thin construction line through an
+image, clipped to the plan's area; Intersect: the two vectors the lines carry, and the
+absolute vector from the pole; Similar: the similarity figure's side and the absolute
+vector), then every image gets its lower-case letter (digits as subscripts: a₄, n₁), the
+pole its p or π, and the plan its title and scale ("μv = 0,02 (м/с)/мм").
+
+The plan keeps the orientation of the mechanism: a line ⊥ CA on the plan is ⊥ the link CA
+as drawn in the scheme. Coordinates are the plan's own mm (the pole at the origin); the
+view's ``to_view`` maps image mm to the view.
+
+Layers: ``plan-v-K`` (vectors), ``plan-v-K-lines`` (construction lines) and
+``plan-v-K-labels`` (letters, title, scale) for the velocity plan of position K;
+``plan-a-K…`` for the acceleration plan.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from velplan.plans.steps import Intersect, LayOff, Line, Pole, Similar
+from velplan.plans.text import label_of
+from velplan.render.i18n import label
+from velplan.render.layout import label_box
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.view import View, make_view, place_labels, scale_text, subscript
+
+#: Construction lines run this far past the images they join, mm.
+LINE_OVERRUN_MM = 10.0
+#: Clearance of the plan's area around its images, mm.
+AREA_MARGIN_MM = 12.0
+#: Images closer than this share one label ("p, f"), mm.
+COINCIDENT_MM = 0.8
+
+
+@dataclass(frozen=True)
+class StepDrawing:
+    """What one construction step adds to the plan, in the plan's mm (pole at 0).
+
+    Attributes
+    ----------
+    step : Step
+        The construction step.
+    items : tuple of Primitive
+        Its vectors and lines.
+    images : tuple of str
+        Targets (``"v:c"``) of the images this step fixes (lettered with it).
+    sentence : str
+        The step's sentence of the worked solution.
+    """
+
+    step: object
+    items: tuple[Primitive, ...]
+    images: tuple[str, ...]
+    sentence: str
+
+
+@dataclass(frozen=True)
+class PlanSizes:
+    """Text heights of a plan view, mm."""
+
+    title_mm: float = 5.0
+    label_mm: float = 3.5
+
+
+def _xy(z: complex) -> tuple[float, float]:
+    return (float(z.real), float(z.imag))
+
+
+def _kind(res) -> str:
+    return res.kind[0]
+
+
+def layer_names(kind: str, number: int) -> tuple[str, str, str]:
+    """(vectors, construction lines, labels) layer names of a plan."""
+    base = f"plan-{kind}-{number}"
+    return base, f"{base}-lines", f"{base}-labels"
+
+
+def _image(res, target: str, i: int) -> complex:
+    return complex(res.values[target][i])
+
+
+def plan_steps(res, i: int, *, number: int, lang: str = "ru") -> list[StepDrawing]:
+    """The plan of `res` at its position index `i`, step by step, in the plan's mm.
+
+    Parameters
+    ----------
+    res : PlanResult
+        A velocity or acceleration plan.
+    i : int
+        Index into the result's positions.
+    number : int
+        Position number (1-based) written in the layer names.
+    lang : str
+        Language of the sentences.
+    """
+    k = _kind(res)
+    vec_layer, line_layer, _ = layer_names(k, number)
+    pole = f"{k}:{'p' if k == 'v' else 'π'}"
+    steps = [s for s in res.steps if s.target.startswith(k + ":")]
+    sentences = res.describe(i, lang)
+    area = plan_area(res, i)
+    # which intersection each line serves, to run the line past it
+    meets: dict[str, str] = {}
+    for s in steps:
+        if isinstance(s, Intersect):
+            for line in s.lines:
+                meets[line] = s.target
+    out = []
+    from_pole: set[str] = set()
+    for s, sentence in zip(steps, sentences):
+        items: list[Primitive] = []
+        images: tuple[str, ...] = ()
+        if isinstance(s, Pole):
+            items.append(Circle((0.0, 0.0), 0.8, vec_layer, "thin", "solid"))
+            images = (s.target,)
+        elif isinstance(s, LayOff):
+            a, b = _image(res, s.origin, i), _image(res, s.target, i)
+            line = "thick" if s.origin == pole else "thin"
+            if s.origin == pole:
+                from_pole.add(s.target)
+            items.append(Arrow(_xy(a), _xy(b), vec_layer, line))
+            images = (s.target,)
+        elif isinstance(s, Line):
+            through, direction = res.values[s.target]
+            p, u = complex(through[i]), complex(direction[i])
+            ends = [0.0]
+            if s.target in meets:
+                x = _image(res, meets[s.target], i)
+                if np.isfinite(x):
+                    ends.append(((x - p) * u.conjugate()).real)
+            seg = shapely.LineString([_xy(p + u * (min(ends) - LINE_OVERRUN_MM)),
+                                      _xy(p + u * (max(ends) + LINE_OVERRUN_MM))])
+            clipped = seg.intersection(area)
+            if not clipped.is_empty and clipped.length > 0:
+                items.append(Polyline(np.asarray(clipped.coords), line_layer, "thin"))
+        elif isinstance(s, Intersect):
+            x = _image(res, s.target, i)
+            for name in s.lines:
+                through = res.plan.by_target[name].through
+                a = _image(res, through, i)
+                items.append(Arrow(_xy(a), _xy(x), vec_layer,
+                                   "thick" if through == pole else "thin"))
+                if through == pole:
+                    from_pole.add(s.target)
+            if s.target not in from_pole:
+                items.append(Arrow((0.0, 0.0), _xy(x), vec_layer, "thick"))
+                from_pole.add(s.target)
+            images = (s.target,)
+        elif isinstance(s, Similar):
+            a, x = _image(res, s.anchor_image, i), _image(res, s.target, i)
+            if s.anchor_image != pole and abs(x - a) > 1e-9:
+                items.append(Polyline([_xy(a), _xy(x)], vec_layer, "thin"))
+            items.append(Arrow((0.0, 0.0), _xy(x), vec_layer, "thick"))
+            from_pole.add(s.target)
+            images = (s.target,)
+        items = [p for p in items if _finite(p)]
+        out.append(StepDrawing(s, tuple(items), images, sentence))
+    return out
+
+
+def _finite(p: Primitive) -> bool:
+    coords = {Arrow: lambda a: [a.start, a.end], Circle: lambda c: [c.centre]}.get(
+        type(p), lambda q: list(q.points))(p)
+    return bool(np.all(np.isfinite(np.asarray(coords, float))))
+
+
+def plan_area(res, i: int) -> shapely.Polygon:
+    """The plan's drawing area: its images' box with a margin, mm (pole at 0)."""
+    k = _kind(res)
+    pts = [0j] + [complex(z[i]) for t, z in res.values.items()
+                  if t.startswith(k + ":") and not isinstance(z, tuple)]
+    pts = [z for z in pts if np.isfinite(z)]
+    xs, ys = [z.real for z in pts], [z.imag for z in pts]
+    return shapely.box(min(xs) - AREA_MARGIN_MM, min(ys) - AREA_MARGIN_MM,
+                       max(xs) + AREA_MARGIN_MM, max(ys) + AREA_MARGIN_MM)
+
+
+def image_letters(res, i: int, drawings: list[StepDrawing], *, number: int,
+                  size_mm: float = 3.5, upto: int | None = None) -> list[Text]:
+    """Letters of the images fixed by the first `upto` steps, clear of the vectors."""
+    k = _kind(res)
+    _, _, text_layer = layer_names(k, number)
+    upto = len(drawings) if upto is None else upto
+    shown = [t for d in drawings[:upto] for t in d.images]
+    groups: list[list[str]] = []
+    for t in shown:
+        z = _image(res, t, i)
+        if not np.isfinite(z):
+            continue
+        for g in groups:
+            if abs(_image(res, g[0], i) - z) < COINCIDENT_MM:
+                g.append(t)
+                break
+        else:
+            groups.append([t])
+    segments = []
+    for d in drawings[:upto]:
+        for p in d.items:
+            if isinstance(p, Arrow):
+                segments.append((np.array(p.start), np.array(p.end)))
+            elif isinstance(p, Polyline):
+                segments.append((np.array(p.points[0]), np.array(p.points[-1])))
+    obstacles = [shapely.LineString([a, b]).buffer(0.5) for a, b in segments
+                 if np.hypot(*(b - a)) > 1e-9]
+    texts = []
+    for g in groups:
+        z = _image(res, g[0], i)
+        here = np.array(_xy(z))
+        away = np.zeros(2)
+        for a, b in segments:
+            for end, other in ((a, b), (b, a)):
+                if np.hypot(*(end - here)) < COINCIDENT_MM and np.hypot(*(other - end)) > 1e-9:
+                    away -= (other - end) / np.hypot(*(other - end))
+        if np.hypot(*away) < 0.3:
+            away = here / np.hypot(*here) if np.hypot(*here) > 1 else np.array([-0.7, -0.7])
+        away = away / np.hypot(*away)
+        text = ", ".join(subscript(label_of(t)) for t in g)
+        anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
+        pos = here + away * (1.2 + 0.45 * size_mm)
+        texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
+    return list(place_labels(texts, obstacles, rings=8))
+
+
+def plan_title(res, number: int, lang: str) -> tuple[str, str]:
+    """(title, scale) lines: ``"План скоростей (пол. 4)"``, ``"μv = 0,02 (м/с)/мм"``."""
+    k = _kind(res)
+    name = label("velocity_plan" if k == "v" else "acceleration_plan", lang)
+    symbol, unit_key = ("μv", "(m/s)/mm") if k == "v" else ("μa", "(m/s²)/mm")
+    return (f"{name} ({label('position_short', lang)} {number})",
+            scale_text(symbol, res.scale, unit_key, lang))
+
+
+def plan_view(res, i: int, *, number: int, lang: str = "ru",
+              sizes: PlanSizes = PlanSizes(), title: bool = True) -> View:
+    """The plan of `res` at position index `i` as a view.
+
+    Parameters
+    ----------
+    res : PlanResult
+    i : int
+        Index into ``res.index`` (0 for a result evaluated at one position).
+    number : int
+        Position number written in the title and the layer names.
+    lang : {"en", "ru", "uk", "zh"}
+    sizes : PlanSizes
+    title : bool
+        Write the title and the scale above the plan.
+
+    Returns
+    -------
+    View
+        ``to_view`` maps plan mm (pole at 0) to the view's mm; ``meta`` holds ``kind``,
+        ``number``, ``scale`` and ``images`` (target → plan mm).
+    """
+    drawings = plan_steps(res, i, number=number, lang=lang)
+    items: list[Primitive] = [p for d in drawings for p in d.items]
+    items += image_letters(res, i, drawings, number=number, size_mm=sizes.label_mm)
+    if title:
+        _, _, text_layer = layer_names(_kind(res), number)
+        x0, _, _, y1 = _bounds(items)
+        head, scale = plan_title(res, number, lang)
+        items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
+                          sizes.title_mm))
+        items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
+    k = _kind(res)
+    images = {t: _image(res, t, i) for d in drawings for t in d.images}
+    return make_view(f"plan-{k}-{number}", items, pad_mm=2.0, mu=None,
+                     meta={"kind": k, "number": number, "scale": res.scale,
+                           "images": images, "index": i})
+
+
+def _bounds(items):
+    from velplan.render.view import bounds_of
+    return bounds_of(items)
+
+
+def extent_mm(res, i: int) -> tuple[float, float]:
+    """Width and height of the plan's images at its scale, mm."""
+    k = _kind(res)
+    pts = [0j] + [complex(z[i]) for t, z in res.values.items()
+                  if t.startswith(k + ":") and not isinstance(z, tuple)]
+    pts = np.array([z for z in pts if np.isfinite(z)])
+    return float(np.ptp(pts.real)), float(np.ptp(pts.imag))
+
+
+__all__ = ["StepDrawing", "PlanSizes", "plan_steps", "plan_view", "plan_area", "image_letters",
+           "plan_title", "layer_names", "extent_mm", "label_box"]

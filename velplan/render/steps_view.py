@@ -1,0 +1,112 @@
+"""The construction of one plan, step by step, for teaching: one figure per step.
+
+Each figure shows the mechanism in the position (thick, alone) on the left and the plan as
+far as it is built on the right, at the same scale and place in every figure, so that the
+figures can be flipped through. What the step adds is drawn thick (its vectors and its
+line); what earlier steps drew stays thin. Under the drawing the step's sentence of the
+worked solution is written ("Через точку a проводим прямую ∥ O3A …").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from velplan.analysis.extremes import positions as crank_positions
+from velplan.analysis.solver import solve
+from velplan.errors import VelplanError
+from velplan.mechanism.model import Mechanism
+from velplan.plans import Plan, standard_scale
+from velplan.render.i18n import label
+from velplan.render.layout import fit_text
+from velplan.render.mechanism_view import MechanismSizes, extent_m, mechanism_view
+from velplan.render.plan_view import (
+    extent_mm, image_letters, plan_steps, plan_title, plan_view)
+from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
+from velplan.render.view import eskd_scales, shift
+
+_MARGIN = 10.0
+_SENTENCE_H = 26.0
+
+
+@dataclass(frozen=True)
+class StepFigure:
+    """One step: its number (1-based), the plan kind ("v"/"a"), sentence and scene."""
+
+    number: int
+    kind: str
+    sentence: str
+    scene: Scene
+
+
+def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "both",
+                 lang: str = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
+    """Figures of every construction step of the plans at `position` (1-based of `n`).
+
+    Parameters
+    ----------
+    kind : {"velocity", "acceleration", "both"}
+        Which plans; "both" gives the velocity steps, then the acceleration steps.
+    plan_mm : float
+        Size the plan is drawn to (its scale is the standard one that keeps it within).
+    """
+    if not 1 <= position <= n:
+        raise VelplanError(f"--position {position} is outside 1…{n}")
+    kinds = {"velocity": ("velocity",), "acceleration": ("acceleration",),
+             "both": ("velocity", "acceleration")}.get(kind)
+    if kinds is None:
+        raise VelplanError(f"unknown plan kind {kind!r}; known kinds: velocity, acceleration, "
+                           "both")
+    kin = solve(mech, crank_positions(mech, n))
+    if not kin.valid[position - 1]:
+        raise VelplanError(f"{mech.name} cannot be assembled at position {position}")
+    # the mechanism alone in the position, about 120 mm across
+    wx, wy = extent_m(mech, kin, kin)
+    mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= 170.0), eskd_scales()[-1])
+    mview = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin,
+                           sizes=MechanismSizes(3.5, 3.5, 2.5), single=True)
+    plan = Plan.of(mech)
+    figures: list[StepFigure] = []
+    for kd in kinds:
+        res0 = plan.evaluate(kin, kind=kd, positions=[position - 1])
+        ew, eh = extent_mm(res0, 0)
+        mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
+        key = "scale_v" if kd == "velocity" else "scale_a"
+        res = plan.evaluate(kin, kind=kd, positions=[position - 1], **{key: mu})
+        full = plan_view(res, 0, number=position, lang=lang)
+        drawings = plan_steps(res, 0, number=position, lang=lang)
+        ox, oy = full.origin
+        width = _MARGIN * 3 + mview.width_mm + full.width_mm
+        height = _MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
+        width, height = max(width, 297.0), max(height, 210.0)
+        px = _MARGIN * 2 + mview.width_mm
+        py = height - _MARGIN - full.height_mm
+        title = [p for p in full.primitives if isinstance(p, Text)
+                 and p.text in plan_title(res, position, lang)]
+        total = len(drawings)
+        for k in range(1, total + 1):
+            items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
+            for j, d in enumerate(drawings[:k]):
+                new = j == k - 1
+                for p in d.items:
+                    p = _emphasis(p, new)
+                    items.append(shift(p, px + ox, py + oy))
+            items += [shift(t, px + ox, py + oy)
+                      for t in image_letters(res, 0, drawings, number=position, upto=k)]
+            items += [shift(t, px, py) for t in title]
+            sentence = f"{label('step', lang)} {k}/{total}. {drawings[k - 1].sentence}"
+            box = (_MARGIN, _MARGIN, width - _MARGIN, _MARGIN + _SENTENCE_H - 4.0)
+            items += fit_text(sentence, box, layer="labels", size_mm=5.0, anchor="start")
+            items.append(Polygon([(0, 0), (width, 0), (width, height), (0, height)], "frame",
+                                 "thin"))
+            figures.append(StepFigure(k, kd[0], drawings[k - 1].sentence,
+                                      Scene(tuple(items), width, height)))
+    return figures
+
+
+def _emphasis(p, new: bool):
+    """The step's own vectors and lines thick; earlier ones thin."""
+    if isinstance(p, (Arrow, Polyline)):
+        if new:
+            return replace(p, line="thick")
+        return replace(p, line="thin") if p.line == "thick" else p
+    return p

@@ -1,0 +1,112 @@
+"""The table of transfer functions (velocity analogues) as drawn on a course sheet.
+
+Columns are the positions 1…n, rows the crank angle, |V|/ω1 (m) of the mechanism's points
+and ω/ω1 of its turning links, read off the velocity plans (`velplan.plans.table`). Grid
+lines are thin, the outline and the header rule thick (GOST 2.105 tables). Layer
+``"table"``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from velplan.mechanism.model import RPP, Mechanism
+from velplan.mechanism.structure import pairs
+from velplan.plans.table import TransferTable, transfer_table
+from velplan.render.i18n import label
+from velplan.render.scene import Polygon, Polyline, Primitive, Text
+from velplan.render.shapes import text_extent
+from velplan.render.view import View, digits_down, fixed, make_view, subscript, unit
+
+_ROW_PITCH = 2.0  # row height over text height
+_PAD = 1.0  # cell padding each side, mm
+# Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
+_WIDE = 1.3
+
+
+def table_points(mech: Mechanism, names) -> list[str]:
+    """Points worth a row: the moving joints and named points, not the centres of mass
+    (unless a joint is one) nor an RPP runner's construction origin."""
+    ground = set(mech.ground_points)
+    joints = {p.point for p in pairs(mech)}
+    centres = {m.centre for m in mech.masses}
+    origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
+    out = []
+    for p in names:
+        if p in ground or p in origins:
+            continue
+        if (p in centres or p.startswith("S")) and p not in joints:
+            continue
+        out.append(p)
+    return out
+
+
+def sheet_table(mech: Mechanism, n: int, *, scale_v: float | None = None) -> TransferTable:
+    """The transfer-function table of `mech` at `n` positions, with the sheet's rows."""
+    from velplan.analysis.solver import solve
+
+    names = list(solve(mech, [0.0]).point_index)
+    return transfer_table(mech, n, scale_v=scale_v, points=table_points(mech, names))
+
+
+def _row_label(name: str, crank: str, lang: str) -> str:
+    w1 = "ω" + digits_down(crank)
+    if name.startswith("w_"):
+        return f"ω{digits_down(name[2:])}/{w1}"
+    return f"V{subscript(name[2:])}/{w1}, {unit('m', lang)}"
+
+
+def table_view(table: TransferTable, mech: Mechanism, *, lang: str = "ru",
+               size_mm: float = 2.5, title_mm: float = 3.5, decimals: int = 3) -> View:
+    """The table as a view, its title above it.
+
+    Parameters
+    ----------
+    table : TransferTable
+        From :func:`sheet_table` or `velplan.plans.table.transfer_table`.
+    mech : Mechanism
+        For the crank's name (ω1 is the crank's ω).
+    size_mm, title_mm : float
+        Text heights of the cells and of the title, mm.
+    decimals : int
+        Decimals of the values.
+    """
+    n = len(table.phi)
+    head = [label("position", lang)] + [str(i + 1) for i in range(n)]
+    rows = [[f"φ, {unit('deg', lang)}"] +
+            [fixed(math.degrees(p) % 360.0, lang, 1) for p in table.phi]]
+    for name, values in table.rows.items():
+        rows.append([_row_label(name, mech.crank.link, lang)] +
+                    [fixed(float(v), lang, decimals) for v in np.asarray(values)])
+    grid = [head] + rows
+    widths = [max(_WIDE * text_extent(r[c], size_mm)[0] for r in grid) + 2 * _PAD
+              for c in range(n + 1)]
+    widths[1:] = [max(widths[1:])] * n  # equal value columns
+    row_h = _ROW_PITCH * size_mm
+    total_w, total_h = sum(widths), row_h * len(grid)
+    items: list[Primitive] = []
+    xs = np.concatenate([[0.0], np.cumsum(widths)])
+    # body lines, thin; the outline and the header rule thick
+    for r in range(1, len(grid)):
+        y = total_h - r * row_h
+        items.append(Polyline([(0.0, y), (total_w, y)], "table", "thick" if r == 1 else "thin"))
+    for x in xs[1:-1]:
+        items.append(Polyline([(x, 0.0), (x, total_h)], "table", "thin"))
+    items.append(Polygon([(0.0, 0.0), (total_w, 0.0), (total_w, total_h), (0.0, total_h)],
+                         "table", "thick"))
+    for r, row in enumerate(grid):
+        y = total_h - (r + 0.5) * row_h
+        for c, text in enumerate(row):
+            if c == 0:
+                items.append(Text((xs[0] + _PAD, y), text, "table", size_mm, "start", "middle"))
+            else:
+                items.append(Text(((xs[c] + xs[c + 1]) / 2, y), text, "table", size_mm,
+                                  "middle", "middle"))
+    items.append(Text((0.0, total_h + 2.5), f"{label('table_transfer', lang)} "
+                      f"(V/ω{digits_down(mech.crank.link)}, {unit('m', lang)}; "
+                      f"ω/ω{digits_down(mech.crank.link)})",
+                      "table", title_mm))
+    return make_view("table", items, pad_mm=1.0,
+                     meta={"rows": tuple(table.rows), "n": n, "size_mm": size_mm})

@@ -1,0 +1,279 @@
+"""Views: a block of primitives in its own millimetres, placed on a sheet by translation.
+
+A view builder (the kinematic scheme, a plan, a table, a diagram) draws in *content*
+coordinates — model units divided by the view's scale, or plain mm — and :func:`make_view`
+moves the result so that its box starts at (0, 0). Placing a view on the sheet is one more
+translation; scale and placement stay out of the geometry, as DESIGN.md asks.
+
+Also here: number and label formatting shared by the views (decimal comma in ru and uk,
+subscript digits in point names, scale labels in the sheet's language).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Iterable, Mapping
+
+import numpy as np
+
+from velplan.render.scene import Arrow, Bounds, Circle, Polygon, Polyline, Primitive
+
+
+def _moved(item: Primitive, **fields) -> Primitive:
+    # A validated primitive moved by finite amounts stays valid: copy it field by field
+    # instead of re-validating every point (sheets move thousands of them).
+    new = object.__new__(type(item))
+    for name in type(item).__slots__:
+        object.__setattr__(new, name, fields.get(name, getattr(item, name)))
+    return new
+
+
+def shift(item: Primitive, dx: float, dy: float) -> Primitive:
+    """The primitive moved by (dx, dy) mm."""
+    dx, dy = float(dx), float(dy)
+    if not (math.isfinite(dx) and math.isfinite(dy)):
+        raise ValueError(f"cannot move a primitive by ({dx}, {dy}) mm")
+    if isinstance(item, (Polyline, Polygon)):
+        return _moved(item, points=tuple((x + dx, y + dy) for x, y in item.points))
+    if isinstance(item, Circle):
+        return _moved(item, centre=(item.centre[0] + dx, item.centre[1] + dy))
+    if isinstance(item, Arrow):
+        return _moved(item, start=(item.start[0] + dx, item.start[1] + dy),
+                      end=(item.end[0] + dx, item.end[1] + dy))
+    return _moved(item, position=(item.position[0] + dx, item.position[1] + dy))
+
+
+def bounds_of(items: Iterable[Primitive]) -> Bounds:
+    """(xmin, ymin, xmax, ymax) of primitives (text by its estimated box), mm."""
+    boxes = []
+    for p in items:
+        if isinstance(p, (Polyline, Polygon)):
+            xy = np.asarray(p.points)
+            boxes.append((*xy.min(axis=0), *xy.max(axis=0)))
+        else:
+            boxes.append(p.bounds)
+    if not boxes:
+        raise ValueError("no primitives to take the bounds of")
+    b = np.asarray(boxes, float)
+    return (float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max()))
+
+
+@dataclass(frozen=True)
+class View:
+    """A drawing block in its own mm, its box from (0, 0) to (width_mm, height_mm).
+
+    Attributes
+    ----------
+    name : str
+        What it is (``"mechanism"``, ``"plan-v-4"``, ``"table"``, ``"diagrams"``).
+    primitives : tuple of Primitive
+        In the view's mm.
+    width_mm, height_mm : float
+        Size of the box, mm.
+    mu : float or None
+        Model units per mm of the drawing (μl, μv, μa); None for tables.
+    origin : (float, float)
+        Where the model origin (the pole of a plan) lies in the view's mm.
+    meta : Mapping
+        Anything the builder wants to tell the sheet or the tests (scales, positions).
+    """
+
+    name: str
+    primitives: tuple[Primitive, ...]
+    width_mm: float
+    height_mm: float
+    mu: float | None = None
+    origin: tuple[float, float] = (0.0, 0.0)
+    meta: Mapping = field(default_factory=lambda: MappingProxyType({}))
+
+    def to_view(self, xy) -> np.ndarray:
+        """Model coordinates (m, or mm of a plan at its scale) → the view's mm."""
+        xy = np.asarray(xy, float)
+        scale = 1.0 if self.mu is None else 1.0 / self.mu
+        return np.asarray(self.origin) + xy * scale
+
+    def at(self, x: float, y: float) -> "PlacedView":
+        """This view with its lower-left corner at (x, y) on the sheet, mm."""
+        return PlacedView(self, float(x), float(y))
+
+
+@dataclass(frozen=True)
+class PlacedView:
+    """A view placed on the sheet."""
+
+    view: View
+    x: float
+    y: float
+
+    @property
+    def bounds(self) -> Bounds:
+        """The view's box on the sheet, mm."""
+        return (self.x, self.y, self.x + self.view.width_mm, self.y + self.view.height_mm)
+
+    @property
+    def primitives(self) -> tuple[Primitive, ...]:
+        return tuple(shift(p, self.x, self.y) for p in self.view.primitives)
+
+    def to_sheet(self, xy) -> np.ndarray:
+        """Model coordinates → sheet mm."""
+        return self.view.to_view(xy) + np.array([self.x, self.y])
+
+
+def make_view(name: str, items: Iterable[Primitive], *, pad_mm: float = 2.0,
+              mu: float | None = None, origin=(0.0, 0.0), meta: Mapping | None = None,
+              min_size: tuple[float, float] = (0.0, 0.0)) -> View:
+    """Wrap primitives drawn in content mm into a view whose box starts at (0, 0).
+
+    Parameters
+    ----------
+    items : iterable of Primitive
+        Drawn in content mm; `origin` is where the model origin lies in those mm.
+    pad_mm : float
+        Margin kept around everything, mm.
+    """
+    items = tuple(items)
+    x0, y0, x1, y1 = bounds_of(items)
+    dx, dy = pad_mm - x0, pad_mm - y0
+    width = max(x1 - x0 + 2 * pad_mm, min_size[0])
+    height = max(y1 - y0 + 2 * pad_mm, min_size[1])
+    return View(name, tuple(shift(p, dx, dy) for p in items), width, height, mu,
+                (origin[0] + dx, origin[1] + dy), MappingProxyType(dict(meta or {})))
+
+
+# -- text helpers ---------------------------------------------------------------------------
+
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def digits_down(text: str) -> str:
+    """Every digit as a subscript: ``"2"`` → ``"₂"`` (ω₂, μ₁)."""
+    return text.translate(_SUB)
+
+
+def subscript(name: str) -> str:
+    """Trailing digits of a point name as subscripts: ``"O2"`` → ``"O₂"``, ``"a4"`` → ``"a₄"``."""
+    head = name.rstrip("0123456789")
+    return head + name[len(head):].translate(_SUB) if head else name
+
+
+def number(x: float, lang: str, digits: int = 4) -> str:
+    """`x` to `digits` significant figures, decimal comma in ru and uk, no exponent."""
+    if not math.isfinite(x):
+        return "—"
+    if x == 0:
+        text = "0"
+    else:
+        decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+        text = f"{x:.{decimals}f}"
+        if "." in text:
+            text = text.rstrip("0").rstrip(".")
+    if text in ("-0", ""):
+        text = "0"
+    return text.replace(".", ",") if lang in ("ru", "uk") else text
+
+
+def fixed(x: float, lang: str, decimals: int = 3) -> str:
+    """`x` with a fixed number of decimals (a table cell), decimal comma in ru and uk."""
+    if not math.isfinite(x):
+        return "—"
+    text = f"{x:.{decimals}f}"
+    if float(text) == 0:
+        text = f"{0:.{decimals}f}"
+    return text.replace(".", ",") if lang in ("ru", "uk") else text
+
+
+_UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({
+    "m/mm": MappingProxyType({"en": "m/mm", "ru": "м/мм", "uk": "м/мм", "zh": "m/mm"}),
+    "(m/s)/mm": MappingProxyType({"en": "(m/s)/mm", "ru": "(м/с)/мм", "uk": "(м/с)/мм",
+                                  "zh": "(m/s)/mm"}),
+    "(m/s²)/mm": MappingProxyType({"en": "(m/s²)/mm", "ru": "(м/с²)/мм", "uk": "(м/с²)/мм",
+                                   "zh": "(m/s²)/mm"}),
+    "rad/mm": MappingProxyType({"en": "rad/mm", "ru": "рад/мм", "uk": "рад/мм", "zh": "rad/mm"}),
+    "1/mm": MappingProxyType({"en": "1/mm", "ru": "1/мм", "uk": "1/мм", "zh": "1/mm"}),
+    "mm": MappingProxyType({"en": "mm", "ru": "мм", "uk": "мм", "zh": "mm"}),
+    "m": MappingProxyType({"en": "m", "ru": "м", "uk": "м", "zh": "m"}),
+    "rad": MappingProxyType({"en": "rad", "ru": "рад", "uk": "рад", "zh": "rad"}),
+    "deg": MappingProxyType({"en": "°", "ru": "°", "uk": "°", "zh": "°"}),
+})
+
+
+def unit(key: str, lang: str) -> str:
+    """A unit written in the sheet's language (``"(m/s)/mm"`` → ``"(м/с)/мм"`` in ru)."""
+    return _UNITS[key][lang]
+
+
+def scale_text(symbol: str, value: float, unit_key: str, lang: str) -> str:
+    """A scale label as course sheets write it: ``"μv = 0,02 (м/с)/мм"``."""
+    return f"{symbol} = {number(value, lang)} {unit(unit_key, lang)}"
+
+
+#: ESKD reduction and enlargement scales as "1:k" → μl in m/mm (1:1 is 0.001 m/mm).
+ESKD_RATIOS: tuple[tuple[float, float], ...] = (
+    (10, 1), (5, 1), (4, 1), (2.5, 1), (2, 1), (1, 1), (1, 2), (1, 2.5), (1, 4), (1, 5),
+    (1, 10), (1, 15), (1, 20), (1, 25), (1, 40), (1, 50), (1, 75), (1, 100))
+
+
+def eskd_scales() -> tuple[float, ...]:
+    """μl of the ESKD scales, m/mm, from the largest drawing (10:1) to the smallest (1:100)."""
+    return tuple(0.001 * b / a for a, b in ESKD_RATIOS)
+
+
+def ratio_text(mu_l: float) -> str:
+    """The ESKD scale of μl (m/mm) as written in the title block: ``0.0025`` → ``"1:2,5"``."""
+    for a, b in ESKD_RATIOS:
+        if math.isclose(0.001 * b / a, mu_l, rel_tol=1e-9):
+            return f"{a:g}:{b:g}".replace(".", ",")
+    return f"1:{1000 * mu_l:g}".replace(".", ",")
+
+
+def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
+                 rings: int = 8) -> tuple:
+    """Move labels, in order, clear of `obstacles` and of the labels placed before them.
+
+    The same search as :func:`velplan.render.layout.nudge_labels` (rings of eight
+    directions around the wanted spot), on one prepared union of the obstacles, so a view
+    with many lines places its letters quickly. A label with no free spot keeps its place.
+    """
+    import shapely
+
+    from velplan.render.shapes import text_box
+
+    field = shapely.union_all(list(obstacles)) if obstacles else None
+    if field is not None:
+        if field.is_empty:
+            field = None
+        else:
+            shapely.prepare(field)
+    def padded(t):
+        # rendered glyphs run wider than the layout's estimate: keep a margin around each
+        corners = text_box(t)
+        scaled = np.asarray(t.position) + (corners - np.asarray(t.position)) * (1.25, 1.1)
+        if t.rotation_deg == 0.0:
+            (x0, y0), (x1, y1) = scaled.min(axis=0), scaled.max(axis=0)
+            return shapely.box(x0 - 0.4, y0 - 0.4, x1 + 0.4, y1 + 0.4)
+        return shapely.Polygon(scaled).buffer(0.4)
+
+    boxes: list = []
+    out = []
+    for text in texts:
+        step = step_mm or 0.5 * text.size_mm
+        x, y = text.position
+        chosen = text
+        for ring in range(rings + 1):
+            found = False
+            for k in range(1 if ring == 0 else 8):
+                a = math.pi / 4 * k
+                cand = text if ring == 0 else _moved(
+                    text, position=(x + ring * step * math.cos(a), y + ring * step * math.sin(a)))
+                box = padded(cand)
+                if (field is None or not field.intersects(box)) and not any(
+                        box.intersects(b) for b in boxes):
+                    chosen, found = cand, True
+                    break
+            if found:
+                break
+        boxes.append(padded(chosen))
+        out.append(chosen)
+    return tuple(out)
