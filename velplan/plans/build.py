@@ -112,11 +112,12 @@ class _Builder:
             start = self.add(self.a, LayOff(f"a:{k}", k, origin_a, Coriolis(frame, rel[0], rel[1], name)))
         return self.line(self.a, start, direction, component)
 
-    def normal_line(self, link: str, point: str, centre: str, centre_img_a: str) -> str:
-        """Normal component laid off from the centre's image, then the tangential line ⊥ the link."""
+    def normal_line(self, link: str, point: str, centre: str, centre_img_a: str, name: str | None = None) -> str:
+        """Normal component laid off from the centre's image, then the tangential line ⊥ the link
+        (``name``: the point's name in the symbols, when it differs from the position's)."""
         n = self.aux("n")
-        self.add(self.a, LayOff(f"a:{n}", n, centre_img_a, Normal(link, point, centre, self.v.rotor[link])))
-        return self.line(self.a, f"a:{n}", Perpendicular(point, centre), f"aᵗ_{point}{centre}")
+        self.add(self.a, LayOff(f"a:{n}", n, centre_img_a, Normal(link, point, centre, self.v.rotor[link], name=name)))
+        return self.line(self.a, f"a:{n}", Perpendicular(point, centre), f"aᵗ_{name or point}{centre}")
 
     # -- items -----------------------------------------------------------------------------------
 
@@ -196,7 +197,7 @@ class _Builder:
         fv = Figure(bar, O, self.v.images[O], A, a4_v)
         self.v.rotor[bar] = fv
         M1 = self.coriolis_line(bar, self.a.images[A], (self.v.images[A], a4_v), guide, f"aʳ_{name}{A}", f"{name}{A}")
-        M2 = self.normal_line(bar, A, O, self.a.images[O])
+        M2 = self.normal_line(bar, A, O, self.a.images[O], name=name)
         self.add(self.a, Intersect(a4_a, a4_a[2:], (M1, M2)))
         self.a.images[name] = a4_a
         fa = Figure(bar, O, self.a.images[O], A, a4_a)

@@ -49,6 +49,8 @@ class Normal:
     centre: str
     figure: Figure | None = None
     plan: str = "a"
+    name: str | None = None
+    """The point's name in the component's symbol (the bar's A4 where the position is A's)."""
 
     @property
     def inputs(self) -> tuple[str, ...]:
@@ -59,7 +61,7 @@ class Normal:
         return -(w**2) * (ctx.pos(self.point) - ctx.pos(self.centre))
 
     def symbol(self) -> str:
-        return f"aⁿ_{self.point}{self.centre}"
+        return f"aⁿ_{self.name or self.point}{self.centre}"
 
     def direction_text(self, lang: str) -> str:
         return T.phrase("along_to", lang, T.seg(self.point, self.centre), self.point, self.centre)

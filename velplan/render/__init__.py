@@ -1,6 +1,9 @@
 """Backend-neutral rendering: scenes of primitives in sheet millimetres, drawn on canvases.
 
-This layer knows nothing of mechanisms or plans; it draws plain geometry. Backends:
+The primitives, canvases, styles, symbols and the sheet frame know nothing of mechanisms or
+plans: they draw plain geometry. The view builders (`mechanism_view`, `plan_view`,
+`steps_view`, `table_view`, `diagram_view`) sit on top of them and turn a solved mechanism
+and its plans into scenes; nothing below this package imports it. Backends:
 :class:`~velplan.render.svg.SvgCanvas` (svgwrite), :class:`~velplan.render.mpl.MplCanvas`
 (matplotlib, imported lazily) and :class:`~velplan.render.canvas.RecordingCanvas` (tests).
 """
