@@ -1,0 +1,368 @@
+"""The notebook layer: drawings of mechanisms and plans that show themselves in Jupyter.
+
+A thin, friendly layer over :mod:`velplan.render` (which it imports lazily, so importing
+this module is cheap): every function returns an :class:`SvgDrawing`, a value that Jupyter
+displays inline (``_repr_svg_``) and that can be saved as SVG, PNG or PDF. The drawing
+itself is done by the view builders of the sheet (``mechanism_view``, ``plan_view``,
+``plan_steps``, ``diagram_view``, ``build_sheet``); nothing is drawn here twice.
+
+Examples
+--------
+>>> import velplan
+>>> from velplan.plans import Plan
+>>> from velplan.notebook import draw_plan, draw_steps
+>>> mech = velplan.load("press")
+>>> kin = velplan.solve(mech, velplan.positions(mech, 12))
+>>> res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[2], scale_v=0.0007)
+>>> drawing = draw_plan(res, 0, upto=2)         # the pole and the vector pa
+>>> drawing.svg.startswith("<?xml")
+True
+>>> sentence, picture = next(iter(draw_steps(res, 0)))
+>>> sentence
+'Choose the pole p; the images of the fixed points O1, O2 are at the pole.'
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Callable, Iterator, Literal, Sequence
+
+import numpy as np
+
+from velplan.analysis.extremes import positions as crank_positions
+from velplan.analysis.solver import Kinematics, solve
+from velplan.errors import VelplanError
+from velplan.mechanism.model import Mechanism
+
+Lang = Literal["en", "ru", "uk", "zh"]
+
+#: Largest drawing of the scheme a notebook shows, mm (the scale is the largest ESKD scale
+#: that keeps the scheme within it).
+SCHEME_MM = 170.0
+#: Gap between drawings put side by side, mm.
+GAP_MM = 10.0
+
+
+@dataclass(frozen=True)
+class SvgDrawing:
+    """An SVG drawing that Jupyter shows inline.
+
+    Attributes
+    ----------
+    svg : str
+        The SVG document (sized in mm).
+    scene : Scene or None
+        The scene it was drawn from (None for a drawing read from a file); drawings with a
+        scene can be put side by side (:func:`side_by_side`).
+    """
+
+    svg: str
+    scene: Any = field(default=None, repr=False, compare=False)
+
+    @classmethod
+    def from_scene(cls, scene, *, lang: Lang = "en") -> "SvgDrawing":
+        """Draw a `Scene` with the default sheet style of `lang`."""
+        from velplan.render.style import SheetStyle
+        from velplan.render.svg import to_svg
+
+        return cls(to_svg(scene, SheetStyle(language=lang)), scene)
+
+    @classmethod
+    def from_file(cls, path: str | os.PathLike) -> "SvgDrawing":
+        """Read an SVG file (a sheet written by ``velplan sheet``, say)."""
+        try:
+            return cls(Path(path).read_text("utf-8"))
+        except (OSError, UnicodeDecodeError) as exc:
+            raise VelplanError(f"cannot read drawing {path}: {exc}") from None
+
+    @property
+    def size_mm(self) -> tuple[float, float] | None:
+        """(width, height) of the drawing, mm, when it has a scene."""
+        return None if self.scene is None else (self.scene.width_mm, self.scene.height_mm)
+
+    def _repr_svg_(self) -> str:
+        return self.svg
+
+    def png(self, *, dpi: float = 96.0) -> bytes:
+        """The drawing rasterised to PNG (needs cairosvg: ``pip install velplan[export]``)."""
+        from velplan.render import export
+
+        return export._convert("svg2png", self.svg, dpi=dpi, background_color="white")
+
+    def save(self, path: str | os.PathLike, *, dpi: float = 150.0) -> Path:
+        """Write the drawing to `path`, atomically: SVG, or PNG / PDF by the suffix.
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
+        from velplan.render import export
+
+        target = Path(path)
+        if not target.parent.is_dir():
+            raise VelplanError(f"cannot write {target}: directory {target.parent} does not exist")
+        suffix = target.suffix.lower()
+        if suffix == ".png":
+            return export.write_png(self.svg, target, dpi=dpi)
+        if suffix == ".pdf":
+            return export.write_pdf(self.svg, target)
+        if suffix != ".svg":
+            raise VelplanError(f"cannot save a drawing as {suffix or 'a file without suffix'!r}; "
+                               "use .svg, .png or .pdf")
+        return export.write_svg(self.svg, target)
+
+
+def _drawing(view, lang: str) -> SvgDrawing:
+    from velplan.render.scene import Scene
+
+    return SvgDrawing.from_scene(Scene(view.primitives, view.width_mm, view.height_mm), lang=lang)
+
+
+def _fine(mech: Mechanism, kin: Kinematics) -> Kinematics:
+    """The mechanism over one turn from the first position of `kin` (trajectories)."""
+    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    return solve(mech, kin.phi[0] + sense * np.linspace(0.0, 2 * math.pi, 241))
+
+
+def draw_mechanism(mech: Mechanism, kin: Kinematics | None = None, i: int = 0, *,
+                   lang: Lang = "en", single: bool = False,
+                   mu_l: float | None = None) -> SvgDrawing:
+    """The kinematic scheme of `mech`: position `i` of `kin` thick, the others thin.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    kin : Kinematics, optional
+        The mechanism solved at its positions; by default the 12 positions from the
+        reference (``velplan.solve(mech, velplan.positions(mech, 12))``).
+    i : int
+        Index into `kin` of the position drawn thick (0 is position 1).
+    lang : {"en", "ru", "uk", "zh"}
+    single : bool
+        Draw position `i` alone (no other positions, trajectories or numbers).
+    mu_l : float, optional
+        Scale, m/mm; by default the largest ESKD scale that keeps the scheme within
+        `SCHEME_MM`.
+
+    Raises
+    ------
+    VelplanError
+        If `i` is out of range or the mechanism cannot be assembled there.
+    """
+    from velplan.render.mechanism_view import MechanismSizes, extent_m, mechanism_view
+    from velplan.render.view import eskd_scales
+
+    if kin is None:
+        kin = solve(mech, crank_positions(mech, 12))
+    n = len(kin)
+    if not 0 <= i < n:
+        raise VelplanError(f"position index {i} is outside 0…{n - 1}")
+    if not kin.valid[i]:
+        raise VelplanError(f"{mech.name} cannot be assembled at crank angle "
+                           f"{math.degrees(kin.phi[i]):.6g}°")
+    fine = _fine(mech, kin)
+    if mu_l is None:
+        wx, wy = extent_m(mech, kin, fine)
+        mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM),
+                    eskd_scales()[-1])
+    view = mechanism_view(mech, mu_l=mu_l, n=n, thick=i + 1, lang=lang, kin=kin, fine=fine,
+                          sizes=MechanismSizes(4.0, 3.5, 2.5), single=single)
+    return _drawing(view, lang)
+
+
+def _number(res, i: int) -> int:
+    return int(res.index[i]) + 1
+
+
+def _check_index(res, i: int) -> None:
+    if not 0 <= i < len(res.index):
+        raise VelplanError(f"position index {i} is outside 0…{len(res.index) - 1} of this plan")
+
+
+def _partial_plans(res, i: int, lang: str, number: int | None,
+                   upto: Sequence[int]) -> list[tuple[str, SvgDrawing]]:
+    """(sentence of step k, the plan as far as step k) for k in `upto` (1-based).
+
+    Every partial plan has the full plan's box and pole, so the figures can be flipped
+    through; the step's own vectors and line are thick, earlier ones thin.
+    """
+    from velplan.render.plan_view import image_letters, plan_steps, plan_title, plan_view
+    from velplan.render.scene import Arrow, Polyline, Scene, Text
+    from velplan.render.view import shift
+
+    _check_index(res, i)
+    number = _number(res, i) if number is None else number
+    full = plan_view(res, i, number=number, lang=lang)
+    drawings = plan_steps(res, i, number=number, lang=lang)
+    total = len(drawings)
+    ox, oy = full.origin
+    heads = plan_title(res, number, lang)
+    title = [p for p in full.primitives if isinstance(p, Text) and p.text in heads]
+
+    def emphasis(p, new: bool):
+        if isinstance(p, (Arrow, Polyline)):
+            return replace(p, line="thick" if new else ("thin" if p.line == "thick" else p.line))
+        return p
+
+    out = []
+    for k in upto:
+        if not 1 <= k <= total:
+            raise VelplanError(f"upto={k}: this plan has steps 1…{total}")
+        items = [shift(emphasis(p, j == k - 1), ox, oy)
+                 for j, d in enumerate(drawings[:k]) for p in d.items]
+        items += [shift(t, ox, oy) for t in image_letters(res, i, drawings, number=number, upto=k)]
+        scene = Scene(tuple(items + title), full.width_mm, full.height_mm)
+        out.append((drawings[k - 1].sentence, SvgDrawing.from_scene(scene, lang=lang)))
+    return out
+
+
+def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Lang = "en",
+              number: int | None = None) -> SvgDrawing:
+    """The velocity or acceleration plan of `res` at its position index `i`.
+
+    Parameters
+    ----------
+    res : PlanResult
+        From ``Plan.of(mech).evaluate(kin, …)``; drawn at its own scale.
+    i : int
+        Index into the result's positions (0 for a plan evaluated at one position).
+    upto : int, optional
+        Draw only the first `upto` construction steps (1-based; the last of them thick),
+        in the full plan's frame; the whole plan by default.
+    lang : {"en", "ru", "uk", "zh"}
+    number : int, optional
+        Position number written in the title; by default the index into the kinematics + 1.
+    """
+    if upto is None:
+        from velplan.render.plan_view import plan_view
+
+        _check_index(res, i)
+        view = plan_view(res, i, number=_number(res, i) if number is None else number,
+                         lang=lang)
+        return _drawing(view, lang)
+    return _partial_plans(res, i, lang, number, [upto])[0][1]
+
+
+def draw_steps(res, i: int = 0, *, lang: Lang = "en",
+               number: int | None = None) -> Iterator[tuple[str, SvgDrawing]]:
+    """The construction of the plan step by step: (sentence, drawing so far) per step.
+
+    The sentences are those of ``res.describe(i, lang)``; drawing k shows steps 1…k with
+    step k thick.
+    """
+    from velplan.render.plan_view import plan_steps
+
+    _check_index(res, i)
+    total = len(plan_steps(res, i, number=_number(res, i) if number is None else number,
+                           lang=lang))
+    return iter(_partial_plans(res, i, lang, number, range(1, total + 1)))
+
+
+def draw_diagrams(mech: Mechanism, n: int = 12, *, lang: Lang = "en",
+                  arrangement: Literal["row", "column"] = "row") -> SvgDrawing:
+    """Displacement, velocity and acceleration diagrams of the output (chord method beside
+    the analytic curves), over `n` positions."""
+    from velplan.diagrams import kinematic_diagrams
+    from velplan.render.diagram_view import diagram_view
+
+    view = diagram_view(kinematic_diagrams(mech, n), lang=lang, arrangement=arrangement,
+                        length_mm=120.0)
+    return _drawing(view, lang)
+
+
+def draw_sheet(mech: Mechanism | str, **options) -> SvgDrawing:
+    """The kinematic-analysis sheet (``velplan.sheet.build_sheet(mech, **options)``)."""
+    from velplan.sheet import build_sheet
+
+    sheet = build_sheet(mech, **options)
+    return SvgDrawing(sheet.svg(), sheet.scene)
+
+
+def side_by_side(*drawings: SvgDrawing, gap_mm: float = GAP_MM,
+                 lang: Lang = "en") -> SvgDrawing:
+    """Drawings (each with its scene) in one row, bottoms aligned, `gap_mm` apart."""
+    from velplan.render.scene import Scene
+    from velplan.render.view import shift
+
+    if not drawings:
+        raise VelplanError("side_by_side needs at least one drawing")
+    items, x, height = [], 0.0, 0.0
+    for d in drawings:
+        if not isinstance(d, SvgDrawing) or d.scene is None:
+            raise VelplanError(f"side_by_side needs drawings made by velplan.notebook, not {d!r}")
+        items += [shift(p, x, 0.0) for p in d.scene.primitives]
+        x += d.scene.width_mm + gap_mm
+        height = max(height, d.scene.height_mm)
+    return SvgDrawing.from_scene(Scene(tuple(items), x - gap_mm, height), lang=lang)
+
+
+def _widgets():
+    try:
+        import ipywidgets
+    except ImportError:
+        return None
+    return ipywidgets
+
+
+def crank_slider(mech: Mechanism, callback: Callable[[Kinematics], Any] | None = None, *,
+                 n: int = 12, fallback: int = 4, interactive: bool | None = None,
+                 lang: Lang = "en"):
+    """A slider over the crank angle that redraws ``callback(kin)`` as it moves.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    callback : callable, optional
+        Called with the mechanism solved at one crank angle (a `Kinematics` of length 1);
+        returns what to show (an `SvgDrawing`, or anything Jupyter displays). By default
+        the scheme in that position.
+    n : int
+        The slider steps through the `n` positions from the reference position, in the
+        sense of ω1 (its value is the angle from the reference, degrees).
+    fallback : int
+        Without ipywidgets: how many positions (evenly spread over the turn) are drawn side
+        by side instead.
+    interactive : bool, optional
+        True: use ipywidgets (raise if missing); False: always the static row; None: use
+        ipywidgets when it can be imported.
+
+    Returns
+    -------
+    ipywidgets.interactive or SvgDrawing
+        The widget, or the static row of drawings (the callback must then return
+        `SvgDrawing` values).
+    """
+    if n < 1 or fallback < 1:
+        raise VelplanError(f"crank_slider needs n ≥ 1 and fallback ≥ 1, not {n} and {fallback}")
+    phi = crank_positions(mech, n)
+    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    step = 360.0 / n
+    every = solve(mech, phi) if callback is None else None
+
+    def at(offset_deg: float):
+        if callback is None:  # the scheme in that position, numbered as on the sheet
+            return draw_mechanism(mech, every, int(round(offset_deg / step)) % n, lang=lang,
+                                  single=True)
+        return callback(solve(mech, [phi[0] + sense * math.radians(offset_deg)]))
+
+    widgets = None if interactive is False else _widgets()
+    if interactive and widgets is None:
+        raise VelplanError("crank_slider(interactive=True) needs ipywidgets; "
+                           "pip install ipywidgets, or pass interactive=None")
+    if widgets is not None:
+        from IPython.display import display
+
+        slider = widgets.FloatSlider(value=0.0, min=0.0, max=360.0 - step, step=step,
+                                     description="φ − φ₁, °", continuous_update=False)
+        return widgets.interactive(lambda angle: display(at(angle)), angle=slider)
+    count = min(fallback, n)
+    offsets = [step * round(k * n / count) for k in range(count)]
+    return side_by_side(*(at(a) for a in offsets), lang=lang)
+
+
+__all__ = ["SvgDrawing", "crank_slider", "draw_diagrams", "draw_mechanism", "draw_plan",
+           "draw_sheet", "draw_steps", "side_by_side"]
