@@ -23,7 +23,7 @@ def _crank(r: float, omega: float) -> dict:
 
 
 @st.composite
-def mechanisms(draw, kind: str | None = None, scale=None, omega=None) -> "Mechanism":
+def mechanisms(draw, kind: str | None = None, scale=None, omega=None):
     """A random mechanism of group ``kind`` (any kind when None)."""
     kind = kind or draw(st.sampled_from(KINDS))
     L = draw(scale) if scale is not None else draw(st.floats(0.05, 5.0))

@@ -90,6 +90,28 @@ def test_unknown_link_of_a_point():
         velplan.loads(text)
 
 
+def test_point_on_an_unknown_link_used_by_a_group():
+    text = four_bar() + """
+[[point]]
+name = "E"
+link = "9"
+along = 0.1
+[[group]]
+kind = "RRP"
+links = ["4", "5"]
+joint = "E"
+point = "F"
+length = 0.3
+guide = { link = "0", through = "O", angle_deg = 0.0, offset = 0.0 }
+"""
+    with pytest.raises(MechanismError, match=r"^point 'E' is on unknown link '9'; known links: 1, 2, 3, 4, 5$"):
+        velplan.loads(text)
+    later = text.replace('link = "9"', 'link = "5"')
+    with pytest.raises(MechanismError, match=r"^group '4-5' uses point 'E' of link '5', which is solved after the group; "
+                                             r"reorder the groups$"):
+        velplan.loads(later)
+
+
 def test_malformed_toml():
     with pytest.raises(MechanismError, match=r"^malformed TOML in mechanism: "):
         velplan.loads("[ground\nO = 1")

@@ -7,7 +7,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import velplan
-from velplan.mechanism.loader import from_dict
 from tests.strategies import KINDS, mechanisms
 
 angles = st.lists(st.floats(0, 2 * math.pi), min_size=1, max_size=6).map(np.array)

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterator, Literal, Sequence
 
@@ -190,32 +190,21 @@ def _partial_plans(res, i: int, lang: str, number: int | None,
     Every partial plan has the full plan's box and pole, so the figures can be flipped
     through; the step's own vectors and line are thick, earlier ones thin.
     """
-    from velplan.render.plan_view import image_letters, plan_steps, plan_title, plan_view
-    from velplan.render.scene import Arrow, Polyline, Scene, Text
-    from velplan.render.view import shift
+    from velplan.render.plan_view import plan_steps, plan_view
+    from velplan.render.scene import Scene
+    from velplan.render.steps_view import partial_plan
 
     _check_index(res, i)
     number = _number(res, i) if number is None else number
     full = plan_view(res, i, number=number, lang=lang)
     drawings = plan_steps(res, i, number=number, lang=lang)
     total = len(drawings)
-    ox, oy = full.origin
-    heads = plan_title(res, number, lang)
-    title = [p for p in full.primitives if isinstance(p, Text) and p.text in heads]
-
-    def emphasis(p, new: bool):
-        if isinstance(p, (Arrow, Polyline)):
-            return replace(p, line="thick" if new else ("thin" if p.line == "thick" else p.line))
-        return p
-
     out = []
     for k in upto:
         if not 1 <= k <= total:
             raise VelplanError(f"upto={k}: this plan has steps 1…{total}")
-        items = [shift(emphasis(p, j == k - 1), ox, oy)
-                 for j, d in enumerate(drawings[:k]) for p in d.items]
-        items += [shift(t, ox, oy) for t in image_letters(res, i, drawings, number=number, upto=k)]
-        scene = Scene(tuple(items + title), full.width_mm, full.height_mm)
+        items = partial_plan(res, i, k, full=full, drawings=drawings, number=number, lang=lang)
+        scene = Scene(tuple(items), full.width_mm, full.height_mm)
         out.append((drawings[k - 1].sentence, SvgDrawing.from_scene(scene, lang=lang)))
     return out
 

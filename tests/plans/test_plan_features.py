@@ -7,7 +7,7 @@ import pytest
 
 import velplan
 from velplan.errors import ScaleError, SingularPositionError, TableError, VelplanError
-from velplan.plans import EXACT, Drafting, Plan, standard_scale
+from velplan.plans import Drafting, Plan, standard_scale
 from velplan.plans.check import check_table
 from velplan.plans.table import transfer_table
 

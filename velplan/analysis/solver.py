@@ -14,7 +14,7 @@ import numpy as np
 
 from velplan.analysis.groups import GroupResult, LinkMotion, Motion, State, carried, solve_group
 from velplan.errors import AssemblyError, MechanismError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, Crank, Group, LinkPoint, Mechanism
+from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
 from velplan.mechanism.structure import schedule
 
 

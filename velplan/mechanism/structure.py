@@ -123,10 +123,7 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
     for g in mech.groups:
         for name in joints_in(g):
             if name not in owner:
-                raise MechanismError(
-                    f"group {g.name!r} uses point {name!r}, which is not solved before it; "
-                    f"known points: {_names(owner)}"
-                )
+                _unknown_point(mech, g, name, pending, owner)
         for guide in guides_of(g):
             if guide.link not in links:
                 raise MechanismError(
@@ -151,6 +148,21 @@ def schedule(mech: Mechanism) -> tuple[Item, ...]:
         p = pending[0]
         raise MechanismError(f"point {p.name!r} is on unknown link {p.link!r}; known links: {known}")
     return tuple(order)
+
+
+def _unknown_point(mech: Mechanism, g: Group, name: str, pending, owner) -> None:
+    """Raise the most telling error for a group that uses a point not known before it."""
+    all_links = set(mech.links) | {GROUND}
+    for p in pending:
+        if p.name == name and p.link not in all_links:
+            raise MechanismError(f"point {p.name!r} is on unknown link {p.link!r}; "
+                                 f"known links: {_names(all_links - {GROUND})}")
+        if p.name == name:
+            raise MechanismError(f"group {g.name!r} uses point {name!r} of link {p.link!r}, "
+                                 f"which is solved after the group; reorder the groups")
+    raise MechanismError(
+        f"group {g.name!r} uses point {name!r}, which is not solved before it; known points: {_names(owner)}"
+    )
 
 
 def point_owners(mech: Mechanism) -> dict[str, str]:

@@ -74,25 +74,16 @@ def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "bo
         res = plan.evaluate(kin, kind=kd, positions=[position - 1], **{key: mu})
         full = plan_view(res, 0, number=position, lang=lang)
         drawings = plan_steps(res, 0, number=position, lang=lang)
-        ox, oy = full.origin
         width = _MARGIN * 3 + mview.width_mm + full.width_mm
         height = _MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
         width, height = max(width, 297.0), max(height, 210.0)
         px = _MARGIN * 2 + mview.width_mm
         py = height - _MARGIN - full.height_mm
-        title = [p for p in full.primitives if isinstance(p, Text)
-                 and p.text in plan_title(res, position, lang)]
         total = len(drawings)
         for k in range(1, total + 1):
             items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
-            for j, d in enumerate(drawings[:k]):
-                new = j == k - 1
-                for p in d.items:
-                    p = _emphasis(p, new)
-                    items.append(shift(p, px + ox, py + oy))
-            items += [shift(t, px + ox, py + oy)
-                      for t in image_letters(res, 0, drawings, number=position, upto=k)]
-            items += [shift(t, px, py) for t in title]
+            items += [shift(p, px, py) for p in partial_plan(res, 0, k, full=full, drawings=drawings,
+                                                             number=position, lang=lang)]
             sentence = f"{label('step', lang)} {k}/{total}. {drawings[k - 1].sentence}"
             box = (_MARGIN, _MARGIN, width - _MARGIN, _MARGIN + _SENTENCE_H - 4.0)
             items += fit_text(sentence, box, layer="labels", size_mm=5.0, anchor="start")
@@ -101,6 +92,17 @@ def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "bo
             figures.append(StepFigure(k, kd[0], drawings[k - 1].sentence,
                                       Scene(tuple(items), width, height)))
     return figures
+
+
+def partial_plan(res, i: int, k: int, *, full, drawings, number: int, lang: str) -> list:
+    """The plan as far as construction step ``k`` (1-based), in the coordinates of the full
+    plan view ``full``: the step's own vectors and line thick, earlier ones thin, the image
+    letters placed so far, and the plan's title. ``drawings`` are `plan_steps` of the plan."""
+    ox, oy = full.origin
+    items = [shift(_emphasis(p, j == k - 1), ox, oy) for j, d in enumerate(drawings[:k]) for p in d.items]
+    items += [shift(t, ox, oy) for t in image_letters(res, i, drawings, number=number, upto=k)]
+    heads = plan_title(res, number, lang)
+    return items + [p for p in full.primitives if isinstance(p, Text) and p.text in heads]
 
 
 def _emphasis(p, new: bool):
