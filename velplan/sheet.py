@@ -435,7 +435,28 @@ def _fit_plans(mech, kin, chosen, kinds, lang, sizes: _Sizes, region, gap, *, fm
               (K * M, 1, kind_major)]
     best = None
     cache: dict = {}
-    for rows, cols, order in dict.fromkeys((r, c, tuple(o)) for r, c, o in shapes):
+    first = {(kd, k): plan.evaluate(kin, kind=kd, positions=[k - 1]) for kd, k in kind_major}
+
+    def estimate(shape) -> float:
+        """Longest shortest plan (mm) the grid shape promises from the images alone."""
+        rows, cols, _ = shape
+        cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
+        if cw <= 24 or ch <= 38:
+            return 0.0
+        worst = math.inf
+        for (kd, k), res in first.items():
+            ew, eh = extent_mm(res, 0)
+            vec = kin.velocities if kd == "velocity" else kin.accelerations
+            peak = float(np.nanmax(np.hypot(vec[k - 1, :, 0], vec[k - 1, :, 1])))
+            mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
+            worst = min(worst, peak / mu)
+        return worst
+
+    # the most promising grid shapes first; drawing stops at the first that fits
+    candidates = sorted(dict.fromkeys((r, c, tuple(o)) for r, c, o in shapes), key=estimate, reverse=True)
+    for rows, cols, order in candidates:
+        if best is not None:
+            break
         cw = (W - gap * (cols - 1)) / cols
         ch = (H - gap * (rows - 1)) / rows
         if cw <= 0 or ch <= 0:
@@ -493,9 +514,15 @@ def _fit_one(plan, kin, number, kind, lang, sizes, cw, ch, least):
     vec = kin.velocities if kind == "velocity" else kin.accelerations
     peak = float(np.nanmax(np.hypot(vec[idx, :, 0], vec[idx, :, 1])))
     key = "scale_v" if kind == "velocity" else "scale_a"
-    for k, mu in enumerate(_standard_from(estimate / 1.6)):
-        if k >= 10 or peak / mu < least:
+    tried = 0
+    for mu in _standard_from(estimate / 1.6):
+        if tried >= 10 or peak / mu < least:
             return None
+        # the images alone must fit the cell (its margins are for the letters): a scale at
+        # which they do not is skipped without drawing the view
+        if ew * res0.scale / mu > cw or eh * res0.scale / mu > ch - 14.0:
+            continue
+        tried += 1
         res = plan.evaluate(kin, kind=kind, positions=idx, **{key: mu})
         view = plan_view(res, 0, number=number, lang=lang, sizes=sizes.plan)
         if _fits(view, cw, ch):

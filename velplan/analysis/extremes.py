@@ -80,29 +80,26 @@ def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[
     brackets = np.flatnonzero(sign[:-1] * sign[1:] < 0)
     lo, hi = phi[brackets], phi[brackets + 1]
     flo = rate[brackets]
+    best = 0.5 * (lo + hi)
+    tiny = 4 * np.finfo(float).eps * max(np.nanmax(np.abs(rate)), 1e-300)
     for _ in range(100):
         if lo.size == 0:
             break
+        # a Newton step from the bracket's midpoint on the analytic derivative, kept only
+        # when it lands inside the bracket; the bracket shrinks around the sign change
         mid = 0.5 * (lo + hi)
-        k = solve(mech, mid, omega1=1.0, epsilon1=0.0)
-        _, f, df = _values(k, kind, i)
+        _, f, df = _values(solve(mech, mid, omega1=1.0, epsilon1=0.0), kind, i)
         with np.errstate(divide="ignore", invalid="ignore"):
             newton = mid - f / df
         inside = (newton > lo) & (newton < hi) & np.isfinite(newton)
-        same = np.sign(f) == np.sign(flo)
-        lo, flo = np.where(same, mid, lo), np.where(same, f, flo)
-        hi = np.where(same, hi, mid)
-        # Newton point replaces the side it lands on when it is inside the bracket.
-        kn = solve(mech, np.where(inside, newton, mid), omega1=1.0, epsilon1=0.0)
-        _, fn, _ = _values(kn, kind, i)
-        move_lo = inside & (np.sign(fn) == np.sign(flo))
-        move_hi = inside & ~move_lo
-        lo = np.where(move_lo, newton, lo)
-        flo = np.where(move_lo, fn, flo)
-        hi = np.where(move_hi, newton, hi)
-        if np.all(hi - lo <= 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(hi))):
+        x = np.where(inside, newton, mid)
+        _, fx, _ = _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
+        best = np.where(np.abs(fx) <= np.abs(f), x, mid)
+        same = np.sign(fx) == np.sign(flo)
+        lo, flo, hi = np.where(same, x, lo), np.where(same, fx, flo), np.where(same, hi, x)
+        if np.all((np.minimum(np.abs(fx), np.abs(f)) <= tiny) | (hi - lo <= 4 * np.finfo(float).eps * np.abs(hi))):
             break
-    roots = (0.5 * (lo + hi)) % (2 * np.pi)
+    roots = best % (2 * np.pi)
     roots = np.sort(roots)
     if roots.size == 0:
         return []
