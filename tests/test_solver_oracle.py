@@ -91,7 +91,11 @@ def test_extremes_are_roots_to_round_off():
 
 def test_press_rocker_extremes_at_0_and_180_degrees():
     s = velplan.stroke(velplan.load("press"))
-    assert sorted([math.degrees(s.start.phi) % 360, math.degrees(s.end.phi) % 360]) == pytest.approx([0, 180], abs=1e-7)
+    # K = 1: the working stroke starts at the given reference position (0°)
+    assert math.degrees(s.start.phi) % 360 == pytest.approx(0.0, abs=1e-7) or \
+        math.degrees(s.start.phi) % 360 == pytest.approx(360.0, abs=1e-7)
+    assert math.degrees(s.end.phi) == pytest.approx(180.0, abs=1e-7)
+    assert s.K == pytest.approx(1.0, abs=1e-12)
     assert s.H == pytest.approx(0.10, abs=1e-12)
 
 

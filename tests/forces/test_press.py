@@ -42,9 +42,10 @@ def test_static_moment_reproduces_table_3_angles(press):
     np.testing.assert_allclose(ang["G3"], ang["G2"])
     np.testing.assert_allclose(ang["G5"], TABLE3_G5, atol=3.0)  # NaN where V_E = 0 (positions 1, 7)
     np.testing.assert_allclose(ang["G4"][np.isfinite(ang["G4"])], 90.0, atol=1e-9)  # punch moves horizontally
-    # Q acts on the pressing stroke only (positions 8–12 here), always against V_B4.
+    # Q acts on the pressing stroke only, always against V_B4. K = 1 for this press, so the
+    # working stroke is the one that starts at the reference position 1 (φ = 0°): 2–6 here.
     pressing = np.isfinite(ang["Q"])
-    assert list(np.flatnonzero(pressing) + 1) == [8, 9, 10, 11, 12]
+    assert list(np.flatnonzero(pressing) + 1) == [2, 3, 4, 5, 6]
     np.testing.assert_allclose(ang["Q"][pressing], 180.0)
     # M_st = −Σ F·(V/ω1)·cos: the Q term is +Q·V_B4/ω1 during pressing
     vb4 = np.abs(as_complex(kin.velocity("B4"))) / kin.omega1

@@ -153,7 +153,15 @@ def stroke(mech: Mechanism) -> Stroke | None:
     lo = min(roots, key=lambda e: e.value)
     sense = 1.0 if mech.crank.omega >= 0 else -1.0
     span_lo_hi = (sense * (hi.phi - lo.phi)) % (2 * np.pi)
-    if span_lo_hi >= np.pi:
+    if abs(span_lo_hi - np.pi) < 1e-9:
+        # K = 1: both strokes take half a turn. The working stroke starts at the given
+        # reference position when that is an extreme, else where the output starts to rise.
+        ref = None if mech.reference_deg is None else math.radians(mech.reference_deg) % (2 * np.pi)
+        near = lambda e: ref is not None and abs((e.phi - ref + np.pi) % (2 * np.pi) - np.pi) < 1e-6
+        first = hi if near(hi) and not near(lo) else lo
+        start, end = (lo, hi) if first is lo else (hi, lo)
+        span = span_lo_hi if first is lo else 2 * np.pi - span_lo_hi
+    elif span_lo_hi > np.pi:
         start, end, span = lo, hi, span_lo_hi
     else:
         start, end, span = hi, lo, 2 * np.pi - span_lo_hi
