@@ -109,3 +109,17 @@ def test_branch_continuity_through_a_revolution():
         vmax = np.abs(kin.velocities).max() / abs(mech.crank.omega)
         assert step <= 1.01 * vmax * (phi[1] - phi[0]), name
         assert np.allclose(kin.positions[0], kin.positions[-1], atol=1e-12)
+
+
+def test_blocks_give_the_same_results_as_one_pass(monkeypatch):
+    """Solving in cache-sized blocks must not change a single bit."""
+    import velplan.analysis.solver as solver
+
+    mech = velplan.load("shaper")
+    phi = np.linspace(0, 2 * np.pi, 1001)
+    whole = velplan.solve(mech, phi)
+    monkeypatch.setattr(solver, "BLOCK", 97)
+    blocks = velplan.solve(mech, phi)
+    for name in ("positions", "velocities", "accelerations", "angles", "omegas", "epsilons", "slides", "condition"):
+        assert np.array_equal(getattr(whole, name), getattr(blocks, name), equal_nan=True), name
+    assert np.array_equal(whole.valid, blocks.valid)
