@@ -155,3 +155,28 @@ def test_every_group_kind_builds_both_plans(kind):
     steps = Plan.of(mech).steps
     names = {type(s).__name__ for s in steps}
     assert {"Pole", "LayOff", "Line", "Intersect"} <= names
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_every_intersection_agrees_with_shapely(name):
+    """An independent check of the numerical core: each image found by `Intersect` is where
+    shapely finds the two construction lines (as long segments) crossing."""
+    import shapely
+
+    from velplan.plans.steps import Intersect
+
+    mech = velplan.load(name)
+    kin = velplan.solve(mech, velplan.positions(mech, 12))
+    for kind in ("velocity", "acceleration"):
+        res = Plan.of(mech).evaluate(kin, kind=kind)
+        size = max(np.abs(v).max() for v in res.images.values())
+        for step in (s for s in res.steps if isinstance(s, Intersect)):
+            (p1, u1), (p2, u2) = (res.values[t] for t in step.lines)
+            for i in range(len(kin)):
+                reach = 10 * size
+                a = shapely.LineString([(z.real, z.imag) for z in (p1[i] - reach * u1[i], p1[i] + reach * u1[i])])
+                b = shapely.LineString([(z.real, z.imag) for z in (p2[i] - reach * u2[i], p2[i] + reach * u2[i])])
+                x = a.intersection(b)
+                assert x.geom_type == "Point", (name, kind, step.label, i)
+                got = res.values[step.target][i]
+                assert abs(complex(x.x, x.y) - got) <= 1e-9 * size / res.conditions[step.label][i]
