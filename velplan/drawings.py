@@ -4,7 +4,9 @@
     python -m velplan.drawings --check    # exit 1 and list what is out of date
 
 Each sheet is A1, in Russian (ESKD frame), with both plans at the two default positions
-and 12 positions of the scheme: what ``velplan sheet NAME`` draws. The SVGs are
+and 12 positions of the scheme: what ``velplan sheet NAME`` draws; the examples that
+declare masses or loads also get their force-analysis sheet, ``NAME-forces.svg``
+(``velplan sheet NAME --kind forces``). The SVGs are
 byte-stable, so a test compares them with a fresh rendering; the PNG of the shaper depends
 on the fonts installed and is not compared.
 """
@@ -19,6 +21,8 @@ from pathlib import Path
 DRAWINGS = Path(__file__).resolve().parent.parent / "drawings"
 
 OPTIONS = {"n": 12, "kind": "both", "fmt": "A1", "lang": "ru"}
+#: Options of the force-analysis sheets (``velplan.force_sheet.build_force_sheet``).
+FORCE_OPTIONS = {"n": 12, "fmt": "A1", "lang": "ru"}
 PNG_OF = "shaper"
 PNG_DPI = 100.0
 
@@ -30,6 +34,16 @@ velocity and acceleration plans for two positions, the kinematic diagrams (chord
 beside the analytic curves) and the table of transfer functions.
 
 {files}
+
+The examples with masses and loads also have their force-analysis sheet, as
+`velplan sheet NAME --kind forces` draws it: for the position of the largest balancing
+moment (and, when the useful load does not act there, a working-stroke position too) the
+Assur groups cut free with their loads, gravity, inertia forces and moments and the
+reactions, each group's force polygon at a standard μF, Zhukovsky's lever with the balancing
+force and the balance M_b(lever) / M_b(kinetostatics); the diagram M_b(φ) and the table of
+the balancing moment by the three methods.
+
+{force_files}
 
 Regenerate them all with one command, from the top of the repository:
 
@@ -44,12 +58,16 @@ preview made with cairosvg and depends on the fonts installed, so it is not comp
 
 def expected() -> dict[str, bytes]:
     """File name → the bytes it should hold."""
+    from velplan.force_sheet import build_force_sheet
     from velplan.mechanism.loader import example_names
     from velplan.sheet import build_sheet
 
     out: dict[str, bytes] = {}
     for name in example_names():
         out[f"{name}.svg"] = build_sheet(name, **OPTIONS).svg().encode("utf-8")
+    for name in force_examples():
+        out[f"{name}-forces.svg"] = build_force_sheet(name, **FORCE_OPTIONS).svg().encode(
+            "utf-8")
     out["README.md"] = expected_readme()
     return out
 
@@ -59,7 +77,17 @@ def expected_readme() -> bytes:
     from velplan.mechanism.loader import example_names
 
     listing = "\n".join(f"* [`{name}.svg`]({name}.svg)" for name in example_names())
-    return README.format(files=listing, png=PNG_OF, dpi=PNG_DPI).encode("utf-8")
+    forces = "\n".join(f"* [`{name}-forces.svg`]({name}-forces.svg)" for name in force_examples())
+    return README.format(files=listing, force_files=forces, png=PNG_OF,
+                         dpi=PNG_DPI).encode("utf-8")
+
+
+def force_examples() -> list[str]:
+    """The bundled examples that declare masses or loads: they get a force sheet."""
+    from velplan.force_sheet import has_forces
+    from velplan.mechanism.loader import example_names, load
+
+    return [name for name in example_names() if has_forces(load(name))]
 
 
 def stale(directory: Path = DRAWINGS) -> list[str]:

@@ -15,22 +15,29 @@ from velplan.errors import VelplanError
 
 _FORMATS = ("A1", "A2", "A3")
 _KINDS = ("velocity", "acceleration", "both")
+_SHEET_KINDS = _KINDS + ("forces",)
 _LANGS = ("en", "ru", "uk", "zh")
 
 
 def register(sub) -> None:
     p = sub.add_parser("sheet", help="draw the kinematic-analysis sheet (scheme, plans, "
-                                     "diagrams, table) as SVG, PNG or PDF")
+                                     "diagrams, table), or with --kind forces the "
+                                     "force-analysis sheet, as SVG, PNG or PDF")
     add_mechanism(p, optional=True)
     p.add_argument("-o", "--output", metavar="FILE",
-                   help="SVG file to write (default: MECH-sheet.svg in the current directory); "
-                        "a .png or .pdf name writes that too, beside the SVG")
+                   help="SVG file to write (default: MECH-sheet.svg in the current directory, "
+                        "MECH-forces.svg with --kind forces); a .png or .pdf name writes that "
+                        "too, beside the SVG")
     p.add_argument("--positions", metavar="N", type=positive_int, default=12,
                    help="number of positions of the scheme, table and diagrams (default 12)")
     p.add_argument("--plans", metavar="K,…",
                    help="positions whose plans are drawn (default: two, about a quarter and "
-                        "three quarters of the turn)")
-    p.add_argument("--kind", choices=_KINDS, default="both", help="which plans (default both)")
+                        "three quarters of the turn); with --kind forces, the positions of the "
+                        "force analysis (default: the largest balancing moment)")
+    p.add_argument("--kind", choices=_SHEET_KINDS, default="both",
+                   help="which plans (default both); forces: the force-analysis sheet "
+                        "(groups with their forces, force polygons, Zhukovsky's lever, the "
+                        "balancing moment)")
     p.add_argument("--format", choices=_FORMATS, default="A1", help="sheet format (default A1)")
     p.add_argument("--diagrams", choices=("auto", "yes", "no"), default="auto",
                    help="kinematic diagrams on the sheet: when they fit (auto, the default), "
@@ -110,6 +117,8 @@ def run_sheet(args) -> int:
     fields = {k: getattr(args, k) for k in ("title", "designation", "author", "checker",
                                              "approved", "organisation", "date")
               if getattr(args, k)}
+    if args.kind == "forces":
+        return _run_force_sheet(args, mech, plans, fields)
     info = None
     if fields:
         frame = args.frame or ("eskd" if args.lang in ("ru", "uk") else "iso")
@@ -122,6 +131,23 @@ def run_sheet(args) -> int:
                         diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                         table=not args.no_table)
     output = args.output or f"{mech.name}-sheet.svg"
+    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    return 0
+
+
+def _run_force_sheet(args, mech, plans, fields) -> int:
+    from velplan.force_sheet import build_force_sheet, default_force_title
+    from velplan.render.sheet import TitleInfo
+
+    info = None
+    if fields:
+        base = default_force_title(mech, args.lang, "")
+        info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
+    sheet = build_force_sheet(mech, n=args.positions, plans=plans, fmt=args.format,
+                              lang=args.lang, frame_style=args.frame, info=info,
+                              diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
+                              table=not args.no_table)
+    output = args.output or f"{mech.name}-forces.svg"
     _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
     return 0
 
