@@ -40,6 +40,7 @@ import reference as R
 
 import velplan  # noqa: E402
 from velplan.mechanism.model import RPP, PRP, RRP  # noqa: E402
+from velplan.diagrams import differentiate  # noqa: E402
 
 FD_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 CHORD_N = (12, 24, 72, 360)
@@ -164,23 +165,6 @@ def output_series(mech):
     return f"point {out.point} along its guide", "point", disp, refs
 
 
-def chord_diagram(s: np.ndarray, dphi: float, w: float):
-    """The chord method on a periodic displacement diagram s_j at N nodes, Δφ apart.
-
-    Velocity: slope of the chord of each interval, plotted at its middle,
-    v_{j+½} = ω·(s_{j+1} − s_j)/Δφ. Acceleration: the same on the velocity diagram, which puts
-    it back at the nodes, a_j = ω·(v_{j+½} − v_{j−½})/Δφ."""
-    v = (np.roll(s, -1) - s) * (w / dphi)  # periodic: the last chord closes the turn
-    a = (v - np.roll(v, 1)) * (w / dphi)
-    return v, a
-
-
-try:  # velplan's chord method (velplan/diagrams.py) when it exists; else the 3 lines above
-    from velplan.diagrams import differentiate as _differentiate
-except ImportError:
-    _differentiate = None
-
-
 def chord(mech, ref, label_kind) -> list[Row]:
     label, kind, disp, refs = label_kind
     w = mech.crank.omega
@@ -196,13 +180,8 @@ def chord(mech, ref, label_kind) -> list[Row]:
 
         def run(phi=phi):
             kin = velplan.solve(mech, phi, epsilon1=0.0)
-            return chord_diagram(disp(kin), 2 * np.pi / N, w)
-
-        if _differentiate is not None:
-            def run(phi=phi):  # noqa: F811 - velplan's own chord method when it exists
-                kin = velplan.solve(mech, phi, epsilon1=0.0)
-                _, v, a = _differentiate(disp(kin), step=2 * np.pi / N)
-                return v * w, a * (w * w)
+            _, v, a = differentiate(disp(kin), step=2 * np.pi / N)  # velplan's chord method
+            return v * w, a * (w * w)
 
         v, a = run()
         rv, _ = refs(ref, mids)
@@ -211,7 +190,7 @@ def chord(mech, ref, label_kind) -> list[Row]:
         row.errors = {"vel": float(np.max(np.abs(v - rv)) / vs), "acc": float(np.max(np.abs(a - ra)) / as_)}
         t, r = median_time(run, N)
         row.times[N], row.repeats[N] = t / N, r
-        row.note = f"output only ({label}); " + ("velplan.diagrams" if _differentiate else "benchmark's own chords")
+        row.note = f"output only ({label}); velplan.diagrams"
         rows.append(row)
     return rows
 

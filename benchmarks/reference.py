@@ -39,7 +39,7 @@ if str(ROOT) not in sys.path:
 
 import velplan  # noqa: E402
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism  # noqa: E402
-from velplan.mechanism.structure import points_out, schedule  # noqa: E402
+from velplan.mechanism.structure import coincident_points, schedule  # noqa: E402
 
 DPS = 50
 CACHE = Path(__file__).resolve().parent / "results" / "cache"
@@ -139,12 +139,7 @@ def closed_form(mech: Mechanism, phi) -> tuple[dict, dict, dict]:
 
 def coincident_owner(mech: Mechanism) -> dict[str, str]:
     """Coincident point name → the link it is a material point of."""
-    out = {}
-    for g in mech.groups:
-        names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
-        owners = points_out(g)
-        out.update({n: owners[n] for n in names if n})
-    return out
+    return coincident_points(mech)
 
 
 def derivatives(mech: Mechanism, phi: float, omega1: float):

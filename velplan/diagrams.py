@@ -28,11 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from velplan.errors import MechanismError, ScaleError
+from velplan.plans.scale import standard_scale
 
 #: Pole distances a draughtsman picks from, mm.
 POLE_DISTANCES_MM: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0)
 #: Standard mantissas of a drawing scale (units per mm), as `velplan.plans.standard_scale`.
-_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0)
 
 
 def chord_method(y, step: float, *, closed: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -84,15 +84,10 @@ def chord_ordinates_mm(y_mm, dx_mm: float, H_mm: float, *, closed: bool = True) 
 
 def standard_up(raw: float) -> float:
     """The smallest value of the series (1, 2, 2.5, 4, 5)·10ⁿ not below `raw`."""
-    if not (math.isfinite(raw) and raw > 0):
-        raise ScaleError(f"cannot choose a diagram scale for a value per mm of {raw!r}")
-    e = math.floor(math.log10(raw))
-    for exp in (e, e + 1):
-        for m in _SERIES:
-            value = float(f"{m}e{exp}")
-            if value >= raw * (1 - 1e-12):
-                return value
-    raise AssertionError("unreachable")
+    try:
+        return standard_scale(raw)
+    except ScaleError:
+        raise ScaleError(f"cannot choose a diagram scale for a value per mm of {raw!r}") from None
 
 
 @dataclass(frozen=True)

@@ -20,9 +20,7 @@ Examples
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, replace
-from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping, Sequence
 
@@ -42,7 +40,7 @@ from velplan.render.scene import Scene
 from velplan.render.sheet import TitleInfo, frame_bounds, sheet_scene, title_block_bounds
 from velplan.render.style import SheetStyle
 from velplan.render.view import PlacedView, View, eskd_scales, ratio_text
-from velplan.sheet import FORMATS, MIN_CRANK_MM, _SIZES, _check_layout, _fits, write_outputs
+from velplan.sheet import FORMATS, MIN_CRANK_MM, _SIZES, SheetOutput, _check_layout, _fits
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
 FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
@@ -57,7 +55,7 @@ CURVE_POINTS = 241
 
 
 @dataclass(frozen=True)
-class ForceSheet:
+class ForceSheet(SheetOutput):
     """A composed force-analysis sheet.
 
     Attributes
@@ -93,17 +91,6 @@ class ForceSheet:
     frame_style: str
     style: SheetStyle
     info: TitleInfo
-
-    def svg(self, *, precision: int = 3) -> str:
-        """The sheet as an SVG document; the same sheet gives the same bytes."""
-        from velplan.render.svg import to_svg
-
-        return to_svg(self.scene, self.style, precision=precision)
-
-    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
-              dpi: float = 150.0) -> list[Path]:
-        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files."""
-        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
 
 
 def has_forces(mech: Mechanism) -> bool:

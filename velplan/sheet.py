@@ -82,8 +82,27 @@ _SIZES: Mapping[str, _Sizes] = MappingProxyType({
 })
 
 
+class SheetOutput:
+    """What every composed sheet offers: its SVG text and its files (needs ``scene`` and
+    ``style`` attributes)."""
+
+    def svg(self, *, precision: int = 3) -> str:
+        """The sheet as an SVG document; the same sheet gives the same bytes."""
+        from velplan.render.svg import to_svg
+
+        return to_svg(self.scene, self.style, precision=precision)
+
+    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
+              dpi: float = 150.0) -> list[Path]:
+        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
+
+        Conversions run before anything is written, so a failure leaves no file behind.
+        """
+        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
+
+
 @dataclass(frozen=True)
-class Sheet:
+class Sheet(SheetOutput):
     """A composed sheet.
 
     Attributes
@@ -119,19 +138,6 @@ class Sheet:
     style: SheetStyle
     info: TitleInfo
 
-    def svg(self, *, precision: int = 3) -> str:
-        """The sheet as an SVG document; the same sheet gives the same bytes."""
-        from velplan.render.svg import to_svg
-
-        return to_svg(self.scene, self.style, precision=precision)
-
-    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
-              dpi: float = 150.0) -> list[Path]:
-        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
-
-        Conversions run before anything is written, so a failed one leaves no file.
-        """
-        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
 
 
 def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,

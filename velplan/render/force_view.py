@@ -43,8 +43,8 @@ from velplan.mechanism.structure import pairs
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.mechanism_view import BLOCK_MM, _Geometry
-from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
-from velplan.render.shapes import text_extent
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.table_view import grid_table
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
 from velplan.render.view import (
@@ -770,9 +770,6 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
 
 # -- the table and the diagram of the balancing moment -----------------------------------
 
-_ROW_PITCH = 2.0
-_PAD = 1.0
-_WIDE = 1.3
 
 
 def moment_decimals(values) -> int:
@@ -798,29 +795,7 @@ def moments_table_view(fa, *, lang: str = "ru", size_mm: float = 2.5,
     for key in ("kinetostatics", "lever", "power"):
         rows.append([f"{mb} ({label('method_' + key, lang)})"] +
                     [fixed(float(v), lang, decimals) for v in moments[key]])
-    grid = [head] + rows
-    widths = [max(_WIDE * text_extent(r[c], size_mm)[0] for r in grid) + 2 * _PAD
-              for c in range(n + 1)]
-    widths[1:] = [max(widths[1:])] * n
-    row_h = _ROW_PITCH * size_mm
-    total_w, total_h = sum(widths), row_h * len(grid)
-    items: list[Primitive] = []
-    xs = np.concatenate([[0.0], np.cumsum(widths)])
-    for r in range(1, len(grid)):
-        y = total_h - r * row_h
-        items.append(Polyline([(0.0, y), (total_w, y)], "table", "thick" if r == 1 else "thin"))
-    for x in xs[1:-1]:
-        items.append(Polyline([(x, 0.0), (x, total_h)], "table", "thin"))
-    items.append(Polygon([(0.0, 0.0), (total_w, 0.0), (total_w, total_h), (0.0, total_h)],
-                         "table", "thick"))
-    for r, row in enumerate(grid):
-        y = total_h - (r + 0.5) * row_h
-        for c, text in enumerate(row):
-            if c == 0:
-                items.append(Text((xs[0] + _PAD, y), text, "table", size_mm, "start", "middle"))
-            else:
-                items.append(Text(((xs[c] + xs[c + 1]) / 2, y), text, "table", size_mm,
-                                  "middle", "middle"))
+    items, total_w, total_h = grid_table([head] + rows, size_mm)
     items.append(Text((0.0, total_h + 2.5), f"{label('balancing_moment', lang)} {mb}, "
                       f"{newton_metre(lang)}", "table", title_mm))
     return make_view("table", items, pad_mm=1.0, meta={"n": n, "size_mm": size_mm,
