@@ -107,7 +107,8 @@ def test_closing_reactions_lie_where_their_known_directions_meet(name, force_she
             assert abs(float(_unit(p, q) @ np.array([u.real, u.imag]))) > 1 - 1e-9
             for point in (at(through), at(z[m + 1])):
                 w = np.asarray(point) - p
-                assert abs(float(np.cross(_unit(p, q), w))) < 0.01
+                e = _unit(p, q)
+                assert abs(float(e[0] * w[1] - e[1] * w[0])) < 0.01
         checked += 1
     assert checked >= len(sheet.positions)
 

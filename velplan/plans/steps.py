@@ -246,9 +246,9 @@ class Intersect:
         (p1, u1), (p2, u2) = vals[self.lines[0]], vals[self.lines[1]]
         cross = u1.real * u2.imag - u1.imag * u2.real
         d = p2 - p1
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):  # parallel lines: refused below
             t = (d.real * u2.imag - d.imag * u2.real) / cross
-        x = p1 + t * u1
+            x = p1 + t * u1
         ctx.record_intersection(self, np.abs(cross), x, (p1, p2))
         for line, p in zip(self.lines, (p1, p2)):
             step = ctx.plan_steps[line]
@@ -293,7 +293,8 @@ class Similar:
         if self.base is None:
             return a
         f = self.base
-        ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
+        with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
+            ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
         z = ctx.drafting.vector((vals[f.img2] - vals[f.img1]) * ratio)
         ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, np.abs(z), "")
         return a + z
