@@ -18,6 +18,17 @@ KINDS = ("RRR", "RRP", "RPR", "PRP", "RPP", "RRP-moving")
 unit = st.floats(0.0, 1.0, allow_nan=False)
 
 
+def fixed_points(mech) -> dict[str, list[str]]:
+    """Moving link → the named points fixed to it for good (coincident points, a different
+    material point at each position, left out)."""
+    from velplan.mechanism.structure import coincident_points, point_owners
+
+    owners = point_owners(mech)
+    for c in coincident_points(mech):
+        owners.pop(c)
+    return {link: [p for p, l in owners.items() if l == link] for link in mech.links}
+
+
 def _crank(r: float, omega: float) -> dict:
     return {"link": "1", "pivot": "O", "tip": "A", "length": r, "omega": omega}
 

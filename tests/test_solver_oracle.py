@@ -7,6 +7,7 @@ import pytest
 
 import velplan
 from tests import oracle
+from tests.strategies import fixed_points
 
 EXAMPLES = velplan.example_names()
 ANGLES = [0.0, 0.7, 1.9, 3.3, 4.4, 5.8]
@@ -53,13 +54,8 @@ def test_loop_closures_hold_over_a_revolution(name):
             assert np.abs(np.hypot(*(P(g.point) - P(d)).T) - l2).max() < 1e-12
         if g.kind == "RRP":
             assert np.abs(np.hypot(*(P(g.point) - P(g.joint)).T) - g.length).max() < 1e-12
-    # rigid links: every pair of material points on one link keeps its distance
-    # (coincident points are a different material point at each position)
-    owners = velplan.mechanism.structure.point_owners(mech)
-    for c in velplan.mechanism.structure.coincident_points(mech):
-        owners.pop(c)
-    for link in mech.links:
-        names = [k for k, v in owners.items() if v == link]
+    # rigid links: every pair of points fixed to one link keeps its distance
+    for link, names in fixed_points(mech).items():
         for a in names:
             for b in names:
                 d = np.hypot(*(P(a) - P(b)).T)

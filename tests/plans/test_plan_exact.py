@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 import velplan
 from velplan.plans import Plan
-from tests.strategies import KINDS, mechanisms
+from tests.strategies import KINDS, fixed_points, mechanisms
 
 EXAMPLES = velplan.example_names()
 SETTINGS = settings(max_examples=40, deadline=None)
@@ -89,13 +89,8 @@ def test_relative_velocities_perpendicular_and_images_similar_turned_90(mech, ph
     res = Plan.of(mech).evaluate(kin, kind="velocity")
     if res.flagged[0]:
         return
-    owners = velplan.mechanism.structure.point_owners(mech)
-    
-    for c in velplan.mechanism.structure.coincident_points(mech):
-    
-        owners.pop(c)
-    for link in mech.links:
-        pts = [p for p, l in owners.items() if l == link and p in res.vectors]
+    for link, points in fixed_points(mech).items():
+        pts = [p for p in points if p in res.vectors]
         w = res.omegas[link][0]
         for a in pts:
             for b in pts:
@@ -121,13 +116,8 @@ def test_acceleration_images_similar_and_normal_components_point_to_the_centre(m
     if res.flagged[0]:
         return
     # similarity: a rigid link's acceleration image is the link times (iε − ω²)/μa
-    owners = velplan.mechanism.structure.point_owners(mech)
-    
-    for c in velplan.mechanism.structure.coincident_points(mech):
-    
-        owners.pop(c)
-    for link in mech.links:
-        pts = [p for p, l in owners.items() if l == link and p in res.vectors]
+    for link, points in fixed_points(mech).items():
+        pts = [p for p in points if p in res.vectors]
         w, e = kin.omega(link)[0], kin.epsilon(link)[0]
         for a in pts[:1]:
             for b in pts[1:]:
