@@ -80,25 +80,33 @@ def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[
     brackets = np.flatnonzero(sign[:-1] * sign[1:] < 0)
     lo, hi = phi[brackets], phi[brackets + 1]
     flo = rate[brackets]
-    best = 0.5 * (lo + hi)
-    tiny = 4 * np.finfo(float).eps * max(np.nanmax(np.abs(rate)), 1e-300)
+    eps = np.finfo(float).eps
+    tiny = 4 * eps * max(np.nanmax(np.abs(rate)), 1e-300)
+
+    def at(x):
+        _, f, df = _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
+        return f, df
+
+    # safeguarded Newton (rtsafe): a Newton step from the current iterate on the analytic
+    # derivative, or bisection when it would leave the bracket; the bracket keeps the sign change
+    x = 0.5 * (lo + hi)
+    f, df = at(x) if x.size else (x, x)
     for _ in range(100):
-        if lo.size == 0:
+        if x.size == 0:
             break
-        # a Newton step from the bracket's midpoint on the analytic derivative, kept only
-        # when it lands inside the bracket; the bracket shrinks around the sign change
-        mid = 0.5 * (lo + hi)
-        _, f, df = _values(solve(mech, mid, omega1=1.0, epsilon1=0.0), kind, i)
         with np.errstate(divide="ignore", invalid="ignore"):
-            newton = mid - f / df
+            newton = x - f / df
         inside = (newton > lo) & (newton < hi) & np.isfinite(newton)
-        x = np.where(inside, newton, mid)
-        _, fx, _ = _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
-        best = np.where(np.abs(fx) <= np.abs(f), x, mid)
-        same = np.sign(fx) == np.sign(flo)
-        lo, flo, hi = np.where(same, x, lo), np.where(same, fx, flo), np.where(same, hi, x)
-        if np.all((np.minimum(np.abs(fx), np.abs(f)) <= tiny) | (hi - lo <= 4 * np.finfo(float).eps * np.abs(hi))):
+        x_new = np.where(inside, newton, 0.5 * (lo + hi))
+        f_new, df_new = at(x_new)
+        same = np.sign(f_new) == np.sign(flo)
+        lo, flo, hi = np.where(same, x_new, lo), np.where(same, f_new, flo), np.where(same, hi, x_new)
+        ulp4 = 4 * eps * np.maximum(np.abs(x_new), 1.0)
+        done = (np.abs(x_new - x) <= ulp4) | (np.abs(f_new) <= tiny) | (hi - lo <= ulp4)
+        x, f, df = x_new, f_new, df_new
+        if done.all():
             break
+    best = x
     roots = best % (2 * np.pi)
     roots = np.sort(roots)
     if roots.size == 0:
