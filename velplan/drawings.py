@@ -98,12 +98,13 @@ def stale(directory: Path = DRAWINGS) -> list[str]:
 
 def regenerate(directory: Path = DRAWINGS, *, png: bool = True) -> list[Path]:
     """Write every drawing into `directory`; returns the files written."""
-    from velplan.render.export import write_bytes_atomic, write_png
+    from velplan.io import write_atomic
+    from velplan.render.export import write_png
 
     directory.mkdir(parents=True, exist_ok=True)
     written = []
     for name, data in expected().items():
-        written.append(write_bytes_atomic(data, directory / name))
+        written.append(write_atomic(directory / name, data))
         if png and name == f"{PNG_OF}.svg":
             written.append(write_png(data.decode("utf-8"), directory / f"{PNG_OF}.png",
                                      dpi=PNG_DPI))

@@ -10,28 +10,37 @@ from velplan.errors import VelplanError
 
 
 def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
-    """Write ``data`` to ``path`` through a temporary file in the same directory, then rename.
+    """Write ``data`` (text as UTF-8) to ``path`` through a temporary file in the same
+    directory, then rename it into place.
 
-    Raises `VelplanError` (one line, naming the path) when the directory is missing or not
-    writable; no partial file is left behind.
+    An existing file keeps its permissions, a new one gets 0644 (a drawing or a table is an
+    ordinary document). Raises `VelplanError` (one line, naming the path) when the directory is
+    missing or not writable; no partial file is left behind.
     """
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
+    target = Path(path)
+    directory = target.parent if str(target.parent) else Path(".")
     if not directory.is_dir():
-        raise VelplanError(f"cannot write {path}: directory {directory} does not exist")
+        raise VelplanError(f"cannot write {target}: directory {directory} does not exist")
     raw = data.encode("utf-8") if isinstance(data, str) else data
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+        handle = tempfile.NamedTemporaryFile(dir=directory, prefix=f".{target.name}.", suffix=".tmp", delete=False)
     except OSError as exc:
-        raise VelplanError(f"cannot write {path}: {exc.strerror}") from None
+        raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from None
     try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
-        os.replace(tmp, path)
+        with handle:
+            handle.write(raw)
+        os.chmod(handle.name, _mode_for(target))  # mkstemp files are private (0600)
+        os.replace(handle.name, target)
     except BaseException as exc:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        Path(handle.name).unlink(missing_ok=True)
         if isinstance(exc, OSError):
-            raise VelplanError(f"cannot write {path}: {exc.strerror}") from None
+            raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from None
         raise
-    return path
+    return target
+
+
+def _mode_for(target: Path) -> int:
+    try:
+        return target.stat().st_mode & 0o777
+    except OSError:
+        return 0o644

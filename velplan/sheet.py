@@ -31,6 +31,7 @@ import shapely
 from velplan.analysis.extremes import positions as crank_positions
 from velplan.analysis.solver import solve
 from velplan.errors import ScaleError, VelplanError
+from velplan.io import write_atomic
 from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
 from velplan.plans import Plan, standard_scale
@@ -160,7 +161,7 @@ def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: 
         blobs.append((export._convert("svg2pdf", svg), target.with_suffix(".pdf")))
     written = [export.write_svg(svg, target)]
     for data, where in blobs:
-        written.append(export.write_bytes_atomic(data, where))
+        written.append(write_atomic(where, data))
     return written
 
 

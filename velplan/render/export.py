@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import importlib
 import os
-import tempfile
 from pathlib import Path
 
 from velplan.errors import VelplanError
+from velplan.io import write_atomic
 
 _INSTALL_HINT = "pip install velplan[export]"
 
@@ -32,7 +32,7 @@ def write_svg(svg_text: str, path: str | os.PathLike) -> Path:
     Path
         The written file.
     """
-    return write_bytes_atomic(svg_text.encode("utf-8"), path)
+    return write_atomic(path, svg_text)
 
 
 def write_png(svg_text: str, path: str | os.PathLike, *, dpi: float = 150.0,
@@ -58,7 +58,7 @@ def write_png(svg_text: str, path: str | os.PathLike, *, dpi: float = 150.0,
     if not dpi > 0:
         raise VelplanError(f"PNG resolution must be positive, got dpi={dpi!r}")
     data = _convert("svg2png", svg_text, dpi=dpi, background_color=background)
-    return write_bytes_atomic(data, path)
+    return write_atomic(path, data)
 
 
 def write_pdf(svg_text: str, path: str | os.PathLike) -> Path:
@@ -69,42 +69,7 @@ def write_pdf(svg_text: str, path: str | os.PathLike) -> Path:
     VelplanError
         If cairosvg is missing or the conversion fails.
     """
-    return write_bytes_atomic(_convert("svg2pdf", svg_text), path)
-
-
-def write_bytes_atomic(data: bytes, path: str | os.PathLike) -> Path:
-    """Write `data` to `path` through a temporary file in the same directory.
-
-    Raises
-    ------
-    VelplanError
-        If the directory does not exist or the file cannot be written.
-    """
-    target = Path(path)
-    try:
-        handle = tempfile.NamedTemporaryFile(
-            dir=target.parent, prefix=f".{target.name}.", suffix=".tmp", delete=False)
-    except OSError as exc:
-        raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from exc
-    try:
-        with handle:
-            handle.write(data)
-        # mkstemp files are private (0600); a drawing is an ordinary document.
-        os.chmod(handle.name, _mode_for(target))
-        os.replace(handle.name, target)
-    except BaseException as exc:
-        Path(handle.name).unlink(missing_ok=True)
-        if isinstance(exc, OSError):
-            raise VelplanError(f"cannot write {target}: {exc.strerror or exc}") from exc
-        raise
-    return target
-
-
-def _mode_for(target: Path) -> int:
-    try:
-        return target.stat().st_mode & 0o777
-    except OSError:
-        return 0o644
+    return write_atomic(path, _convert("svg2pdf", svg_text))
 
 
 def _cairosvg():
