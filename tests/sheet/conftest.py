@@ -4,8 +4,9 @@ import pytest
 
 import velplan
 from velplan.drawings import OPTIONS
-from velplan.render.canvas import RecordingCanvas, render
 from velplan.sheet import build_sheet
+
+from tests.sheet.helpers import record_all
 
 
 @pytest.fixture(scope="session")
@@ -17,9 +18,4 @@ def sheets():
 @pytest.fixture(scope="session")
 def recorded(sheets):
     """Each sheet drawn on a recording canvas: name → canvas."""
-    out = {}
-    for name, sheet in sheets.items():
-        canvas = RecordingCanvas()
-        render(sheet.scene, canvas)
-        out[name] = canvas
-    return out
+    return record_all(sheets)

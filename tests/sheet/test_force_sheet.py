@@ -7,18 +7,17 @@ import re
 
 import numpy as np
 import pytest
-import shapely
 
 from velplan import drawings
 from velplan.cli import main
 from velplan.errors import ScaleError, VelplanError
 from velplan.force_sheet import build_force_sheet, force_sheet_text
-from velplan.render.canvas import RecordingCanvas, render
 from velplan.render.force_view import group_layers, lever_layers, polygon_layers
 from velplan.render.layout import overlapping_labels
 from velplan.render.scene import Polyline
-from velplan.render.sheet import free_area
 from velplan.render.view import number
+
+from tests.sheet.helpers import assert_views_placed, record_all
 
 NAMES = ("press", "shaper", "slider-press")
 
@@ -31,12 +30,7 @@ def force_sheets():
 
 @pytest.fixture(scope="module")
 def force_canvases(force_sheets):
-    out = {}
-    for name, sheet in force_sheets.items():
-        canvas = RecordingCanvas()
-        render(sheet.scene, canvas)
-        out[name] = canvas
-    return out
+    return record_all(force_sheets)
 
 
 def _views(sheet, prefix):
@@ -219,21 +213,7 @@ def test_no_two_labels_overlap(name, force_sheets):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_views_inside_the_free_area_and_apart(name, force_sheets):
-    sheet = force_sheets[name]
-    area = free_area(sheet.fmt, frame_style=sheet.frame_style).buffer(1e-6)
-    boxes = {k: shapely.box(*v.bounds) for k, v in sheet.views.items()}
-    for k, box in boxes.items():
-        assert area.contains(box), k
-        for j, other in boxes.items():
-            if j > k:
-                assert box.intersection(other).area < 1e-6, (k, j)
-    # the drawn primitives stay in their views
-    for k, placed in sheet.views.items():
-        x0, y0, x1, y1 = placed.bounds
-        for p in placed.primitives:
-            bx0, by0, bx1, by1 = p.bounds
-            assert x0 - 1e-6 <= bx0 and bx1 <= x1 + 1e-6 and y0 - 1e-6 <= by0 and \
-                by1 <= y1 + 1e-6, (k, p)
+    assert_views_placed(force_sheets[name], overlap_below_mm2=1e-6)
 
 
 @pytest.mark.parametrize("name", NAMES)

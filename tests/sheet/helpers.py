@@ -1,0 +1,35 @@
+"""Checks shared by the kinematic and the force sheet tests."""
+
+import shapely
+
+from velplan.render.canvas import RecordingCanvas, render
+from velplan.render.sheet import free_area
+
+
+def record_all(sheets) -> dict:
+    """Each sheet drawn on a recording canvas: name → canvas."""
+    out = {}
+    for name, sheet in sheets.items():
+        canvas = RecordingCanvas()
+        render(sheet.scene, canvas)
+        out[name] = canvas
+    return out
+
+
+def assert_views_placed(sheet, *, overlap_below_mm2: float | None = None) -> dict:
+    """Every view inside the sheet's free area, no two views overlapping (area exactly 0, or
+    below ``overlap_below_mm2``), and every primitive of a view inside its box (to 1e-6 mm);
+    returns the boxes."""
+    area = free_area(sheet.fmt, frame_style=sheet.frame_style).buffer(1e-6)
+    boxes = {k: shapely.box(*v.bounds) for k, v in sheet.views.items()}
+    for k, box in boxes.items():
+        assert area.contains(box), k
+        for j, other in boxes.items():
+            if j < k:
+                overlap = box.intersection(other).area
+                assert overlap == 0 if overlap_below_mm2 is None else overlap < overlap_below_mm2, (j, k)
+    for k, placed in sheet.views.items():
+        box = shapely.box(*placed.bounds).buffer(1e-6)
+        for p in placed.primitives:
+            assert box.contains(shapely.box(*p.bounds)), (k, p)
+    return boxes
