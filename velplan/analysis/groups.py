@@ -8,6 +8,9 @@ m/s²). For a point X of a link with origin O turning at ω, ε (rad/s, rad/s²)
 A slider moving at relative speed ṡ along a direction u on a link turning at ω adds
 ṡ·u + s̈·u + 2·i·ω·ṡ·u (relative and Coriolis). Each group reduces its velocity and
 acceleration equations to ``α·u + β·v = Q`` with unknown reals α, β, solved by `solve2`.
+
+The closed forms themselves (`rrr`, `rrp`, `rpr`, `prp`, `rpp`) take and return plain complex
+values; the `solve_*` wrappers below fit them to the named points and links of a `State`.
 """
 
 from __future__ import annotations
@@ -51,22 +54,143 @@ class GroupResult:
     closed: np.ndarray
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+# ---- closed forms on plain complex values --------------------------------------------------
+# Each function below works on complex/real numpy arrays (vectorised over positions) and on
+# scalars alike (the compiled engine runs the very same functions per position), so it uses
+# arithmetic and ufuncs only: no np.where, no errstate, no containers.
+
+
+def cross(a, b):
     """z-component of the cross product of two complex-encoded vectors."""
     return (a.real * b.imag) - (a.imag * b.real)
 
 
-def solve2(u: np.ndarray, v: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def solve2(u, v, q):
     """Real α, β with α·u + β·v = q (complex u, v, q); inf/NaN where u ∥ v."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d = cross(u, v)
-        return cross(q, v) / d, cross(u, q) / d
+    k = 1.0 / cross(u, v)
+    return cross(q, v) * k, cross(u, q) * k
+
+
+def cis(t):
+    """The unit vector at angle ``t`` (rad): cos t + i·sin t."""
+    return np.cos(t) + 1j * np.sin(t)
+
+
+def carry(p, v, a, omega, epsilon, x):
+    """Velocity and acceleration of the point at ``x`` of a link whose point at ``p`` moves
+    with ``v``, ``a`` while the link turns at ``omega``, ``epsilon``."""
+    r = x - p
+    return v + 1j * omega * r, a + (1j * epsilon - omega * omega) * r
+
+
+def guide_line(p, theta, angle, offset):
+    """Unit direction u and base point of a guide through ``p`` on a link at angle ``theta``."""
+    u = cis(theta + angle)
+    return u, p + 1j * offset * u
+
+
+def sqrt_clamped(h2, tol):
+    """(√h², closed): h² ≥ −tol counts as assembled (round-off at a toggle is 0), NaN below."""
+    closed = h2 >= -tol
+    # the second term is 0 where closed and NaN where not (√ of a negative number)
+    return np.sqrt(np.maximum(h2, 0.0)) + np.sqrt(np.minimum(h2 + tol, 0.0)), closed
+
+
+def rrr(Ap, Av, Aa, Dp, Dv, Da, l1, l2, branch):
+    """RRR closed form: joint C, its motion, the two links' ω, ε and the condition."""
+    d = Dp - Ap
+    L = np.abs(d)
+    a = (l1 * l1 - l2 * l2 + L * L) / (2 * L)
+    h, closed = sqrt_clamped(l1 * l1 - a * a, 1e-14 * l1 * l1)
+    c = Ap + (a + 1j * branch * h) * (d * (1.0 / L))
+    r1, r2 = c - Ap, c - Dp
+    w1, w2 = solve2(r1, -r2, -1j * (Dv - Av))
+    q = Da - Aa + w1 * w1 * r1 - w2 * w2 * r2
+    e1, e2 = solve2(r1, -r2, -1j * q)
+    v = Av + 1j * w1 * r1
+    acc = Aa + (1j * e1 - w1 * w1) * r1
+    cond = np.abs(cross(r1, r2)) / (l1 * l2)
+    return c, v, acc, np.angle(r1), w1, e1, np.angle(r2), w2, e2, cond, closed
+
+
+def rrp(Ap, Av, Aa, Gp, Gv, Ga, gtheta, gw, ge, angle, offset, length, branch):
+    """RRP closed form on a guide through G (of a link at gtheta, gw, ge): slider point C and
+    its motion, the guide link's point at C, the rod's angle, ω, ε, the slide s, ṡ, s̈."""
+    u, base = guide_line(Gp, gtheta, angle, offset)
+    w = (Ap - base) / u
+    h, closed = sqrt_clamped(length * length - w.imag * w.imag, 1e-14 * length * length)
+    s = w.real + branch * h
+    c = base + s * u
+    r = c - Ap
+    gv, ga = carry(Gp, Gv, Ga, gw, ge, c)
+    sd, wr = solve2(u, -1j * r, Av - gv)
+    coriolis = 2j * gw * sd * u
+    sdd, er = solve2(u, -1j * r, Aa - wr * wr * r - ga - coriolis)
+    return (c, gv + sd * u, ga + coriolis + sdd * u, gv, ga, np.angle(r), wr, er, s, sd, sdd,
+            np.abs(h) / length, closed)
+
+
+def rpr(Ap, Av, Aa, Op, Ov, Oa, offset, branch, scale):
+    """RPR closed form: the bar's angle, ω, ε (the block turns with it), the slide s, ṡ, s̈ of
+    the block along the bar, the bar's point at A (velocity, acceleration), the condition."""
+    r = Ap - Op
+    dist = np.abs(r)
+    s, closed = sqrt_clamped(dist * dist - offset * offset, 1e-14 * (dist * dist + scale * scale))
+    s = branch * s
+    theta = np.angle(r) - np.angle(s + 1j * offset)
+    u = cis(theta)
+    w, sd = solve2(1j * r, u, Av - Ov)
+    e, sdd = solve2(1j * r, u, Aa - Oa + w * w * r - 2j * w * sd * u)
+    bv, ba = carry(Op, Ov, Oa, w, e, Ap)
+    # |s|/dist, reduced where the bar is shorter than the mechanism (0 when A is at O)
+    cond = np.abs(s) * np.minimum(1.0 / dist, 1.0 / scale)
+    return theta, w, e, s, sd, sdd, bv, ba, cond, closed
+
+
+def prp(G1p, G1v, G1a, t1, w1, e1, angle1, offset1, G2p, G2v, G2a, t2, w2, e2, angle2, offset2):
+    """PRP closed form: C on two guides, its motion, the guides' points at C, both slides."""
+    u1, b1 = guide_line(G1p, t1, angle1, offset1)
+    u2, b2 = guide_line(G2p, t2, angle2, offset2)
+    s1, s2 = solve2(u1, -u2, b2 - b1)
+    c = b1 + s1 * u1
+    c1v, c1a = carry(G1p, G1v, G1a, w1, e1, c)
+    c2v, c2a = carry(G2p, G2v, G2a, w2, e2, c)
+    sd1, sd2 = solve2(u1, -u2, c2v - c1v)
+    cor1, cor2 = 2j * w1 * sd1 * u1, 2j * w2 * sd2 * u2
+    sdd1, sdd2 = solve2(u1, -u2, c2a + cor2 - c1a - cor1)
+    cond = np.abs(cross(u1, u2))
+    closed = np.isfinite(s1) & (cond > 0)
+    return (c, c1v + sd1 * u1, c1a + cor1 + sdd1 * u1, c1v, c1a, c2v, c2a,
+            s1, sd1, sdd1, s2, sd2, sdd2, cond, closed)
+
+
+def rpp(Bp, Bv, Ba, Gp, Gv, Ga, gtheta, gw, ge, angle, offset, slot):
+    """RPP closed form: K (slot × guide) and its motion, the runner's point at B, the slides
+    t (block in the slot) and s (runner on the guide) with their rates."""
+    u, base = guide_line(Gp, gtheta, angle, offset)
+    v = u * cis(slot)
+    s, t = solve2(u, v, Bp - base)
+    k = base + s * u
+    bv, ba = carry(Gp, Gv, Ga, gw, ge, Bp)
+    sd, td = solve2(u, v, Bv - bv)
+    cor_s, cor_t = 2j * gw * sd * u, 2j * gw * td * v
+    sdd, tdd = solve2(u, v, Ba - ba - cor_s - cor_t)
+    kv, ka = carry(Gp, Gv, Ga, gw, ge, k)
+    return (k, kv + sd * u, ka + cor_s + sdd * u, bv + sd * u, ba + cor_s + sdd * u,
+            s, sd, sdd, t, td, tdd, np.isfinite(s))
+
+
+# ---- the same closed forms on the named points and links of a State ------------------------
+
+
+def slide_name(slider: str, guide_link: str) -> str:
+    """Name of the prismatic pair of ``slider`` on ``guide_link``."""
+    return f"P:{slider}/{guide_link}"
 
 
 def carried(m: Motion, link: LinkMotion, x: np.ndarray) -> Motion:
     """Motion of the point of ``link`` (whose origin moves as ``m``) that is at ``x`` now."""
-    r = x - m.p
-    return Motion(x, m.v + 1j * link.omega * r, m.a + (1j * link.epsilon - link.omega**2) * r)
+    return Motion(x, *carry(m.p, m.v, m.a, link.omega, link.epsilon, x))
 
 
 class State:
@@ -78,48 +202,22 @@ class State:
         self.links: dict[str, LinkMotion] = {}
         self.slides: dict[str, Motion] = {}
 
-    def guide(self, g: Guide) -> tuple[Motion, LinkMotion, np.ndarray, np.ndarray]:
-        """The guide's point motion, its link's motion, its unit direction u and the base point
-        of the guide line (complex arrays)."""
-        m = self.points[g.through]
-        link = self.links[g.link]
-        u = np.exp(1j * (link.theta + g.angle))
-        return m, link, u, m.p + 1j * g.offset * u
-
-
-def _unit(theta: np.ndarray) -> np.ndarray:
-    return np.exp(1j * theta)
-
-
-def _sqrt_clamped(h2: np.ndarray, scale2: float) -> tuple[np.ndarray, np.ndarray]:
-    """√h² where h² ≥ −tol (round-off at a toggle counts as 0), NaN where it is below."""
-    closed = h2 >= -1e-14 * scale2
-    with np.errstate(invalid="ignore"):
-        return np.where(closed, np.sqrt(np.maximum(h2, 0.0)), np.nan), closed
+    def guide(self, g: Guide) -> tuple:
+        """Arguments of a closed form for guide ``g``: its point's p, v, a, its link's θ, ω, ε,
+        the guide's angle and offset."""
+        m, link = self.points[g.through], self.links[g.link]
+        return m.p, m.v, m.a, link.theta, link.omega, link.epsilon, g.angle, g.offset
 
 
 def solve_rrr(g: RRR, st: State) -> GroupResult:
     """V_C = V_A + ω_AC × AC = V_D + ω_DC × DC (and the same with aⁿ + aᵗ) at the joint C."""
     A, D = (st.points[j] for j in g.joints)
-    l1, l2 = g.lengths
-    d = D.p - A.p
-    L = np.abs(d)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        a = (l1 * l1 - l2 * l2 + L * L) / (2 * L)
-        h, closed = _sqrt_clamped(l1 * l1 - a * a, l1 * l1)
-        c = A.p + (a + 1j * g.branch * h) * d / L
-    r1, r2 = c - A.p, c - D.p
-    w1, w2 = solve2(r1, -r2, -1j * (D.v - A.v))
-    q = D.a - A.a + w1**2 * r1 - w2**2 * r2
-    e1, e2 = solve2(r1, -r2, -1j * q)
-    v = A.v + 1j * w1 * r1
-    acc = A.a + (1j * e1 - w1**2) * r1
-    cond = np.abs(cross(r1, r2)) / (l1 * l2)
+    c, v, a, t1, w1, e1, t2, w2, e2, cond, closed = rrr(A.p, A.v, A.a, D.p, D.v, D.a, *g.lengths, g.branch)
     return GroupResult(
-        points={g.point: Motion(c, v, acc)},
+        points={g.point: Motion(c, v, a)},
         links={
-            g.links[0]: LinkMotion(g.joints[0], np.angle(r1), w1, e1),
-            g.links[1]: LinkMotion(g.joints[1], np.angle(r2), w2, e2),
+            g.links[0]: LinkMotion(g.joints[0], t1, w1, e1),
+            g.links[1]: LinkMotion(g.joints[1], t2, w2, e2),
         },
         slides={},
         condition=cond,
@@ -130,29 +228,21 @@ def solve_rrr(g: RRR, st: State) -> GroupResult:
 def solve_rrp(g: RRP, st: State) -> GroupResult:
     """V_C = V_A + ω × AC = V_C(guide) + V_rel (∥ guide); a_C adds aᵏ = 2·ω_guide × V_rel."""
     A = st.points[g.joint]
-    G, link, u, base = st.guide(g.guide)
-    w = (A.p - base) / u
-    h, closed = _sqrt_clamped(g.length**2 - w.imag**2, g.length**2)
-    s_along = w.real + g.branch * h
-    c = base + s_along * u
-    r = c - A.p
-    cg = carried(G, link, c)
-    sd, wr = solve2(u, -1j * r, A.v - cg.v)
-    coriolis = 2j * link.omega * sd * u
-    q = A.a - wr**2 * r - cg.a - coriolis
-    sdd, er = solve2(u, -1j * r, q)
-    slider, rod = g.links[1], g.links[0]
-    points = {g.point: Motion(c, cg.v + sd * u, cg.a + coriolis + sdd * u)}
+    link = st.links[g.guide.link]
+    c, v, a, gv, ga, tr, wr, er, s, sd, sdd, cond, closed = rrp(
+        A.p, A.v, A.a, *st.guide(g.guide), g.length, g.branch)
+    rod, slider = g.links
+    points = {g.point: Motion(c, v, a)}
     if g.coincident:
-        points[g.coincident] = cg
+        points[g.coincident] = Motion(c, gv, ga)
     return GroupResult(
         points=points,
         links={
-            rod: LinkMotion(g.joint, np.angle(r), wr, er),
+            rod: LinkMotion(g.joint, tr, wr, er),
             slider: LinkMotion(g.point, link.theta + g.guide.angle, link.omega, link.epsilon),
         },
-        slides={f"P:{slider}/{g.guide.link}": Motion(s_along, sd, sdd)},
-        condition=np.abs(h) / g.length,
+        slides={slide_name(slider, g.guide.link): Motion(s, sd, sdd)},
+        condition=cond,
         closed=closed,
     )
 
@@ -160,44 +250,28 @@ def solve_rrp(g: RRP, st: State) -> GroupResult:
 def solve_rpr(g: RPR, st: State, length_scale: float) -> GroupResult:
     """V_A(block) = V_O + ω × OA + V_rel (∥ bar); a_A adds aᵏ = 2·ω × V_rel and aʳ ∥ bar."""
     A, O = st.points[g.joint], st.points[g.pivot]
-    r = A.p - O.p
-    dist = np.abs(r)
-    s, closed = _sqrt_clamped(dist**2 - g.offset**2, dist**2 + length_scale**2)
-    s = g.branch * s
-    theta = np.angle(r) - np.angle(s + 1j * g.offset)
-    u = _unit(theta)
-    w, sd = solve2(1j * r, u, A.v - O.v)
-    q = A.a - O.a + w**2 * r - 2j * w * sd * u
-    e, sdd = solve2(1j * r, u, q)
+    theta, w, e, s, sd, sdd, bv, ba, cond, closed = rpr(
+        A.p, A.v, A.a, O.p, O.v, O.a, g.offset, g.branch, length_scale)
     block, bar = g.links
-    barm = LinkMotion(g.pivot, theta, w, e)
-    points = {g.coincident: carried(O, barm, A.p)} if g.coincident else {}
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cond = np.abs(s) / dist * np.minimum(1.0, dist / length_scale)
     return GroupResult(
-        points=points,
-        links={block: LinkMotion(g.joint, theta, w, e), bar: barm},
-        slides={f"P:{block}/{bar}": Motion(s, sd, sdd)},
-        condition=np.nan_to_num(cond),
+        points={g.coincident: Motion(A.p, bv, ba)} if g.coincident else {},
+        links={block: LinkMotion(g.joint, theta, w, e), bar: LinkMotion(g.pivot, theta, w, e)},
+        slides={slide_name(block, bar): Motion(s, sd, sdd)},
+        condition=cond,
         closed=closed,
     )
 
 
 def solve_prp(g: PRP, st: State) -> GroupResult:
     """V_C = V_C(guide 1) + V_rel1 = V_C(guide 2) + V_rel2, each V_rel ∥ its guide."""
-    (G1, k1, u1, b1), (G2, k2, u2, b2) = (st.guide(x) for x in g.guides)
-    s1, s2 = solve2(u1, -u2, b2 - b1)
-    c = b1 + s1 * u1
-    c1, c2 = carried(G1, k1, c), carried(G2, k2, c)
-    sd1, sd2 = solve2(u1, -u2, c2.v - c1.v)
-    cor1, cor2 = 2j * k1.omega * sd1 * u1, 2j * k2.omega * sd2 * u2
-    sdd1, sdd2 = solve2(u1, -u2, c2.a + cor2 - c1.a - cor1)
+    (c, v, a, c1v, c1a, c2v, c2a, s1, sd1, sdd1, s2, sd2, sdd2, cond, closed) = prp(
+        *st.guide(g.guides[0]), *st.guide(g.guides[1]))
     m1, m2 = g.links
-    points = {g.point: Motion(c, c1.v + sd1 * u1, c1.a + cor1 + sdd1 * u1)}
-    for name, cm in zip(g.coincident, (c1, c2)):
+    points = {g.point: Motion(c, v, a)}
+    for name, cv, ca in zip(g.coincident, (c1v, c2v), (c1a, c2a)):
         if name:
-            points[name] = cm
-    cond = np.abs(cross(u1, u2))
+            points[name] = Motion(c, cv, ca)
+    k1, k2 = (st.links[x.link] for x in g.guides)
     return GroupResult(
         points=points,
         links={
@@ -205,33 +279,24 @@ def solve_prp(g: PRP, st: State) -> GroupResult:
             m2: LinkMotion(g.point, k2.theta + g.guides[1].angle, k2.omega, k2.epsilon),
         },
         slides={
-            f"P:{m1}/{g.guides[0].link}": Motion(s1, sd1, sdd1),
-            f"P:{m2}/{g.guides[1].link}": Motion(s2, sd2, sdd2),
+            slide_name(m1, g.guides[0].link): Motion(s1, sd1, sdd1),
+            slide_name(m2, g.guides[1].link): Motion(s2, sd2, sdd2),
         },
         condition=cond,
-        closed=np.isfinite(s1) & (cond > 0),
+        closed=closed,
     )
 
 
 def solve_rpp(g: RPP, st: State) -> GroupResult:
     """V_B(block) = V_B(runner) + V_rel(∥ slot); V_B(runner) = V_B(guide link) + V_rel(∥ guide)."""
     B = st.points[g.joint]
-    G, k, u, base = st.guide(g.guide)
-    v = u * np.exp(1j * g.slot_angle)
-    s, t = solve2(u, v, B.p - base)
-    K = base + s * u
-    bg = carried(G, k, B.p)
-    sd, td = solve2(u, v, B.v - bg.v)
-    cor_s, cor_t = 2j * k.omega * sd * u, 2j * k.omega * td * v
-    sdd, tdd = solve2(u, v, B.a - bg.a - cor_s - cor_t)
+    k = st.links[g.guide.link]
+    K, kv, ka, bv, ba, s, sd, sdd, t, td, tdd, closed = rpp(
+        B.p, B.v, B.a, *st.guide(g.guide), g.slot_angle)
     block, runner = g.links
-    kmotion = carried(G, k, K)
-    points = {}
-    if g.coincident:
-        points[g.coincident] = Motion(B.p, bg.v + sd * u, bg.a + cor_s + sdd * u)
+    points = {g.coincident: Motion(B.p, bv, ba)} if g.coincident else {}
     origin = g.origin_name
-    points[origin] = Motion(K, kmotion.v + sd * u, kmotion.a + cor_s + sdd * u)
-    cond = np.abs(np.sin(g.slot_angle)) * np.ones(st.n)
+    points[origin] = Motion(K, kv, ka)
     theta = k.theta + g.guide.angle
     return GroupResult(
         points=points,
@@ -240,11 +305,11 @@ def solve_rpp(g: RPP, st: State) -> GroupResult:
             runner: LinkMotion(origin, theta, k.omega, k.epsilon),
         },
         slides={
-            f"P:{block}/{runner}": Motion(t, td, tdd),
-            f"P:{runner}/{g.guide.link}": Motion(s, sd, sdd),
+            slide_name(block, runner): Motion(t, td, tdd),
+            slide_name(runner, g.guide.link): Motion(s, sd, sdd),
         },
-        condition=cond,
-        closed=np.isfinite(s),
+        condition=np.full(st.n, abs(np.sin(g.slot_angle))),
+        closed=closed,
     )
 
 
@@ -258,7 +323,8 @@ SOLVERS: dict[type, Callable[..., GroupResult]] = {
 
 
 def solve_group(g: Group, st: State, length_scale: float) -> GroupResult:
-    """Dispatch to the closed-form solver of ``g``'s kind."""
+    """Dispatch to the closed-form solver of ``g``'s kind (call under ``np.errstate(all="ignore")``:
+    singular positions give inf/NaN)."""
     if isinstance(g, RPR):
         return solve_rpr(g, st, length_scale)
     return SOLVERS[type(g)](g, st)

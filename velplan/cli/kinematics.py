@@ -31,6 +31,9 @@ def register(sub) -> None:
     where.add_argument("--positions", metavar="N", type=positive_int, default=12,
                        help="N positions evenly spaced from the reference position (default 12)")
     p.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
+                   help="solver engine: compiled needs numba (pip install 'velplan[fast]'); "
+                        "auto uses it for large runs when installed (default)")
     add_output(p)
     p.set_defaults(run=run_analyze)
 
@@ -76,7 +79,7 @@ def run_info(args) -> int:
 def run_analyze(args) -> int:
     mech = load(args.mechanism)
     phi = parse_angles(args.angles) if args.angles else positions(mech, args.positions)
-    kin = solve(mech, phi)
+    kin = solve(mech, phi, engine=args.engine)
     render = {"json": to_json, "csv": to_csv, "table": to_table}[args.format]
     emit(render(kin), args.output)
     return 0

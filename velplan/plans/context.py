@@ -31,15 +31,37 @@ class Figure:
         return (self.img1, self.img2)
 
 
-class Context:
-    """Positions ``idx`` of a solved mechanism, the scales ``mu`` ({"v": μv, "a": μa}, units per
-    mm), and the drafting policy; collects conditions, bounds and segment lengths."""
+class Lazy(dict):
+    """A dict whose values may be given as functions of no argument, computed on first access
+    (what most requests never read — error bounds, segment lengths — costs nothing)."""
 
-    def __init__(self, kin: Kinematics, idx: np.ndarray, mu: dict, drafting: Drafting,
+    def __getitem__(self, key):
+        value = super().__getitem__(key)
+        if callable(value):
+            value = value()
+            super().__setitem__(key, value)
+        return value
+
+    def get(self, key, default=None):
+        return self[key] if key in self else default
+
+    def items(self):
+        return [(k, self[k]) for k in self]
+
+    def values(self):
+        return [self[k] for k in self]
+
+
+class Context:
+    """Positions ``idx`` (indices, or a slice for all) of a solved mechanism, the scales ``mu``
+    ({"v": μv, "a": μa}, units per mm), and the drafting policy; collects conditions, bounds and
+    segment lengths."""
+
+    def __init__(self, kin: Kinematics, idx: np.ndarray | slice, mu: dict, drafting: Drafting,
                  refuse_below: float, plan_steps: dict):
         self.kin = kin
         self.idx = idx
-        self.n = idx.shape[0]
+        self.n = len(kin.phi[idx])
         self.mu = mu
         self.drafting = drafting
         self.refuse_below = refuse_below
@@ -47,8 +69,8 @@ class Context:
         self.omega1 = kin.omega1
         self.epsilon1 = kin.epsilon1
         self.conditions: dict[str, np.ndarray] = {}
-        self.bounds: dict[str, np.ndarray] = {}
-        self.segments: dict[str, np.ndarray] = {}
+        self.bounds: dict[str, np.ndarray] = Lazy()
+        self.segments: dict[str, np.ndarray] = Lazy()
         self.components: dict[str, tuple[str, str, str]] = {}
         self._pos: dict[str, np.ndarray] = {}
 
@@ -57,7 +79,11 @@ class Context:
         z = self._pos.get(name)
         if z is None:
             xy = self.kin.positions[self.idx, self.kin._point(name)]
-            z = self._pos[name] = xy[:, 0] + 1j * xy[:, 1]
+            if xy.strides[-1] == xy.itemsize and xy.dtype == np.float64:
+                z = xy.view(np.complex128)[:, 0]  # the solver's own storage: no copy
+            else:
+                z = xy[:, 0] + 1j * xy[:, 1]
+            self._pos[name] = z
         return z
 
     def theta(self, link: str) -> np.ndarray:
@@ -84,7 +110,8 @@ class Context:
         cross = r.real * da.imag - r.imag * da.real
         return cross / np.abs(r) ** 2
 
-    def record_segment(self, step, label: str, length_mm: np.ndarray, component: str) -> None:
+    def record_segment(self, step, label: str, length_mm, component: str) -> None:
+        """The segment ``label`` (its length in mm, or a function giving it) and its component."""
         self.segments[label] = length_mm
         if component:
             self.components[component] = (label, step.target[0], step.target)
@@ -99,14 +126,18 @@ class Context:
         angular precision times the distance from the line's base point in drafting mode.
         """
         self.conditions[step.target] = sine
-        size = np.maximum.reduce([np.abs(x), np.abs(through[0]), np.abs(through[1]), np.ones(self.n)])
-        if self.drafting.exact:
-            delta = 8 * EPS * size
-        else:
-            arm = np.maximum(np.abs(x - through[0]), np.abs(x - through[1]))
-            delta = np.hypot(self.drafting.length_mm, np.radians(self.drafting.angle_deg) * arm)
-        with np.errstate(divide="ignore"):
-            self.bounds[step.target] = delta / sine
+
+        def bound():
+            size = np.maximum(np.maximum(np.abs(x), np.abs(through[0])), np.maximum(np.abs(through[1]), 1.0))
+            if self.drafting.exact:
+                delta = 8 * EPS * size
+            else:
+                arm = np.maximum(np.abs(x - through[0]), np.abs(x - through[1]))
+                delta = np.hypot(self.drafting.length_mm, np.radians(self.drafting.angle_deg) * arm)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return delta / sine
+
+        self.bounds[step.target] = bound
 
     def refused_mask(self, target: str) -> np.ndarray:
         return ~(self.conditions[target] >= self.refuse_below)

@@ -52,6 +52,22 @@ class Plan:
             raise MechanismError(f"two construction steps would draw the same image {dup!r}; rename a point")
         return cls(mech, steps, images, figures, tang)
 
+    def _construct(self, ctx: Context, steps: list[Step], kind: str, on_failure: str) -> dict:
+        """Evaluate ``steps`` in ``ctx``; raise at the first refused intersection if asked."""
+        vals: dict = {}
+        for s in steps:
+            vals[s.target] = s.evaluate(ctx, vals)
+            if on_failure == "raise" and isinstance(s, Intersect) and ctx.refused_mask(s.target).any():
+                i = int(np.argmax(ctx.refused_mask(s.target)))
+                sine = float(ctx.conditions[s.target][i])
+                raise SingularPositionError(
+                    f"{kind} plan: the lines meeting at {T.label_of(s.target)} are nearly parallel at crank angle "
+                    f"{np.degrees(ctx.kin.phi[ctx.idx][i]):.6g}° (sine of their angle {sine:.3g} < "
+                    f"{ctx.refuse_below:g}); refused",
+                    condition=sine,
+                )
+        return vals
+
     @cached_property
     def by_target(self) -> dict[str, Step]:
         return {s.target: s for s in self.steps}
@@ -124,35 +140,24 @@ class Plan:
         if (kin.epsilon1 != 0) and not self.tangential:
             raise MechanismError("ε1 ≠ 0: build the plan with tangential=True")
         idx = np.arange(len(kin)) if positions is None else np.asarray(positions, dtype=int)
+        sel = slice(None) if positions is None else idx  # every position: views, not copies
         mu = {
-            "v": check_scale(scale_v, "scale μv") if scale_v is not None else auto_scale(kin, idx, "velocity"),
+            "v": check_scale(scale_v, "scale μv") if scale_v is not None else auto_scale(kin, sel, "velocity"),
             "a": 1.0,
         }
         if kind == "acceleration":
-            mu["a"] = check_scale(scale_a, "scale μa") if scale_a is not None else auto_scale(kin, idx, "acceleration")
+            mu["a"] = check_scale(scale_a, "scale μa") if scale_a is not None else auto_scale(kin, sel, "acceleration")
         refuse = REFUSE_BELOW[drafting.mode] if refuse_below is None else refuse_below
         steps = self.needed(self.targets_for(kind, only))
-        ctx = Context(kin, idx, mu, drafting, refuse, self.by_target)
-        vals: dict = {}
-        for s in steps:
-            vals[s.target] = s.evaluate(ctx, vals)
-            if on_failure == "raise" and isinstance(s, Intersect) and ctx.refused_mask(s.target).any():
-                i = int(np.argmax(ctx.refused_mask(s.target)))
-                sine = float(ctx.conditions[s.target][i])
-                raise SingularPositionError(
-                    f"{kind} plan: the lines meeting at {T.label_of(s.target)} are nearly parallel at crank angle "
-                    f"{kin.phi_deg[idx[i]]:.6g}° (sine of their angle {sine:.3g} < {refuse:g}); refused",
-                    condition=sine,
-                )
+        ctx = Context(kin, sel, mu, drafting, refuse, self.by_target)
+        vals = self._construct(ctx, steps, kind, on_failure)
         return PlanResult(self, kin, kind, idx, mu, drafting, tuple(steps), vals, ctx)
 
 
-def auto_scale(kin: Kinematics, idx: np.ndarray, kind: Kind, target_mm: float | None = None) -> float:
-    """Standard scale so that the longest vector of ``kind`` at ``idx`` is ≤ ``target_mm``."""
-    arr = kin.velocities if kind == "velocity" else kin.accelerations
-    sizes = np.hypot(arr[idx, :, 0], arr[idx, :, 1])
-    sizes = sizes[np.isfinite(sizes)]
-    vmax = sizes.max(initial=0.0)
+def auto_scale(kin: Kinematics, idx, kind: Kind, target_mm: float | None = None) -> float:
+    """Standard scale so that the longest vector of ``kind`` at ``idx`` (indices or a slice) is
+    ≤ ``target_mm``."""
+    vmax = kin.largest(kind, idx)
     if vmax == 0:
         raise ScaleError(f"every {kind} is zero at the requested positions; give the scale explicitly")
     return standard_scale(vmax / (target_mm or TARGET_MM[kind]))

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.analysis.groups import cis
 from velplan.plans.context import Context, Figure
 from velplan.plans import text as T
 
@@ -144,7 +145,7 @@ class Parallel:
     along: str
 
     def unit(self, ctx: Context) -> np.ndarray:
-        return np.exp(1j * (ctx.theta(self.link) + self.angle))
+        return cis(ctx.theta(self.link) + self.angle)
 
     def text(self, lang: str) -> str:
         if self.along == "slot":
@@ -193,7 +194,7 @@ class LayOff:
 
     def evaluate(self, ctx: Context, vals) -> np.ndarray:
         z = ctx.drafting.vector(self.vector.value(ctx, vals) / ctx.mu[self.vector.plan])
-        ctx.record_segment(self, T.label_of(self.origin) + self.label, np.abs(z), self.vector.symbol())
+        ctx.record_segment(self, T.label_of(self.origin) + self.label, lambda: np.abs(z), self.vector.symbol())
         return vals[self.origin] + z
 
     def describe(self, ctx, vals, i, lang) -> str:
@@ -252,8 +253,9 @@ class Intersect:
         ctx.record_intersection(self, np.abs(cross), x, (p1, p2))
         for line, p in zip(self.lines, (p1, p2)):
             step = ctx.plan_steps[line]
-            ctx.record_segment(self, T.label_of(step.through) + self.label, np.abs(x - p), step.component)
-        return np.where(ctx.refused_mask(self.target), np.nan + 0j, x)
+            ctx.record_segment(self, T.label_of(step.through) + self.label, lambda p=p: np.abs(x - p), step.component)
+        refused = ctx.refused_mask(self.target)
+        return np.where(refused, np.nan + 0j, x) if refused.any() else x
 
     def describe(self, ctx, vals, i, lang) -> str:
         cond = ctx.conditions[self.target][i]
@@ -296,7 +298,7 @@ class Similar:
         with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
             ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
         z = ctx.drafting.vector((vals[f.img2] - vals[f.img1]) * ratio)
-        ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, np.abs(z), "")
+        ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, lambda: np.abs(z), "")
         return a + z
 
     def describe(self, ctx, vals, i, lang) -> str:

@@ -1,0 +1,112 @@
+"""The compiled engine (numba) against the numpy engine: the same closed forms, so the same
+values to round-off, the same masks, the same errors, on every example and on random
+mechanisms of every group kind."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import velplan
+from tests.strategies import mechanisms
+from velplan.analysis import compiled
+from velplan.analysis.solver import length_scale
+
+pytestmark = pytest.mark.skipif(not compiled.available(), reason="numba is not installed")
+
+FIELDS = ("positions", "velocities", "accelerations", "omegas", "epsilons", "slides", "condition")
+
+
+def assert_same(a, b, mech, tol=1e-12):
+    """Both engines agree: names, masks, and every value to ``tol`` of its scale, relaxed by the
+    solver's own error bound near toggles."""
+    assert a.point_index == b.point_index and a.link_index == b.link_index
+    assert a.slide_index == b.slide_index and a.group_index == b.group_index
+    assert a.link_origins == b.link_origins
+    np.testing.assert_array_equal(a.valid, b.valid)
+    ok = a.valid
+    L, w = length_scale(mech), abs(a.omega1)
+    relax = np.maximum(1.0, b.error_bound("acceleration")[ok] / 1e-13)
+    scales = {"positions": L, "velocities": w * L, "accelerations": w * w * L, "omegas": w, "epsilons": w * w,
+              "slides": w * w * L + w * L + L, "condition": 1.0}
+    for f in FIELDS:
+        x, y = getattr(a, f)[ok], getattr(b, f)[ok]
+        err = np.abs(x - y).reshape(len(x), -1).max(axis=1, initial=0.0)
+        assert (err <= tol * scales[f] * relax).all(), (f, err.max(initial=0.0))
+    # angles agree modulo 2π (a wrap at ±π may land on either side)
+    d = np.angle(np.exp(1j * (a.angles[ok] - b.angles[ok])))
+    assert (np.abs(d) <= 1e-12 * relax[:, None]).all()
+    assert ((a.angles[ok] > -np.pi) & (a.angles[ok] <= np.pi)).all()
+
+
+@pytest.mark.parametrize("name", velplan.example_names())
+def test_examples_agree_over_several_turns(name):
+    mech = velplan.load(name)
+    phi = np.linspace(-7.0, 7.0, 4001)
+    a = velplan.solve(mech, phi, engine="compiled", epsilon1=0.3)
+    b = velplan.solve(mech, phi, engine="numpy", epsilon1=0.3)
+    assert a.valid.any()
+    assert_same(a, b, mech)
+
+
+@settings(max_examples=40, deadline=None)
+@given(mechanisms(), st.lists(st.floats(-10, 10), min_size=1, max_size=40).map(np.array))
+def test_random_mechanisms_agree(mech, phi):
+    assert_same(velplan.solve(mech, phi, engine="compiled"), velplan.solve(mech, phi, engine="numpy"), mech)
+
+
+def test_positions_that_do_not_close_are_masked_alike():
+    # a crank-rocker made too long for its coupler: B has no position over part of the turn
+    mech = velplan.loads("""
+        [ground]
+        O = [0.0, 0.0]
+        D = [0.30, 0.0]
+        [crank]
+        link = "1"
+        pivot = "O"
+        tip = "A"
+        length = 0.10
+        omega = 10.0
+        [[group]]
+        kind = "RRR"
+        name = "2-3"
+        links = ["2", "3"]
+        joints = ["A", "D"]
+        point = "B"
+        lengths = [0.12, 0.12]
+    """, check_assembly=False)
+    phi = np.linspace(0, 2 * math.pi, 721)
+    a = velplan.solve(mech, phi, engine="compiled")
+    b = velplan.solve(mech, phi, engine="numpy")
+    assert 0 < a.valid.sum() < len(phi)
+    assert np.isnan(a.positions[~a.valid]).any(axis=(1, 2)).all()  # never NaN without the mask
+    assert_same(a, b, mech)
+    with pytest.raises(velplan.AssemblyError, match=r"group '2-3' \(RRR\) cannot be assembled: point 'B'"):
+        velplan.solve(mech, phi, engine="compiled", on_failure="raise")
+
+
+def test_auto_engine_and_bad_engine_name():
+    mech = velplan.load("four-bar")
+    kin = velplan.solve(mech, np.linspace(0, 1, 5), engine="auto")  # few angles: the numpy engine
+    assert kin.valid.all()
+    with pytest.raises(ValueError, match="engine must be"):
+        velplan.solve(mech, 0.0, engine="fortran")
+
+
+def test_empty_and_scalar_input():
+    mech = velplan.load("shaper")
+    assert len(velplan.solve(mech, np.array([]), engine="compiled")) == 0
+    a, b = velplan.solve(mech, 1.0, engine="compiled"), velplan.solve(mech, 1.0)
+    assert_same(a, b, mech)
+
+
+def test_cli_engines_print_the_same_table(capsys):
+    from velplan.cli import main
+
+    outs = []
+    for engine in ("numpy", "compiled"):
+        assert main(["analyze", "shaper", "--positions", "12", "--engine", engine]) == 0
+        outs.append(capsys.readouterr().out)
+    assert outs[0] == outs[1] and "φ, deg" in outs[0]
