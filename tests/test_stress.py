@@ -12,12 +12,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import velplan
+from velplan.analysis import compiled
 from velplan.plans import Plan
 from tests.strategies import mechanisms
 
 log_scale = st.floats(-6, 3).map(lambda e: 10.0**e)
 log_omega = st.tuples(st.floats(-3, 4), st.sampled_from([1, -1])).map(lambda t: t[1] * 10.0 ** t[0])
 DELTAS = [1e-3, 1e-6, 1e-9, 1e-12]
+ENGINES = ["numpy", "compiled"] if compiled.available() else ["numpy"]
 
 
 def _scaled(mech, k):
@@ -46,9 +48,10 @@ def _scaled(mech, k):
 
 
 @settings(max_examples=60, deadline=None)
-@given(mechanisms(scale=log_scale, omega=log_omega), st.lists(st.floats(0, 2 * math.pi), min_size=1, max_size=8))
-def test_random_sizes_and_speeds_mask_every_nan_and_match_the_plan(mech, phi):
-    kin = velplan.solve(mech, phi)
+@given(mechanisms(scale=log_scale, omega=log_omega), st.lists(st.floats(0, 2 * math.pi), min_size=1, max_size=8),
+       st.sampled_from(ENGINES))
+def test_random_sizes_and_speeds_mask_every_nan_and_match_the_plan(mech, phi, engine):
+    kin = velplan.solve(mech, phi, engine=engine)
     bad = ~np.isfinite(kin.positions).all(axis=(1, 2)) | ~np.isfinite(kin.velocities).all(axis=(1, 2))
     bad |= ~np.isfinite(kin.accelerations).all(axis=(1, 2))
     assert not (bad & kin.valid).any(), "NaN or inf without a mask"
@@ -77,15 +80,16 @@ def test_results_scale_exactly_with_the_size_of_the_mechanism(mech, e, phi):
     assert np.allclose(b.omegas, a.omegas, rtol=tol, atol=tol * abs(mech.crank.omega))
 
 
+@pytest.mark.parametrize("engine", ENGINES)
 @pytest.mark.parametrize("name", velplan.example_names())
-def test_a_hair_from_every_dead_centre(name):
+def test_a_hair_from_every_dead_centre(name, engine):
     """At φ_e ± δ (δ down to 1e-12 rad) of every extreme of every link and slide: assembled,
     continuous with the extreme itself (no branch flip), the rate ≈ its slope × δ."""
     mech = velplan.load(name)
     for q, roots in velplan.extremes(mech).items():
         for e in roots:
             phi = np.array([e.phi] + [e.phi + s * d for d in DELTAS for s in (-1, 1)])
-            kin = velplan.solve(mech, phi, omega1=1.0, epsilon1=0.0)
+            kin = velplan.solve(mech, phi, omega1=1.0, epsilon1=0.0, engine=engine)
             assert kin.valid.all(), (name, q)
             vmax = np.abs(kin.velocities).max()
             step = np.abs(kin.positions[1:] - kin.positions[0]).max(axis=(1, 2))
@@ -98,13 +102,14 @@ def test_a_hair_from_every_dead_centre(name):
             assert np.allclose(rate[1:], expect[1:], rtol=1e-2, atol=1e-13 * max(1.0, vmax)), (name, q)
 
 
+@pytest.mark.parametrize("engine", ENGINES)
 @pytest.mark.parametrize("delta", DELTAS)
-def test_a_hair_from_a_group_toggle_is_bounded_or_masked(delta):
+def test_a_hair_from_a_group_toggle_is_bounded_or_masked(delta, engine):
     from tests.plans.test_plan_features import _toggle_slider
 
     mech = _toggle_slider()
     phi = np.array([math.pi / 2 - delta, math.pi / 2 + delta])
-    kin = velplan.solve(mech, phi)
+    kin = velplan.solve(mech, phi, engine=engine)
     res = Plan.of(mech).evaluate(kin, kind="velocity")
     for i in range(2):
         if kin.valid[i]:

@@ -2,8 +2,9 @@
 position by numba (``pip install velplan[fast]``), in parallel, in one pass over the outputs.
 
 The mechanism is encoded as a small program — one row per crank, group and link point, each
-an opcode, register slots and real parameters — and a single kernel, compiled once per process,
-interprets that program at every crank angle. The kernel calls the very functions the numpy
+an opcode, register slots and real parameters — and a single kernel interprets that program
+at every crank angle. The kernel is compiled once per machine (≈ 20 s) and cached on disk by
+numba; a new process loads it in well under a second. The kernel calls the very functions the numpy
 engine calls on whole arrays (`groups.rrr`, `groups.rrp`, …), compiled for scalars, so the two
 engines share every formula; only the bookkeeping differs.
 """
@@ -221,7 +222,7 @@ def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - o
 
 @lru_cache(maxsize=1)
 def kernel():
-    """The compiled kernel (numba compiles it on the first call, a few seconds, once per process)."""
+    """The compiled kernel: loaded from numba's disk cache, or compiled on its first call."""
     if not available():
         raise VelplanError("the compiled engine needs numba: pip install 'velplan[fast]'")
     import numba
