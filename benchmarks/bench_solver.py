@@ -234,7 +234,7 @@ def _plan_evaluate(plans, plan, mech, phi, *, drafting=None, target_mm=None, eng
         kw["scale_v"] = plans.auto_scale(kin, idx, "velocity", target_mm)
         kw["scale_a"] = plans.auto_scale(kin, idx, "acceleration", 1.2 * target_mm)
     rv = plan.evaluate(kin, kind="velocity", **kw)
-    ra = plan.evaluate(kin, kind="acceleration", **kw)
+    ra = plan.evaluate(kin, kind="acceleration", velocity=rv, **kw)  # on the velocity plan drawn
     names = [k for k in rv.vectors if k in ra.vectors]
     vel = np.stack([rv.vectors[k] for k in names], axis=1)
     acc = np.stack([ra.vectors[k] for k in names], axis=1)

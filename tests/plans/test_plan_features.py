@@ -206,3 +206,28 @@ def test_check_table_errors(tmp_path):
     bad.write_text("quantity,2,3\nVC/ω1,0.1,0.1\n")
     with pytest.raises(TableError, match=r"position headers must be 1…2 in order, not \[2, 3\]$"):
         check_table(mech, bad)
+
+
+@pytest.mark.parametrize("name", ["shaper", "press"])
+def test_acceleration_plan_on_a_velocity_plan_already_drawn(name):
+    """velocity= reuses the drawn velocity plan: the same acceleration plan, the velocity steps
+    not drawn again, and a velocity plan from other positions is refused."""
+    mech = velplan.load(name)
+    plan = Plan.of(mech)
+    kin = velplan.solve(mech, velplan.positions(mech, 12))
+    rv = plan.evaluate(kin, kind="velocity")
+    fresh = plan.evaluate(kin, kind="acceleration")
+    reused = plan.evaluate(kin, kind="acceleration", velocity=rv)
+    for p, v in fresh.vectors.items():
+        np.testing.assert_array_equal(reused.vectors[p], v)
+    assert reused.scales == fresh.scales and reused.flags == fresh.flags
+    assert set(fresh.components) <= set(reused.components)  # and the velocity plan's own
+    # random drafting: the acceleration plan is drawn on the very velocity images given
+    rng_plan = plan.evaluate(kin, kind="velocity", drafting=Drafting(rng=np.random.default_rng(1)))
+    acc = plan.evaluate(kin, kind="acceleration", drafting=rng_plan.drafting, velocity=rng_plan)
+    for t, z in rng_plan.values.items():
+        assert acc.values[t] is z
+    with pytest.raises(ValueError, match="same kinematics, positions"):
+        plan.evaluate(kin, kind="acceleration", positions=[0, 1], velocity=rv)
+    with pytest.raises(ValueError, match="takes a velocity plan"):
+        plan.evaluate(kin, kind="acceleration", velocity=fresh)

@@ -28,8 +28,8 @@ from velplan.mechanism.structure import schedule
 CRANK, POINT, OP_RRR, OP_RRP, OP_RPR, OP_PRP, OP_RPP = range(7)
 NI, NF = 13, 4
 """Integer slots and real parameters per program row (unused ones are −1 / 0)."""
-CHUNK = 2048
-"""Crank angles one thread solves in a row (its registers stay in the L1 cache)."""
+CHUNK = 256
+"""Crank angles one thread solves at a time (its slices of the outputs stay in the CPU's caches)."""
 CORES = ("cross", "solve2", "cis", "carry", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
 
 
@@ -118,106 +118,121 @@ def _wrap(t):
 def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - one switch
     """Interpret the program at every angle of ``phi``; write Z (3, P, n) positions, velocities,
     accelerations; R (3, L, n) angles, ω, ε; S (S, 3, n) slides; C (G, n) conditions (NaN where
-    a group does not close) and ``valid`` (n,)."""
+    a group does not close) and ``valid`` (n,).
+
+    Each thread takes a chunk of angles and runs the program over it one row at a time; the
+    chunk's slices of the outputs are its registers (the frame, link L, reads as zeros).
+    """
     n = phi.shape[0]
     nP, nL, nS, nG = Z.shape[1], R.shape[1], S.shape[0], C.shape[0]
     for chunk in prange((n + CHUNK - 1) // CHUNK):
-        p = np.zeros(nP, dtype=np.complex128)
-        v = np.zeros(nP, dtype=np.complex128)
-        a = np.zeros(nP, dtype=np.complex128)
-        th = np.zeros(nL + 1)
-        om = np.zeros(nL + 1)
-        ep = np.zeros(nL + 1)
-        sl = np.zeros((nS, 3))
-        cn = np.zeros(nG)
-        for i in range(chunk * CHUNK, min(n, (chunk + 1) * CHUNK)):
-            for j in range(ground.shape[0]):
-                p[j] = ground[j]
-            for k in range(ops.shape[0]):
-                o = ops[k]
-                f = par[k]
-                op = o[0]
-                if op == CRANK:
-                    r = f[0] * cis(phi[i])
-                    p[o[2]] = p[o[1]] + r
-                    v[o[2]] = 1j * w1 * r
-                    a[o[2]] = (1j * e1 - w1 * w1) * r
-                    th[o[3]], om[o[3]], ep[o[3]] = phi[i], w1, e1
-                elif op == POINT:
-                    q, x = o[2], o[3]
-                    z = p[q] + (f[0] + 1j * f[1]) * cis(th[o[1]])
-                    p[x] = z
-                    v[x], a[x] = carry(p[q], v[q], a[q], om[o[1]], ep[o[1]], z)
-                elif op == OP_RRR:
-                    A, D = o[1], o[2]
+        i0 = chunk * CHUNK
+        i1 = min(n, i0 + CHUNK)
+        m = i1 - i0
+        zero = np.zeros(m)
+        p, v, a = Z[0, :, i0:i1], Z[1, :, i0:i1], Z[2, :, i0:i1]
+        th, om, ep = R[0, :, i0:i1], R[1, :, i0:i1], R[2, :, i0:i1]
+        cn = C[:, i0:i1]
+        for j in range(ground.shape[0]):
+            for t in range(m):
+                p[j, t], v[j, t], a[j, t] = ground[j], 0.0, 0.0
+        for k in range(ops.shape[0]):
+            o = ops[k]
+            f = par[k]
+            op = o[0]
+            if op == CRANK:
+                q, x, lk = o[1], o[2], o[3]
+                for t in range(m):
+                    r = f[0] * cis(phi[i0 + t])
+                    p[x, t], v[x, t], a[x, t] = p[q, t] + r, 1j * w1 * r, (1j * e1 - w1 * w1) * r
+                    th[lk, t], om[lk, t], ep[lk, t] = phi[i0 + t], w1, e1
+            elif op == POINT:
+                lk, q, x = o[1], o[2], o[3]
+                lt, lw, le = (th[lk], om[lk], ep[lk]) if lk < nL else (zero, zero, zero)
+                for t in range(m):
+                    z = p[q, t] + (f[0] + 1j * f[1]) * cis(lt[t])
+                    p[x, t] = z
+                    v[x, t], a[x, t] = carry(p[q, t], v[q, t], a[q, t], lw[t], le[t], z)
+            elif op == OP_RRR:
+                A, D, x, l1, l2, g = o[1], o[2], o[3], o[4], o[5], o[6]
+                for t in range(m):
                     c, cv, ca, t1, w_1, e_1, t2, w_2, e_2, cond, closed = rrr(
-                        p[A], v[A], a[A], p[D], v[D], a[D], f[0], f[1], f[2])
-                    p[o[3]], v[o[3]], a[o[3]] = c, cv, ca
-                    th[o[4]], om[o[4]], ep[o[4]] = t1, w_1, e_1
-                    th[o[5]], om[o[5]], ep[o[5]] = t2, w_2, e_2
-                    cn[o[6]] = cond if closed else np.nan
-                elif op == OP_RRP:
-                    A, Q, gl = o[1], o[2], o[3]
+                        p[A, t], v[A, t], a[A, t], p[D, t], v[D, t], a[D, t], f[0], f[1], f[2])
+                    p[x, t], v[x, t], a[x, t] = c, cv, ca
+                    th[l1, t], om[l1, t], ep[l1, t] = t1, w_1, e_1
+                    th[l2, t], om[l2, t], ep[l2, t] = t2, w_2, e_2
+                    cn[g, t] = cond if closed else np.nan
+            elif op == OP_RRP:
+                A, Q, gl, x, xc, rod, sld, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9]
+                gt, gw, ge = (th[gl], om[gl], ep[gl]) if gl < nL else (zero, zero, zero)
+                for t in range(m):
                     c, cv, ca, gv, ga, tr, wr, er, s, sd, sdd, cond, closed = rrp(
-                        p[A], v[A], a[A], p[Q], v[Q], a[Q], th[gl], om[gl], ep[gl], f[0], f[1], f[2], f[3])
-                    p[o[4]], v[o[4]], a[o[4]] = c, cv, ca
-                    if o[5] >= 0:
-                        p[o[5]], v[o[5]], a[o[5]] = c, gv, ga
-                    th[o[6]], om[o[6]], ep[o[6]] = tr, wr, er
-                    th[o[7]], om[o[7]], ep[o[7]] = th[gl] + f[0], om[gl], ep[gl]
-                    sl[o[8], 0], sl[o[8], 1], sl[o[8], 2] = s, sd, sdd
-                    cn[o[9]] = cond if closed else np.nan
-                elif op == OP_RPR:
-                    A, Q = o[1], o[2]
-                    t, w, e, s, sd, sdd, bv, ba, cond, closed = rpr(
-                        p[A], v[A], a[A], p[Q], v[Q], a[Q], f[0], f[1], f[2])
-                    if o[3] >= 0:
-                        p[o[3]], v[o[3]], a[o[3]] = p[A], bv, ba
-                    th[o[4]], om[o[4]], ep[o[4]] = t, w, e
-                    th[o[5]], om[o[5]], ep[o[5]] = t, w, e
-                    sl[o[6], 0], sl[o[6], 1], sl[o[6], 2] = s, sd, sdd
-                    cn[o[7]] = cond if closed else np.nan
-                elif op == OP_PRP:
-                    Q1, l1, Q2, l2 = o[1], o[2], o[3], o[4]
+                        p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t],
+                        f[0], f[1], f[2], f[3])
+                    p[x, t], v[x, t], a[x, t] = c, cv, ca
+                    if xc >= 0:
+                        p[xc, t], v[xc, t], a[xc, t] = c, gv, ga
+                    th[rod, t], om[rod, t], ep[rod, t] = tr, wr, er
+                    th[sld, t], om[sld, t], ep[sld, t] = gt[t] + f[0], gw[t], ge[t]
+                    S[s_, 0, i0 + t], S[s_, 1, i0 + t], S[s_, 2, i0 + t] = s, sd, sdd
+                    cn[g, t] = cond if closed else np.nan
+            elif op == OP_RPR:
+                A, Q, xc, blk, bar, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
+                for t in range(m):
+                    tt, w, e, s, sd, sdd, bv, ba, cond, closed = rpr(
+                        p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], f[0], f[1], f[2])
+                    if xc >= 0:
+                        p[xc, t], v[xc, t], a[xc, t] = p[A, t], bv, ba
+                    th[blk, t], om[blk, t], ep[blk, t] = tt, w, e
+                    th[bar, t], om[bar, t], ep[bar, t] = tt, w, e
+                    S[s_, 0, i0 + t], S[s_, 1, i0 + t], S[s_, 2, i0 + t] = s, sd, sdd
+                    cn[g, t] = cond if closed else np.nan
+            elif op == OP_PRP:
+                Q1, g1, Q2, g2, x, xc1, xc2 = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
+                m1, m2, s1_, s2_, g = o[8], o[9], o[10], o[11], o[12]
+                t1, w_1, e_1 = (th[g1], om[g1], ep[g1]) if g1 < nL else (zero, zero, zero)
+                t2, w_2, e_2 = (th[g2], om[g2], ep[g2]) if g2 < nL else (zero, zero, zero)
+                for t in range(m):
                     c, cv, ca, c1v, c1a, c2v, c2a, s1, sd1, sdd1, s2, sd2, sdd2, cond, closed = prp(
-                        p[Q1], v[Q1], a[Q1], th[l1], om[l1], ep[l1], f[0], f[1],
-                        p[Q2], v[Q2], a[Q2], th[l2], om[l2], ep[l2], f[2], f[3])
-                    p[o[5]], v[o[5]], a[o[5]] = c, cv, ca
-                    if o[6] >= 0:
-                        p[o[6]], v[o[6]], a[o[6]] = c, c1v, c1a
-                    if o[7] >= 0:
-                        p[o[7]], v[o[7]], a[o[7]] = c, c2v, c2a
-                    th[o[8]], om[o[8]], ep[o[8]] = th[l1] + f[0], om[l1], ep[l1]
-                    th[o[9]], om[o[9]], ep[o[9]] = th[l2] + f[2], om[l2], ep[l2]
-                    sl[o[10], 0], sl[o[10], 1], sl[o[10], 2] = s1, sd1, sdd1
-                    sl[o[11], 0], sl[o[11], 1], sl[o[11], 2] = s2, sd2, sdd2
-                    cn[o[12]] = cond if closed else np.nan
-                else:  # OP_RPP
-                    B, Q, gl = o[1], o[2], o[3]
-                    k_, kv, ka, bv, ba, s, sd, sdd, t, td, tdd, closed = rpp(
-                        p[B], v[B], a[B], p[Q], v[Q], a[Q], th[gl], om[gl], ep[gl], f[0], f[1], f[2])
-                    if o[4] >= 0:
-                        p[o[4]], v[o[4]], a[o[4]] = p[B], bv, ba
-                    p[o[5]], v[o[5]], a[o[5]] = k_, kv, ka
-                    theta = th[gl] + f[0]
-                    th[o[6]], om[o[6]], ep[o[6]] = theta + f[2], om[gl], ep[gl]
-                    th[o[7]], om[o[7]], ep[o[7]] = theta, om[gl], ep[gl]
-                    sl[o[8], 0], sl[o[8], 1], sl[o[8], 2] = t, td, tdd
-                    sl[o[9], 0], sl[o[9], 1], sl[o[9], 2] = s, sd, sdd
-                    cn[o[10]] = abs(np.sin(f[2])) if closed else np.nan
+                        p[Q1, t], v[Q1, t], a[Q1, t], t1[t], w_1[t], e_1[t], f[0], f[1],
+                        p[Q2, t], v[Q2, t], a[Q2, t], t2[t], w_2[t], e_2[t], f[2], f[3])
+                    p[x, t], v[x, t], a[x, t] = c, cv, ca
+                    if xc1 >= 0:
+                        p[xc1, t], v[xc1, t], a[xc1, t] = c, c1v, c1a
+                    if xc2 >= 0:
+                        p[xc2, t], v[xc2, t], a[xc2, t] = c, c2v, c2a
+                    th[m1, t], om[m1, t], ep[m1, t] = t1[t] + f[0], w_1[t], e_1[t]
+                    th[m2, t], om[m2, t], ep[m2, t] = t2[t] + f[2], w_2[t], e_2[t]
+                    S[s1_, 0, i0 + t], S[s1_, 1, i0 + t], S[s1_, 2, i0 + t] = s1, sd1, sdd1
+                    S[s2_, 0, i0 + t], S[s2_, 1, i0 + t], S[s2_, 2, i0 + t] = s2, sd2, sdd2
+                    cn[g, t] = cond if closed else np.nan
+            else:  # OP_RPP
+                B, Q, gl, xc, xk, blk, run, sb_, sr_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]
+                gt, gw, ge = (th[gl], om[gl], ep[gl]) if gl < nL else (zero, zero, zero)
+                sine = abs(np.sin(f[2]))
+                for t in range(m):
+                    k_, kv, ka, bv, ba, s, sd, sdd, u, ud, udd, closed = rpp(
+                        p[B, t], v[B, t], a[B, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t],
+                        f[0], f[1], f[2])
+                    if xc >= 0:
+                        p[xc, t], v[xc, t], a[xc, t] = p[B, t], bv, ba
+                    p[xk, t], v[xk, t], a[xk, t] = k_, kv, ka
+                    theta = gt[t] + f[0]
+                    th[blk, t], om[blk, t], ep[blk, t] = theta + f[2], gw[t], ge[t]
+                    th[run, t], om[run, t], ep[run, t] = theta, gw[t], ge[t]
+                    S[sb_, 0, i0 + t], S[sb_, 1, i0 + t], S[sb_, 2, i0 + t] = u, ud, udd
+                    S[sr_, 0, i0 + t], S[sr_, 1, i0 + t], S[sr_, 2, i0 + t] = s, sd, sdd
+                    cn[g, t] = sine if closed else np.nan
+        for t in range(m):
             ok = True
             for j in range(nP):
-                Z[0, j, i], Z[1, j, i], Z[2, j, i] = p[j], v[j], a[j]
-                ok = ok and np.isfinite(p[j]) and np.isfinite(v[j]) and np.isfinite(a[j])
+                ok = ok and np.isfinite(p[j, t]) and np.isfinite(v[j, t]) and np.isfinite(a[j, t])
             for j in range(nL):
-                R[0, j, i], R[1, j, i], R[2, j, i] = _wrap(th[j]), om[j], ep[j]
-                ok = ok and np.isfinite(om[j]) and np.isfinite(ep[j])
-            for j in range(nS):
-                S[j, 0, i], S[j, 1, i], S[j, 2, i] = sl[j, 0], sl[j, 1], sl[j, 2]
+                th[j, t] = _wrap(th[j, t])
+                ok = ok and np.isfinite(om[j, t]) and np.isfinite(ep[j, t])
             for j in range(nG):
-                C[j, i] = cn[j]
-                ok = ok and cn[j] > 0
-            valid[i] = ok
+                ok = ok and cn[j, t] > 0
+            valid[i0 + t] = ok
 
 
 @lru_cache(maxsize=1)

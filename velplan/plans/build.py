@@ -10,10 +10,10 @@ from which any other point of the link is placed by similarity and its ω (ε) r
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, Guide, LinkPoint, Mechanism
-from velplan.mechanism.structure import schedule
+from velplan.mechanism.structure import coincident_points, material_points, schedule
 from velplan.plans.context import Figure
 from velplan.plans.steps import (
     Coriolis,
@@ -292,6 +292,24 @@ def construct(mech: Mechanism, *, tangential: bool | None = None) -> tuple[tuple
             b.point(item)
         else:
             handlers[type(item)](item)
+    fixed = _fixed_points(mech)
+    for steps in b.steps.values():  # similarity whose ratio stays constant: points fixed to their links
+        steps[:] = [replace(x, rigid=_rigid(x, fixed)) if isinstance(x, Similar) else x for x in steps]
     images = {"v": dict(b.v.images), "a": dict(b.a.images)}
     figures = {"v": dict(b.v.rotor), "a": dict(b.a.rotor)}
     return tuple(b.steps["v"] + b.steps["a"]), images, figures
+
+
+def _fixed_points(mech: Mechanism) -> dict[str, set[str]]:
+    """Link → the named points that are one and the same material point of it at every position
+    (coincident points, a different one each time, left out)."""
+    moving = coincident_points(mech)
+    return {link: {p for p in names if p not in moving} for link, names in material_points(mech).items()}
+
+
+def _rigid(step: Similar, fixed: dict[str, set[str]]) -> bool:
+    """Whether the similarity ratio (P − anchor)/(P2 − P1) of ``step`` is the same at every
+    position: all four points fixed to their links, which turn together."""
+    f = step.base
+    return (f is not None and {step.point, step.anchor} <= fixed.get(step.link, set())
+            and {f.p1, f.p2} <= fixed.get(f.link, set()))

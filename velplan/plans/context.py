@@ -73,6 +73,8 @@ class Context:
         self.segments: dict[str, np.ndarray] = Lazy()
         self.components: dict[str, tuple[str, str, str]] = {}
         self._pos: dict[str, np.ndarray] = {}
+        self._best: int | None = None
+        self._omega: dict[Figure, np.ndarray] = {}
 
     def pos(self, name: str) -> np.ndarray:
         """Complex position (m) of mechanism point ``name`` at the evaluated positions."""
@@ -86,6 +88,27 @@ class Context:
             self._pos[name] = z
         return z
 
+    def constant_ratio(self, point: str, anchor: str, p1: str, p2: str) -> complex:
+        """(point − anchor)/(p2 − p1) for points fixed to links turning together: the same at
+        every position, taken at the best-conditioned one evaluated (NaN if none is assembled)."""
+        i = self.best_position()
+        if i < 0:
+            return complex(np.nan, np.nan)
+        j = self.kin._point
+        P = self.kin.positions[i]
+        num, den = P[j(point)] - P[j(anchor)], P[j(p2)] - P[j(p1)]
+        return complex(*num) / complex(*den)
+
+    def best_position(self) -> int:
+        """Index (into the whole solution) of the best-conditioned assembled position evaluated,
+        −1 if none is."""
+        if self._best is None:
+            c = np.where(self.kin.valid[self.idx], self.kin.min_condition()[self.idx], -1.0)
+            k = int(np.argmax(c)) if c.size else 0
+            where = range(len(self.kin))[self.idx] if isinstance(self.idx, slice) else self.idx
+            self._best = int(where[k]) if c.size and c[k] >= 0 else -1
+        return self._best
+
     def theta(self, link: str) -> np.ndarray:
         """Angle (rad) of ``link``'s reference direction (0 for the frame)."""
         if link == GROUND:
@@ -94,7 +117,14 @@ class Context:
 
     def omega_of(self, f: Figure, vals) -> np.ndarray:
         """ω (rad/s) of a link read off the velocity plan: ω = V_rel / l, its sign the sense
-        in which the relative velocity turns the link (counter-clockwise positive)."""
+        in which the relative velocity turns the link (counter-clockwise positive). Read once
+        per figure, as on paper, and reused."""
+        w = self._omega.get(f)
+        if w is None:
+            w = self._omega[f] = self._read_omega(f, vals)
+        return w
+
+    def _read_omega(self, f: Figure, vals) -> np.ndarray:
         r = self.pos(f.p2) - self.pos(f.p1)
         dv = (vals[f.img2] - vals[f.img1]) * self.mu["v"]
         cross = r.real * dv.imag - r.imag * dv.real

@@ -52,10 +52,12 @@ class Plan:
             raise MechanismError(f"two construction steps would draw the same image {dup!r}; rename a point")
         return cls(mech, steps, images, figures, tang)
 
-    def _construct(self, ctx: Context, steps: list[Step], kind: str, on_failure: str) -> dict:
-        """Evaluate ``steps`` in ``ctx``; raise at the first refused intersection if asked."""
-        vals: dict = {}
+    def _construct(self, ctx: Context, steps: list[Step], kind: str, on_failure: str, vals: dict) -> dict:
+        """Evaluate ``steps`` in ``ctx`` (those in ``vals`` are drawn already); raise at the first
+        refused intersection if asked."""
         for s in steps:
+            if s.target in vals:
+                continue
             vals[s.target] = s.evaluate(ctx, vals)
             if on_failure == "raise" and isinstance(s, Intersect) and ctx.refused_mask(s.target).any():
                 i = int(np.argmax(ctx.refused_mask(s.target)))
@@ -67,6 +69,18 @@ class Plan:
                     condition=sine,
                 )
         return vals
+
+    @staticmethod
+    def _reuse(velocity: "PlanResult", kin, kind, idx, drafting, mu, ctx: Context, vals: dict) -> None:
+        """Start from a velocity plan already drawn: its images, μv and records."""
+        if velocity.kind != "velocity" or kind != "acceleration":
+            raise ValueError("velocity= takes a velocity plan, for an acceleration plan")
+        if velocity.kin is not kin or velocity.drafting != drafting or not np.array_equal(velocity.index, idx):
+            raise ValueError("velocity= must be drawn from the same kinematics, positions and drafting")
+        vals.update(velocity.values)
+        for name in ("conditions", "bounds", "segments", "components"):
+            dict.update(getattr(ctx, name), getattr(velocity.ctx, name))
+        ctx._best, ctx._pos, ctx._omega = velocity.ctx._best, dict(velocity.ctx._pos), dict(velocity.ctx._omega)
 
     @cached_property
     def by_target(self) -> dict[str, Step]:
@@ -115,6 +129,7 @@ class Plan:
         drafting: Drafting = EXACT,
         refuse_below: float | None = None,
         on_failure: Literal["nan", "raise"] = "nan",
+        velocity: "PlanResult | None" = None,
     ) -> "PlanResult":
         """Construct the plan at ``positions`` (indices into ``kin``; all by default).
 
@@ -132,6 +147,9 @@ class Plan:
             Refuse intersections whose |sin| is below this (default 1e-8 exact, 0.02 drafting).
         on_failure : {"nan", "raise"}
             What a refused intersection gives: NaN and a mask, or `SingularPositionError`.
+        velocity : PlanResult, optional
+            For an acceleration plan: the velocity plan already drawn (same kinematics, positions
+            and drafting); its images, scale and records are used instead of being drawn again.
         """
         if kind not in ("velocity", "acceleration"):
             raise ValueError(f"kind must be 'velocity' or 'acceleration', not {kind!r}")
@@ -142,7 +160,8 @@ class Plan:
         idx = np.arange(len(kin)) if positions is None else np.asarray(positions, dtype=int)
         sel = slice(None) if positions is None else idx  # every position: views, not copies
         mu = {
-            "v": check_scale(scale_v, "scale μv") if scale_v is not None else auto_scale(kin, sel, "velocity"),
+            "v": velocity.scales["v"] if velocity is not None
+            else check_scale(scale_v, "scale μv") if scale_v is not None else auto_scale(kin, sel, "velocity"),
             "a": 1.0,
         }
         if kind == "acceleration":
@@ -150,7 +169,10 @@ class Plan:
         refuse = REFUSE_BELOW[drafting.mode] if refuse_below is None else refuse_below
         steps = self.needed(self.targets_for(kind, only))
         ctx = Context(kin, sel, mu, drafting, refuse, self.by_target)
-        vals = self._construct(ctx, steps, kind, on_failure)
+        vals: dict = {}
+        if velocity is not None:
+            self._reuse(velocity, kin, kind, idx, drafting, mu, ctx, vals)
+        vals = self._construct(ctx, steps, kind, on_failure, vals)
         return PlanResult(self, kin, kind, idx, mu, drafting, tuple(steps), vals, ctx)
 
 

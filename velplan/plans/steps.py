@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from velplan.analysis.groups import cis
+from velplan.mechanism.model import GROUND
 from velplan.plans.context import Context, Figure
 from velplan.plans import text as T
 
@@ -129,7 +130,8 @@ class Perpendicular:
     def unit(self, ctx: Context) -> np.ndarray:
         d = ctx.pos(self.b) - ctx.pos(self.a)
         with np.errstate(invalid="ignore", divide="ignore"):
-            return 1j * d / np.abs(d)
+            d *= 1.0 / np.abs(d)
+        return d * 1j
 
     def text(self, lang: str) -> str:
         return T.phrase("perp", lang, T.seg(self.a, self.b))
@@ -145,6 +147,8 @@ class Parallel:
     along: str
 
     def unit(self, ctx: Context) -> np.ndarray:
+        if self.link == GROUND:  # a guide of the frame keeps its direction
+            return np.full(ctx.n, cis(self.angle))
         return cis(ctx.theta(self.link) + self.angle)
 
     def text(self, lang: str) -> str:
@@ -284,6 +288,8 @@ class Similar:
     anchor: str
     anchor_image: str
     base: Figure | None
+    rigid: bool = False
+    """All four points are fixed to their links: the ratio is the same at every position."""
 
     @property
     def inputs(self) -> tuple[str, ...]:
@@ -295,8 +301,11 @@ class Similar:
         if self.base is None:
             return a
         f = self.base
-        with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
-            ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
+        if self.rigid:
+            ratio = ctx.constant_ratio(self.point, self.anchor, f.p1, f.p2)
+        else:
+            with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
+                ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
         z = ctx.drafting.vector((vals[f.img2] - vals[f.img1]) * ratio)
         ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, lambda: np.abs(z), "")
         return a + z
