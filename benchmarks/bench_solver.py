@@ -222,7 +222,8 @@ def _plan_api():
     return None
 
 
-def _plan_evaluate(plans, plan, mech, phi, *, drafting=None, target_mm=None, engine="numpy", kin=None):
+def _plan_evaluate(plans, plan, mech, phi, *, drafting=None, target_mm=None, engine="numpy", kin=None,
+                   stack=True):
     """Solve (unless ``kin`` is given), then construct the velocity and the acceleration plans at
     every angle.
 
@@ -235,7 +236,9 @@ def _plan_evaluate(plans, plan, mech, phi, *, drafting=None, target_mm=None, eng
         kw["scale_a"] = plans.auto_scale(kin, idx, "acceleration", 1.2 * target_mm)
     rv = plan.evaluate(kin, kind="velocity", **kw)
     ra = plan.evaluate(kin, kind="acceleration", velocity=rv, **kw)  # on the velocity plan drawn
-    names = [k for k in rv.vectors if k in ra.vectors]
+    names = [k for k in rv.vectors if k in ra.vectors]  # every point read off both plans
+    if not stack:  # timing: the plans' own readout, without this script's (n, P, 2) copies
+        return names, None, None, rv.omegas, ra.epsilons
     vel = np.stack([rv.vectors[k] for k in names], axis=1)
     acc = np.stack([ra.vectors[k] for k in names], axis=1)
     return names, vel, acc, rv.omegas, ra.epsilons
@@ -276,12 +279,12 @@ def plan_methods(mech, ref, sizes) -> list[Row]:
         row.errors.update(_link_errors(ref, mech, om, ep))
         row.note = "solve + velocity plan + acceleration plan"
         if family == "plans":
-            time_sizes(row, lambda phi: _plan_evaluate(plans, plan, mech, phi), sizes)
+            time_sizes(row, lambda phi: _plan_evaluate(plans, plan, mech, phi, stack=False), sizes)
             rows += plan_timings(plans, plan, mech, sizes, row)
         else:  # drafting costs the same whatever the precision: time one variant
             if draft_times is None:
                 probe = Row(mech.name, name, family)
-                time_sizes(probe, lambda phi, kw=kw: _plan_evaluate(plans, plan, mech, phi, **kw), sizes)
+                time_sizes(probe, lambda phi, kw=kw: _plan_evaluate(plans, plan, mech, phi, stack=False, **kw), sizes)
                 draft_times = (probe.times, probe.repeats)
             row.times, row.repeats = dict(draft_times[0]), dict(draft_times[1])
         rows.append(row)
@@ -297,7 +300,7 @@ def plan_timings(plans, plan, mech, sizes, exact: Row) -> list[Row]:
         kin = solved.get(phi.shape[0])
         if kin is None:
             kin = solved[phi.shape[0]] = velplan.solve(mech, phi, epsilon1=0.0)
-        return _plan_evaluate(plans, plan, mech, phi, kin=kin)
+        return _plan_evaluate(plans, plan, mech, phi, kin=kin, stack=False)
 
     rows = [Row(mech.name, "plan exact, both plans on a solved mechanism", "plans timing",
                 errors=dict(exact.errors), note="velocity plan + acceleration plan, without the solve")]
@@ -306,7 +309,8 @@ def plan_timings(plans, plan, mech, sizes, exact: Row) -> list[Row]:
     if "compiled" in ENGINES:
         rows.append(Row(mech.name, "plan exact, compiled solve", "plans timing", errors=dict(exact.errors),
                         note="solve (compiled engine) + velocity plan + acceleration plan"))
-        time_sizes(rows[-1], lambda phi: _plan_evaluate(plans, plan, mech, phi, engine="compiled"), sizes)
+        time_sizes(rows[-1], lambda phi: _plan_evaluate(plans, plan, mech, phi, engine="compiled", stack=False),
+                   sizes)
     return rows
 
 

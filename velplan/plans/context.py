@@ -31,6 +31,13 @@ class Figure:
         return (self.img1, self.img2)
 
 
+def _per_length2(cross: np.ndarray, r: np.ndarray, mu: float) -> np.ndarray:
+    """μ·cross / |r|² (in place in ``cross``): a rate read off a plan (rad/s or rad/s²)."""
+    cross *= mu
+    cross /= r.real * r.real + r.imag * r.imag
+    return cross
+
+
 class Lazy(dict):
     """A dict whose values may be given as functions of no argument, computed on first access
     (what most requests never read — error bounds, segment lengths — costs nothing)."""
@@ -96,8 +103,8 @@ class Context:
             return complex(np.nan, np.nan)
         j = self.kin._point
         P = self.kin.positions[i]
-        num, den = P[j(point)] - P[j(anchor)], P[j(p2)] - P[j(p1)]
-        return complex(*num) / complex(*den)
+        num, den = complex(*(P[j(point)] - P[j(anchor)])), complex(*(P[j(p2)] - P[j(p1)]))
+        return num / den if den != 0 else complex(np.nan, np.nan)
 
     def best_position(self) -> int:
         """Index (into the whole solution) of the best-conditioned assembled position evaluated,
@@ -126,19 +133,18 @@ class Context:
 
     def _read_omega(self, f: Figure, vals) -> np.ndarray:
         r = self.pos(f.p2) - self.pos(f.p1)
-        dv = (vals[f.img2] - vals[f.img1]) * self.mu["v"]
+        dv = vals[f.img2] - vals[f.img1]
         cross = r.real * dv.imag - r.imag * dv.real
         if self.drafting.exact:
-            return cross / np.abs(r) ** 2
+            return _per_length2(cross, r, self.mu["v"])
         read = self.drafting.length(np.abs(vals[f.img2] - vals[f.img1])) * self.mu["v"]
         return np.sign(cross) * read / np.abs(r)
 
     def epsilon_of(self, f: Figure, vals) -> np.ndarray:
         """ε (rad/s²) of a link read off the acceleration plan (tangential part / l)."""
         r = self.pos(f.p2) - self.pos(f.p1)
-        da = (vals[f.img2] - vals[f.img1]) * self.mu["a"]
-        cross = r.real * da.imag - r.imag * da.real
-        return cross / np.abs(r) ** 2
+        da = vals[f.img2] - vals[f.img1]
+        return _per_length2(r.real * da.imag - r.imag * da.real, r, self.mu["a"])
 
     def record_segment(self, step, label: str, length_mm, component: str) -> None:
         """The segment ``label`` (its length in mm, or a function giving it) and its component."""

@@ -176,6 +176,12 @@ class Plan:
         return PlanResult(self, kin, kind, idx, mu, drafting, tuple(steps), vals, ctx)
 
 
+def _xy(z: np.ndarray) -> np.ndarray:
+    """(n, 2) x, y of a complex array of its own (a view: no copy)."""
+    z = np.ascontiguousarray(z, dtype=complex)
+    return z.view(float).reshape(z.shape[0], 2)
+
+
 def auto_scale(kin: Kinematics, idx, kind: Kind, target_mm: float | None = None) -> float:
     """Standard scale so that the longest vector of ``kind`` at ``idx`` (indices or a slice) is
     ≤ ``target_mm``."""
@@ -241,7 +247,7 @@ class PlanResult:
     def image(self, name: str) -> np.ndarray:
         """(n, 2) image of point ``name`` on this plan, mm from the pole."""
         z = self.values[self._image_key(name)]
-        return np.stack([z.real, z.imag], -1)
+        return _xy(z.copy())
 
     @cached_property
     def images(self) -> dict[str, np.ndarray]:
@@ -250,7 +256,7 @@ class PlanResult:
         out = {p: self.image(p) for p, t in self.plan.images[k].items() if t in self.values}
         for t, z in self.values.items():
             if t.startswith(k + ":") and not isinstance(z, tuple) and t not in self.plan.images[k].values():
-                out[T.label_of(t)] = np.stack([z.real, z.imag], -1)
+                out[T.label_of(t)] = _xy(z.copy())
         return out
 
     def vector(self, name: str) -> np.ndarray:
@@ -258,7 +264,7 @@ class PlanResult:
         z = self.values[self._image_key(name)]
         with np.errstate(invalid="ignore", divide="ignore"):
             read = self.drafting.vector(z) * self.scale
-        return np.stack([read.real, read.imag], -1)
+        return _xy(read)
 
     @cached_property
     def vectors(self) -> dict[str, np.ndarray]:
