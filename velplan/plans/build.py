@@ -55,6 +55,7 @@ class _Builder:
         self.v, self.a = _Sheet("v"), _Sheet("a")
         self.counters = {"n": 0, "k": 0, "line": 0}
         self.labels = _labels(mech)
+        self.fixed = _fixed_points(mech)
 
     # -- helpers ---------------------------------------------------------------------------------
 
@@ -96,9 +97,10 @@ class _Builder:
     def figure(self, link, p1, p2, point_img=None) -> tuple[Figure, Figure]:
         """(velocity, acceleration) figures of ``link`` on its points p1, p2."""
         iv = point_img or {}
-        return (
-            Figure(link, p1, iv.get(("v", p1), self.v.images.get(p1)), p2, iv.get(("v", p2), self.v.images.get(p2))),
-            Figure(link, p1, iv.get(("a", p1), self.a.images.get(p1)), p2, iv.get(("a", p2), self.a.images.get(p2))),
+        rigid = {p1, p2} <= self.fixed.get(link, set())
+        return tuple(
+            Figure(link, p1, iv.get((k, p1), s.images.get(p1)), p2, iv.get((k, p2), s.images.get(p2)), rigid)
+            for k, s in (("v", self.v), ("a", self.a))
         )
 
     def coriolis_line(self, link_of_guide: str, origin_a: str, rel: tuple[str, str], direction, component: str,
@@ -292,9 +294,8 @@ def construct(mech: Mechanism, *, tangential: bool | None = None) -> tuple[tuple
             b.point(item)
         else:
             handlers[type(item)](item)
-    fixed = _fixed_points(mech)
     for steps in b.steps.values():  # similarity whose ratio stays constant: points fixed to their links
-        steps[:] = [replace(x, rigid=_rigid(x, fixed)) if isinstance(x, Similar) else x for x in steps]
+        steps[:] = [replace(x, rigid=_rigid(x, b.fixed)) if isinstance(x, Similar) else x for x in steps]
     images = {"v": dict(b.v.images), "a": dict(b.a.images)}
     figures = {"v": dict(b.v.rotor), "a": dict(b.a.rotor)}
     return tuple(b.steps["v"] + b.steps["a"]), images, figures
@@ -311,5 +312,4 @@ def _rigid(step: Similar, fixed: dict[str, set[str]]) -> bool:
     """Whether the similarity ratio (P − anchor)/(P2 − P1) of ``step`` is the same at every
     position: all four points fixed to their links, which turn together."""
     f = step.base
-    return (f is not None and {step.point, step.anchor} <= fixed.get(step.link, set())
-            and {f.p1, f.p2} <= fixed.get(f.link, set()))
+    return f is not None and f.rigid and {step.point, step.anchor} <= fixed.get(step.link, set())

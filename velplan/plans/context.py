@@ -25,17 +25,12 @@ class Figure:
     img1: str
     p2: str
     img2: str
+    rigid: bool = False
+    """p1 and p2 are fixed to the link: their distance is the same at every position."""
 
     @property
     def inputs(self) -> tuple[str, str]:
         return (self.img1, self.img2)
-
-
-def _per_length2(cross: np.ndarray, r: np.ndarray, mu: float) -> np.ndarray:
-    """μ·cross / |r|² (in place in ``cross``): a rate read off a plan (rad/s or rad/s²)."""
-    cross *= mu
-    cross /= r.real * r.real + r.imag * r.imag
-    return cross
 
 
 class Lazy(dict):
@@ -82,6 +77,7 @@ class Context:
         self._pos: dict[str, np.ndarray] = {}
         self._best: int | None = None
         self._omega: dict[Figure, np.ndarray] = {}
+        self._memo: dict = {}
 
     def pos(self, name: str) -> np.ndarray:
         """Complex position (m) of mechanism point ``name`` at the evaluated positions."""
@@ -94,6 +90,14 @@ class Context:
                 z = xy[:, 0] + 1j * xy[:, 1]
             self._pos[name] = z
         return z
+
+    def memo(self, key, compute):
+        """``compute()`` once per context (and the acceleration plan drawn on its velocity plan):
+        the geometry both plans share — directions of lines, similarity ratios."""
+        value = self._memo.get(key)
+        if value is None:
+            value = self._memo[key] = compute()
+        return value
 
     def constant_ratio(self, point: str, anchor: str, p1: str, p2: str) -> complex:
         """(point − anchor)/(p2 − p1) for points fixed to links turning together: the same at
@@ -131,12 +135,26 @@ class Context:
             w = self._omega[f] = self._read_omega(f, vals)
         return w
 
+    def _length2(self, f: Figure, r: np.ndarray):
+        """|p2 − p1|² (m²) of a figure: one number when it is rigid, else per position."""
+        if f.rigid:
+            return self.memo(("length2", f.p1, f.p2), lambda: self._rigid_length2(f))
+        return r.real * r.real + r.imag * r.imag
+
+    def _rigid_length2(self, f: Figure) -> float:
+        i = self.best_position()
+        if i < 0:
+            return float("nan")
+        d = self.kin.positions[i, self.kin._point(f.p2)] - self.kin.positions[i, self.kin._point(f.p1)]
+        return float(d @ d)
+
     def _read_omega(self, f: Figure, vals) -> np.ndarray:
         r = self.pos(f.p2) - self.pos(f.p1)
         dv = vals[f.img2] - vals[f.img1]
         cross = r.real * dv.imag - r.imag * dv.real
         if self.drafting.exact:
-            return _per_length2(cross, r, self.mu["v"])
+            cross *= self.mu["v"] / self._length2(f, r)
+            return cross
         read = self.drafting.length(np.abs(vals[f.img2] - vals[f.img1])) * self.mu["v"]
         return np.sign(cross) * read / np.abs(r)
 
@@ -144,7 +162,9 @@ class Context:
         """ε (rad/s²) of a link read off the acceleration plan (tangential part / l)."""
         r = self.pos(f.p2) - self.pos(f.p1)
         da = vals[f.img2] - vals[f.img1]
-        return _per_length2(r.real * da.imag - r.imag * da.real, r, self.mu["a"])
+        cross = r.real * da.imag - r.imag * da.real
+        cross *= self.mu["a"] / self._length2(f, r)
+        return cross
 
     def record_segment(self, step, label: str, length_mm, component: str) -> None:
         """The segment ``label`` (its length in mm, or a function giving it) and its component."""

@@ -80,7 +80,8 @@ class Plan:
         vals.update(velocity.values)
         for name in ("conditions", "bounds", "segments", "components"):
             dict.update(getattr(ctx, name), getattr(velocity.ctx, name))
-        ctx._best, ctx._pos, ctx._omega = velocity.ctx._best, dict(velocity.ctx._pos), dict(velocity.ctx._omega)
+        v = velocity.ctx
+        ctx._best, ctx._pos, ctx._omega, ctx._memo = v._best, dict(v._pos), dict(v._omega), dict(v._memo)
 
     @cached_property
     def by_target(self) -> dict[str, Step]:

@@ -128,6 +128,9 @@ class Perpendicular:
     b: str
 
     def unit(self, ctx: Context) -> np.ndarray:
+        return ctx.memo(self, lambda: self._unit(ctx))
+
+    def _unit(self, ctx: Context) -> np.ndarray:
         d = ctx.pos(self.b) - ctx.pos(self.a)
         with np.errstate(invalid="ignore", divide="ignore"):
             d *= 1.0 / np.abs(d)
@@ -149,7 +152,7 @@ class Parallel:
     def unit(self, ctx: Context) -> np.ndarray:
         if self.link == GROUND:  # a guide of the frame keeps its direction
             return np.full(ctx.n, cis(self.angle))
-        return cis(ctx.theta(self.link) + self.angle)
+        return ctx.memo(self, lambda: cis(ctx.theta(self.link) + self.angle))
 
     def text(self, lang: str) -> str:
         if self.along == "slot":
@@ -304,11 +307,15 @@ class Similar:
         if self.rigid:
             ratio = ctx.constant_ratio(self.point, self.anchor, f.p1, f.p2)
         else:
-            with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
-                ratio = (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
+            ratio = ctx.memo(("ratio", self.point, self.anchor, f.p1, f.p2), lambda: self._ratio(ctx))
         z = ctx.drafting.vector((vals[f.img2] - vals[f.img1]) * ratio)
         ctx.record_segment(self, T.label_of(self.anchor_image) + self.label, lambda: np.abs(z), "")
         return a + z
+
+    def _ratio(self, ctx: Context) -> np.ndarray:
+        f = self.base
+        with np.errstate(divide="ignore", invalid="ignore"):  # NaN at positions already masked
+            return (ctx.pos(self.point) - ctx.pos(self.anchor)) / (ctx.pos(f.p2) - ctx.pos(f.p1))
 
     def describe(self, ctx, vals, i, lang) -> str:
         if self.base is None:
