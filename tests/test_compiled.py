@@ -87,10 +87,19 @@ def test_positions_that_do_not_close_are_masked_alike():
         velplan.solve(mech, phi, engine="compiled", on_failure="raise")
 
 
-def test_auto_engine_and_bad_engine_name():
+def test_auto_engine_and_bad_engine_name(monkeypatch):
+    from velplan.analysis import solver
+
     mech = velplan.load("four-bar")
-    kin = velplan.solve(mech, np.linspace(0, 1, 5), engine="auto")  # few angles: the numpy engine
-    assert kin.valid.all()
+    calls = []
+    real = solver._solve_compiled
+    monkeypatch.setattr(solver, "_solve_compiled", lambda *a: calls.append(len(a[1])) or real(*a))
+    monkeypatch.setattr(compiled, "loaded", lambda: False)
+    velplan.solve(mech, np.linspace(0, 1, 5), engine="auto")  # few angles, kernel not loaded: numpy
+    assert calls == []
+    monkeypatch.setattr(compiled, "loaded", lambda: True)
+    kin = velplan.solve(mech, np.linspace(0, 1, 5), engine="auto")  # loaded: compiled
+    assert calls == [5] and kin.valid.all()
     with pytest.raises(ValueError, match="engine must be"):
         velplan.solve(mech, 0.0, engine="fortran")
 

@@ -235,6 +235,11 @@ def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - o
             valid[i0 + t] = ok
 
 
+def loaded() -> bool:
+    """True once the kernel is loaded (or compiled) in this process."""
+    return kernel.cache_info().currsize > 0
+
+
 @lru_cache(maxsize=1)
 def kernel():
     """The compiled kernel: loaded from numba's disk cache, or compiled on its first call."""

@@ -33,7 +33,7 @@ def register(sub) -> None:
     p.add_argument("--format", choices=("table", "csv", "json"), default="table")
     p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
                    help="solver engine: compiled needs numba (pip install 'velplan[fast]'); "
-                        "auto uses it for large runs when installed (default)")
+                        "auto uses it from 2e6 angles when installed (default)")
     add_output(p)
     p.set_defaults(run=run_analyze)
 
