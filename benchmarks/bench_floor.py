@@ -15,11 +15,9 @@ Writes ``benchmarks/results/floor.md``.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
-from _common import RESULTS, grid, load_average, machine_md, table, write
+from _common import RESULTS, grid, load_average, machine_md, median_time, table, write
 
 import velplan  # noqa: E402
 from velplan.analysis import solver  # noqa: E402
@@ -57,13 +55,8 @@ def arrays(shape):
 
 
 def median(fn) -> float:
-    fn()
-    times = []
-    for _ in range(REPEATS):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times)) / N
+    """Median seconds per position of ``fn()`` (one warm-up run first)."""
+    return median_time(fn, N, repeats=REPEATS)[0] / N
 
 
 def main() -> int:

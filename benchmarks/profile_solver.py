@@ -92,8 +92,9 @@ def _solve_block(mech, phi, w1, e1, *, crank_cs: bool = False, unit_cache: bool 
                     e = units[item.link]
                 else:
                     e = np.exp(1j * link.theta)
-                st.points[item.name] = G.carried(origin, link, origin.p + (item.along + 1j * item.offset) * e)
-                lap(f"point {item.name}: `np.exp(1j*theta)` + `carried`")
+                x = origin.p + (item.along + 1j * item.offset) * e
+                st.points[item.name] = G.Motion(x, *G.carry(origin.p, origin.v, origin.a, link.omega, link.epsilon, x))
+                lap(f"point {item.name}: `np.exp(1j*theta)` + `carry`")
             else:
                 res = G.solve_group(item, st, scale)
                 st.points.update(res.points)

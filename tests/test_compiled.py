@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 import velplan
 from tests.strategies import mechanisms
+from tests.test_errors import four_bar
 from velplan.analysis import compiled
 from velplan.analysis.solver import length_scale
 
@@ -58,25 +59,8 @@ def test_random_mechanisms_agree(mech, phi):
 
 
 def test_positions_that_do_not_close_are_masked_alike():
-    # a crank-rocker made too long for its coupler: B has no position over part of the turn
-    mech = velplan.loads("""
-        [ground]
-        O = [0.0, 0.0]
-        D = [0.30, 0.0]
-        [crank]
-        link = "1"
-        pivot = "O"
-        tip = "A"
-        length = 0.10
-        omega = 10.0
-        [[group]]
-        kind = "RRR"
-        name = "2-3"
-        links = ["2", "3"]
-        joints = ["A", "D"]
-        point = "B"
-        lengths = [0.12, 0.12]
-    """, check_assembly=False)
+    # the crank-rocker of the error tests with a coupler too short: B has no position over part of the turn
+    mech = velplan.loads(four_bar(coupler=0.12), check_assembly=False)
     phi = np.linspace(0, 2 * math.pi, 721)
     a = velplan.solve(mech, phi, engine="compiled")
     b = velplan.solve(mech, phi, engine="numpy")

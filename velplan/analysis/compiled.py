@@ -30,7 +30,7 @@ NI, NF = 13, 4
 """Integer slots and real parameters per program row (unused ones are −1 / 0)."""
 CHUNK = 256
 """Crank angles one thread solves at a time (its slices of the outputs stay in the CPU's caches)."""
-CORES = ("cross", "solve2", "cis", "carry", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
+CORES = ("cross", "solve2", "cis", "carry", "crank_tip", "link_point", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
 
 
 @lru_cache(maxsize=1)
@@ -143,16 +143,13 @@ def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - o
             if op == CRANK:
                 q, x, lk = o[1], o[2], o[3]
                 for t in range(m):
-                    r = f[0] * cis(phi[i0 + t])
-                    p[x, t], v[x, t], a[x, t] = p[q, t] + r, 1j * w1 * r, (1j * e1 - w1 * w1) * r
+                    p[x, t], v[x, t], a[x, t] = crank_tip(p[q, t], f[0], phi[i0 + t], w1, e1)
                     th[lk, t], om[lk, t], ep[lk, t] = phi[i0 + t], w1, e1
             elif op == POINT:
                 lk, q, x = o[1], o[2], o[3]
                 lt, lw, le = (th[lk], om[lk], ep[lk]) if lk < nL else (zero, zero, zero)
                 for t in range(m):
-                    z = p[q, t] + (f[0] + 1j * f[1]) * cis(lt[t])
-                    p[x, t] = z
-                    v[x, t], a[x, t] = carry(p[q, t], v[q, t], a[q, t], lw[t], le[t], z)
+                    p[x, t], v[x, t], a[x, t] = link_point(p[q, t], v[q, t], a[q, t], lt[t], lw[t], le[t], f[0], f[1])
             elif op == OP_RRR:
                 A, D, x, l1, l2, g = o[1], o[2], o[3], o[4], o[5], o[6]
                 for t in range(m):

@@ -83,6 +83,20 @@ def carry(p, v, a, omega, epsilon, x):
     return v + 1j * omega * r, a + (1j * epsilon - omega * omega) * r
 
 
+def crank_tip(p, length, phi, omega, epsilon):
+    """Tip of a crank of ``length`` turning about the fixed pivot ``p`` at angle ``phi``, ``omega``,
+    ``epsilon``: its position, velocity and acceleration."""
+    r = length * cis(phi)
+    return p + r, 1j * omega * r, (1j * epsilon - omega * omega) * r
+
+
+def link_point(p, v, a, theta, omega, epsilon, along, offset):
+    """The point ``along`` (m) the reference direction of a link (at ``theta``, turning at
+    ``omega``, ``epsilon``) from its origin at ``p`` and ``offset`` (m) to its left: x, V, a."""
+    x = p + (along + 1j * offset) * cis(theta)
+    return (x, *carry(p, v, a, omega, epsilon, x))
+
+
 def guide_line(p, theta, angle, offset):
     """Unit direction u and base point of a guide through ``p`` on a link at angle ``theta``."""
     u = cis(theta + angle)
@@ -186,11 +200,6 @@ def rpp(Bp, Bv, Ba, Gp, Gv, Ga, gtheta, gw, ge, angle, offset, slot):
 def slide_name(slider: str, guide_link: str) -> str:
     """Name of the prismatic pair of ``slider`` on ``guide_link``."""
     return f"P:{slider}/{guide_link}"
-
-
-def carried(m: Motion, link: LinkMotion, x: np.ndarray) -> Motion:
-    """Motion of the point of ``link`` (whose origin moves as ``m``) that is at ``x`` now."""
-    return Motion(x, *carry(m.p, m.v, m.a, link.omega, link.epsilon, x))
 
 
 class State:

@@ -13,7 +13,7 @@ from typing import Literal, Mapping
 import numpy as np
 
 from velplan.analysis import compiled
-from velplan.analysis.groups import GroupResult, LinkMotion, Motion, State, carried, solve_group
+from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
 from velplan.mechanism.structure import schedule
@@ -253,7 +253,7 @@ def _solve_compiled(mech, phi, w1, e1, scale, on_failure) -> Kinematics:
             if not isinstance(item, (Crank, LinkPoint)):
                 row = out.condition[out.groups.index(item.name)]
                 if np.isnan(row).any():
-                    _check(item, GroupResult({}, {}, {}, row, ~np.isnan(row)), phi, on_failure)
+                    _check(item, ~np.isnan(row), phi, on_failure)
     return out.kinematics(mech, phi, w1, e1, st, valid)
 
 
@@ -277,12 +277,12 @@ def _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure) -> None:
             _solve_crank(item, st, phi, w1, e1)
         elif isinstance(item, LinkPoint):
             link = st.links[item.link]
-            origin = st.points[link.origin]
-            x = origin.p + (item.along + 1j * item.offset) * np.exp(1j * link.theta)
-            st.points[item.name] = carried(origin, link, x)
+            o = st.points[link.origin]
+            st.points[item.name] = Motion(*link_point(o.p, o.v, o.a, link.theta, link.omega, link.epsilon,
+                                                      item.along, item.offset))
         else:
             res = solve_group(item, st, scale)
-            _check(item, res, phi, on_failure)
+            _check(item, res.closed, phi, on_failure)
             st.points.update(res.points)
             st.links.update(res.links)
             st.slides.update(res.slides)
@@ -290,9 +290,7 @@ def _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure) -> None:
 
 
 def _solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> None:
-    O = st.points[c.pivot]
-    r = c.length * np.exp(1j * phi)
-    st.points[c.tip] = Motion(O.p + r, 1j * w1 * r, (1j * e1 - w1 * w1) * r)
+    st.points[c.tip] = Motion(*crank_tip(st.points[c.pivot].p, c.length, phi, w1, e1))
     n = phi.shape[0]
     st.links[c.link] = LinkMotion(c.pivot, phi.copy(), np.full(n, w1), np.full(n, e1))
 
@@ -304,9 +302,9 @@ def group_point(g: Group) -> str:
     return g.point
 
 
-def _check(g: Group, res: GroupResult, phi: np.ndarray, on_failure: str) -> None:
-    if on_failure == "raise" and not res.closed.all():
-        bad = float(np.degrees(phi[np.argmin(res.closed)]))
+def _check(g: Group, closed: np.ndarray, phi: np.ndarray, on_failure: str) -> None:
+    if on_failure == "raise" and not closed.all():
+        bad = float(np.degrees(phi[np.argmin(closed)]))
         raise AssemblyError(
             f"group {g.name!r} ({g.kind}) cannot be assembled: point {group_point(g)!r} "
             f"has no position at crank angle {bad:.6g}°",
