@@ -120,3 +120,41 @@ def test_blocks_give_the_same_results_as_one_pass(monkeypatch):
     for name in ("positions", "velocities", "accelerations", "angles", "omegas", "epsilons", "slides", "condition"):
         assert np.array_equal(getattr(whole, name), getattr(blocks, name), equal_nan=True), name
     assert np.array_equal(whole.valid, blocks.valid)
+
+
+def test_angles_are_wrapped_into_the_half_open_interval():
+    """(−π, π]: −π itself becomes π, values inside stay bit for bit, others move by whole turns."""
+    from velplan.analysis.groups import wrap_angle
+
+    edge = np.array([-np.pi, np.pi, np.nextafter(-np.pi, 0.0), np.nextafter(np.pi, 4.0), 3 * np.pi, -3 * np.pi])
+    w = wrap_angle(edge)
+    assert w[0] == np.pi and w[1] == np.pi and w[2] == edge[2] and w[4] == np.pi and w[5] == np.pi
+    t = np.random.default_rng(0).uniform(-60, 60, 100_000)
+    w = wrap_angle(t)
+    assert ((w > -np.pi) & (w <= np.pi)).all()
+    inside = (t > -np.pi) & (t <= np.pi)
+    assert (w[inside] == t[inside]).all()
+    turns = (t - w) / (2 * np.pi)
+    assert np.abs(turns - np.round(turns)).max() < 1e-14
+    # a rod pointing exactly along −x reads +π, not −π (found by hypothesis on the compiled engine)
+    mech = velplan.loads("""
+        [ground]
+        O = [0.0, 0.0]
+        [crank]
+        link = "1"
+        pivot = "O"
+        tip = "A"
+        length = 1.0
+        omega = 1.0
+        [[group]]
+        kind = "RRP"
+        links = ["2", "3"]
+        joint = "A"
+        point = "C"
+        length = 1.1
+        guide = { link = "0", through = "O" }
+        branch = -1
+    """)
+    for engine in ("numpy", "compiled") if velplan.analysis.compiled.available() else ("numpy",):
+        kin = velplan.solve(mech, [0.0], engine=engine)
+        assert kin.angle("2")[0] == np.pi

@@ -30,7 +30,7 @@ NI, NF = 13, 4
 """Integer slots and real parameters per program row (unused ones are −1 / 0)."""
 CHUNK = 256
 """Crank angles one thread solves at a time (its slices of the outputs stay in the CPU's caches)."""
-CORES = ("cross", "solve2", "cis", "carry", "crank_tip", "link_point", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
+CORES = ("cross", "solve2", "cis", "wrap_angle", "carry", "crank_tip", "link_point", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
 
 
 @lru_cache(maxsize=1)
@@ -106,13 +106,6 @@ def encode(mech: Mechanism, points: list[str], links: list[str], slides: list[st
             raise TypeError(f"no compiled form for {type(item).__name__}")
     ground = np.array([complex(x, y) for _, (x, y) in mech.ground])
     return np.array(ops, dtype=np.int64).reshape(-1, NI), np.array(pars, dtype=float).reshape(-1, NF), ground
-
-
-def _wrap(t):
-    """An angle in (−π, π] (left as it is when it already is)."""
-    if -np.pi < t <= np.pi:
-        return t
-    return np.arctan2(np.sin(t), np.cos(t))
 
 
 def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - one switch
@@ -225,7 +218,7 @@ def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - o
             for j in range(nP):
                 ok = ok and np.isfinite(p[j, t]) and np.isfinite(v[j, t]) and np.isfinite(a[j, t])
             for j in range(nL):
-                th[j, t] = _wrap(th[j, t])
+                th[j, t] = wrap_angle(th[j, t])
                 ok = ok and np.isfinite(om[j, t]) and np.isfinite(ep[j, t])
             for j in range(nG):
                 ok = ok and cn[j, t] > 0
@@ -253,7 +246,6 @@ def kernel():
 
     for name in CORES:
         env[name] = jit(getattr(G, name))
-    env["_wrap"] = jit(_wrap)
     # compiled once per machine: numba caches the kernel on disk under a name that changes
     # whenever the source of the kernel or of any closed form (or numba) changes
     return jit(_kernel, f"_kernel_{fingerprint()}", parallel=True, nogil=True, cache=True)
@@ -264,6 +256,6 @@ def fingerprint() -> str:
     from numba import __version__
 
     h = hashlib.sha256(__version__.encode())
-    for f in [_kernel, _wrap, *(getattr(G, name) for name in CORES)]:
+    for f in [_kernel, *(getattr(G, name) for name in CORES)]:
         h.update(inspect.getsource(f).encode())
     return h.hexdigest()[:16]

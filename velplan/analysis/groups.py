@@ -76,6 +76,13 @@ def cis(t):
     return np.cos(t) + 1j * np.sin(t)
 
 
+def wrap_angle(t):
+    """``t`` (rad) brought into (−π, π]: unchanged, bit for bit, when it is there already (−π
+    itself becomes π)."""
+    turns = np.ceil((t - np.pi) / (2 * np.pi)) * ((t <= -np.pi) | (t > np.pi))  # 0 inside
+    return t - 2 * np.pi * turns
+
+
 def carry(p, v, a, omega, epsilon, x):
     """Velocity and acceleration of the point at ``x`` of a link whose point at ``p`` moves
     with ``v``, ``a`` while the link turns at ``omega``, ``epsilon``."""

@@ -13,7 +13,7 @@ from typing import Literal, Mapping
 import numpy as np
 
 from velplan.analysis import compiled
-from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group
+from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
 from velplan.mechanism.structure import schedule
@@ -364,8 +364,7 @@ class _Outputs:
                 valid = finite & (np.isfinite(self.condition) & (self.condition > 0)).all(axis=0)
             for row in self.rates[0]:
                 if row.size and (row.max(initial=-np.inf) > np.pi or row.min(initial=np.inf) <= -np.pi):
-                    inside = (row > -np.pi) & (row <= np.pi)
-                    row[:] = np.where(inside, row, np.angle(np.exp(1j * row)))
+                    row[:] = wrap_angle(row)
         return Kinematics(
             mechanism=mech,
             phi=phi,
