@@ -41,7 +41,7 @@ import reference as R
 import velplan  # noqa: E402
 from velplan.analysis import compiled  # noqa: E402
 from velplan.mechanism.model import RPP, PRP, RRP  # noqa: E402
-from velplan.diagrams import differentiate  # noqa: E402
+from velplan.analysis.chord import differentiate  # noqa: E402
 
 FD_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 CHORD_N = (12, 24, 72, 360)
@@ -195,7 +195,7 @@ def chord(mech, ref, label_kind) -> list[Row]:
         row.errors = {"vel": float(np.max(np.abs(v - rv)) / vs), "acc": float(np.max(np.abs(a - ra)) / as_)}
         t, r = median_time(run, N)
         row.times[N], row.repeats[N] = t / N, r
-        row.note = f"output only ({label}); velplan.diagrams"
+        row.note = f"output only ({label}); velplan.analysis.chord"
         rows.append(row)
     return rows
 

@@ -196,7 +196,7 @@ NB01 = [
     plans at μv = 0.0007 (m/s)/mm.
     """),
     code("""
-    table = transfer_table(mech, N, scale_v=MU_V)
+    table = transfer_table(velplan.Study(mech, n=N).plan("velocity", scale_v=MU_V))
     print(table.text())
     """),
     code("""
@@ -700,7 +700,7 @@ NB04 = [
     * how to get its velocity plan and readouts;
     * what velplan says when the geometry cannot close, or the file has a mistake: one line
       naming the element and the value;
-    * how to draw its sheet (positions, plans, table) with `velplan.sheet.build_sheet`.
+    * how to draw its sheet (positions, plans, table) with `velplan.sheets.kinematic.build_sheet`.
     """),
     code("""
     import tempfile
@@ -711,7 +711,7 @@ NB04 = [
     import velplan
     from velplan.notebook import SvgDrawing, draw_mechanism, draw_plan
     from velplan.plans import Plan
-    from velplan.sheet import build_sheet
+    from velplan.sheets.kinematic import build_sheet
     """),
     md("""
     ## The file
@@ -759,9 +759,10 @@ NB04 = [
     md("""
     ## When the geometry cannot close
 
-    velplan checks a mechanism when it is loaded: it samples the whole turn of the crank every
-    0.1° and refuses a group that cannot be assembled somewhere, naming the group, the crank
-    angles and the point. Every mistake is one line. Below, the file above with one change each.
+    velplan checks a file's structure when it is loaded, and a study of it checks that every
+    group closes over the whole turn of the crank: a group that cannot be assembled somewhere
+    is refused, naming the group, the crank angles and the point. Every mistake is one line.
+    Below, the file above with one change each, loaded and studied.
     """),
     code("""
     broken = {
@@ -775,7 +776,7 @@ NB04 = [
     }
     for what, text in broken.items():
         try:
-            velplan.loads(text)
+            velplan.Study(velplan.loads(text))
         except velplan.VelplanError as exc:
             print(f"{what}:")
             print(f"error: {exc}")

@@ -16,7 +16,7 @@ from velplan.notebook import (
     SvgDrawing, crank_slider, draw_diagrams, draw_mechanism, draw_plan, draw_sheet, draw_steps,
     side_by_side)
 from velplan.plans import Plan
-from velplan.render.plan_view import plan_view
+from velplan.views.plan import plan_view
 from velplan.render.scene import Arrow, Circle, Polyline, Text
 
 

@@ -9,15 +9,13 @@ itself is done by the view builders of the sheet (``mechanism_view``, ``plan_vie
 Examples
 --------
 >>> import velplan
->>> from velplan.plans import Plan
 >>> from velplan.notebook import draw_plan, draw_steps
->>> mech = velplan.load("press")
->>> kin = velplan.solve(mech, velplan.positions(mech, 12))
->>> res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[2], scale_v=0.0007)
->>> drawing = draw_plan(res, 0, upto=2)         # the pole and the vector pa
+>>> study = velplan.Study("press")
+>>> res = study.plan("velocity", scale_v=0.0007)
+>>> drawing = draw_plan(res, 2, upto=2)         # position 3: the pole and the vector pa
 >>> drawing.svg.startswith("<?xml")
 True
->>> sentence, picture = next(iter(draw_steps(res, 0)))
+>>> sentence, picture = next(iter(draw_steps(res, 2)))
 >>> sentence
 'Choose the pole p; the images of the fixed points O1, O2 are at the pole.'
 """
@@ -32,10 +30,10 @@ from typing import Any, Callable, Iterator, Literal, Sequence
 
 import numpy as np
 
-from velplan.analysis.extremes import positions as crank_positions
-from velplan.analysis.solver import Kinematics, solve
+from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
+from velplan.study import Study
 
 Lang = Literal["en", "ru", "uk", "zh"]
 
@@ -122,23 +120,21 @@ def _drawing(view, lang: str) -> SvgDrawing:
     return SvgDrawing.from_scene(Scene(view.primitives, view.width_mm, view.height_mm), lang=lang)
 
 
-def _fine(mech: Mechanism, kin: Kinematics) -> Kinematics:
-    """The mechanism over one turn from the first position of `kin` (trajectories)."""
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    return solve(mech, kin.phi[0] + sense * np.linspace(0.0, 2 * math.pi, 241))
+def _study(mech: Study | Mechanism | str, n: int = 12) -> Study:
+    return mech if isinstance(mech, Study) else Study(mech, n=n)
 
 
-def draw_mechanism(mech: Mechanism, kin: Kinematics | None = None, i: int = 0, *,
+def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None, i: int = 0, *,
                    lang: Lang = "en", single: bool = False,
                    mu_l: float | None = None) -> SvgDrawing:
-    """The kinematic scheme of `mech`: position `i` of `kin` thick, the others thin.
+    """The kinematic scheme: position `i` thick, the others thin.
 
     Parameters
     ----------
-    mech : Mechanism
+    mech : Study, Mechanism or str
+        The study (its positions and turn), or a mechanism studied at 12 positions.
     kin : Kinematics, optional
-        The mechanism solved at its positions; by default the 12 positions from the
-        reference (``velplan.solve(mech, velplan.positions(mech, 12))``).
+        Other positions to draw (the study's kinematics by default).
     i : int
         Index into `kin` of the position drawn thick (0 is position 1).
     lang : {"en", "ru", "uk", "zh"}
@@ -153,18 +149,19 @@ def draw_mechanism(mech: Mechanism, kin: Kinematics | None = None, i: int = 0, *
     VelplanError
         If `i` is out of range or the mechanism cannot be assembled there.
     """
-    from velplan.render.mechanism_view import MechanismSizes, extent_m, mechanism_view
-    from velplan.render.view import eskd_scales
+    from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
+    from velplan.views.base import eskd_scales
 
-    if kin is None:
-        kin = solve(mech, crank_positions(mech, 12))
+    study = _study(mech)
+    mech = study.mechanism
+    kin = study.kinematics if kin is None else kin
     n = len(kin)
     if not 0 <= i < n:
         raise VelplanError(f"position index {i} is outside 0…{n - 1}")
     if not kin.valid[i]:
         raise VelplanError(f"{mech.name} cannot be assembled at crank angle "
                            f"{math.degrees(kin.phi[i]):.6g}°")
-    fine = _fine(mech, kin)
+    fine = study.turn.take(slice(None, None, 3))
     if mu_l is None:
         wx, wy = extent_m(mech, kin, fine)
         mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM),
@@ -190,9 +187,9 @@ def _partial_plans(res, i: int, lang: str, number: int | None,
     Every partial plan has the full plan's box and pole, so the figures can be flipped
     through; the step's own vectors and line are thick, earlier ones thin.
     """
-    from velplan.render.plan_view import plan_steps, plan_view
+    from velplan.views.plan import plan_steps, plan_view
     from velplan.render.scene import Scene
-    from velplan.render.steps_view import partial_plan
+    from velplan.views.steps import partial_plan
 
     _check_index(res, i)
     number = _number(res, i) if number is None else number
@@ -216,7 +213,7 @@ def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Lang = "en",
     Parameters
     ----------
     res : PlanResult
-        From ``Plan.of(mech).evaluate(kin, …)``; drawn at its own scale.
+        From ``study.plan(kind)`` (a `velplan.Study`); drawn at its own scale.
     i : int
         Index into the result's positions (0 for a plan evaluated at one position).
     upto : int, optional
@@ -227,7 +224,7 @@ def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Lang = "en",
         Position number written in the title; by default the index into the kinematics + 1.
     """
     if upto is None:
-        from velplan.render.plan_view import plan_view
+        from velplan.views.plan import plan_view
 
         _check_index(res, i)
         view = plan_view(res, i, number=_number(res, i) if number is None else number,
@@ -243,7 +240,7 @@ def draw_steps(res, i: int = 0, *, lang: Lang = "en",
     The sentences are those of ``res.describe(i, lang)``; drawing k shows steps 1…k with
     step k thick.
     """
-    from velplan.render.plan_view import plan_steps
+    from velplan.views.plan import plan_steps
 
     _check_index(res, i)
     total = len(plan_steps(res, i, number=_number(res, i) if number is None else number,
@@ -251,21 +248,20 @@ def draw_steps(res, i: int = 0, *, lang: Lang = "en",
     return iter(_partial_plans(res, i, lang, number, range(1, total + 1)))
 
 
-def draw_diagrams(mech: Mechanism, n: int = 12, *, lang: Lang = "en",
+def draw_diagrams(mech: Study | Mechanism | str, n: int = 12, *, lang: Lang = "en",
                   arrangement: Literal["row", "column"] = "row") -> SvgDrawing:
     """Displacement, velocity and acceleration diagrams of the output (chord method beside
-    the analytic curves), over `n` positions."""
-    from velplan.diagrams import kinematic_diagrams
-    from velplan.render.diagram_view import diagram_view
+    the analytic curves), over `n` positions (a study brings its own)."""
+    from velplan.views.diagram import diagram_view
 
-    view = diagram_view(kinematic_diagrams(mech, n), lang=lang, arrangement=arrangement,
+    view = diagram_view(_study(mech, n).diagrams, lang=lang, arrangement=arrangement,
                         length_mm=120.0)
     return _drawing(view, lang)
 
 
-def draw_sheet(mech: Mechanism | str, **options) -> SvgDrawing:
-    """The kinematic-analysis sheet (``velplan.sheet.build_sheet(mech, **options)``)."""
-    from velplan.sheet import build_sheet
+def draw_sheet(mech: Study | Mechanism | str, **options) -> SvgDrawing:
+    """The kinematic-analysis sheet (``velplan.sheets.kinematic.build_sheet(mech, **options)``)."""
+    from velplan.sheets.kinematic import build_sheet
 
     sheet = build_sheet(mech, **options)
     return SvgDrawing(sheet.svg(), sheet.scene)
@@ -275,7 +271,7 @@ def side_by_side(*drawings: SvgDrawing, gap_mm: float = GAP_MM,
                  lang: Lang = "en") -> SvgDrawing:
     """Drawings (each with its scene) in one row, bottoms aligned, `gap_mm` apart."""
     from velplan.render.scene import Scene
-    from velplan.render.view import shift
+    from velplan.views.base import shift
 
     if not drawings:
         raise VelplanError("side_by_side needs at least one drawing")
@@ -297,7 +293,7 @@ def _widgets():
     return ipywidgets
 
 
-def crank_slider(mech: Mechanism, callback: Callable[[Kinematics], Any] | None = None, *,
+def crank_slider(mech: Study | Mechanism | str, callback: Callable[[Kinematics], Any] | None = None, *,
                  n: int = 12, fallback: int = 4, interactive: bool | None = None,
                  lang: Lang = "en"):
     """A slider over the crank angle that redraws ``callback(kin)`` as it moves.
@@ -327,16 +323,16 @@ def crank_slider(mech: Mechanism, callback: Callable[[Kinematics], Any] | None =
     """
     if n < 1 or fallback < 1:
         raise VelplanError(f"crank_slider needs n ≥ 1 and fallback ≥ 1, not {n} and {fallback}")
-    phi = crank_positions(mech, n)
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    study = _study(mech, n)
+    n = study.n
     step = 360.0 / n
-    every = solve(mech, phi) if callback is None else None
 
     def at(offset_deg: float):
         if callback is None:  # the scheme in that position, numbered as on the sheet
-            return draw_mechanism(mech, every, int(round(offset_deg / step)) % n, lang=lang,
+            return draw_mechanism(study, None, int(round(offset_deg / step)) % n, lang=lang,
                                   single=True)
-        return callback(solve(mech, [phi[0] + sense * math.radians(offset_deg)]))
+        angle = study.phi[0] + study.sense * math.radians(offset_deg)
+        return callback(Study(study.mechanism, angles=[angle], check_assembly=False).kinematics)
 
     widgets = None if interactive is False else _widgets()
     if interactive and widgets is None:

@@ -57,4 +57,4 @@ def four_bar_with_prp():
 
 def with_loads(name: str, extra: str):
     """A bundled example with extra TOML appended (loads, masses)."""
-    return velplan.loads(example_text(name) + "\n" + extra, name=name, check_assembly=False)
+    return velplan.loads(example_text(name) + "\n" + extra, name=name)

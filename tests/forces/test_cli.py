@@ -87,7 +87,9 @@ def test_plot_functions_return_their_data(tmp_path):
     from velplan.forces.plot import plot_balancing_moment, plot_press_load
 
     mech = velplan.load("slider-press")
-    data = plot_balancing_moment(mech, tmp_path / "mb.png", n=72)
+    study = velplan.Study(mech)
+    data = plot_balancing_moment(study.turn_forces(), tmp_path / "mb.png", sense=study.sense)
+    assert data["turn_deg"][0] == 0 and data["turn_deg"][-1] == pytest.approx(360)
     assert (tmp_path / "mb.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     np.testing.assert_allclose(data["lever"], data["kinetostatics"], atol=1e-9)
     (p,) = vf.parse_loads(mech)

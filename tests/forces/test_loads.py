@@ -13,7 +13,7 @@ from tests.forces.mechs import example_text
 
 
 def _with_load(mech: str, body: str):
-    return velplan.loads(example_text(mech) + "\n[[load]]\n" + body + "\n", name=mech, check_assembly=False)
+    return velplan.loads(example_text(mech) + "\n[[load]]\n" + body + "\n", name=mech)
 
 
 def test_constant_force_and_moment():

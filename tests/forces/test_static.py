@@ -126,7 +126,7 @@ def test_positions_that_do_not_assemble_are_nan_not_errors():
 
     text = example_text("four-bar").replace("length = 0.10", "length = 0.20") + (
         '\n[link.2]\nmass = 2.0\ncentre = "S2"\n[[load]]\nkind = "moment"\nlink = "3"\nmoment = 5.0\n')
-    mech = velplan.loads(text, check_assembly=False)
+    mech = velplan.loads(text)
     phi = np.linspace(0, 2 * np.pi, 36, endpoint=False)
     res = vf.analyse_forces(mech, phi)
     bad = ~res.kinematics.valid

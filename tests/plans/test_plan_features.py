@@ -119,7 +119,7 @@ joint = "A"
 point = "B"
 length = 0.07
 guide = { link = "0", through = "O", angle_deg = 0.0, offset = -0.02 }
-""", check_assembly=False)
+""")
 
 
 @pytest.mark.parametrize("delta", [1e-3, 1e-5, 1e-7, 1e-9, 1e-12])
@@ -164,7 +164,7 @@ def test_sentences_in_every_language():
 
 def test_transfer_table_layout_matches_seed_000():
     mech = velplan.load("press")
-    table = transfer_table(mech, scale_v=0.0007)
+    table = transfer_table(velplan.Study(mech).plan("velocity", scale_v=0.0007))
     text = table.text().splitlines()
     assert text[0].split()[1:] == [str(i) for i in range(1, 13)] + ["1"]
     assert set(table.rows) >= {"V_A", "V_B2", "V_C", "V_E", "V_B4", "w_2", "w_5"}

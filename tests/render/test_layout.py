@@ -5,7 +5,7 @@ from velplan.errors import ScaleError
 from velplan.render.layout import (
     fit_text, label_box, nudge_labels, overlapping_labels, place_views)
 from velplan.render.scene import Circle, Scene, Text
-from velplan.render.sheet import free_area
+from velplan.sheets.frame import free_area
 
 
 def test_overlap_found_for_overlapping_pair_only():

@@ -11,7 +11,7 @@ pytest.importorskip("matplotlib")
 
 
 def test_importing_render_does_not_import_matplotlib():
-    code = ("import sys, velplan.render, velplan.render.mpl, velplan.render.sheet, "
+    code = ("import sys, velplan.render, velplan.render.mpl, velplan.sheets.frame, "
             "velplan.render.symbols, velplan.render.export; "
             "print('matplotlib' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

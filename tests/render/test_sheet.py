@@ -4,7 +4,7 @@ import shapely
 from velplan.errors import VelplanError
 from velplan.render.canvas import RecordingCanvas, render
 from velplan.render.scene import Text
-from velplan.render.sheet import (
+from velplan.sheets.frame import (
     SHEET_FORMATS, TitleInfo, frame, frame_bounds, free_area, sheet_format, sheet_scene,
     title_block, title_block_bounds)
 

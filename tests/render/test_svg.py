@@ -4,7 +4,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
-from velplan.render.sheet import TitleInfo, sheet_scene
+from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
 from velplan.render.svg import to_svg
 

@@ -3,15 +3,15 @@
 import pytest
 
 import velplan
-from velplan.drawings import OPTIONS
-from velplan.sheet import build_sheet
+from velplan.sheets.drawings import OPTIONS
+from velplan.sheets.kinematic import build_sheet
 
 from tests.sheet.helpers import record_all
 
 
 @pytest.fixture(scope="session")
 def sheets():
-    """Every bundled example's sheet, as `python -m velplan.drawings` draws it."""
+    """Every bundled example's sheet, as `python -m velplan.sheets.drawings` draws it."""
     return {name: build_sheet(name, **OPTIONS) for name in velplan.example_names()}
 
 

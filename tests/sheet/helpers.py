@@ -3,7 +3,7 @@
 import shapely
 
 from velplan.render.canvas import RecordingCanvas, render
-from velplan.render.sheet import free_area
+from velplan.sheets.frame import free_area
 
 
 def record_all(sheets) -> dict:

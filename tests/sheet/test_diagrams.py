@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.diagrams import (
-    chord_method, chord_ordinates_mm, choose_scales, closed_form_diagrams, kinematic_diagrams)
-from velplan.render.diagram_view import diagram_view
+from velplan.analysis.chord import (
+    chord_method, chord_ordinates_mm, closed_form_diagrams, kinematic_diagrams)
+from velplan.views.diagram import choose_scales
+from velplan.views.diagram import diagram_view
 from velplan.render.scene import Text
 
 

@@ -8,14 +8,14 @@ import re
 import numpy as np
 import pytest
 
-from velplan import drawings
+from velplan.sheets import drawings
 from velplan.cli import main
 from velplan.errors import ScaleError, VelplanError
-from velplan.force_sheet import build_force_sheet, force_sheet_text
-from velplan.render.force_view import group_layers, lever_layers, polygon_layers
+from velplan.sheets.forces import build_force_sheet, force_sheet_text
+from velplan.views.forces import group_layers, lever_layers, polygon_layers
 from velplan.render.layout import overlapping_labels
 from velplan.render.scene import Polyline
-from velplan.render.view import number
+from velplan.views.base import number
 
 from tests.sheet.helpers import assert_views_placed, record_all
 
@@ -24,7 +24,7 @@ NAMES = ("press", "shaper", "slider-press")
 
 @pytest.fixture(scope="module")
 def force_sheets():
-    """The force sheet of every example with masses, as `python -m velplan.drawings` draws it."""
+    """The force sheet of every example with masses, as `python -m velplan.sheets.drawings` draws it."""
     return {name: build_force_sheet(name, **drawings.FORCE_OPTIONS) for name in NAMES}
 
 
@@ -247,9 +247,9 @@ def test_same_input_same_bytes(force_sheets):
 @pytest.mark.parametrize("name", NAMES)
 def test_force_drawings_are_up_to_date(name, force_sheets):
     path = drawings.DRAWINGS / f"{name}-forces.svg"
-    assert path.is_file(), "run `python -m velplan.drawings`"
+    assert path.is_file(), "run `python -m velplan.sheets.drawings`"
     assert path.read_bytes() == force_sheets[name].svg().encode("utf-8"), (
-        f"{path} is out of date: run `python -m velplan.drawings`")
+        f"{path} is out of date: run `python -m velplan.sheets.drawings`")
     assert f"{name}-forces.svg" in (drawings.DRAWINGS / "README.md").read_text(encoding="utf-8")
 
 

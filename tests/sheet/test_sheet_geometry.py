@@ -11,7 +11,7 @@ from velplan.plans.text import label_of
 from velplan.render.layout import overlapping_labels
 from velplan.render.scene import Polyline, Text
 from velplan.render.shapes import arrow_shape
-from velplan.render.view import number, subscript
+from velplan.views.base import number, subscript
 
 from tests.sheet.helpers import assert_views_placed
 
@@ -19,7 +19,8 @@ NAMES = velplan.example_names()
 
 
 def _plans(sheet):
-    return {name: (sheet.views[name], res) for name, res in sheet.plans.items()}
+    """View name → (placed view, plan at every position, index of the view's position)."""
+    return {name: (sheet.views[name], res, sheet.plan_index[name]) for name, res in sheet.plans.items()}
 
 
 def _on_line(point, a, b, tol=0.02):
@@ -34,11 +35,10 @@ def _unit(a, b):
     return d / np.hypot(*d)
 
 
-def _link_on_sheet(sheet, canvas, res, p1, p2):
+def _link_on_sheet(sheet, canvas, res, i, p1, p2):
     """Sheet direction of the link p1–p2 as drawn in the scheme at the plan's position,
     after checking that a drawn line of the scheme runs along it."""
     mech = sheet.views["mechanism"]
-    i = int(res.index[0])
     a = mech.to_sheet(res.kin.position(p1)[i])
     b = mech.to_sheet(res.kin.position(p2)[i])
     lines = [p for p in canvas.polylines() if p.layer in ("mechanism", "positions")]
@@ -52,7 +52,7 @@ def _link_on_sheet(sheet, canvas, res, p1, p2):
 def test_every_line_perpendicular_to_a_link_is_so_on_the_sheet(name, sheets, recorded):
     sheet, canvas = sheets[name], recorded[name]
     checked = 0
-    for view_name, (placed, res) in _plans(sheet).items():
+    for view_name, (placed, res, i) in _plans(sheet).items():
         kind = res.kind[0]
         layer = f"{view_name}-lines"
         drawn = canvas.polylines(layer)
@@ -62,11 +62,11 @@ def test_every_line_perpendicular_to_a_link_is_so_on_the_sheet(name, sheets, rec
             if not (isinstance(step, Line) and step.target.startswith(kind)
                     and isinstance(step.direction, Perpendicular)):
                 continue
-            through = to_sheet(np.array([res.values[step.through][0].real,
-                                         res.values[step.through][0].imag]))
-            x = res.values[meets[step.target]][0]
+            through = to_sheet(np.array([res.values[step.through][i].real,
+                                         res.values[step.through][i].imag]))
+            x = res.values[meets[step.target]][i]
             cross = to_sheet(np.array([x.real, x.imag]))
-            link = _link_on_sheet(sheet, canvas, res, step.direction.a, step.direction.b)
+            link = _link_on_sheet(sheet, canvas, res, i, step.direction.a, step.direction.b)
             if math.dist(through, cross) < 0.05:
                 continue  # a zero component: nothing to see
             lines = [p for p in drawn if _on_line(through, *p.points[:2])
@@ -88,12 +88,12 @@ def test_every_line_perpendicular_to_a_link_is_so_on_the_sheet(name, sheets, rec
 def test_arrows_run_from_their_origin_to_their_image_with_the_head_at_the_image(
         name, sheets, recorded):
     sheet, canvas = sheets[name], recorded[name]
-    for view_name, (placed, res) in _plans(sheet).items():
+    for view_name, (placed, res, i) in _plans(sheet).items():
         kind = res.kind[0]
         pole = f"{kind}:{'p' if kind == 'v' else 'π'}"
 
         def at(target):
-            z = res.values[target][0]
+            z = res.values[target][i]
             return placed.to_sheet(np.array([z.real, z.imag]))
 
         arrows = canvas.arrows(view_name)
@@ -144,7 +144,7 @@ def test_text_names_mechanism_scales_positions_and_every_image(name, sheets):
     mech_texts = {t.text for t in sheet.views["mechanism"].primitives if isinstance(t, Text)}
     for k in range(1, 13):
         assert str(k) in mech_texts, k
-    for view_name, (placed, res) in _plans(sheet).items():
+    for view_name, (placed, res, i) in _plans(sheet).items():
         kind = res.kind[0]
         symbol, unit = ("μv", "(м/с)/мм") if kind == "v" else ("μa", "(м/с²)/мм")
         assert f"{symbol} = {number(res.scale, 'ru')} {unit}" in joined

@@ -43,7 +43,7 @@ def available() -> bool:
 
 
 def encode(mech: Mechanism, points: list[str], links: list[str], slides: list[str], groups: list[str],
-           length_scale: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+           length_scale: float, items: tuple | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The program of ``mech`` for the output order given: (ops (m, NI) int64, params (m, NF)
     float64, ground point coordinates (complex, in register order)).
 
@@ -65,7 +65,7 @@ def encode(mech: Mechanism, points: list[str], links: list[str], slides: list[st
     def opt(name):
         return P[name] if name else -1
 
-    for item in schedule(mech):
+    for item in schedule(mech) if items is None else items:
         if isinstance(item, Crank):
             origin[item.link] = item.pivot
             row(CRANK, [P[item.pivot], P[item.tip], L[item.link]], [item.length])

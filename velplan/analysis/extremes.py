@@ -79,18 +79,20 @@ def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[
     sign = np.sign(rate)
     brackets = np.flatnonzero(sign[:-1] * sign[1:] < 0)
     lo, hi = phi[brackets], phi[brackets + 1]
-    flo = rate[brackets]
+    flo, fhi = rate[brackets], rate[brackets + 1]
     eps = np.finfo(float).eps
     tiny = 4 * eps * max(np.nanmax(np.abs(rate)), 1e-300)
 
     def at(x):
-        _, f, df = _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
-        return f, df
+        return _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
 
-    # safeguarded Newton (rtsafe): a Newton step from the current iterate on the analytic
-    # derivative, or bisection when it would leave the bracket; the bracket keeps the sign change
-    x = 0.5 * (lo + hi)
-    f, df = at(x) if x.size else (x, x)
+    # safeguarded Newton (rtsafe) from the secant point of the grid's bracket (two or three
+    # Newton steps then reach round-off): a Newton step on the analytic derivative, or
+    # bisection when it would leave the bracket; the bracket keeps the sign change
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = lo - flo * (hi - lo) / (fhi - flo)
+    x = np.where((x > lo) & (x < hi), x, 0.5 * (lo + hi))
+    val, f, df = at(x) if x.size else (x, x, x)
     for _ in range(100):
         if x.size == 0:
             break
@@ -98,36 +100,35 @@ def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[
             newton = x - f / df
         inside = (newton > lo) & (newton < hi) & np.isfinite(newton)
         x_new = np.where(inside, newton, 0.5 * (lo + hi))
-        f_new, df_new = at(x_new)
+        val_new, f_new, df_new = at(x_new)
         same = np.sign(f_new) == np.sign(flo)
         lo, flo, hi = np.where(same, x_new, lo), np.where(same, f_new, flo), np.where(same, hi, x_new)
         ulp4 = 4 * eps * np.maximum(np.abs(x_new), 1.0)
         done = (np.abs(x_new - x) <= ulp4) | (np.abs(f_new) <= tiny) | (hi - lo <= ulp4)
-        x, f, df = x_new, f_new, df_new
+        x, val, f, df = x_new, val_new, f_new, df_new
         if done.all():
             break
-    best = x
-    roots = best % (2 * np.pi)
-    roots = np.sort(roots)
-    if roots.size == 0:
+    if x.size == 0:
         return []
-    k = solve(mech, roots, omega1=1.0, epsilon1=0.0)
-    val, _, acc = _values(k, kind, i)
-    return [Extreme(float(r), float(v), "max" if a < 0 else "min") for r, v, a in zip(roots, val, acc)]
+    roots = x % (2 * np.pi)
+    order = np.argsort(roots)
+    return [Extreme(float(roots[j]), float(val[j]), "max" if df[j] < 0 else "min") for j in order]
 
 
 def extremes(mech: Mechanism) -> dict[str, list[Extreme]]:
     """Extreme positions of every link angle (but the crank's) and every prismatic slide."""
-    kin = solve(mech, np.zeros(1))
+    kin = solve(mech, np.zeros(1), order=0)
     return {name: find_roots(mech, kind, i) for name, (kind, i, _) in _quantities(mech, kin).items()}
 
 
-def output_quantity(mech: Mechanism) -> tuple[str, str, int] | None:
-    """(label, kind, index) of the mechanism's output quantity, or None without an output."""
+def output_quantity(mech: Mechanism, kin: Kinematics | None = None) -> tuple[str, str, int] | None:
+    """(label, kind, index) of the mechanism's output quantity, or None without an output;
+    ``kin``, any solution of ``mech``, gives the indices (solved at one angle when omitted)."""
     out = mech.output
     if out is None:
         return None
-    kin = solve(mech, np.zeros(1))
+    if kin is None:
+        kin = solve(mech, np.zeros(1), order=0)
     if out.link is not None:
         return f"link {out.link}", "link", kin.link_index[out.link]
     for g in mech.groups:

@@ -6,9 +6,9 @@ This is the independent reference that the graphical plans are checked against.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
-from typing import Literal, Mapping
+from typing import Iterable, Literal, Mapping
 
 import numpy as np
 
@@ -16,7 +16,7 @@ from velplan.analysis import compiled
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
-from velplan.mechanism.structure import schedule
+from velplan.mechanism.structure import guides_of, joints_in, points_out, schedule
 
 
 @dataclass(frozen=True)
@@ -30,10 +30,12 @@ class Kinematics:
     mechanism : Mechanism
     phi : ndarray, shape (n,)
         Crank angles, rad (absolute, from +x, counter-clockwise).
-    omega1, epsilon1 : float
-        Crank angular velocity (rad/s) and acceleration (rad/s²) used.
+    omega1, epsilon1 : float or ndarray, shape (n,)
+        Crank angular velocity (rad/s) and acceleration (rad/s²) used: one value, or one per
+        position for a computed motion.
     positions, velocities, accelerations : ndarray, shape (n, P, 2)
-        Point coordinates (m), velocities (m/s), accelerations (m/s²); NaN where not assembled.
+        Point coordinates (m), velocities (m/s), accelerations (m/s²); NaN where not assembled;
+        None above the ``order`` solved.
     point_index : Mapping[str, int]
     angles, omegas, epsilons : ndarray, shape (n, L)
         Link angles (rad, the reference direction of each link's frame), ω (rad/s), ε (rad/s²).
@@ -51,6 +53,8 @@ class Kinematics:
     group_index : Mapping[str, int]
     valid : ndarray of bool, shape (n,)
         Every group assembled and every result finite.
+    order : int
+        Highest derivative solved: 0 positions, 1 velocities, 2 accelerations.
     """
 
     mechanism: Mechanism
@@ -71,6 +75,7 @@ class Kinematics:
     condition: np.ndarray
     group_index: Mapping[str, int]
     valid: np.ndarray
+    order: int = 2
 
     def __len__(self) -> int:
         return self.phi.shape[0]
@@ -95,12 +100,18 @@ class Kinematics:
         """(n, 2) coordinates of point ``name``, m."""
         return self.positions[:, self._point(name)]
 
+    def _need(self, order: int, what: str) -> None:
+        if self.order < order:
+            raise MechanismError(f"{what} were not solved (order={self.order}); solve with order={order}")
+
     def velocity(self, name: str) -> np.ndarray:
         """(n, 2) velocity of point ``name``, m/s."""
+        self._need(1, "velocities")
         return self.velocities[:, self._point(name)]
 
     def acceleration(self, name: str) -> np.ndarray:
         """(n, 2) acceleration of point ``name``, m/s²."""
+        self._need(2, "accelerations")
         return self.accelerations[:, self._point(name)]
 
     def angle(self, link: str) -> np.ndarray:
@@ -109,11 +120,66 @@ class Kinematics:
 
     def omega(self, link: str) -> np.ndarray:
         """(n,) angular velocity of ``link``, rad/s (counter-clockwise positive)."""
+        self._need(1, "velocities")
         return self.omegas[:, self._link(link)]
 
     def epsilon(self, link: str) -> np.ndarray:
         """(n,) angular acceleration of ``link``, rad/s²."""
+        self._need(2, "accelerations")
         return self.epsilons[:, self._link(link)]
+
+    def crank_rate(self, which: Literal["omega", "epsilon"] = "omega", idx=slice(None)) -> np.ndarray:
+        """The crank's ω1 (rad/s) or ε1 (rad/s²) at positions ``idx``, one value per position."""
+        value = self.omega1 if which == "omega" else self.epsilon1
+        if isinstance(value, np.ndarray):
+            return value[idx]
+        return np.full(len(self.phi[idx]), value)
+
+    def take(self, idx) -> "Kinematics":
+        """The solution at positions ``idx`` only (indices or a slice)."""
+        pick = lambda a: None if a is None else a[idx]  # noqa: E731
+        w = self.omega1[idx] if isinstance(self.omega1, np.ndarray) else self.omega1
+        e = self.epsilon1[idx] if isinstance(self.epsilon1, np.ndarray) else self.epsilon1
+        return replace(self, phi=self.phi[idx], omega1=w, epsilon1=e, positions=self.positions[idx],
+                       velocities=pick(self.velocities), accelerations=pick(self.accelerations),
+                       angles=self.angles[idx], omegas=pick(self.omegas), epsilons=pick(self.epsilons),
+                       slides=self.slides[idx], condition=self.condition[idx], valid=self.valid[idx])
+
+    @property
+    def steady(self) -> bool:
+        """True when the crank turns at one constant ω1 (ε1 = 0)."""
+        return not isinstance(self.omega1, np.ndarray) and not isinstance(self.epsilon1, np.ndarray) \
+            and self.epsilon1 == 0
+
+    def at_speed(self, omega1, epsilon1=0.0) -> "Kinematics":
+        """The same positions moved at another crank motion: ω1, ε1 scalars or one per position.
+
+        Exact for the unit-speed solution (ω1 = 1, ε1 = 0), whose velocities are the analogues
+        r′ and accelerations r″: v = ω·r′, a = ω²·r″ + ε·r′ (links' ω, ε and slides alike).
+        Other solutions are first brought back to unit speed (needs ω1 ≠ 0, ε1 = 0).
+        """
+        n = len(self)
+        w = np.broadcast_to(np.asarray(omega1, dtype=float), (n,))
+        e = np.broadcast_to(np.asarray(epsilon1, dtype=float), (n,))
+        if isinstance(self.omega1, np.ndarray) or self.omega1 == 0 or np.any(self.epsilon1 != 0):
+            raise MechanismError("at_speed needs a solution at one constant crank speed ω1 ≠ 0 with ε1 = 0")
+        w0 = float(self.omega1)
+        k = w / w0  # velocity analogue scale: v_new = ω·v_old/ω0
+        vel = acc = om = ep = None
+        sl = self.slides.copy()
+        if self.order >= 1:
+            vel = self.velocities * k[:, None, None]
+            om = self.omegas * k[:, None]
+            sl[:, :, 1] = self.slides[:, :, 1] * k[:, None]
+        if self.order >= 2:
+            r1 = self.velocities / w0  # r′
+            acc = self.accelerations * (k * k)[:, None, None] + r1 * e[:, None, None]
+            ep = self.epsilons * (k * k)[:, None] + (self.omegas / w0) * e[:, None]
+            sl[:, :, 2] = self.slides[:, :, 2] * (k * k)[:, None] + (self.slides[:, :, 1] / w0) * e[:, None]
+        w_out = float(omega1) if np.ndim(omega1) == 0 else np.array(w)
+        e_out = float(epsilon1) if np.ndim(epsilon1) == 0 else np.array(e)
+        return replace(self, omega1=w_out, epsilon1=e_out, velocities=vel, accelerations=acc,
+                       omegas=om, epsilons=ep, slides=sl)
 
     def slide(self, pair: str) -> np.ndarray:
         """(n, 3) s, ṡ, s̈ of the prismatic pair ``pair``."""
@@ -176,8 +242,10 @@ def solve(
     mech: Mechanism,
     phi,
     *,
-    omega1: float | None = None,
-    epsilon1: float | None = None,
+    omega1=None,
+    epsilon1=None,
+    points: Iterable[str] | None = None,
+    order: Literal[0, 1, 2] = 2,
     on_failure: Literal["nan", "raise"] = "nan",
     engine: Literal["numpy", "compiled", "auto"] = "numpy",
 ) -> Kinematics:
@@ -188,8 +256,15 @@ def solve(
     mech : Mechanism
     phi : float or array_like
         Absolute crank angles, rad.
-    omega1, epsilon1 : float, optional
-        Override the crank's angular velocity (rad/s) and acceleration (rad/s²).
+    omega1, epsilon1 : float or array_like, optional
+        The crank's angular velocity (rad/s) and acceleration (rad/s²): one value, or one per
+        angle (a computed motion ω(φ), ε(φ)); the file's constant speed when omitted.
+    points : iterable of str, optional
+        Only these points (and what they depend on) are solved: groups and link points that
+        none of them needs are skipped and absent from the result.
+    order : {0, 1, 2}
+        Highest derivative computed: positions only (0), + velocities (1), + accelerations (2).
+        What is not computed is absent (`Kinematics.velocity` etc. raise naming the order).
     on_failure : {"nan", "raise"}
         ``"nan"``: positions where a group cannot close hold NaN and ``valid`` is False there.
         ``"raise"``: raise `AssemblyError` naming the group, the point and the crank angle.
@@ -205,30 +280,97 @@ def solve(
     Each group is closed in its own closed form (circle–circle, circle–line, line–line),
     and its velocities and accelerations are the exact time derivatives of those closures:
     two linear equations per group, solved by Cramer's rule.
+
+    A motion given per angle is applied to the unit-speed solution (ω1 = 1, ε1 = 0, whose
+    velocities are the analogues r′ = dr/dφ and accelerations r″): v = ω·r′,
+    a = ω²·r″ + ε·r′, and likewise for the links' ω, ε and the slides' ṡ, s̈.
     """
     if on_failure not in ("nan", "raise"):
         raise ValueError(f"on_failure must be 'nan' or 'raise', not {on_failure!r}")
+    if order not in (0, 1, 2):
+        raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     if phi.ndim != 1:
         raise ValueError(f"phi must be a scalar or a 1-D array, not shape {phi.shape}")
     crank = mech.crank
-    w1 = crank.omega if omega1 is None else float(omega1)
-    e1 = crank.epsilon if epsilon1 is None else float(epsilon1)
+    w1 = _crank_rate(crank.omega if omega1 is None else omega1, "omega1", phi.shape[0])
+    e1 = _crank_rate(crank.epsilon if epsilon1 is None else epsilon1, "epsilon1", phi.shape[0])
+    if isinstance(w1, np.ndarray) or isinstance(e1, np.ndarray):
+        unit = solve(mech, phi, omega1=1.0, epsilon1=0.0, points=points, order=order,
+                     on_failure=on_failure, engine=engine)
+        return unit.at_speed(w1, e1)
     scale = length_scale(mech)
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
+    items = schedule(mech) if points is None else needed_items(mech, points)
     if engine == "compiled" or (engine == "auto" and compiled.available()
                                 and (compiled.loaded() or phi.shape[0] >= AUTO_COMPILED)):
-        return _solve_compiled(mech, phi, w1, e1, scale, on_failure)
+        return _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order)
+    w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
     out: _Outputs | None = None
     # cache-sized blocks written into preallocated outputs: 2.5× faster at 10⁶ positions
     for start in range(0, max(phi.shape[0], 1), BLOCK):
         block = phi[start:start + BLOCK]
-        st, conditions = _solve_block(mech, block, w1, e1, scale, on_failure)
+        st, conditions = _solve_block(mech, block, w1o, e1o, scale, on_failure, items)
         if out is None:
-            out = _Outputs(st, conditions, phi.shape[0])
+            out = _Outputs(st, conditions, phi.shape[0], order)
         out.write(st, conditions, slice(start, start + block.shape[0]))
     return out.kinematics(mech, phi, w1, e1, st)
+
+
+def _crank_rate(value, what: str, n: int):
+    """A crank rate as a float, or as an (n,) array when it varies with the angle."""
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:
+        return float(arr)
+    if arr.ndim != 1 or arr.shape[0] != n:
+        raise ValueError(f"{what} must be a scalar or have one value per angle ({n}), not shape {arr.shape}")
+    return arr
+
+
+def needed_items(mech: Mechanism, points: Iterable[str]) -> tuple:
+    """The solving schedule cut to what ``points`` need: the crank, the groups and link points
+    that determine them or a point, guide or link they rest on.
+
+    Raises
+    ------
+    MechanismError
+        A name is not a point of ``mech``.
+    """
+    items = schedule(mech)
+    want = set(points)
+    made: dict[str, object] = {name: None for name, _ in mech.ground}
+    for item in items:
+        made.update(dict.fromkeys(_produced(item)[0], item))
+    unknown = sorted(want - set(made))
+    if unknown:
+        raise MechanismError(f"unknown point {unknown[0]!r}; known points: {', '.join(made)}")
+    want_links: set[str] = set()
+    keep = []
+    for item in reversed(items):
+        pts, links = _produced(item)
+        if isinstance(item, Crank) or pts & want or links & want_links:
+            keep.append(item)
+            need_pts, need_links = _needs(item)
+            want |= need_pts
+            want_links |= need_links
+    return tuple(reversed(keep))
+
+
+def _produced(item) -> tuple[set[str], set[str]]:
+    if isinstance(item, Crank):
+        return {item.tip}, {item.link}
+    if isinstance(item, LinkPoint):
+        return {item.name}, set()
+    return set(points_out(item)), set(item.links)
+
+
+def _needs(item) -> tuple[set[str], set[str]]:
+    if isinstance(item, Crank):
+        return {item.pivot}, set()
+    if isinstance(item, LinkPoint):
+        return set(), {item.link}
+    return set(joints_in(item)), {g.link for g in guides_of(item) if g.link != GROUND}
 
 
 BLOCK = 16384
@@ -239,25 +381,27 @@ cache, ≈ 20 s the first time on a machine; it saves ≈ 0.4 µs per angle); on
 process, "auto" always uses it."""
 
 
-def _solve_compiled(mech, phi, w1, e1, scale, on_failure) -> Kinematics:
-    # the numpy engine on one angle fixes the output layout (names, order, link origins)
-    st, conditions = _solve_block(mech, phi[:1] if phi.shape[0] else np.zeros(1), w1, e1, scale, "nan")
+def _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order) -> Kinematics:
+    # the numpy engine on one angle fixes the output layout (names, order, link origins); the
+    # kernel computes every derivative, the outputs keep those asked for
+    st, conditions = _solve_block(mech, phi[:1] if phi.shape[0] else np.zeros(1), w1, e1, scale, "nan", items)
     n = phi.shape[0]
-    out = _Outputs(st, conditions, n)
-    ops, par, ground = compiled.encode(mech, out.names, out.links, out.slide_names, out.groups, scale)
+    out = _Outputs(st, conditions, n, 2)
+    ops, par, ground = compiled.encode(mech, out.names, out.links, out.slide_names, out.groups, scale, items)
     valid = np.empty(n, dtype=bool)
     compiled.kernel()(ops, par, ground, np.ascontiguousarray(phi), float(w1), float(e1),
                       out.z, out.rates, out.slides, out.condition, valid)
     if on_failure == "raise" and not valid.all():
-        for item in schedule(mech):  # the first group, in solving order, that fails to close
+        for item in items:  # the first group, in solving order, that fails to close
             if not isinstance(item, (Crank, LinkPoint)):
                 row = out.condition[out.groups.index(item.name)]
                 if np.isnan(row).any():
                     _check(item, ~np.isnan(row), phi, on_failure)
+    out.keep(order)
     return out.kinematics(mech, phi, w1, e1, st, valid)
 
 
-def _solve_block(mech, phi, w1, e1, scale, on_failure) -> tuple[State, dict[str, np.ndarray]]:
+def _solve_block(mech, phi, w1, e1, scale, on_failure, items) -> tuple[State, dict[str, np.ndarray]]:
     n = phi.shape[0]
     st = State(n)
     zeros = np.zeros(n, dtype=complex)
@@ -267,12 +411,12 @@ def _solve_block(mech, phi, w1, e1, scale, on_failure) -> tuple[State, dict[str,
     st.links[GROUND] = LinkMotion(mech.ground[0][0], zr, zr, zr)
     conditions: dict[str, np.ndarray] = {}
     with np.errstate(all="ignore"):  # singular positions give inf/NaN, masked by `valid`
-        _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure)
+        _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure)
     return st, conditions
 
 
-def _solve_items(mech, st, phi, w1, e1, scale, conditions, on_failure) -> None:
-    for item in schedule(mech):
+def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure) -> None:
+    for item in items:
         if isinstance(item, Crank):
             _solve_crank(item, st, phi, w1, e1)
         elif isinstance(item, LinkPoint):
@@ -327,37 +471,50 @@ def length_scale(mech: Mechanism) -> float:
 
 class _Outputs:
     """Preallocated result arrays, point- (link-, slide-, group-) major so that each block
-    writes contiguous rows; `kinematics` returns (n, …) views of them without a copy."""
+    writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
+    derivatives up to ``order`` are kept."""
 
-    def __init__(self, st: State, conditions: dict, n: int):
+    def __init__(self, st: State, conditions: dict, n: int, order: int = 2):
         self.names = list(st.points)
         self.links = [k for k in st.links if k != GROUND]
         self.slide_names = list(st.slides)
         self.groups = list(conditions)
+        self.order = order
         P, L, S, G = len(self.names), len(self.links), len(self.slide_names), len(self.groups)
-        self.z = np.empty((3, P, n), dtype=complex)  # positions, velocities, accelerations
-        self.rates = np.empty((3, L, n))  # angles, ω, ε
-        self.slides = np.empty((S, 3, n))
+        k = order + 1
+        self.z = np.empty((k, P, n), dtype=complex)  # positions, velocities, accelerations
+        self.rates = np.empty((k, L, n))  # angles, ω, ε
+        self.slides = np.empty((S, k, n))
         self.condition = np.empty((G, n))
 
     def write(self, st: State, conditions: dict, where: slice) -> None:
-        for j, k in enumerate(self.names):
-            m = st.points[k]
-            self.z[0, j, where], self.z[1, j, where], self.z[2, j, where] = m.p, m.v, m.a
-        for j, k in enumerate(self.links):
-            m = st.links[k]
-            self.rates[0, j, where], self.rates[1, j, where], self.rates[2, j, where] = m.theta, m.omega, m.epsilon
-        for j, k in enumerate(self.slide_names):
-            m = st.slides[k]
-            self.slides[j, 0, where], self.slides[j, 1, where], self.slides[j, 2, where] = m.p.real, m.v.real, m.a.real
-        for j, k in enumerate(self.groups):
-            self.condition[j, where] = conditions[k]
+        k = self.order + 1
+        for j, name in enumerate(self.names):
+            m = st.points[name]
+            for d, arr in zip(range(k), (m.p, m.v, m.a)):
+                self.z[d, j, where] = arr
+        for j, name in enumerate(self.links):
+            m = st.links[name]
+            for d, arr in zip(range(k), (m.theta, m.omega, m.epsilon)):
+                self.rates[d, j, where] = arr
+        for j, name in enumerate(self.slide_names):
+            m = st.slides[name]
+            for d, arr in zip(range(k), (m.p, m.v, m.a)):
+                self.slides[j, d, where] = arr.real
+        for j, name in enumerate(self.groups):
+            self.condition[j, where] = conditions[name]
+
+    def keep(self, order: int) -> None:
+        """Drop the derivatives above ``order`` (views: nothing is copied)."""
+        self.order = order
+        self.z, self.rates, self.slides = self.z[:order + 1], self.rates[:order + 1], self.slides[:, :order + 1]
 
     def kinematics(self, mech, phi, w1, e1, st: State, valid: np.ndarray | None = None) -> Kinematics:
         """The results as `Kinematics`; ``valid`` is computed here unless given, and the angles
         that leave (−π, π] (cranks, guides) are wrapped into it."""
         n = phi.shape[0]
-        xy = self.z.view(float).reshape(3, len(self.names), n, 2).transpose(0, 2, 1, 3)
+        k = self.order + 1
+        xy = self.z.view(float).reshape(k, len(self.names), n, 2).transpose(0, 2, 1, 3)
         if valid is None:
             with np.errstate(invalid="ignore"):
                 finite = np.isfinite(self.z.sum(axis=(0, 1))) & np.isfinite(self.rates[1:].sum(axis=(0, 1)))
@@ -365,33 +522,35 @@ class _Outputs:
             for row in self.rates[0]:
                 if row.size and (row.max(initial=-np.inf) > np.pi or row.min(initial=np.inf) <= -np.pi):
                     row[:] = wrap_angle(row)
+        rates = self.rates.transpose(0, 2, 1)
         return Kinematics(
             mechanism=mech,
             phi=phi,
             omega1=w1,
             epsilon1=e1,
             positions=xy[0],
-            velocities=xy[1],
-            accelerations=xy[2],
-            point_index={k: i for i, k in enumerate(self.names)},
-            angles=self.rates[0].T,
-            omegas=self.rates[1].T,
-            epsilons=self.rates[2].T,
-            link_index={k: i for i, k in enumerate(self.links)},
-            link_origins={k: st.links[k].origin for k in self.links},
+            velocities=xy[1] if k > 1 else None,
+            accelerations=xy[2] if k > 2 else None,
+            point_index={name: i for i, name in enumerate(self.names)},
+            angles=rates[0],
+            omegas=rates[1] if k > 1 else None,
+            epsilons=rates[2] if k > 2 else None,
+            link_index={name: i for i, name in enumerate(self.links)},
+            link_origins={name: st.links[name].origin for name in self.links},
             slides=self.slides.transpose(2, 0, 1),
-            slide_index={k: i for i, k in enumerate(self.slide_names)},
+            slide_index={name: i for i, name in enumerate(self.slide_names)},
             condition=self.condition.T,
-            group_index={k: i for i, k in enumerate(self.groups)},
+            group_index={name: i for i, name in enumerate(self.groups)},
             valid=valid,
+            order=self.order,
         )
 
 
 def transfer_functions(kin: Kinematics) -> dict[str, np.ndarray]:
     """Velocity analogues: ``"V_<point>"`` → |V|/ω1 (m) and ``"w_<link>"`` → ω/ω1 (signed)."""
-    if kin.omega1 == 0:
+    if np.any(kin.omega1 == 0):
         raise MechanismError("transfer functions need a crank speed omega1 ≠ 0")
-    out = {f"V_{k}": np.hypot(*kin.velocities[:, i].T) / abs(kin.omega1) for k, i in kin.point_index.items()}
+    out = {f"V_{k}": np.hypot(*kin.velocities[:, i].T) / np.abs(kin.omega1) for k, i in kin.point_index.items()}
     out.update({f"w_{k}": kin.omegas[:, i] / kin.omega1 for k, i in kin.link_index.items()})
     return out
 

@@ -8,10 +8,8 @@ import math
 
 import numpy as np
 
-from velplan.analysis.extremes import positions
-from velplan.cli.common import add_mechanism, add_output, emit, positive_int
+from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
-from velplan.mechanism.loader import load
 
 STANDARD = 12
 """Number of standard positions that ``--position K`` counts in."""
@@ -25,6 +23,10 @@ def register(sub) -> None:
                        help=f"only position K of the {STANDARD} standard positions")
     where.add_argument("--positions", metavar="N", type=positive_int, default=STANDARD,
                        help=f"N positions evenly spaced from the reference position (default {STANDARD})")
+    where.add_argument("--angles", metavar="DEG,…", help="crank angles in degrees, e.g. 0,45,90")
+    p.add_argument("--motion", choices=("constant", "dynamic"), default="constant",
+                   help="the crank at the file's constant speed, or at the ω(φ), ε(φ) computed by "
+                        "its [dynamics] section (default constant)")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--no-inertia", action="store_true", help="leave out the inertia forces and moments")
     p.add_argument("--no-gravity", action="store_true", help="leave out gravity")
@@ -38,30 +40,25 @@ def register(sub) -> None:
 
 
 def run_forces(args) -> int:
-    from velplan.forces.agreement import analyse_forces
-    from velplan.forces.parse import parse_loads
-
-    mech = load(args.mechanism)
-    loads = parse_loads(mech)
-    if args.position is not None:
-        if args.position > STANDARD:
-            raise VelplanError(f"--position {args.position}: must be between 1 and {STANDARD}")
-        phi = positions(mech, STANDARD)[args.position - 1:args.position]
-        numbers = [args.position]
-    else:
-        phi = positions(mech, args.positions)
-        numbers = list(range(1, args.positions + 1))
     from velplan.plans import EXACT, Drafting
+    from velplan.study import Study
 
+    if args.position is not None and args.position > STANDARD:
+        raise VelplanError(f"--position {args.position}: must be between 1 and {STANDARD}")
+    angles = parse_angles(args.angles) if args.angles is not None else None
+    n = STANDARD if args.position is not None else args.positions
+    study = Study(args.mechanism, n=n, angles=angles, motion=args.motion)
+    loads = study.loads
     drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.precision)
-    res = analyse_forces(mech, phi, loads=loads, gravity=not args.no_gravity, inertia=not args.no_inertia,
-                         mu_v=args.scale_v, drafting=drafting)
+    res = study.forces(gravity=not args.no_gravity, inertia=not args.no_inertia, mu_v=args.scale_v,
+                       drafting=drafting)
+    numbers = [args.position] if args.position is not None else list(range(1, study.n + 1))
     text = (to_json if args.format == "json" else to_table)(res, numbers, [ld.name for ld in loads])
     if args.plot:
         from velplan.forces.plot import plot_balancing_moment
 
-        plot_balancing_moment(mech, args.plot, loads=loads, gravity=not args.no_gravity,
-                              inertia=not args.no_inertia)
+        plot_balancing_moment(study.turn_forces(gravity=not args.no_gravity, inertia=not args.no_inertia),
+                              args.plot, sense=study.sense)
     emit(text, args.output)
     return 0
 
@@ -71,15 +68,30 @@ def _num(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
+def _omega1(kin) -> float | list:
+    w = kin.omega1
+    return [float(x) for x in w] if isinstance(w, np.ndarray) else float(w)
+
+
+def _omega1_text(kin, idx) -> str:
+    if not isinstance(kin.omega1, np.ndarray):
+        return f"ω1 = {kin.omega1:+.6g} rad/s"
+    w = kin.omega1[idx]
+    return f"ω1 = {np.min(w):+.6g} … {np.max(w):+.6g} rad/s (computed motion)"
+
+
 def to_json(res, numbers: list[int], load_names: list[str]) -> str:
-    """The analysis as JSON (SI units, N and N·m; null where a position is singular)."""
+    """The analysis as JSON (SI units, N and N·m; null where a position is singular) at the
+    positions ``numbers`` (1-based) of ``res``."""
     from velplan.forces.agreement import lever_difference_percent
 
     kin, ks = res.kinematics, res.kinetostatics
     bm = res.balancing_moments
     pct = lever_difference_percent(bm["lever"], bm["kinetostatics"])
-    doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "loads": load_names, "positions": []}
-    for i, number in enumerate(numbers):
+    w1 = kin.crank_rate("omega")
+    doc = {"mechanism": kin.mechanism.name, "omega1": _omega1(kin), "loads": load_names, "positions": []}
+    for number in numbers:
+        i = number - 1 if len(numbers) < len(kin) else numbers.index(number)
         reactions = {}
         for name, r in ks.reactions.items():
             entry = {"x": _num(r.force[i].real), "y": _num(r.force[i].imag), "magnitude": _num(abs(r.force[i])),
@@ -91,6 +103,7 @@ def to_json(res, numbers: list[int], load_names: list[str]) -> str:
         doc["positions"].append({
             "position": number,
             "phi_deg": float(np.degrees(kin.phi[i]) % 360.0),
+            "omega1": _num(w1[i]),
             "balancing_moment": {k: _num(v[i]) for k, v in bm.items()},
             "lever_difference_percent": _num(pct[i]),
             "balancing_force": _num(res.lever.balancing_force[i]),
@@ -100,14 +113,17 @@ def to_json(res, numbers: list[int], load_names: list[str]) -> str:
 
 
 def to_table(res, numbers: list[int], load_names: list[str]) -> str:
-    """M_b by the three methods and |R| of every pair, one column per position."""
+    """M_b by the three methods and |R| of every pair, one column per position ``numbers``
+    (1-based) of ``res``."""
     kin, ks = res.kinematics, res.kinetostatics
+    idx = [k - 1 for k in numbers] if len(numbers) < len(kin) else list(range(len(kin)))
     bm = res.balancing_moments
     head = f"{'quantity':<22}" + "".join(f"{k:>11}" for k in numbers)
-    lines = [f"{kin.mechanism.name}: ω1 = {kin.omega1:+.6g} rad/s; loads: {', '.join(load_names) or 'none'}",
-             head, f"{'φ, deg':<22}" + "".join(f"{x:>11.2f}" for x in np.degrees(kin.phi) % 360.0)]
+    lines = [f"{kin.mechanism.name}: {_omega1_text(kin, idx)}; loads: {', '.join(load_names) or 'none'}",
+             head, f"{'φ, deg':<22}" + "".join(f"{x:>11.2f}" for x in np.degrees(kin.phi[idx]) % 360.0)]
 
     def row(label: str, values) -> str:
+        values = np.asarray(values)[idx]
         return f"{label:<22}" + "".join(f"{v:>11.5g}" if math.isfinite(v) else f"{'—':>11}" for v in values)
 
     lines.append("balancing moment M_b, N·m")

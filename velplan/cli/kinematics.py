@@ -9,11 +9,11 @@ import math
 
 import numpy as np
 
-from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
-from velplan.analysis.solver import Kinematics, solve, transfer_functions
+from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
 from velplan.mechanism.structure import analyse
+from velplan.study import Study
 
 
 def register(sub) -> None:
@@ -41,14 +41,15 @@ def register(sub) -> None:
 def run_examples(args) -> int:
     lines = []
     for name in example_names():
-        mech = load(name, check_assembly=False)
+        mech = load(name)
         lines.append(f"{name:<14} {mech.description or mech.title}")
     emit("\n".join(lines), None)
     return 0
 
 
 def run_info(args) -> int:
-    mech = load(args.mechanism)
+    study = Study(args.mechanism)
+    mech = study.mechanism
     st = analyse(mech)
     out = [f"{mech.name}: {mech.title}".rstrip(": "), ""]
     c = mech.crank
@@ -59,27 +60,27 @@ def run_info(args) -> int:
     for name, kind, cls, order, links in st.groups:
         out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}")
     out.append("extreme positions (crank angle → value):")
-    for q, roots in extremes(mech).items():
+    for q, roots in study.extremes.items():
         unit = "°" if q.startswith("link") else " m"
         vals = "; ".join(
             f"{math.degrees(e.phi):.6f}° → {(math.degrees(e.value) if unit == '°' else e.value):.6g}{unit} ({e.kind})"
             for e in roots
         )
         out.append(f"  {q:<10} {vals or 'none (full rotation or no reversal)'}")
-    s = stroke(mech)
+    s = study.stroke
     if s is not None:
         h = f"{math.degrees(s.H):.6g}°" if s.quantity.startswith("link") else f"{s.H:.9g} m"
         out.append(f"output {s.quantity}: stroke H = {h}, θ = {math.degrees(s.theta):.6f}°, K = {s.K:.6f}")
         out.append(f"  working (slow) stroke from φ = {math.degrees(s.start.phi):.6f}° to {math.degrees(s.end.phi):.6f}°")
-    out.append(f"reference position 1 at φ = {math.degrees(reference_angle(mech)):.6f}°")
+    out.append(f"reference position 1 at φ = {math.degrees(study.reference):.6f}°")
     emit("\n".join(out), None)
     return 0
 
 
 def run_analyze(args) -> int:
-    mech = load(args.mechanism)
-    phi = parse_angles(args.angles) if args.angles else positions(mech, args.positions)
-    kin = solve(mech, phi, engine=args.engine)
+    angles = parse_angles(args.angles) if args.angles is not None else None
+    study = Study(args.mechanism, n=args.positions, angles=angles, engine=args.engine)
+    kin = study.kinematics
     render = {"json": to_json, "csv": to_csv, "table": to_table}[args.format]
     emit(render(kin), args.output)
     return 0

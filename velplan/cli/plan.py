@@ -7,15 +7,13 @@ import math
 
 import numpy as np
 
-from velplan.analysis.extremes import positions
-from velplan.analysis.solver import solve
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
-from velplan.mechanism.loader import load
-from velplan.plans import EXACT, Drafting, Plan
+from velplan.plans import EXACT, Drafting
 from velplan.plans.check import check_table
 from velplan.plans.engine import PlanResult
 from velplan.plans.text import LANGS
+from velplan.study import Study
 
 
 def register(sub) -> None:
@@ -65,21 +63,19 @@ def _drafting(args) -> Drafting:
 
 
 def run_plan(args) -> int:
-    mech = load(args.mechanism)
     if args.angle is not None:
         phi = parse_angles(args.angle)
         if phi.size != 1:
             raise VelplanError("--angle takes one angle")
-        number = None
+        study, index, number = Study(args.mechanism, angles=phi), 0, None
     else:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
-        phi = positions(mech, args.positions)[args.position - 1: args.position]
-        number = args.position
-    kin = solve(mech, phi, on_failure="raise")
+        study, index, number = Study(args.mechanism, n=args.positions), args.position - 1, args.position
+    study.require_assembled([index])
     only = [x.strip() for x in args.only.split(",")] if args.only else None
-    res = Plan.of(mech).evaluate(kin, kind=args.kind, only=only, scale_v=args.scale_v, scale_a=args.scale_a,
-                                 drafting=_drafting(args))
+    res = study.plan(args.kind, positions=[index], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+                     drafting=_drafting(args))
     doc = plan_json(res, number)
     emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),
          args.output)
@@ -153,14 +149,12 @@ def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
 
 
 def run_compare(args) -> int:
-    mech = load(args.mechanism)
-    kin = solve(mech, positions(mech, args.positions))
-    plan = Plan.of(mech)
+    study = Study(args.mechanism, n=args.positions)
+    mech = study.mechanism
     kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
     rows = []
     for kind in kinds:
-        res = plan.evaluate(kin, kind=kind, scale_v=args.scale_v, scale_a=args.scale_a, drafting=_drafting(args))
-        rows += compare_rows(res)
+        rows += compare_rows(study.plan(kind, scale_v=args.scale_v, scale_a=args.scale_a, drafting=_drafting(args)))
     if args.format == "json":
         emit(json.dumps({"mechanism": mech.name, "mode": args.mode, "rows": rows}, indent=1, ensure_ascii=False), args.output)
         return 0
@@ -203,7 +197,7 @@ def compare_rows(res: PlanResult) -> list[dict]:
 
 
 def run_check(args) -> int:
-    mech = load(args.mechanism)
+    mech = Study(args.mechanism).mechanism
     report = check_table(mech, args.table, scale_v=args.scale_v, drafting=Drafting(args.precision, args.angle_precision))
     emit(report.text(), args.output)
     return 0

@@ -108,17 +108,18 @@ def _report(paths) -> None:
 
 
 def run_sheet(args) -> int:
-    from velplan.mechanism.loader import load
-    from velplan.render.sheet import TitleInfo
-    from velplan.sheet import build_sheet, default_title
+    from velplan.sheets.frame import TitleInfo
+    from velplan.sheets.kinematic import build_sheet, default_title
+    from velplan.study import Study
 
-    mech = load(args.mechanism)
     plans = parse_plans(args.plans)
+    study = Study(args.mechanism, n=args.positions)
+    mech = study.mechanism
     fields = {k: getattr(args, k) for k in ("title", "designation", "author", "checker",
                                              "approved", "organisation", "date")
               if getattr(args, k)}
     if args.kind == "forces":
-        return _run_force_sheet(args, mech, plans, fields)
+        return _run_force_sheet(args, study, plans, fields)
     info = None
     if fields:
         frame = args.frame or ("eskd" if args.lang in ("ru", "uk") else "iso")
@@ -126,7 +127,7 @@ def run_sheet(args) -> int:
         info = TitleInfo(**{**{f: getattr(base, f) for f in ("title", "designation")},
                             **{("checker" if k == "checker" else k): v
                                for k, v in fields.items()}})
-    sheet = build_sheet(mech, n=args.positions, plans=plans, kind=args.kind, fmt=args.format,
+    sheet = build_sheet(study, plans=plans, kind=args.kind, fmt=args.format,
                         lang=args.lang, frame_style=args.frame, info=info,
                         diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                         table=not args.no_table)
@@ -135,15 +136,16 @@ def run_sheet(args) -> int:
     return 0
 
 
-def _run_force_sheet(args, mech, plans, fields) -> int:
-    from velplan.force_sheet import build_force_sheet, default_force_title
-    from velplan.render.sheet import TitleInfo
+def _run_force_sheet(args, study, plans, fields) -> int:
+    from velplan.sheets.forces import build_force_sheet, default_force_title
+    from velplan.sheets.frame import TitleInfo
 
+    mech = study.mechanism
     info = None
     if fields:
         base = default_force_title(mech, args.lang, "")
         info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
-    sheet = build_force_sheet(mech, n=args.positions, plans=plans, fmt=args.format,
+    sheet = build_force_sheet(study, plans=plans, fmt=args.format,
                               lang=args.lang, frame_style=args.frame, info=info,
                               diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                               table=not args.no_table)
@@ -153,18 +155,20 @@ def _run_force_sheet(args, mech, plans, fields) -> int:
 
 
 def run_diagrams(args) -> int:
-    from velplan.diagrams import kinematic_diagrams
-    from velplan.mechanism.loader import load
-    from velplan.render.diagram_view import diagram_view
+    from velplan.study import Study
+    from velplan.views.diagram import diagram_view
     from velplan.render.scene import Scene
     from velplan.render.style import SheetStyle
     from velplan.render.svg import to_svg
-    from velplan.sheet import write_outputs
+    from velplan.sheets.layout import write_outputs
 
     if not 60.0 <= args.length <= 600.0:
         raise VelplanError(f"--length must be between 60 and 600 mm, not {args.length:g}")
-    mech = load(args.mechanism)
-    d = kinematic_diagrams(mech, args.positions)
+    if args.positions < 3:
+        raise VelplanError(f"the chord method needs at least 3 positions, not {args.positions}")
+    study = Study(args.mechanism, n=args.positions)
+    mech = study.mechanism
+    d = study.diagrams
     view = diagram_view(d, length_mm=args.length, height_mm=40.0, lang=args.lang,
                         arrangement="column")
     margin = 10.0
@@ -177,15 +181,18 @@ def run_diagrams(args) -> int:
 
 
 def run_steps(args) -> int:
-    from velplan.mechanism.loader import load
-    from velplan.render.steps_view import step_figures
+    from velplan.study import Study
+    from velplan.views.steps import step_figures
     from velplan.render.style import SheetStyle
     from velplan.render.svg import to_svg
-    from velplan.sheet import write_outputs
+    from velplan.sheets.layout import write_outputs
 
-    mech = load(args.mechanism)
-    figures = step_figures(mech, args.position, n=args.positions, kind=args.kind,
-                           lang=args.lang)
+    study = Study(args.mechanism, n=args.positions)
+    if not 1 <= args.position <= study.n:
+        raise VelplanError(f"--position {args.position} is outside 1…{study.n}")
+    kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
+    figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},
+                           args.position, kind=args.kind, lang=args.lang)
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise VelplanError(f"cannot write steps into {out}: it is a file, not a directory")

@@ -47,6 +47,8 @@ class ForceAnalysis:
         With exact images at the scale ``mu_v``.
     power : ndarray, shape (n,)
         M_b by the power method, N·m.
+    plan : velplan.plans.PlanResult
+        The velocity plan the lever is drawn on (every position).
     """
 
     kinematics: Kinematics = field(repr=False)
@@ -54,6 +56,7 @@ class ForceAnalysis:
     kinetostatics: Kinetostatics = field(repr=False)
     lever: Lever = field(repr=False)
     power: np.ndarray
+    plan: object = field(default=None, repr=False)
 
     @property
     def balancing_moments(self) -> dict[str, np.ndarray]:
@@ -96,11 +99,25 @@ def analyse_forces(mech: Mechanism, phi, *, loads: Sequence | None = None, gravi
     from velplan.plans import EXACT, Plan
 
     kin = solve(mech, phi)
+    plan = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=mu_v, drafting=drafting or EXACT)
+    return force_analysis(kin, plan, parse_loads(mech) if loads is None else loads, gravity=gravity,
+                          inertia=inertia, k=k, mu_v=mu_v)
+
+
+def force_analysis(kin: Kinematics, plan, loads: Sequence, *, gravity: bool = True, inertia: bool = True,
+                   k: float = DEFAULT_K, mu_v: float | None = None) -> ForceAnalysis:
+    """Kinetostatics, lever and power method on a solved mechanism ``kin`` and its velocity
+    plan ``plan`` (a `velplan.plans.PlanResult` at every position of ``kin``); the lever is
+    drawn at ``mu_v`` (the plan's own scale when omitted)."""
+    mech = kin.mechanism
     acts = mechanism_actions(mech, kin, loads, gravity=gravity, inertia=inertia, k=k)
     ks = kinetostatics(mech, kin, acts)
-    plan = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=mu_v, drafting=drafting or EXACT)
-    lv = zhukovsky_lever(mech, positions_from_kinematics(kin, None), images_from_plan(plan), plan.scale, acts)
-    return ForceAnalysis(kin, acts, ks, lv, power_balancing_moment(kin, acts))
+    mu = plan.scale if mu_v is None or not plan.drafting.exact else mu_v
+    images = images_from_plan(plan)
+    if mu != plan.scale:
+        images = {name: z * (plan.scale / mu) for name, z in images.items()}
+    lv = zhukovsky_lever(mech, positions_from_kinematics(kin, None), images, mu, acts)
+    return ForceAnalysis(kin, acts, ks, lv, power_balancing_moment(kin, acts), plan)
 
 
 def lever_difference_percent(lever, kinetostatics) -> np.ndarray:

@@ -105,25 +105,44 @@ class Track:
         return np.exp(1j * kin.angle(self.link))
 
     def psi_where(self, target, lo: float, hi: float) -> np.ndarray:
-        """Turns ψ in [lo, hi] (on which s is monotonic) where s = ``target`` (m), by bisection."""
+        """Turns ψ in [lo, hi] (on which s is monotonic) where s = ``target`` (m), to round-off.
+
+        One solve on a grid brackets every target; a safeguarded Newton iteration on the exact
+        analogue ds/dψ = ±ds/dφ (bisection where a step would leave the bracket, as at an
+        extreme, where ds/dψ = 0) then takes two or three solves of all targets together.
+        """
         target = np.atleast_1d(np.asarray(target, dtype=float))
-        lo_ = np.full(target.shape, float(lo))
-        hi_ = np.full(target.shape, float(hi))
+        grid = np.linspace(float(lo), float(hi), 65)
 
         def s_of(psi):
-            k = solve(self.mechanism, self.phi(psi), omega1=1.0, epsilon1=0.0)
-            return k.slide(self.pair)[:, 0] - target
+            k = solve(self.mechanism, self.phi(psi), omega1=1.0, epsilon1=0.0, points=[self.point])
+            sl = k.slide(self.pair)
+            return sl[:, 0], self.sense * sl[:, 1]
 
-        f_lo = s_of(lo_)
-        for _ in range(80):
-            mid = 0.5 * (lo_ + hi_)
-            f_mid = s_of(mid)
-            same = np.sign(f_mid) == np.sign(f_lo)
-            lo_, f_lo = np.where(same, mid, lo_), np.where(same, f_mid, f_lo)
-            hi_ = np.where(same, hi_, mid)
-            if np.all(hi_ - lo_ <= 4e-16 * max(1.0, abs(hi))):
+        s, _ = s_of(grid)
+        up = 1.0 if s[-1] >= s[0] else -1.0
+        j = np.clip(np.searchsorted(up * s, up * target), 1, grid.size - 1)
+        lo_, hi_ = grid[j - 1], grid[j]
+        f_lo, f_hi = s[j - 1] - target, s[j] - target
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = lo_ - f_lo * (hi_ - lo_) / (f_hi - f_lo)
+        x = np.where((x >= lo_) & (x <= hi_), x, 0.5 * (lo_ + hi_))
+        eps = np.finfo(float).eps
+        for _ in range(100):
+            sx, ds = s_of(x)
+            f = sx - target
+            same = np.sign(f) == np.sign(f_lo)
+            lo_, f_lo, hi_ = np.where(same, x, lo_), np.where(same, f, f_lo), np.where(same, hi_, x)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                newton = x - f / ds
+            inside = (newton > lo_) & (newton < hi_) & np.isfinite(newton)
+            x_new = np.where(f == 0, x, np.where(inside, newton, 0.5 * (lo_ + hi_)))
+            ulp4 = 4 * eps * np.maximum(np.abs(x_new), 1.0)
+            done = (np.abs(x_new - x) <= ulp4) | (f == 0) | (hi_ - lo_ <= ulp4)
+            x = x_new
+            if done.all():
                 break
-        return 0.5 * (lo_ + hi_)
+        return x
 
 
 def output_slider(mech: Mechanism) -> tuple[str, str, str] | None:

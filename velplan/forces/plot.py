@@ -11,9 +11,7 @@ from typing import Sequence
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.forces.inertia import DEFAULT_K
 from velplan.io import write_atomic
-from velplan.mechanism.model import Mechanism
 
 
 def _figure(width: float = 8.0, height: float = 4.5):
@@ -32,9 +30,15 @@ def _save(fig, path) -> Path:
     return write_atomic(path, buf.getvalue())
 
 
-def plot_balancing_moment(mech: Mechanism, path, *, n: int = 360, loads: Sequence | None = None,
-                          gravity: bool = True, inertia: bool = True, k: float = DEFAULT_K) -> dict[str, np.ndarray]:
+def plot_balancing_moment(res, path, *, sense: float = 1.0) -> dict[str, np.ndarray]:
     """Plot M_b(φ) over a revolution by the three methods, with its mean, to ``path`` (.png/.svg).
+
+    Parameters
+    ----------
+    res : ForceAnalysis
+        The force analysis over a turn from position 1 (`velplan.study.Study.turn_forces`).
+    sense : float
+        +1 when the crank turns counter-clockwise, −1 otherwise.
 
     Returns
     -------
@@ -42,19 +46,17 @@ def plot_balancing_moment(mech: Mechanism, path, *, n: int = 360, loads: Sequenc
         ``"turn_deg"`` (crank turn from position 1, deg), ``"kinetostatics"``, ``"lever"``,
         ``"power"`` (N·m) — the plotted data.
     """
-    from velplan.analysis.extremes import positions
-    from velplan.forces.agreement import analyse_forces
-
-    phi = positions(mech, n)
-    res = analyse_forces(mech, phi, loads=loads, gravity=gravity, inertia=inertia, k=k)
-    turn = np.arange(n) * 360.0 / n
+    mech = res.kinematics.mechanism
+    phi = res.kinematics.phi
+    turn = np.degrees(sense * (phi - phi[0]))
     data = {"turn_deg": turn, **res.balancing_moments}
     fig = _figure()
     ax = fig.add_subplot()
     styles = {"kinetostatics": ("-", 2.0), "lever": ("--", 1.2), "power": (":", 1.2)}
     for name, (ls, lw) in styles.items():
         ax.plot(turn, data[name], ls, lw=lw, color="black", label=f"M_b, {name}")
-    mean = float(np.nanmean(data["kinetostatics"]))
+    whole = turn[-1] - turn[0] >= 359.999  # a closed turn repeats its first angle: count it once
+    mean = float(np.nanmean(data["kinetostatics"][:-1] if whole else data["kinetostatics"]))
     ax.axhline(mean, color="grey", lw=0.8, ls="-.", label=f"mean {mean:.4g} N·m")
     ax.set_xlabel("crank turn from position 1, °")
     ax.set_ylabel("balancing moment M_b, N·m")

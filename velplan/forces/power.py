@@ -40,7 +40,7 @@ def power_balancing_moment(kin: Kinematics, actions: Actions) -> np.ndarray:
     the inertia forces Φ = −m·a_S and moments M_Φ = −J_S·ε (the inertia terms sum to −dT/dt,
     so this is also M_b·ω1 = dT/dt − Σ P_loads). Reactions do no work.
     """
-    if kin.omega1 == 0:
+    if np.any(kin.omega1 == 0):
         raise MechanismError("the power method needs a crank speed omega1 ≠ 0")
     total = sum(powers(kin, actions).values(), np.zeros(len(kin)))
     return -total / kin.omega1
@@ -106,7 +106,7 @@ def static_moment(kin: Kinematics, actions: Actions, *, zero_speed: float = 1e-9
     zero_speed : float
         V/ω1 (m) below which the angle is reported as NaN (the point is at rest there).
     """
-    if kin.omega1 == 0:
+    if np.any(kin.omega1 == 0):
         raise MechanismError("the static moment needs a crank speed omega1 ≠ 0")
     if actions.select("inertia").forces or actions.select("inertia").moments:
         raise MechanismError("the static moment takes gravity and loads only, not inertia forces")

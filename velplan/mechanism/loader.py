@@ -32,7 +32,7 @@ from velplan.mechanism.structure import point_owners, schedule
 
 _TOP_KEYS = {
     "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
-    "point", "link", "gravity", "load",
+    "point", "link", "gravity", "load", "dynamics",
 }
 
 
@@ -42,15 +42,12 @@ def example_names() -> list[str]:
     return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
 
 
-def load(source: str | Path, *, check_assembly: bool = True) -> Mechanism:
+def load(source: str | Path) -> Mechanism:
     """Load a mechanism: a bundled example name (``"shaper"``) or a path to a TOML file.
 
-    Parameters
-    ----------
-    source : str or Path
-    check_assembly : bool
-        Also check that every group closes over a whole crank revolution (sampled at 0.1°
-        steps) and raise naming the group and the angle ranges where it does not.
+    The file is parsed and its structure checked (names, lengths, the order the groups can be
+    solved in); whether it assembles over a turn and what its loads mean is checked by the
+    `velplan.study.Study` that studies it.
     """
     path = Path(source)
     if path.suffix.lower() != ".toml" and str(source) in example_names():
@@ -67,25 +64,16 @@ def load(source: str | Path, *, check_assembly: bool = True) -> Mechanism:
             f"unknown mechanism {str(source)!r}: not a bundled example ({', '.join(example_names())}) "
             "and no such file"
         )
-    return loads(text, name=name, check_assembly=check_assembly)
+    return loads(text, name=name)
 
 
-def loads(text: str, *, name: str = "mechanism", check_assembly: bool = True) -> Mechanism:
+def loads(text: str, *, name: str = "mechanism") -> Mechanism:
     """Parse and validate a mechanism from TOML text (see `load`)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise MechanismError(f"malformed TOML in {name}: {exc}") from None
-    mech = from_dict(data, name=name)
-    if check_assembly:
-        from velplan.analysis.assembly import check_full_rotation
-
-        check_full_rotation(mech)
-        if mech.loads:  # loads refer to strokes and points: check them once the mechanism closes
-            from velplan.forces.parse import parse_loads
-
-            parse_loads(mech)
-    return mech
+    return from_dict(data, name=name)
 
 
 def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
@@ -111,6 +99,7 @@ def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
         reference_deg=None if ref is None else _finite(ref, "reference_deg"),
         gravity=_finite(data.get("gravity", 9.81), "gravity"),
         loads=tuple(_list(data, "load")),
+        dynamics=_table(data, "dynamics") or None,
     )
     _check_names(mech)
     return mech

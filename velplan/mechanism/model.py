@@ -245,8 +245,10 @@ class Mechanism:
     reference_deg : float or None
         Crank angle (deg) of position 1; ``None`` = the start of the slow (working) stroke of
         the output, or 0 without an output.
-    loads : dict
+    loads : tuple of dict
         Raw load declarations, interpreted by the force analysis.
+    dynamics : dict or None
+        The raw ``[dynamics]`` section, interpreted by `velplan.dynamics`.
     """
 
     name: str
@@ -261,6 +263,7 @@ class Mechanism:
     description: str = ""
     gravity: float = 9.81
     loads: tuple = ()
+    dynamics: dict | None = field(default=None, compare=False)
 
     @property
     def ground_points(self) -> dict[str, tuple[float, float]]:

@@ -150,7 +150,7 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
     points = list(plan.images["v"])
     links = [k for k in plan.figures["v"] if k != "0"]
     quantities = {name: _quantity(name, points, links) for name in table}
-    w1 = abs(kin.omega1)
+    w1 = np.abs(kin.omega1)
     exact = {name: _analytic(q, kin, w1) for name, q in quantities.items()}
     spread = _drafting_spread(mech, plan, phi, mu, drafting, quantities, exact, seed)
     per_mm = {name: _per_mm(q, plan, kin, mu, w1) for name, q in quantities.items()}
@@ -194,7 +194,7 @@ def _drafting_spread(mech, plan, phi, mu, drafting, quantities, exact, seed) -> 
     kin = solve(mech, np.tile(phi, MC_RUNS))
     mc = Drafting(drafting.length_mm, drafting.angle_deg, rng=np.random.default_rng(seed))
     res = plan.evaluate(kin, kind="velocity", scale_v=mu, drafting=mc, refuse_below=0.0)
-    w1 = abs(kin.omega1)
+    w1 = np.abs(kin.omega1)
     out = {}
     for name, (kind, x) in quantities.items():
         got = np.hypot(*res.vector(x).T) / w1 if kind == "V" else np.abs(res.omegas[x]) / w1

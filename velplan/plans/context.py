@@ -68,11 +68,13 @@ class Context:
         self.drafting = drafting
         self.refuse_below = refuse_below
         self.plan_steps = plan_steps
-        self.omega1 = kin.omega1
-        self.epsilon1 = kin.epsilon1
+        # the crank's ω1, ε1: one value, or one per evaluated position for a computed motion
+        self.omega1 = kin.omega1 if np.ndim(kin.omega1) == 0 else kin.omega1[idx]
+        self.epsilon1 = kin.epsilon1 if np.ndim(kin.epsilon1) == 0 else kin.epsilon1[idx]
         self.conditions: dict[str, np.ndarray] = {}
         self.bounds: dict[str, np.ndarray] = Lazy()
         self.segments: dict[str, np.ndarray] = Lazy()
+        self.segment_plans: dict[str, str] = {}
         self.components: dict[str, tuple[str, str, str]] = {}
         self._pos: dict[str, np.ndarray] = {}
         self._best: int | None = None
@@ -169,6 +171,7 @@ class Context:
     def record_segment(self, step, label: str, length_mm, component: str) -> None:
         """The segment ``label`` (its length in mm, or a function giving it) and its component."""
         self.segments[label] = length_mm
+        self.segment_plans[label] = step.target[0]
         if component:
             self.components[component] = (label, step.target[0], step.target)
 

@@ -3,7 +3,9 @@ positions, exactly (float64) or with simulated drafting precision."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import copy
+
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Iterable, Literal, Sequence
 
@@ -14,7 +16,7 @@ from velplan.errors import MechanismError, ScaleError, SingularPositionError
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.plans import text as T
 from velplan.plans.build import construct
-from velplan.plans.context import Context, Figure
+from velplan.plans.context import Context, Figure, Lazy
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.scale import check_scale, standard_scale
 from velplan.plans.steps import Intersect, Step
@@ -78,7 +80,7 @@ class Plan:
         if velocity.kin is not kin or velocity.drafting != drafting or not np.array_equal(velocity.index, idx):
             raise ValueError("velocity= must be drawn from the same kinematics, positions and drafting")
         vals.update(velocity.values)
-        for name in ("conditions", "bounds", "segments", "components"):
+        for name in ("conditions", "bounds", "segments", "segment_plans", "components"):
             dict.update(getattr(ctx, name), getattr(velocity.ctx, name))
         v = velocity.ctx
         ctx._best, ctx._pos, ctx._omega, ctx._memo = v._best, dict(v._pos), dict(v._omega), dict(v._memo)
@@ -156,7 +158,7 @@ class Plan:
             raise ValueError(f"kind must be 'velocity' or 'acceleration', not {kind!r}")
         if kin.mechanism is not self.mechanism and kin.mechanism != self.mechanism:
             raise MechanismError("the kinematics were solved for another mechanism")
-        if (kin.epsilon1 != 0) and not self.tangential:
+        if np.any(kin.epsilon1 != 0) and not self.tangential:
             raise MechanismError("ε1 ≠ 0: build the plan with tangential=True")
         idx = np.arange(len(kin)) if positions is None else np.asarray(positions, dtype=int)
         sel = slice(None) if positions is None else idx  # every position: views, not copies
@@ -224,6 +226,32 @@ class PlanResult:
         """μ of this plan: (m/s)/mm or (m/s²)/mm."""
         return self.scales[self.kind[0]]
 
+    def at_scale(self, mu: float) -> "PlanResult":
+        """This exact plan drawn at the scale ``mu`` ((m/s)/mm or (m/s²)/mm): every image,
+        line and segment of this plan scaled by μ_old/μ, nothing constructed again (an exact
+        plan does not depend on its scale; a drafted one does, and is refused)."""
+        k = self.kind[0]
+        mu = check_scale(mu, "scale μv" if k == "v" else "scale μa")
+        if mu == self.scales[k]:
+            return self
+        if not self.drafting.exact:
+            raise MechanismError("a drafted plan is read at the scale it was drawn at; draw it again at the new scale")
+        r = self.scales[k] / mu
+        values = {}
+        for t, v in self.values.items():
+            if t.startswith(k + ":"):
+                v = (v[0] * r, v[1]) if isinstance(v, tuple) else v * r
+            values[t] = v
+        ctx = copy.copy(self.ctx)
+        ctx.mu = {**self.ctx.mu, k: mu}
+        ctx.segments, ctx.bounds = Lazy(), Lazy()
+        for label in self.ctx.segments:
+            mine = self.ctx.segment_plans.get(label) == k
+            ctx.segments[label] = (lambda lb=label, f=(r if mine else 1.0): self.ctx.segments[lb] * f)
+        for t in self.ctx.bounds:
+            ctx.bounds[t] = (lambda t=t, f=(r if t.startswith(k + ":") else 1.0): self.ctx.bounds[t] * f)
+        return replace(self, scales={**self.scales, k: mu}, values=values, ctx=ctx)
+
     @property
     def phi(self) -> np.ndarray:
         """Crank angles (rad) of the evaluated positions."""
@@ -283,7 +311,7 @@ class PlanResult:
         crank = self.plan.mechanism.crank.link
         for link, fig in self.plan.figures[plan].items():
             if link == crank:
-                out[link] = np.full(len(self.index), given)
+                out[link] = np.array(np.broadcast_to(given, (len(self.index),)))
             elif link != GROUND and self._figure_ready(fig):
                 out[link] = np.zeros(len(self.index)) if fig is None else read(fig, self.values)
         return out
@@ -291,12 +319,12 @@ class PlanResult:
     @cached_property
     def omegas(self) -> dict[str, np.ndarray]:
         """ω (rad/s, counter-clockwise positive) of every link whose figure was evaluated."""
-        return self._rates("v", self.kin.omega1, self.ctx.omega_of)
+        return self._rates("v", self.ctx.omega1, self.ctx.omega_of)
 
     @cached_property
     def epsilons(self) -> dict[str, np.ndarray]:
         """ε (rad/s²) of every link whose acceleration figure was evaluated."""
-        return self._rates("a", self.kin.epsilon1, self.ctx.epsilon_of) if self.kind == "acceleration" else {}
+        return self._rates("a", self.ctx.epsilon1, self.ctx.epsilon_of) if self.kind == "acceleration" else {}
 
     @property
     def segments(self) -> dict[str, np.ndarray]:

@@ -8,11 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from velplan.analysis.extremes import positions
-from velplan.analysis.solver import solve
-from velplan.mechanism.model import Mechanism
-from velplan.plans.drafting import EXACT, Drafting
-from velplan.plans.engine import Plan, auto_scale
+from velplan.plans.engine import PlanResult
 
 
 @dataclass(frozen=True)
@@ -47,20 +43,16 @@ class TransferTable:
         return "\n".join(out) + "\n"
 
 
-def transfer_table(
-    mech: Mechanism, n: int = 12, *, scale_v: float | None = None, drafting: Drafting = EXACT,
-    points: list[str] | None = None,
-) -> TransferTable:
-    """Transfer functions read off the velocity plans at ``n`` positions from the reference.
+def transfer_table(res: PlanResult, *, points: list[str] | None = None) -> TransferTable:
+    """Transfer functions read off a velocity plan ``res`` (all its positions).
 
     Points default to every named moving point but the centres of mass named S… (the usual
     letter) and the runners' auxiliary origins K; links to every link that turns.
     """
-    phi = positions(mech, n)
-    kin = solve(mech, phi)
-    mu = scale_v or auto_scale(kin, np.arange(n), "velocity")
-    res = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=mu, drafting=drafting)
-    w1 = abs(kin.omega1)
+    if res.kind != "velocity":
+        raise ValueError("transfer functions are read off a velocity plan")
+    mech, kin = res.plan.mechanism, res.kin
+    w1 = np.abs(kin.crank_rate("omega", res.index))
     ground = dict(mech.ground)
     if points is None:
         centres = {m.centre for m in mech.masses if m.centre.startswith("S")}
@@ -69,5 +61,5 @@ def transfer_table(
     rows = {f"V_{p}": np.hypot(*res.vector(p).T) / w1 for p in points}
     for link, fig in res.plan.figures["v"].items():
         if link not in (mech.crank.link, "0") and fig is not None and link in res.omegas:
-            rows[f"w_{link}"] = res.omegas[link] / kin.omega1
-    return TransferTable(mech.name, phi, rows, mu, drafting.mode)
+            rows[f"w_{link}"] = res.omegas[link] / kin.crank_rate("omega", res.index)
+    return TransferTable(mech.name, res.phi, rows, res.scale, res.drafting.mode)

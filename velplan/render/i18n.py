@@ -48,7 +48,7 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "table_transfer": _entry("Transfer functions", "Передаточные функции",
                              "Передавальні функції", "类速度表"),
     "mass": _entry("Mass", "Масса", "Маса", "质量"),
-    # Sheet views (velplan.sheet): the scheme, plans, diagrams, tables, steps.
+    # Sheet views (velplan.sheets.kinematic): the scheme, plans, diagrams, tables, steps.
     "kinematic_analysis": _entry("Kinematic analysis of the mechanism",
                                  "Кинематический анализ механизма",
                                  "Кінематичний аналіз механізму", "机构运动分析"),
@@ -66,7 +66,7 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "position_short": _entry("pos.", "пол.", "пол.", "位置"),
     "quantity": _entry("Quantity", "Величина", "Величина", "参数"),
     "step": _entry("Step", "Шаг", "Крок", "步骤"),
-    # The force-analysis sheet (velplan.force_sheet); "{name}" is the group's name.
+    # The force-analysis sheet (velplan.sheets.forces); "{name}" is the group's name.
     "force_analysis": _entry("Force analysis of the mechanism", "Силовой анализ механизма",
                              "Силовий аналіз механізму", "机构力分析"),
     "assur_group": _entry("Assur group {name}", "Группа Ассура {name}", "Група Ассура {name}",

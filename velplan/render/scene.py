@@ -47,7 +47,10 @@ def _points(value, owner: str, minimum: int) -> tuple[Point, ...]:
     if xy.ndim != 2 or xy.shape[1] != 2 or len(xy) < minimum:
         raise VelplanError(f"{owner} needs at least {minimum} points of shape (n, 2) in mm, "
                            f"got an array of shape {xy.shape}")
-    return tuple(_point(p, owner) for p in xy)
+    if not np.isfinite(xy).all():  # one check for the whole array; the message names the point
+        for p in xy:
+            _point(p, owner)
+    return tuple(map(tuple, xy.tolist()))
 
 
 def _point(value, owner: str) -> Point:

@@ -19,8 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from velplan.analysis.extremes import positions as crank_positions
-from velplan.analysis.solver import Kinematics, solve
+from velplan.analysis.solver import Kinematics
 from velplan.errors import ScaleError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism
 from velplan.mechanism.structure import pairs, point_owners
@@ -29,13 +28,12 @@ from velplan.render.scene import Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
-from velplan.render.view import (
+from velplan.views.base import (
     View, bounds_of, digits_down, make_view, place_labels, ratio_text, scale_text, subscript)
 
 #: Slider block length and width, mm.
 BLOCK_MM = (12.0, 7.0)
 _HATCH_MM = 3.0
-_FINE = 240
 
 
 @dataclass(frozen=True)
@@ -281,9 +279,8 @@ class MechanismSizes:
     number_mm: float = 2.5
 
 
-def mechanism_view(mech: Mechanism, *, mu_l: float, n: int = 12, thick: int = 1,
-                   lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
-                   kin: Kinematics | None = None, fine: Kinematics | None = None,
+def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
+                   thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
@@ -296,9 +293,9 @@ def mechanism_view(mech: Mechanism, *, mu_l: float, n: int = 12, thick: int = 1,
     thick : int
         Position drawn thick, 1-based.
     lang : {"en", "ru", "uk", "zh"}
-    kin, fine : Kinematics, optional
-        The mechanism solved at the n positions and on a fine grid over a turn (trajectories);
-        solved here when omitted.
+    kin, fine : Kinematics
+        The mechanism solved at the n positions and on a fine grid over a turn (trajectories):
+        a `velplan.study.Study`'s ``kinematics`` and ``turn``.
     title : bool
         Write the view's title and scale above it.
     single : bool
@@ -313,11 +310,6 @@ def mechanism_view(mech: Mechanism, *, mu_l: float, n: int = 12, thick: int = 1,
     """
     if not 1 <= thick <= n:
         raise ScaleError(f"thick position {thick} is outside 1…{n}")
-    if kin is None:
-        kin = solve(mech, crank_positions(mech, n))
-    if fine is None:
-        sense = 1.0 if mech.crank.omega >= 0 else -1.0
-        fine = solve(mech, kin.phi[0] + sense * np.linspace(0.0, 2 * np.pi, _FINE + 1))
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
     t = thick - 1
@@ -441,12 +433,22 @@ def _guide(tr: GuideTrack, mu_l: float, n: np.ndarray) -> list[Primitive]:
 
 
 def _ground_side(geo: _Geometry, name: str, t: int, mm) -> float:
-    """Direction (deg) from a fixed pivot to its ground: away from the links at it."""
+    """Direction (deg) from a fixed pivot to its ground: away from the links at it (over all
+    positions, so the same for every ``t``; computed once per view geometry)."""
+    cache = geo.__dict__.setdefault("_ground_sides", {})
+    if name not in cache:
+        cache[name] = _ground_direction(geo, name)
+    return cache[name]
+
+
+def _ground_direction(geo: _Geometry, name: str) -> float:
     dirs = []
     for i in range(len(geo.kin)):
+        qx, qy = (float(c) for c in geo.p(i, name))
+        tx, ty = 1e-9 + 1e-5 * abs(qx), 1e-9 + 1e-5 * abs(qy)  # np.allclose(here, q, atol=1e-9)
         for s in geo.segments(i):
             for here, other in ((s.a, s.b), (s.b, s.a)):
-                if np.allclose(here, geo.p(i, name), atol=1e-9):
+                if abs(float(here[0]) - qx) <= tx and abs(float(here[1]) - qy) <= ty:
                     d = other - here
                     if np.hypot(*d) > 0:
                         dirs.append(d / np.hypot(*d))
@@ -552,17 +554,20 @@ def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> li
     radius = float(np.clip(0.5 * length, 6.0, 16.0))
     busy = [_ground_side(geo, c.pivot, t, mm)]
     for s in geo.segments(t):
-        for here, other in ((s.a, s.b), (s.b, s.a)):
-            if np.hypot(*(mm(here) - pivot)) < 0.5:
-                d = mm(other) - pivot
-                busy.append(math.degrees(math.atan2(d[1], d[0])))
-            else:  # a line passing near the pivot (a guide bar) blocks both ways
-                a, b = mm(here), mm(other)
-                d = b - a
-                L = np.hypot(*d)
-                if L > 0 and abs(d[0] * (pivot - a)[1] - d[1] * (pivot - a)[0]) / L < radius and 0 < (pivot - a) @ d < L * L:
-                    ang = math.degrees(math.atan2(d[1], d[0]))
-                    busy += [ang, ang + 180.0]
+        a, b = mm(s.a), mm(s.b)
+        ends = [(here, other) for here, other in ((a, b), (b, a)) if np.hypot(*(here - pivot)) < 0.5]
+        for here, other in ends:  # a line from the pivot blocks its own direction
+            d = other - pivot
+            busy.append(math.degrees(math.atan2(d[1], d[0])))
+        if ends:
+            continue
+        # a line passing near the pivot (a guide bar) blocks both ways; a line that ends at
+        # the pivot was taken above (deciding that by round-off made the arrow flip)
+        d = b - a
+        L = np.hypot(*d)
+        if L > 0 and abs(d[0] * (pivot - a)[1] - d[1] * (pivot - a)[0]) / L < radius and 0 < (pivot - a) @ d < L * L:
+            ang = math.degrees(math.atan2(d[1], d[0]))
+            busy += [ang, ang + 180.0]
     best, gap = 0.0, -1.0
     for k in range(72):
         cand = 5.0 * k

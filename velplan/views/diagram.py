@@ -17,12 +17,74 @@ from typing import Literal
 
 import numpy as np
 
-from velplan.diagrams import DiagramScales, Diagrams, choose_scales
+from velplan.analysis.chord import Diagrams
+from velplan.errors import ScaleError
+from velplan.plans.scale import standard_scale
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.render.view import View, make_view, number, scale_text, unit
+from velplan.views.base import View, make_view, number, scale_text, unit
 
 Arrangement = Literal["row", "column"]
+
+#: Pole distances a draughtsman picks from, mm.
+POLE_DISTANCES_MM: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0)
+#: Standard mantissas of a drawing scale (units per mm), as `velplan.plans.standard_scale`.
+
+
+def standard_up(raw: float) -> float:
+    """The smallest value of the series (1, 2, 2.5, 4, 5)·10ⁿ not below `raw`."""
+    try:
+        return standard_scale(raw)
+    except ScaleError:
+        raise ScaleError(f"cannot choose a diagram scale for a value per mm of {raw!r}") from None
+
+
+@dataclass(frozen=True)
+class DiagramScales:
+    """Drawing scales of the three diagrams (units per mm) and the pole distances (mm).
+
+    ``mu_v = mu_s / (mu_phi · H_v)`` and ``mu_a = mu_v / (mu_phi · H_a)``.
+    """
+
+    length_mm: float
+    mu_phi: float
+    mu_s: float
+    H_v: float
+    mu_v: float
+    H_a: float
+    mu_a: float
+
+
+def choose_scales(d: Diagrams, *, length_mm: float, height_mm: float) -> DiagramScales:
+    """Scales for diagrams `length_mm` long (one crank turn) with ordinates ≤ `height_mm`.
+
+    μφ = 2π / L; μs from the standard series; each pole distance H is the largest of
+    :data:`POLE_DISTANCES_MM` that keeps the derived diagram within `height_mm` (the
+    smallest one if none does).
+    """
+    if not (length_mm > 0 and height_mm > 0):
+        raise ScaleError(f"diagram axes must be positive, got {length_mm} × {height_mm} mm")
+    mu_phi = 2 * math.pi / length_mm
+    peak_s = max(float(np.max(np.abs(d.s_exact))), 1e-12)
+    mu_s = standard_up(peak_s / height_mm)
+    most = 0.4 * length_mm  # a pole farther out than the diagram is long wastes the sheet
+    H_v = _pole(mu_s, mu_phi, float(np.max(np.abs(np.r_[d.v_chord, d.v_exact]))), height_mm,
+                most)
+    mu_v = mu_s / (mu_phi * H_v)
+    H_a = _pole(mu_v, mu_phi, float(np.max(np.abs(np.r_[d.a_chord, d.a_exact]))), height_mm,
+                most)
+    mu_a = mu_v / (mu_phi * H_a)
+    return DiagramScales(length_mm, mu_phi, mu_s, H_v, mu_v, H_a, mu_a)
+
+
+def _pole(mu_y: float, mu_phi: float, peak: float, height: float, limit: float) -> float:
+    allowed = [h for h in POLE_DISTANCES_MM if h <= limit + 1e-9] or [POLE_DISTANCES_MM[0]]
+    if peak <= 0:
+        return allowed[-1]
+    # ordinate = peak / (mu_y / (mu_phi·H)) = peak·mu_phi·H/mu_y ≤ height
+    most = height * mu_y / (mu_phi * peak)
+    fitting = [h for h in allowed if h <= most + 1e-9]
+    return fitting[-1] if fitting else allowed[0]
 
 
 @dataclass(frozen=True)
@@ -158,7 +220,7 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     Parameters
     ----------
     d : Diagrams
-        From :func:`velplan.diagrams.kinematic_diagrams`.
+        From :func:`velplan.analysis.chord.kinematic_diagrams`.
     length_mm : float
         Length of the φ axis for one crank turn, mm (μφ = 2π / length).
     height_mm : float
@@ -171,7 +233,7 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     common = max(tops) if arrangement == "row" else None
     plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common)
              for k in "sva"]
-    from velplan.render.view import bounds_of, shift
+    from velplan.views.base import bounds_of, shift
 
     items: list[Primitive] = []
     cursor = 0.0

@@ -14,11 +14,12 @@ import numpy as np
 
 from velplan.mechanism.model import RPP, Mechanism
 from velplan.mechanism.structure import pairs
+from velplan.plans.engine import PlanResult
 from velplan.plans.table import TransferTable, transfer_table
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
-from velplan.render.view import View, digits_down, fixed, make_view, subscript, unit
+from velplan.views.base import View, digits_down, fixed, make_view, subscript, unit
 
 _ROW_PITCH = 2.0  # row height over text height
 _PAD = 1.0  # cell padding each side, mm
@@ -43,12 +44,10 @@ def table_points(mech: Mechanism, names) -> list[str]:
     return out
 
 
-def sheet_table(mech: Mechanism, n: int, *, scale_v: float | None = None) -> TransferTable:
-    """The transfer-function table of `mech` at `n` positions, with the sheet's rows."""
-    from velplan.analysis.solver import solve
-
-    names = list(solve(mech, [0.0]).point_index)
-    return transfer_table(mech, n, scale_v=scale_v, points=table_points(mech, names))
+def sheet_table(res: PlanResult) -> TransferTable:
+    """The transfer-function table read off the velocity plan ``res``, with the sheet's rows."""
+    mech = res.plan.mechanism
+    return transfer_table(res, points=table_points(mech, list(res.kin.point_index)))
 
 
 def _row_label(name: str, crank: str, lang: str) -> str:

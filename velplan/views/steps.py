@@ -11,18 +11,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from velplan.analysis.extremes import positions as crank_positions
-from velplan.analysis.solver import solve
+from typing import Mapping
+
+from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
-from velplan.plans import Plan, standard_scale
+from velplan.plans import standard_scale
+from velplan.plans.engine import PlanResult
 from velplan.render.i18n import label
 from velplan.render.layout import fit_text
-from velplan.render.mechanism_view import MechanismSizes, extent_m, mechanism_view
-from velplan.render.plan_view import (
+from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
+from velplan.views.plan import (
     extent_mm, image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
-from velplan.render.view import eskd_scales, shift
+from velplan.views.base import eskd_scales, shift
 
 _MARGIN = 10.0
 _SENTENCE_H = 26.0
@@ -38,17 +40,22 @@ class StepFigure:
     scene: Scene
 
 
-def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "both",
-                 lang: str = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
-    """Figures of every construction step of the plans at `position` (1-based of `n`).
+def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResult], position: int, *,
+                 kind: str = "both", lang: str = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
+    """Figures of every construction step of the plans at `position` (1-based).
 
     Parameters
     ----------
+    kin : Kinematics
+        The mechanism solved at its positions.
+    plans : mapping
+        ``"velocity"`` (and ``"acceleration"``) → the exact plan at those positions.
     kind : {"velocity", "acceleration", "both"}
         Which plans; "both" gives the velocity steps, then the acceleration steps.
     plan_mm : float
         Size the plan is drawn to (its scale is the standard one that keeps it within).
     """
+    n = len(kin)
     if not 1 <= position <= n:
         raise VelplanError(f"--position {position} is outside 1…{n}")
     kinds = {"velocity": ("velocity",), "acceleration": ("acceleration",),
@@ -56,24 +63,22 @@ def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "bo
     if kinds is None:
         raise VelplanError(f"unknown plan kind {kind!r}; known kinds: velocity, acceleration, "
                            "both")
-    kin = solve(mech, crank_positions(mech, n))
     if not kin.valid[position - 1]:
         raise VelplanError(f"{mech.name} cannot be assembled at position {position}")
+    i = position - 1
     # the mechanism alone in the position, about 120 mm across
     wx, wy = extent_m(mech, kin, kin)
     mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= 170.0), eskd_scales()[-1])
-    mview = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin,
+    mview = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin, fine=kin,
                            sizes=MechanismSizes(3.5, 3.5, 2.5), single=True)
-    plan = Plan.of(mech)
     figures: list[StepFigure] = []
     for kd in kinds:
-        res0 = plan.evaluate(kin, kind=kd, positions=[position - 1])
-        ew, eh = extent_mm(res0, 0)
+        res0 = plans[kd]
+        ew, eh = extent_mm(res0, i)
         mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
-        key = "scale_v" if kd == "velocity" else "scale_a"
-        res = plan.evaluate(kin, kind=kd, positions=[position - 1], **{key: mu})
-        full = plan_view(res, 0, number=position, lang=lang)
-        drawings = plan_steps(res, 0, number=position, lang=lang)
+        res = res0.at_scale(mu)
+        full = plan_view(res, i, number=position, lang=lang)
+        drawings = plan_steps(res, i, number=position, lang=lang)
         width = _MARGIN * 3 + mview.width_mm + full.width_mm
         height = _MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
         width, height = max(width, 297.0), max(height, 210.0)
@@ -82,7 +87,7 @@ def step_figures(mech: Mechanism, position: int, *, n: int = 12, kind: str = "bo
         total = len(drawings)
         for k in range(1, total + 1):
             items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
-            items += [shift(p, px, py) for p in partial_plan(res, 0, k, full=full, drawings=drawings,
+            items += [shift(p, px, py) for p in partial_plan(res, i, k, full=full, drawings=drawings,
                                                              number=position, lang=lang)]
             sentence = f"{label('step', lang)} {k}/{total}. {drawings[k - 1].sentence}"
             box = (_MARGIN, _MARGIN, width - _MARGIN, _MARGIN + _SENTENCE_H - 4.0)

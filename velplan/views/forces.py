@@ -42,15 +42,15 @@ from velplan.forces.kinetostatics import reaction_label
 from velplan.mechanism.structure import pairs
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
-from velplan.render.mechanism_view import BLOCK_MM, _Geometry
+from velplan.views.mechanism import BLOCK_MM, _Geometry
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.render.table_view import grid_table
+from velplan.views.table import grid_table
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
-from velplan.render.view import (
+from velplan.views.base import (
     View, bounds_of, digits_down, fixed, make_view, place_labels, ratio_text,
     scale_text, subscript, unit)
-from velplan.render.view import number as _num
+from velplan.views.base import number as _num
 
 #: Polygon vectors shorter than this share one label with their neighbours, mm.
 SHORT_VECTOR_MM = 2.5
@@ -640,15 +640,15 @@ def lever_extent(fa, i: int) -> tuple[float, float]:
 
 
 def lever_balance(fa, i: int, mu_v: float):
-    """(plan result, lever) of position index `i` with the plan drawn at μv."""
+    """(plan result at μv, lever) of position index `i`: Zhukovsky's lever on the force
+    analysis' exact velocity plan drawn at μv."""
     from velplan.forces.lever import images_from_plan, positions_from_kinematics, zhukovsky_lever
-    from velplan.plans import Plan
 
     mech, kin = fa.kinetostatics.mechanism, fa.kinematics
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[i], scale_v=mu_v)
+    res = fa.plan.at_scale(mu_v)
     positions = {k: v[i:i + 1] for k, v in positions_from_kinematics(kin, None).items()}
-    lever = zhukovsky_lever(mech, positions, images_from_plan(res), res.scale,
-                            fa.actions.at([i]))
+    images = {k: v[i:i + 1] for k, v in images_from_plan(res).items()}
+    lever = zhukovsky_lever(mech, positions, images, res.scale, fa.actions.at([i]))
     return res, lever
 
 
@@ -664,13 +664,13 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
         ``"balancing_force"`` (N, signed) and the texts written (``"balance"``).
     """
     from velplan.forces.agreement import lever_difference_percent
-    from velplan.render.plan_view import plan_steps
+    from velplan.views.plan import plan_steps
 
     mech = fa.kinetostatics.mechanism
     kin = fa.kinematics
     body_layer, force_layer, text_layer = lever_layers(number)
     res, lever = lever_balance(fa, i, mu_v)
-    drawings = plan_steps(res, 0, number=number, lang=lang)
+    drawings = plan_steps(res, i, number=number, lang=lang)
     turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # +90°: x + iy → i(x + iy)
     items: list[Primitive] = []
     obstacles: list = []
@@ -694,7 +694,7 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
     groups: list[tuple[np.ndarray, list[str]]] = []
     for d in drawings:
         for t in d.images:
-            zt = complex(res.values[t][0])
+            zt = complex(res.values[t][i])
             if not np.isfinite(zt):
                 continue
             p = turn @ _xy(zt)

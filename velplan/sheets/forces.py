@@ -26,21 +26,19 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from velplan.analysis.extremes import positions as crank_positions
-from velplan.analysis.solver import solve
 from velplan.errors import ScaleError, VelplanError
-from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
 from velplan.plans import standard_scale
-from velplan.render.force_view import (
+from velplan.views.forces import (
     ForceSizes, MomentCurve, group_extent_m, group_view, lever_extent, lever_view,
     moment_diagram_view, moments_table_view, polygon_extent, polygon_view, slug)
 from velplan.render.i18n import check_language, label
 from velplan.render.scene import Scene
-from velplan.render.sheet import TitleInfo, frame_bounds, sheet_scene, title_block_bounds
+from velplan.sheets.frame import TitleInfo, frame_bounds, sheet_scene, title_block_bounds
 from velplan.render.style import SheetStyle
-from velplan.render.view import PlacedView, View, eskd_scales, ratio_text
-from velplan.sheet import FORMATS, MIN_CRANK_MM, _SIZES, SheetOutput, _check_layout, _fits
+from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
+from velplan.sheets.layout import FORMATS, MIN_CRANK_MM, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, fits
+from velplan.study import Study
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
 FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
@@ -50,8 +48,6 @@ FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
 })
 #: Smallest drawing (mm, its larger side) of a group, a polygon or the lever, per format.
 MIN_TARGET_MM: Mapping[str, float] = MappingProxyType({"A1": 40.0, "A2": 35.0, "A3": 30.0})
-#: Points of the M_b(φ) curve over a revolution.
-CURVE_POINTS = 241
 
 
 @dataclass(frozen=True)
@@ -95,9 +91,7 @@ class ForceSheet(SheetOutput):
 
 def has_forces(mech: Mechanism) -> bool:
     """Whether `mech` declares masses or loads (something for a force sheet to show)."""
-    from velplan.forces.parse import parse_loads
-
-    return bool(mech.masses) or bool(parse_loads(mech))
+    return bool(mech.masses) or bool(mech.loads)
 
 
 def default_force_positions(fa) -> tuple[int, ...]:
@@ -130,7 +124,7 @@ def solving_order(mech: Mechanism) -> tuple[str, ...]:
     return tuple(g.name for g in reversed(mech.groups)) + ("crank",)
 
 
-def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
+def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
                       fmt: str = "A1", lang: str = "ru", frame_style: str | None = None,
                       info: TitleInfo | None = None, diagrams: bool | None = None,
                       table: bool = True, style: SheetStyle | None = None) -> ForceSheet:
@@ -138,9 +132,9 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
 
     Parameters
     ----------
-    mech : Mechanism or str
-        The mechanism, or a bundled example name / TOML path; it must declare masses or
-        loads.
+    mech : Study, Mechanism or str
+        The study to draw, or a mechanism / bundled example name / TOML path to study; it
+        must declare masses or loads.
     n : int
         Number of positions of the table and of the marks on the diagram.
     plans : sequence of int, optional
@@ -164,10 +158,8 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
     VelplanError
         Bad options, or a mechanism with no masses and no loads.
     """
-    from velplan.forces.agreement import analyse_forces
-
-    if isinstance(mech, str):
-        mech = load(mech)
+    study = mech if isinstance(mech, Study) else Study(mech, n=n)
+    mech, n = study.mechanism, study.n
     check_language(lang)
     if fmt not in FORMATS:
         raise VelplanError(f"unknown sheet format {fmt!r}; known formats: {', '.join(FORMATS)}")
@@ -176,13 +168,12 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
     if not has_forces(mech):
         raise VelplanError(f"{mech.name} declares no masses and no loads: there are no forces "
                            f"to draw; add [link.N] masses or [[load]] tables")
-    phi = crank_positions(mech, n)
-    kin = solve(mech, phi)
+    kin = study.kinematics
     bad = np.flatnonzero(~kin.valid)
     if bad.size:
         raise VelplanError(f"{mech.name} cannot be assembled at position {bad[0] + 1} "
                            f"(crank angle {math.degrees(kin.phi[bad[0]]):.6g}°)")
-    fa = analyse_forces(mech, phi)
+    fa = study.forces()
     chosen = tuple(default_force_positions(fa) if plans is None else plans)
     if not chosen:
         raise VelplanError("--plans: give at least one position")
@@ -199,7 +190,7 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
                                    f"with --plans")
     frame_style = frame_style or ("eskd" if lang in ("ru", "uk") else "iso")
     style = style or SheetStyle(language=lang)
-    sizes = _SIZES[fmt]
+    sizes = SIZES[fmt]
     fsizes = FORCE_SIZES[fmt]
     g = sizes.gap
 
@@ -222,7 +213,7 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
     if diagrams is not False:
         region = (fx0, fy0, fx1 - right_w - g, max(band_top, fy0 + 0.26 * H))
         try:
-            dview = _fit_diagram(mech, fa, lang, sizes, region, fmt=fmt)
+            dview = _fit_diagram(study, lang, sizes, region, fmt=fmt)
         except ScaleError:
             if diagrams:
                 raise
@@ -249,7 +240,7 @@ def build_force_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int
         info = default_force_title(mech, lang, ratio_text(scales["mu_l"]))
     elif not info.scale:
         info = replace(info, scale=ratio_text(scales["mu_l"]))
-    _check_layout(views, fmt, frame_style)
+    check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = [k for k in views if k not in ("mb-diagram", "table")] + [
         k for k in ("mb-diagram", "table") if k in views]
@@ -269,23 +260,18 @@ def _fit_table(fa, lang, sizes, *, max_width: float, fmt: str) -> View:
                      f"free); use fewer --positions or a larger --format")
 
 
-def moment_curve(mech: Mechanism, fa) -> MomentCurve:
-    """M_b by kinetostatics over a revolution from position 1, on a fine grid."""
-    from velplan.forces.agreement import analyse_forces
-
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    turn = np.linspace(0.0, 2 * np.pi, CURVE_POINTS)
-    fine = analyse_forces(mech, fa.kinematics.phi[0] + sense * turn)
-    return MomentCurve(turn, np.asarray(fine.kinetostatics.balancing_moment, float),
-                       np.asarray(fa.kinetostatics.balancing_moment, float))
+def moment_curve(study: Study) -> MomentCurve:
+    """M_b by kinetostatics over a revolution from position 1, on the study's fine turn."""
+    turn = study.turn_forces()
+    rot = study.sense * (turn.kinematics.phi - turn.kinematics.phi[0])
+    return MomentCurve(rot, np.asarray(turn.balancing_moments["kinetostatics"], float),
+                       np.asarray(study.forces().kinetostatics.balancing_moment, float))
 
 
-def _fit_diagram(mech, fa, lang, sizes, region, *, fmt: str) -> View:
-    from velplan.sheet import MIN_DIAGRAM_MM
-
+def _fit_diagram(study: Study, lang, sizes, region, *, fmt: str) -> View:
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    curve = moment_curve(mech, fa)
+    curve = moment_curve(study)
 
     def build(length, height):
         return moment_diagram_view(curve, length_mm=length, height_mm=height, lang=lang,
@@ -299,7 +285,7 @@ def _fit_diagram(mech, fa, lang, sizes, region, *, fmt: str) -> View:
             if height > 0.5 * length:
                 continue
             view = build(length, height)
-            if _fits(view, w, h):
+            if fits(view, w, h):
                 return view
         break
     raise ScaleError(f"the balancing moment diagram does not fit {fmt} ({w:.0f} × {h:.0f} mm "
@@ -482,7 +468,7 @@ def _fit_rows(fa, chosen, lang, fsizes: ForceSizes, region, gap, *, fmt: str, mo
 def _heading(fa, k: int, lang: str, fsizes: ForceSizes) -> View:
     """The row's heading: the position, its crank angle, and that forces are not to scale."""
     from velplan.render.scene import Text
-    from velplan.render.view import fixed, make_view
+    from velplan.views.base import fixed, make_view
 
     deg = math.degrees(float(fa.kinematics.phi[k - 1])) % 360.0
     text = (f"{label('position', lang)} {k}: φ = {fixed(deg, lang, 1)}°; "

@@ -27,13 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from velplan.errors import MechanismError, ScaleError
-from velplan.plans.scale import standard_scale
-
-#: Pole distances a draughtsman picks from, mm.
-POLE_DISTANCES_MM: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0)
-#: Standard mantissas of a drawing scale (units per mm), as `velplan.plans.standard_scale`.
-
+from velplan.analysis.solver import Kinematics
+from velplan.errors import MechanismError
 
 def chord_method(y, step: float, *, closed: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Slopes of the chords of a curve sampled at equal steps, placed at mid-intervals.
@@ -80,14 +75,6 @@ def chord_ordinates_mm(y_mm, dx_mm: float, H_mm: float, *, closed: bool = True) 
     """
     _, slope = chord_method(y_mm, dx_mm, closed=closed)
     return H_mm * slope
-
-
-def standard_up(raw: float) -> float:
-    """The smallest value of the series (1, 2, 2.5, 4, 5)·10ⁿ not below `raw`."""
-    try:
-        return standard_scale(raw)
-    except ScaleError:
-        raise ScaleError(f"cannot choose a diagram scale for a value per mm of {raw!r}") from None
 
 
 @dataclass(frozen=True)
@@ -192,7 +179,8 @@ def _assemble(quantity, angular, phi, s_nodes, fine_phi, s_fine, v_fine, a_fine,
         error_v=relative_error(v, v_mid, v_fine), error_a=relative_error(a, a_nodes, a_fine))
 
 
-def kinematic_diagrams(mech, n: int = 12, *, fine: int = 361,
+def kinematic_diagrams(mech, nodes: Kinematics | int = 12, *, turn: Kinematics | None = None,
+                       sense: float | None = None, fine: int = 361,
                        start: float | None = None) -> Diagrams:
     """Diagrams of the mechanism's output (``output`` in its TOML) over one crank turn.
 
@@ -201,12 +189,18 @@ def kinematic_diagrams(mech, n: int = 12, *, fine: int = 361,
     mech : Mechanism
         Needs an ``output``: a slider point (displacement along its guide, m) or a link
         (its angle, rad).
-    n : int
-        Positions the chord method works from (12 on a course sheet), from position 1.
-    fine : int
-        Samples of the analytic curves.
+    nodes : Kinematics or int
+        The mechanism solved at unit speed (ω1 = 1 rad/s, ε1 = 0) at the n positions the chord
+        method works from (12 on a course sheet), from position 1 in the sense of rotation; or
+        n, to solve them here.
+    turn : Kinematics, optional
+        The same at unit speed over a whole turn from position 1 (the analytic curves);
+        ``fine`` samples solved here when omitted.
+    sense : float, optional
+        +1 (counter-clockwise) or −1; the crank's when omitted.
     start : float, optional
-        Crank angle of position 1, rad (`velplan.reference_angle`, found when omitted).
+        Crank angle of position 1, rad (used only when ``nodes`` is a number;
+        `velplan.reference_angle` when omitted).
 
     Raises
     ------
@@ -216,29 +210,39 @@ def kinematic_diagrams(mech, n: int = 12, *, fine: int = 361,
     from velplan.analysis.extremes import output_quantity, reference_angle
     from velplan.analysis.solver import solve
 
+    sense = (1.0 if mech.crank.omega >= 0 else -1.0) if sense is None else float(sense)
+    if isinstance(nodes, (int, np.integer)):
+        n = int(nodes)
+        if n < 3:
+            raise MechanismError(f"the chord method needs at least 3 positions, not {n}")
+        phi0 = reference_angle(mech) if start is None else float(start)
+        nodes = solve(mech, phi0 + sense * np.arange(n) * (2 * math.pi / n), omega1=1.0, epsilon1=0.0)
+    n = len(nodes)
     if n < 3:
         raise MechanismError(f"the chord method needs at least 3 positions, not {n}")
-    q = output_quantity(mech)
+    q = output_quantity(mech, nodes)
     if q is None:
         raise MechanismError(f"mechanism {mech.name!r} names no output; add output = \"POINT\" "
                              "or output = {link = \"…\"} to draw its kinematic diagrams")
     label, kind, index = q
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    phi0 = reference_angle(mech) if start is None else float(start)
+    phi0 = float(nodes.phi[0])
+    if turn is None:
+        turn = solve(mech, phi0 + sense * np.linspace(0.0, 2 * math.pi, fine), omega1=1.0, epsilon1=0.0)
     phi = np.arange(n) * (2 * math.pi / n)
-    fine_phi = np.linspace(0.0, 2 * math.pi, fine)
+    fine_phi = sense * (turn.phi - phi0)
 
-    def values(rot):
-        # ω1 = ±1 rad/s, ε1 = 0: velocities and accelerations are the analogues d/dφ, d²/dφ²
-        # with φ counted in the sense of the crank's rotation.
-        kin = solve(mech, phi0 + sense * np.asarray(rot, float), omega1=sense, epsilon1=0.0)
+    def values(kin):
+        # d/d(rotation) in the sense of the crank: first analogues × sense, second unchanged
         if kind == "link":
-            return (np.unwrap(kin.angles[:, index]), kin.omegas[:, index],
+            return (np.unwrap(kin.angles[:, index]), sense * kin.omegas[:, index],
                     kin.epsilons[:, index])
-        return kin.slides[:, index, 0], kin.slides[:, index, 1], kin.slides[:, index, 2]
+        return kin.slides[:, index, 0], sense * kin.slides[:, index, 1], kin.slides[:, index, 2]
 
-    s_nodes, _, _ = values(phi)
-    s_fine, v_fine, a_fine = values(fine_phi)
+    def at(rot):
+        return values(solve(mech, phi0 + sense * np.asarray(rot, float), omega1=1.0, epsilon1=0.0))
+
+    s_nodes, _, a_nodes = values(nodes)
+    s_fine, v_fine, a_fine = values(turn)
     start = s_nodes[0]
     # unwrap consistently: a rocker's angle may jump by 2π between the two samplings
     if kind == "link":
@@ -250,52 +254,4 @@ def kinematic_diagrams(mech, n: int = 12, *, fine: int = 361,
     return _assemble(
         label, kind == "link", phi, sign * (s_nodes - start), fine_phi, sign * swing,
         sign * v_fine, sign * a_fine,
-        lambda x: sign * values(x)[1], lambda x: sign * values(x)[2])
-
-
-@dataclass(frozen=True)
-class DiagramScales:
-    """Drawing scales of the three diagrams (units per mm) and the pole distances (mm).
-
-    ``mu_v = mu_s / (mu_phi · H_v)`` and ``mu_a = mu_v / (mu_phi · H_a)``.
-    """
-
-    length_mm: float
-    mu_phi: float
-    mu_s: float
-    H_v: float
-    mu_v: float
-    H_a: float
-    mu_a: float
-
-
-def choose_scales(d: Diagrams, *, length_mm: float, height_mm: float) -> DiagramScales:
-    """Scales for diagrams `length_mm` long (one crank turn) with ordinates ≤ `height_mm`.
-
-    μφ = 2π / L; μs from the standard series; each pole distance H is the largest of
-    :data:`POLE_DISTANCES_MM` that keeps the derived diagram within `height_mm` (the
-    smallest one if none does).
-    """
-    if not (length_mm > 0 and height_mm > 0):
-        raise ScaleError(f"diagram axes must be positive, got {length_mm} × {height_mm} mm")
-    mu_phi = 2 * math.pi / length_mm
-    peak_s = max(float(np.max(np.abs(d.s_exact))), 1e-12)
-    mu_s = standard_up(peak_s / height_mm)
-    most = 0.4 * length_mm  # a pole farther out than the diagram is long wastes the sheet
-    H_v = _pole(mu_s, mu_phi, float(np.max(np.abs(np.r_[d.v_chord, d.v_exact]))), height_mm,
-                most)
-    mu_v = mu_s / (mu_phi * H_v)
-    H_a = _pole(mu_v, mu_phi, float(np.max(np.abs(np.r_[d.a_chord, d.a_exact]))), height_mm,
-                most)
-    mu_a = mu_v / (mu_phi * H_a)
-    return DiagramScales(length_mm, mu_phi, mu_s, H_v, mu_v, H_a, mu_a)
-
-
-def _pole(mu_y: float, mu_phi: float, peak: float, height: float, limit: float) -> float:
-    allowed = [h for h in POLE_DISTANCES_MM if h <= limit + 1e-9] or [POLE_DISTANCES_MM[0]]
-    if peak <= 0:
-        return allowed[-1]
-    # ordinate = peak / (mu_y / (mu_phi·H)) = peak·mu_phi·H/mu_y ≤ height
-    most = height * mu_y / (mu_phi * peak)
-    fitting = [h for h in allowed if h <= most + 1e-9]
-    return fitting[-1] if fitting else allowed[0]
+        lambda x: sign * at(x)[1], lambda x: sign * a_nodes if np.array_equal(x, phi) else sign * at(x)[2])

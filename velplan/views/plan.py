@@ -28,7 +28,7 @@ from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.render.view import View, make_view, place_labels, scale_text, subscript
+from velplan.views.base import View, make_view, place_labels, scale_text, subscript
 
 #: Construction lines run this far past the images they join, mm.
 LINE_OVERRUN_MM = 10.0
@@ -277,7 +277,7 @@ def plan_view(res, i: int, *, number: int, lang: str = "ru",
 
 
 def _bounds(items):
-    from velplan.render.view import bounds_of
+    from velplan.views.base import bounds_of
     return bounds_of(items)
 
 

@@ -28,78 +28,28 @@ from typing import Literal, Mapping, Sequence
 import numpy as np
 import shapely
 
-from velplan.analysis.extremes import positions as crank_positions
-from velplan.analysis.solver import solve
 from velplan.errors import ScaleError, VelplanError
-from velplan.io import write_atomic
-from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
-from velplan.plans import Plan, standard_scale
+from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
-from velplan.render.diagram_view import DiagramSizes, diagram_view
+from velplan.study import Study
+from velplan.views.diagram import DiagramSizes, diagram_view
 from velplan.render.i18n import check_language, label
-from velplan.render.mechanism_view import MechanismSizes, extent_m, mechanism_view
-from velplan.render.plan_view import PlanSizes, extent_mm, plan_view
+from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
+from velplan.views.plan import PlanSizes, extent_mm, plan_view
 from velplan.render.scene import Scene
-from velplan.render.sheet import (
+from velplan.sheets.frame import (
     TitleInfo, frame_bounds, free_area, sheet_scene, title_block_bounds)
 from velplan.render.style import SheetStyle
-from velplan.render.table_view import sheet_table, table_view
-from velplan.render.view import PlacedView, View, eskd_scales, ratio_text
+from velplan.sheets.layout import (
+    FORMATS, GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, SIZES, SheetOutput, Sizes,
+    check_layout, fits, write_outputs)
+from velplan.views.table import sheet_table, table_view
+from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 
 Kind = Literal["velocity", "acceleration", "both"]
 Format = Literal["A1", "A2", "A3"]
-FORMATS: tuple[str, ...] = ("A1", "A2", "A3")
 KINDS: tuple[str, ...] = ("velocity", "acceleration", "both")
-
-#: Shortest longest-vector a plan may have on the sheet, mm, per format: below it a plan is
-#: unreadable.
-MIN_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 35.0, "A2": 30.0, "A3": 25.0})
-#: Longest vector of the shortest plan that a sheet is content with, mm, per format.
-GOOD_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 90.0, "A2": 70.0, "A3": 50.0})
-#: Shortest crank a scheme may show, mm.
-MIN_CRANK_MM = 8.0
-#: Shortest φ axis of a diagram, mm.
-MIN_DIAGRAM_MM = 60.0
-
-
-@dataclass(frozen=True)
-class _Sizes:
-    gap: float
-    mechanism: MechanismSizes
-    plan: PlanSizes
-    table: tuple[float, ...]
-    table_title: float
-    diagram: DiagramSizes
-
-
-_SIZES: Mapping[str, _Sizes] = MappingProxyType({
-    "A1": _Sizes(10.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(5.0, 3.5), (3.5, 2.5, 1.8), 5.0,
-                 DiagramSizes(3.5, 2.5)),
-    "A2": _Sizes(8.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(3.5, 3.5), (2.5, 1.8), 3.5,
-                 DiagramSizes(3.5, 2.5)),
-    "A3": _Sizes(6.0, MechanismSizes(3.5, 2.5, 2.5), PlanSizes(3.5, 2.5), (1.8,), 2.5,
-                 DiagramSizes(2.5, 1.8)),
-})
-
-
-class SheetOutput:
-    """What every composed sheet offers: its SVG text and its files (needs ``scene`` and
-    ``style`` attributes)."""
-
-    def svg(self, *, precision: int = 3) -> str:
-        """The sheet as an SVG document; the same sheet gives the same bytes."""
-        from velplan.render.svg import to_svg
-
-        return to_svg(self.scene, self.style, precision=precision)
-
-    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
-              dpi: float = 150.0) -> list[Path]:
-        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
-
-        Conversions run before anything is written, so a failure leaves no file behind.
-        """
-        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
 
 
 @dataclass(frozen=True)
@@ -117,7 +67,9 @@ class Sheet(SheetOutput):
         ``"mu_l"`` (m/mm) of the scheme, and μ of each plan by view name (``"plan-v-4"``:
         (m/s)/mm, ``"plan-a-4"``: (m/s²)/mm), as drawn.
     plans : Mapping[str, PlanResult]
-        View name → the plan evaluated at its one position (index 0).
+        View name → the plan it draws (at every position, at the view's scale).
+    plan_index : Mapping[str, int]
+        View name → the index of its position in that plan's positions.
     positions : tuple of int
         Positions (1-based) whose plans are drawn.
     n : int
@@ -131,6 +83,7 @@ class Sheet(SheetOutput):
     views: Mapping[str, PlacedView]
     scales: Mapping[str, float]
     plans: Mapping[str, PlanResult]
+    plan_index: Mapping[str, int]
     positions: tuple[int, ...]
     n: int
     fmt: str
@@ -141,31 +94,7 @@ class Sheet(SheetOutput):
 
 
 
-def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
-                  dpi: float = 150.0) -> list[Path]:
-    """Write an SVG document to `path` and, when asked, its PNG and PDF beside it."""
-    from velplan.render import export
-
-    target = Path(path)
-    if target.suffix.lower() in (".png", ".pdf"):
-        png = png or target.suffix.lower() == ".png"
-        pdf = pdf or target.suffix.lower() == ".pdf"
-        target = target.with_suffix(".svg")
-    if not target.parent.is_dir():
-        raise VelplanError(f"cannot write {target}: directory {target.parent} does not exist")
-    blobs: list[tuple[bytes, Path]] = []
-    if png:
-        blobs.append((export._convert("svg2png", svg, dpi=dpi, background_color="white"),
-                      target.with_suffix(".png")))
-    if pdf:
-        blobs.append((export._convert("svg2pdf", svg), target.with_suffix(".pdf")))
-    written = [export.write_svg(svg, target)]
-    for data, where in blobs:
-        written.append(write_atomic(where, data))
-    return written
-
-
-def default_plan_positions(mech: Mechanism, kin) -> tuple[int, ...]:
+def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
     """Two positions worth drawing plans for: one in each half of the turn (the working and
     the return stroke), each the one whose velocity plan shows the most distinct images with
     well-conditioned intersections, near a quarter of the half when that is a tie.
@@ -173,11 +102,10 @@ def default_plan_positions(mech: Mechanism, kin) -> tuple[int, ...]:
     Positions where the plan collapses (a rod translating for an instant, an extreme
     position) teach nothing and are avoided.
     """
-    n = len(kin)
+    n = len(res.index)
     if n < 4:
         return (min(2, n),)
-    res = Plan.of(mech).evaluate(kin, kind="velocity")
-    ground = set(mech.ground_points)
+    ground = set(res.plan.mechanism.ground_points)
     names = [p for p in res.vectors if p not in ground]
     scores = []
     for i in range(n):
@@ -208,7 +136,7 @@ def default_title(mech: Mechanism, lang: str, fmt: str, scale: str,
                      designation=f"{prefix}.{mech.name}.01", scale=scale)
 
 
-def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
+def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
                 kind: Kind = "both", fmt: Format = "A1", lang: str = "ru",
                 frame_style: str | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
@@ -217,10 +145,10 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
 
     Parameters
     ----------
-    mech : Mechanism or str
-        The mechanism, or a bundled example name / TOML path.
+    mech : Study, Mechanism or str
+        The study to draw, or a mechanism / bundled example name / TOML path to study.
     n : int
-        Number of positions of the scheme, the table and the diagrams.
+        Number of positions of the scheme, the table and the diagrams (a study brings its own).
     plans : sequence of int, optional
         Positions (1-based) whose plans are drawn; two by default
         (:func:`default_plan_positions`). The first one is drawn thick in the scheme.
@@ -248,8 +176,8 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
     VelplanError
         Bad options (unknown format, kind or language, positions out of range).
     """
-    if isinstance(mech, str):
-        mech = load(mech)
+    study = mech if isinstance(mech, Study) else Study(mech, n=n)
+    mech, n = study.mechanism, study.n
     check_language(lang)
     if fmt not in FORMATS:
         raise VelplanError(f"unknown sheet format {fmt!r}; known formats: {', '.join(FORMATS)}")
@@ -257,12 +185,12 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
         raise VelplanError(f"unknown plan kind {kind!r}; known kinds: {', '.join(KINDS)}")
     if n < 3:
         raise VelplanError(f"a sheet needs at least 3 positions, not {n}")
-    kin = solve(mech, crank_positions(mech, n))
+    kin = study.kinematics
     bad = np.flatnonzero(~kin.valid)
     if bad.size:
         raise VelplanError(f"{mech.name} cannot be assembled at position {bad[0] + 1} "
                            f"(crank angle {math.degrees(kin.phi[bad[0]]):.6g}°)")
-    chosen = tuple(default_plan_positions(mech, kin) if plans is None else plans)
+    chosen = tuple(default_plan_positions(study.plan("velocity")) if plans is None else plans)
     if not chosen:
         raise VelplanError("--plans: give at least one position")
     for k in chosen:
@@ -272,11 +200,10 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
         raise VelplanError(f"--plans: a position is repeated in {', '.join(map(str, chosen))}")
     frame_style = frame_style or ("eskd" if lang in ("ru", "uk") else "iso")
     style = style or SheetStyle(language=lang)
-    sizes = _SIZES[fmt]
+    sizes = SIZES[fmt]
     g = sizes.gap
 
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    fine = solve(mech, kin.phi[0] + sense * np.linspace(0.0, 2 * np.pi, 241))
+    fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
 
     fx0, fy0, fx1, fy1 = frame_bounds(fmt)
     tx0, ty0, tx1, ty1 = title_block_bounds(fmt, frame_style)
@@ -290,7 +217,7 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
     band_top = ty1 + g
     tview = None
     if table:
-        tview = _fit_table(mech, n, lang, sizes, max_width=0.62 * W, fmt=fmt)
+        tview = _fit_table(study, lang, sizes, max_width=0.62 * W, fmt=fmt)
         right_w = max(right_w, tview.width_mm)
         band_top = ty1 + g + tview.height_mm
         views["table"] = tview.at(fx1 - tview.width_mm, ty1 + g)
@@ -299,8 +226,7 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
     if diagrams is not False and mech.output is not None:
         region = (fx0, fy0, fx1 - right_w - g, max(band_top, fy0 + 0.3 * H))
         try:
-            dview = _fit_diagrams(mech, n, lang, sizes, region, fmt=fmt,
-                                  start=float(kin.phi[0]))
+            dview = _fit_diagrams(study, lang, sizes, region, fmt=fmt)
         except ScaleError:
             if diagrams:
                 raise
@@ -316,6 +242,7 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
     # the largest scheme whose neighbours, the plans, still get vectors of a good length;
     # failing that, the scheme that leaves the plans the longest vectors
     best, failure = None, None
+    drawn: dict = {}  # (kind, number, μ) → (result, view): a plan's view does not depend on its cell
     for mview in _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt):
         # the plans go to the right of the scheme, or below it across the sheet
         regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
@@ -325,8 +252,8 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
             if plan_region[2] - plan_region[0] < 40 or plan_region[3] - plan_region[1] < 40:
                 continue
             try:
-                plan_views, results, score = _fit_plans(mech, kin, chosen, kinds, lang, sizes,
-                                                        plan_region, g, fmt=fmt)
+                plan_views, results, score = _fit_plans(study, chosen, kinds, lang, sizes,
+                                                        plan_region, g, fmt=fmt, drawn=drawn)
             except ScaleError as exc:
                 failure = failure or exc
                 continue
@@ -349,21 +276,20 @@ def build_sheet(mech: Mechanism | str, *, n: int = 12, plans: Sequence[int] | No
     elif not info.scale:
         from dataclasses import replace
         info = replace(info, scale=ratio_text(mview.mu))
-    _check_layout(views, fmt, frame_style)
+    check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
         k for k in ("diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
+    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),
-                 MappingProxyType(results), chosen, n, fmt, lang, frame_style, style, info)
+                 MappingProxyType(results), MappingProxyType(index), chosen, n, fmt, lang,
+                 frame_style, style, info)
 
 
-def _fits(view: View, w: float, h: float) -> bool:
-    return view.width_mm <= w + 1e-6 and view.height_mm <= h + 1e-6
-
-
-def _fit_table(mech, n, lang, sizes: _Sizes, *, max_width: float, fmt: str) -> View:
-    data = sheet_table(mech, n)
+def _fit_table(study: Study, lang, sizes: Sizes, *, max_width: float, fmt: str) -> View:
+    mech, n = study.mechanism, study.n
+    data = sheet_table(study.plan("velocity"))
     for size in sizes.table:
         view = table_view(data, mech, lang=lang, size_mm=size, title_mm=sizes.table_title)
         if view.width_mm <= max_width:
@@ -373,12 +299,10 @@ def _fit_table(mech, n, lang, sizes: _Sizes, *, max_width: float, fmt: str) -> V
                      f"{max_width:.0f} mm free); use fewer --positions or a larger --format")
 
 
-def _fit_diagrams(mech, n, lang, sizes: _Sizes, region, *, fmt: str, start: float) -> View:
-    from velplan.diagrams import kinematic_diagrams
-
+def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View:
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    d = kinematic_diagrams(mech, n, start=start)
+    d = study.diagrams
     best = None
 
     def build(length, height):
@@ -387,13 +311,41 @@ def _fit_diagrams(mech, n, lang, sizes: _Sizes, region, *, fmt: str, start: floa
 
     # the longest φ axis (μφ a round number of degrees per mm) that fits with the lowest
     # diagrams, then the highest diagrams that fit with it
-    for length in (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0):
-        if build(length, 10.0).width_mm <= w:
-            for height in (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0):
-                view = build(length, height)
-                if _fits(view, w, h):
-                    best = (length * height, view)
+    heights = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0)
+    lengths = (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0)
+    # the width grows linearly with the φ axis: from the longest and the shortest axis, the
+    # longest that may fit is tried first (the longer ones cannot)
+    widths = {lengths[0]: build(lengths[0], heights[-1])}
+    start = 0
+    if widths[lengths[0]].width_mm > w:
+        widths[lengths[-1]] = build(lengths[-1], heights[-1])
+        w0, w1 = widths[lengths[0]].width_mm, widths[lengths[-1]].width_mm
+        per_mm = (w0 - w1) / (lengths[0] - lengths[-1])
+        start = next((j for j, L in enumerate(lengths) if w1 + per_mm * (L - lengths[-1]) <= w + 1.0),
+                     len(lengths) - 1)
+        while start > 0 and (widths.get(lengths[start - 1]) or build(lengths[start - 1], heights[-1])).width_mm <= w:
+            start -= 1
+    for length in lengths[start:]:
+        low = widths.get(length) or build(length, heights[-1])
+        if low.width_mm <= w:
+            # the view grows with its diagrams' height: start from the tallest that the lowest
+            # view's margins leave room for, and step down until one fits (or up while one does)
+            room = h - (low.height_mm - heights[-1])
+            k = next((j for j, ht in enumerate(heights) if ht <= room + 1e-6), len(heights) - 1)
+            views = {len(heights) - 1: low}
+            fitting = None
+            for j in range(k, len(heights)):
+                views[j] = views.get(j) or build(length, heights[j])
+                if fits(views[j], w, h):
+                    fitting = j
                     break
+            while fitting is not None and fitting > 0:
+                above = build(length, heights[fitting - 1])
+                if not fits(above, w, h):
+                    break
+                fitting, views[fitting - 1] = fitting - 1, above
+            if fitting is not None:
+                best = (length * heights[fitting], views[fitting])
             break
     if best is None:
         raise ScaleError(f"the kinematic diagrams do not fit {fmt} ({w:.0f} × {h:.0f} mm free "
@@ -402,7 +354,7 @@ def _fit_diagrams(mech, n, lang, sizes: _Sizes, region, *, fmt: str, start: floa
     return best[1]
 
 
-def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: _Sizes, region, *,
+def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region, *,
                           fmt: str, count: int = 3):
     """Up to `count` schemes at successive ESKD scales, the largest that fits first."""
     x0, y0, x1, y1 = region
@@ -416,7 +368,7 @@ def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: _Sizes, region
             break
         view = mechanism_view(mech, mu_l=mu, n=n, thick=thick, lang=lang,
                               sizes=sizes.mechanism, kin=kin, fine=fine)
-        if _fits(view, w, h):
+        if fits(view, w, h):
             yield view
             found += 1
             if found >= count:
@@ -428,13 +380,14 @@ def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: _Sizes, region
                      f"use a larger --format")
 
 
-def _fit_plans(mech, kin, chosen, kinds, lang, sizes: _Sizes, region, gap, *, fmt: str):
+def _fit_plans(study: Study, chosen, kinds, lang, sizes: Sizes, region, gap, *, fmt: str,
+               drawn: dict | None = None):
     """Plans in a grid of equal cells, each at its own standard scale (the largest drawing
     that fits its cell); of the grid shapes tried (a row per kind, a row per position, one
     row, one column) the one giving the longest shortest-plan wins."""
     x0, y0, x1, y1 = region
     W, H = x1 - x0, y1 - y0
-    plan = Plan.of(mech)
+    kin = study.kinematics
     K, M = len(chosen), len(kinds)
     kind_major = [(kd, k) for kd in kinds for k in chosen]
     position_major = [(kd, k) for k in chosen for kd in kinds]
@@ -442,7 +395,8 @@ def _fit_plans(mech, kin, chosen, kinds, lang, sizes: _Sizes, region, gap, *, fm
               (K * M, 1, kind_major)]
     best = None
     cache: dict = {}
-    first = {(kd, k): plan.evaluate(kin, kind=kd, positions=[k - 1]) for kd, k in kind_major}
+    drawn = {} if drawn is None else drawn
+    first = {(kd, k): study.plan(kd) for kd, k in kind_major}
 
     def estimate(shape) -> float:
         """Longest shortest plan (mm) the grid shape promises from the images alone."""
@@ -452,7 +406,7 @@ def _fit_plans(mech, kin, chosen, kinds, lang, sizes: _Sizes, region, gap, *, fm
             return 0.0
         worst = math.inf
         for (kd, k), res in first.items():
-            ew, eh = extent_mm(res, 0)
+            ew, eh = extent_mm(res, k - 1)
             vec = kin.velocities if kd == "velocity" else kin.accelerations
             peak = float(np.nanmax(np.hypot(vec[k - 1, :, 0], vec[k - 1, :, 1])))
             mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
@@ -472,8 +426,8 @@ def _fit_plans(mech, kin, chosen, kinds, lang, sizes: _Sizes, region, gap, *, fm
         for kind, number in order:
             key = (kind, number, round(cw, 3), round(ch, 3))
             if key not in cache:
-                cache[key] = _fit_one(plan, kin, number, kind, lang, sizes, cw, ch,
-                                      MIN_PLAN_MM[fmt])
+                cache[key] = _fit_one(study.plan(kind), number, lang, sizes, cw, ch,
+                                      MIN_PLAN_MM[fmt], drawn)
             if cache[key] is None:
                 break
             fitted[kind, number] = cache[key]
@@ -507,20 +461,19 @@ def _standard_from(mu: float):
         value = standard_scale(value * 1.0001)
 
 
-def _fit_one(plan, kin, number, kind, lang, sizes, cw, ch, least):
-    """(result, view, longest vector mm) of one plan at the smallest standard μ that fits a
-    cell of cw × ch mm, or None."""
-    idx = [number - 1]
-    res0 = plan.evaluate(kin, kind=kind, positions=idx)
-    ew, eh = extent_mm(res0, 0)
+def _fit_one(res0: PlanResult, number, lang, sizes, cw, ch, least, drawn: dict):
+    """(result, view, longest vector mm) of the plan of position ``number`` at the smallest
+    standard μ that fits a cell of cw × ch mm, or None."""
+    i = number - 1
+    kin, kind = res0.kin, res0.kind
+    ew, eh = extent_mm(res0, i)
     room_w, room_h = cw - 2 * 12.0, ch - 2 * 12.0 - 14.0
     if room_w <= 0 or room_h <= 0:
         return None
     # start a little below the estimate: labels rarely need the whole margin
     estimate = res0.scale * max(ew / room_w, eh / room_h, 1e-9)
     vec = kin.velocities if kind == "velocity" else kin.accelerations
-    peak = float(np.nanmax(np.hypot(vec[idx, :, 0], vec[idx, :, 1])))
-    key = "scale_v" if kind == "velocity" else "scale_a"
+    peak = float(np.nanmax(np.hypot(vec[[i], :, 0], vec[[i], :, 1])))
     tried = 0
     for mu in _standard_from(estimate / 1.6):
         if tried >= 10 or peak / mu < least:
@@ -530,28 +483,13 @@ def _fit_one(plan, kin, number, kind, lang, sizes, cw, ch, least):
         if ew * res0.scale / mu > cw or eh * res0.scale / mu > ch - 14.0:
             continue
         tried += 1
-        res = plan.evaluate(kin, kind=kind, positions=idx, **{key: mu})
-        view = plan_view(res, 0, number=number, lang=lang, sizes=sizes.plan)
-        if _fits(view, cw, ch):
+        if (kind, number, mu) not in drawn:
+            res = res0.at_scale(mu)
+            drawn[kind, number, mu] = res, plan_view(res, i, number=number, lang=lang, sizes=sizes.plan)
+        res, view = drawn[kind, number, mu]
+        if fits(view, cw, ch):
             return res, view, peak / mu
     return None
-
-
-def _check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) -> None:
-    """Every view inside the free area, no two views overlapping (a layout bug otherwise)."""
-    area = free_area(fmt, frame_style=frame_style).buffer(1e-6)
-    boxes = {k: shapely.box(*v.bounds) for k, v in views.items()}
-    for k, box in boxes.items():
-        if not area.contains(box):
-            raise ScaleError(f"the {k} view ({box.bounds[2] - box.bounds[0]:.0f} × "
-                             f"{box.bounds[3] - box.bounds[1]:.0f} mm) does not fit the free "
-                             f"area of {fmt}; use a larger --format")
-    names = sorted(boxes)
-    for i, a in enumerate(names):
-        for b in names[i + 1:]:
-            if boxes[a].intersection(boxes[b]).area > 1e-6:
-                raise ScaleError(f"the {a} and {b} views overlap on {fmt}; use a larger "
-                                 f"--format or fewer --plans")
 
 
 def sheet_text(sheet: Sheet) -> str:

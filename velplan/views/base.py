@@ -47,13 +47,15 @@ def shift(item: Primitive, dx: float, dy: float) -> Primitive:
 
 def bounds_of(items: Iterable[Primitive]) -> Bounds:
     """(xmin, ymin, xmax, ymax) of primitives (text by its estimated box), mm."""
-    boxes = []
+    boxes, points = [], []
     for p in items:
         if isinstance(p, (Polyline, Polygon)):
-            xy = np.asarray(p.points)
-            boxes.append((*xy.min(axis=0), *xy.max(axis=0)))
+            points.extend(p.points)  # every line's points, reduced once below
         else:
             boxes.append(p.bounds)
+    if points:
+        xy = np.asarray(points, float)
+        boxes.append((*xy.min(axis=0), *xy.max(axis=0)))
     if not boxes:
         raise ValueError("no primitives to take the bounds of")
     b = np.asarray(boxes, float)
@@ -240,12 +242,9 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
 
     from velplan.render.shapes import text_box
 
-    field = shapely.union_all(list(obstacles)) if obstacles else None
-    if field is not None:
-        if field.is_empty:
-            field = None
-        else:
-            shapely.prepare(field)
+    # a box meets the obstacles' union exactly when it meets one of them: a tree finds which
+    shapes = [g for g in obstacles if not g.is_empty]
+    field = shapely.STRtree(shapes) if shapes else None
     def padded(t):
         # rendered glyphs run wider than the layout's estimate: keep a margin around each
         corners = text_box(t)
@@ -255,25 +254,33 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
             return shapely.box(x0 - 0.4, y0 - 0.4, x1 + 0.4, y1 + 0.4)
         return shapely.Polygon(scaled).buffer(0.4)
 
-    boxes: list = []
+    placed: list = []
     out = []
     for text in texts:
         step = step_mm or 0.5 * text.size_mm
         x, y = text.position
-        chosen = text
-        for ring in range(rings + 1):
-            found = False
-            for k in range(1 if ring == 0 else 8):
-                a = math.pi / 4 * k
-                cand = text if ring == 0 else _moved(
-                    text, position=(x + ring * step * math.cos(a), y + ring * step * math.sin(a)))
-                box = padded(cand)
-                if (field is None or not field.intersects(box)) and not any(
-                        box.intersects(b) for b in boxes):
-                    chosen, found = cand, True
-                    break
-            if found:
-                break
-        boxes.append(padded(chosen))
+        # the wanted spot, then rings of eight directions around it, in this order
+        spots = [(x, y)] + [(x + ring * step * math.cos(math.pi / 4 * k),
+                             y + ring * step * math.sin(math.pi / 4 * k))
+                            for ring in range(1, rings + 1) for k in range(8)]
+        if text.rotation_deg == 0.0:
+            # an upright label's box only moves with it: all spots' boxes at once
+            corners = text_box(text)
+            scaled = np.asarray(text.position) + (corners - np.asarray(text.position)) * (1.25, 1.1)
+            (x0, y0), (x1, y1) = scaled.min(axis=0) - (x, y), scaled.max(axis=0) - (x, y)
+            xy = np.array(spots)
+            boxes = shapely.box(xy[:, 0] + x0 - 0.4, xy[:, 1] + y0 - 0.4,
+                                xy[:, 0] + x1 + 0.4, xy[:, 1] + y1 + 0.4)
+        else:
+            boxes = np.array([padded(text if j == 0 else _moved(text, position=spot))
+                              for j, spot in enumerate(spots)])
+        free = np.ones(len(spots), dtype=bool)
+        if field is not None:
+            free[np.unique(field.query(boxes, predicate="intersects")[0])] = False
+        if placed:
+            free &= ~shapely.intersects(boxes[:, None], np.array(placed)[None, :]).any(axis=1)
+        j = int(np.argmax(free)) if free.any() else 0
+        chosen = text if j == 0 else _moved(text, position=spots[j])
+        placed.append(boxes[j])
         out.append(chosen)
     return tuple(out)

@@ -1,0 +1,115 @@
+"""What every sheet shares: formats, legibility limits, the sizes of text per format, the
+files a sheet writes, and the check that views stay inside the frame without overlapping."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+from typing import Mapping
+
+import shapely
+
+from velplan.errors import ScaleError, VelplanError
+from velplan.io import write_atomic
+from velplan.sheets.frame import free_area
+from velplan.views.base import PlacedView, View
+from velplan.views.diagram import DiagramSizes
+from velplan.views.mechanism import MechanismSizes
+from velplan.views.plan import PlanSizes
+
+FORMATS: tuple[str, ...] = ("A1", "A2", "A3")
+#: Shortest longest-vector a plan may have on the sheet, mm, per format: below it a plan is
+#: unreadable.
+MIN_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 35.0, "A2": 30.0, "A3": 25.0})
+#: Longest vector of the shortest plan that a sheet is content with, mm, per format.
+GOOD_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 90.0, "A2": 70.0, "A3": 50.0})
+#: Shortest crank a scheme may show, mm.
+MIN_CRANK_MM = 8.0
+#: Shortest φ axis of a diagram, mm.
+MIN_DIAGRAM_MM = 60.0
+
+
+@dataclass(frozen=True)
+class Sizes:
+    gap: float
+    mechanism: MechanismSizes
+    plan: PlanSizes
+    table: tuple[float, ...]
+    table_title: float
+    diagram: DiagramSizes
+
+
+SIZES: Mapping[str, Sizes] = MappingProxyType({
+    "A1": Sizes(10.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(5.0, 3.5), (3.5, 2.5, 1.8), 5.0,
+                 DiagramSizes(3.5, 2.5)),
+    "A2": Sizes(8.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(3.5, 3.5), (2.5, 1.8), 3.5,
+                 DiagramSizes(3.5, 2.5)),
+    "A3": Sizes(6.0, MechanismSizes(3.5, 2.5, 2.5), PlanSizes(3.5, 2.5), (1.8,), 2.5,
+                 DiagramSizes(2.5, 1.8)),
+})
+
+
+class SheetOutput:
+    """What every composed sheet offers: its SVG text and its files (needs ``scene`` and
+    ``style`` attributes)."""
+
+    def svg(self, *, precision: int = 3) -> str:
+        """The sheet as an SVG document; the same sheet gives the same bytes."""
+        from velplan.render.svg import to_svg
+
+        return to_svg(self.scene, self.style, precision=precision)
+
+    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
+              dpi: float = 150.0) -> list[Path]:
+        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
+
+        Conversions run before anything is written, so a failure leaves no file behind.
+        """
+        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
+
+
+def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
+                  dpi: float = 150.0) -> list[Path]:
+    """Write an SVG document to `path` and, when asked, its PNG and PDF beside it."""
+    from velplan.render import export
+
+    target = Path(path)
+    if target.suffix.lower() in (".png", ".pdf"):
+        png = png or target.suffix.lower() == ".png"
+        pdf = pdf or target.suffix.lower() == ".pdf"
+        target = target.with_suffix(".svg")
+    if not target.parent.is_dir():
+        raise VelplanError(f"cannot write {target}: directory {target.parent} does not exist")
+    blobs: list[tuple[bytes, Path]] = []
+    if png:
+        blobs.append((export._convert("svg2png", svg, dpi=dpi, background_color="white"),
+                      target.with_suffix(".png")))
+    if pdf:
+        blobs.append((export._convert("svg2pdf", svg), target.with_suffix(".pdf")))
+    written = [export.write_svg(svg, target)]
+    for data, where in blobs:
+        written.append(write_atomic(where, data))
+    return written
+
+
+def fits(view: View, w: float, h: float) -> bool:
+    return view.width_mm <= w + 1e-6 and view.height_mm <= h + 1e-6
+
+
+def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) -> None:
+    """Every view inside the free area, no two views overlapping (a layout bug otherwise)."""
+    area = free_area(fmt, frame_style=frame_style).buffer(1e-6)
+    boxes = {k: shapely.box(*v.bounds) for k, v in views.items()}
+    for k, box in boxes.items():
+        if not area.contains(box):
+            raise ScaleError(f"the {k} view ({box.bounds[2] - box.bounds[0]:.0f} × "
+                             f"{box.bounds[3] - box.bounds[1]:.0f} mm) does not fit the free "
+                             f"area of {fmt}; use a larger --format")
+    names = sorted(boxes)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            if boxes[a].intersection(boxes[b]).area > 1e-6:
+                raise ScaleError(f"the {a} and {b} views overlap on {fmt}; use a larger "
+                                 f"--format or fewer --plans")

@@ -1,0 +1,281 @@
+"""The study: one mechanism, its positions and its motion, with every result computed once.
+
+A `Study` is the single place where velplan solves and constructs. Every CLI command, sheet,
+notebook helper and view reads it; none calls `velplan.solve` or `Plan.evaluate` itself.
+Results are computed on first use and cached:
+
+=====================  =====================================================================
+`phi`                  crank angles of the positions (rad): n standard positions from the
+                       reference position in the sense of ω1, or angles given
+`unit`                 the mechanism at those angles at unit crank speed (ω1 = 1 rad/s,
+                       ε1 = 0): velocities are the analogues r′ = dr/dφ (m), accelerations r″
+`kinematics`           the same at the study's motion: the file's constant ω1, or the
+                       ω(φ), ε(φ) computed by the machine dynamics (``motion="dynamic"``)
+`turn`                 a fine turn (720 steps) from position 1, at unit speed
+`stroke`, `extremes`   extreme positions, H, θ, K
+`plan(kind)`           the velocity / acceleration plan at every position (the acceleration
+                       plan drawn on the velocity plan); μ is a view parameter
+`table`, `diagrams`    transfer functions read off the plans; chord-method diagrams
+`loads`, `forces()`    the declared loads; kinetostatics, Zhukovsky's lever and power method
+`dynamics`             reduction, steady state or run, flywheel (`velplan.dynamics`)
+=====================  =====================================================================
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from velplan.analysis.chord import Diagrams, kinematic_diagrams
+from velplan.analysis.extremes import Extreme, Stroke, extremes, stroke
+from velplan.analysis.solver import Kinematics, group_point, solve
+from velplan.errors import AssemblyError, MechanismError, VelplanError
+from velplan.mechanism.loader import load
+from velplan.mechanism.model import Mechanism
+from velplan.plans.drafting import EXACT, Drafting
+from velplan.plans.engine import Plan, PlanResult
+from velplan.plans.table import TransferTable, transfer_table
+
+Motion = Literal["constant", "dynamic"]
+Kind = Literal["velocity", "acceleration"]
+
+TURN_STEPS = 720
+"""Steps of the fine turn (a multiple of 240 and 360: the scheme's trajectories take every
+third sample, the chord method's curves every second)."""
+
+
+class Study:
+    """One mechanism at its positions and motion; results computed once, on demand.
+
+    Parameters
+    ----------
+    mechanism : Mechanism, str or Path
+        The mechanism, a bundled example name or a TOML file.
+    n : int
+        Number of standard positions (12 on a course sheet), from the reference position.
+    angles : array_like, optional
+        Crank angles (rad) to study instead of the standard positions.
+    motion : {"constant", "dynamic"}
+        The crank turns at the file's constant ω1 (ε1 = 0), or at the ω(φ), ε(φ) found by the
+        machine dynamics of its ``[dynamics]`` section.
+    engine : {"numpy", "compiled", "auto"}
+        The solver's engine (see `velplan.solve`).
+    check_assembly : bool
+        Check once, before anything is solved, that the mechanism closes over a whole turn.
+    """
+
+    def __init__(self, mechanism: Mechanism | str | Path, *, n: int = 12, angles=None,
+                 motion: Motion = "constant", engine: str = "numpy", check_assembly: bool = True):
+        self.mechanism = load(mechanism) if isinstance(mechanism, (str, Path)) else mechanism
+        if motion not in ("constant", "dynamic"):
+            raise VelplanError(f"unknown motion {motion!r}; known motions: constant, dynamic")
+        if angles is None and n < 1:
+            raise MechanismError(f"number of positions must be ≥ 1, not {n}")
+        self._angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
+        self.n = n if angles is None else len(self._angles)
+        self.motion = motion
+        self.engine = engine
+        self._plans: dict = {}
+        self._forces: dict = {}
+        if check_assembly:
+            self.check_assembly()
+
+    def __repr__(self) -> str:
+        return f"Study({self.mechanism.name!r}, n={self.n}, motion={self.motion!r})"
+
+    # -- structure and positions ---------------------------------------------------------------
+
+    def check_assembly(self) -> None:
+        """Raise `AssemblyError` naming the group and the crank angles where it cannot close."""
+        if "_assembled" not in self.__dict__:
+            from velplan.analysis.assembly import check_full_rotation
+
+            check_full_rotation(self.mechanism)
+            self.__dict__["_assembled"] = True
+
+    @cached_property
+    def sense(self) -> float:
+        """+1 when the crank turns counter-clockwise, −1 clockwise."""
+        return 1.0 if self.mechanism.crank.omega >= 0 else -1.0
+
+    @cached_property
+    def stroke(self) -> Stroke | None:
+        """Stroke H, the extremes at the ends of the working stroke, θ and K (None without an
+        output)."""
+        return stroke(self.mechanism)
+
+    @cached_property
+    def extremes(self) -> dict[str, list[Extreme]]:
+        """Extreme positions of every link angle and prismatic slide."""
+        return extremes(self.mechanism)
+
+    @cached_property
+    def reference(self) -> float:
+        """Crank angle of position 1, rad."""
+        mech = self.mechanism
+        if mech.reference_deg is not None:
+            return math.radians(mech.reference_deg)
+        return 0.0 if self.stroke is None else self.stroke.start.phi
+
+    @cached_property
+    def phi(self) -> np.ndarray:
+        """(n,) crank angles of the positions, rad."""
+        if self._angles is not None:
+            return self._angles
+        return self.reference + self.sense * np.arange(self.n) * (2 * np.pi / self.n)
+
+    def require_assembled(self, positions=None) -> None:
+        """Raise `AssemblyError` naming the group, its point and the crank angle at the first of
+        ``positions`` (indices; all by default) where the mechanism is not assembled or is
+        singular."""
+        kin = self.kinematics
+        idx = np.arange(len(kin)) if positions is None else np.atleast_1d(positions)
+        bad = [int(i) for i in idx if not kin.valid[i]]
+        if not bad:
+            return
+        i = bad[0]
+        deg = float(kin.phi_deg[i])
+        for g in self.mechanism.groups:
+            c = kin.condition[i, kin.group_index[g.name]] if g.name in kin.group_index else 1.0
+            if not (np.isfinite(c) and c > 0):
+                what = "cannot be assembled" if not np.isfinite(c) else "is singular (its lines are parallel)"
+                raise AssemblyError(f"group {g.name!r} ({g.kind}) {what}: point {group_point(g)!r} "
+                                    f"at crank angle {deg:.6g}°", group=g.name, point=group_point(g), phi_deg=deg)
+        raise AssemblyError(f"{self.mechanism.name}: no finite solution at crank angle {deg:.6g}°",
+                            group="", point="", phi_deg=deg)
+
+    # -- kinematics ----------------------------------------------------------------------------
+
+    @cached_property
+    def unit(self) -> Kinematics:
+        """The positions at ω1 = 1 rad/s, ε1 = 0: velocities are the analogues dr/dφ (m),
+        accelerations d²r/dφ² (m)."""
+        return solve(self.mechanism, self.phi, omega1=1.0, epsilon1=0.0, engine=self.engine)
+
+    @cached_property
+    def crank_motion(self) -> tuple[float | np.ndarray, float | np.ndarray]:
+        """(ω1, ε1) of the crank at the positions: floats for a constant motion, (n,) arrays
+        (rad/s, rad/s²) for the computed one."""
+        if self.motion == "constant":
+            return self.mechanism.crank.omega, self.mechanism.crank.epsilon
+        return self.dynamics.motion_at(self.phi)
+
+    @cached_property
+    def kinematics(self) -> Kinematics:
+        """The positions at the study's motion."""
+        w, e = self.crank_motion
+        if self.motion == "constant":
+            return solve(self.mechanism, self.phi, omega1=w, epsilon1=e, engine=self.engine)
+        return self.unit.at_speed(w, e)
+
+    @cached_property
+    def turn(self) -> Kinematics:
+        """A whole turn from position 1 in the sense of rotation, `TURN_STEPS` steps, at
+        ω1 = 1 rad/s (positions for trajectories and extents; analogues for the diagrams)."""
+        rot = np.linspace(0.0, 2 * np.pi, TURN_STEPS + 1)
+        return solve(self.mechanism, self.phi[0] + self.sense * rot, omega1=1.0, epsilon1=0.0,
+                     engine=self.engine)
+
+    # -- plans -------------------------------------------------------------------------------
+
+    @cached_property
+    def construction(self) -> Plan:
+        """The construction (steps) of the mechanism's plans."""
+        return Plan.of(self.mechanism)
+
+    def plan(self, kind: Kind = "velocity", *, drafting: Drafting = EXACT, scale_v: float | None = None,
+             scale_a: float | None = None, positions=None, only=None,
+             on_failure: Literal["nan", "raise"] = "nan") -> PlanResult:
+        """The ``kind`` plan at every position (or at ``positions``, indices), drawn exactly or at
+        ``drafting`` precision; an acceleration plan is drawn on the velocity plan.
+
+        An exact plan is constructed once and drawn at any scale μv, μa on request (its images
+        scale with μ; nothing is constructed again); a drafted one is constructed at its scale,
+        since rounding on paper depends on it. ``only`` limits the construction to the steps
+        that the named points and links need.
+        """
+        if kind not in ("velocity", "acceleration"):
+            raise VelplanError(f"unknown plan kind {kind!r}; known kinds: velocity, acceleration")
+        scale = scale_v if kind == "velocity" else scale_a
+        if drafting.exact and positions is None and only is None and on_failure == "nan":
+            res = self._plans.get((kind,))
+            if res is None:
+                velocity = self.plan("velocity") if kind == "acceleration" else None
+                res = self._plans[(kind,)] = self.construction.evaluate(
+                    self.kinematics, kind=kind, velocity=velocity)
+            return res if scale is None else res.at_scale(scale)
+        pos = None if positions is None else tuple(int(i) for i in np.atleast_1d(positions))
+        key = (kind, drafting, scale_v, scale_a, pos, None if only is None else tuple(only), on_failure)
+        res = self._plans.get(key)
+        if res is None:
+            res = self._plans[key] = self.construction.evaluate(
+                self.kinematics, kind=kind, drafting=drafting, scale_v=scale_v, scale_a=scale_a,
+                positions=None if pos is None else list(pos), only=only, on_failure=on_failure)
+        return res
+
+    # -- tables and diagrams -----------------------------------------------------------------
+
+    @cached_property
+    def table(self) -> TransferTable:
+        """Transfer functions V/ω1 and ω/ω1 read off the exact velocity plans."""
+        return transfer_table(self.plan("velocity"))
+
+    @cached_property
+    def diagrams(self) -> Diagrams:
+        """The output's s, ds/dφ, d²s/dφ² over a turn by the chord method and exactly."""
+        return kinematic_diagrams(self.mechanism, nodes=self.unit, turn=self.turn.take(slice(None, None, 2)),
+                                  sense=self.sense)
+
+    # -- forces ------------------------------------------------------------------------------
+
+    @cached_property
+    def loads(self) -> tuple:
+        """The file's ``[[load]]`` tables as load values."""
+        from velplan.forces.parse import parse_loads
+
+        return parse_loads(self.mechanism)
+
+    def forces(self, *, drafting: Drafting = EXACT, mu_v: float | None = None, gravity: bool = True,
+               inertia: bool = True):
+        """Kinetostatics, Zhukovsky's lever and the power method at every position
+        (`velplan.forces.ForceAnalysis`), at the study's motion."""
+        key = (drafting, mu_v, gravity, inertia)
+        res = self._forces.get(key)
+        if res is None:
+            from velplan.forces.agreement import force_analysis
+
+            plan = self.plan("velocity", drafting=drafting, scale_v=None if drafting.exact else mu_v)
+            res = force_analysis(self.kinematics, plan, self.loads, gravity=gravity, inertia=inertia,
+                                 mu_v=mu_v)
+            self._forces[key] = res
+        return res
+
+    def turn_forces(self, *, gravity: bool = True, inertia: bool = True):
+        """The force analysis over the fine turn (every third step: 241 angles), at the file's
+        constant ω1 or at the computed motion."""
+        key = ("turn", gravity, inertia)
+        res = self._forces.get(key)
+        if res is None:
+            from velplan.forces.agreement import force_analysis
+
+            unit = self.turn.take(slice(None, None, 3))
+            if self.motion == "constant":
+                kin = unit.at_speed(self.mechanism.crank.omega, self.mechanism.crank.epsilon)
+            else:
+                kin = unit.at_speed(*self.dynamics.motion_at(unit.phi))
+            plan = self.construction.evaluate(kin, kind="velocity")
+            res = self._forces[key] = force_analysis(kin, plan, self.loads, gravity=gravity, inertia=inertia)
+        return res
+
+    # -- dynamics ----------------------------------------------------------------------------
+
+    @cached_property
+    def dynamics(self):
+        """The machine dynamics of the ``[dynamics]`` section (`velplan.dynamics`)."""
+        from velplan.dynamics import analyse
+
+        return analyse(self.mechanism, loads=self.loads)
