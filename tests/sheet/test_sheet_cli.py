@@ -5,6 +5,7 @@ from velplan.cli import main
 
 def test_sheet_without_mech_draws_the_shaper_here(tmp_path, monkeypatch, capsys, sheets):
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("LC_ALL", "ru_RU.UTF-8")  # the drawings' language, from the locale
     assert main(["sheet"]) == 0
     assert capsys.readouterr().out == "wrote shaper-sheet.svg\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["shaper-sheet.svg"]  # no temp files
@@ -66,3 +67,24 @@ def test_steps_position_out_of_range(tmp_path, capsys):
     assert main(["steps", "crank-slider", "--position", "13", "-o", str(tmp_path / "s")]) == 2
     assert capsys.readouterr().err == "velplan: error: --position 13 is outside 1…12\n"
     assert not (tmp_path / "s").exists()
+
+
+def test_the_language_follows_the_locale():
+    from velplan.cli.common import default_language
+
+    assert default_language({"LANG": "uk_UA.UTF-8"}) == "uk"
+    assert default_language({"LC_ALL": "zh_CN.UTF-8", "LANG": "ru_RU.UTF-8"}) == "zh"
+    assert default_language({"LC_ALL": "", "LANG": "ru_RU.UTF-8"}) == "ru"
+    assert default_language({"LANG": "de_DE.UTF-8"}) == "en"
+    assert default_language({"LANG": "C"}) == "en"
+    assert default_language({}) == "en"
+
+
+def test_version(capsys):
+    import pytest
+
+    import velplan
+
+    with pytest.raises(SystemExit) as exc:
+        main(["--version"])
+    assert exc.value.code == 0 and capsys.readouterr().out == f"velplan {velplan.__version__}\n"

@@ -23,7 +23,10 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from velplan import __version__
+
     parser = _Parser(prog="velplan", description="Velocity and acceleration plans of planar linkages.")
+    parser.add_argument("--version", action="version", version=f"velplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     for name in COMMANDS:

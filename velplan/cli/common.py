@@ -56,3 +56,17 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be ≥ 1, not {value}")
     return value
+
+
+def default_language(environ=None) -> str:
+    """The drawing language that follows the user's locale (LC_ALL, LC_MESSAGES, LANG):
+    ru, uk or zh when it names one, English otherwise."""
+    import os
+
+    env = os.environ if environ is None else environ
+    for key in ("LC_ALL", "LC_MESSAGES", "LANG"):
+        value = env.get(key, "")
+        if value:
+            code = value.split(".")[0].split("_")[0].lower()
+            return code if code in ("ru", "uk", "zh", "en") else "en"
+    return "en"

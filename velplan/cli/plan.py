@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
+from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 from velplan.plans import EXACT, Drafting
 from velplan.plans.check import check_table
@@ -27,7 +27,8 @@ def register(sub) -> None:
     _add_plan_options(p)
     p.add_argument("--only", metavar="POINT,…", help="evaluate only the steps these points or links need")
     p.add_argument("--format", choices=("text", "json"), default="text")
-    p.add_argument("--lang", choices=LANGS, default="en", help="language of the worked solution")
+    p.add_argument("--lang", choices=LANGS, default=default_language(),
+                   help="language of the worked solution (default: the locale's, else en)")
     add_output(p)
     p.set_defaults(run=run_plan)
 
@@ -124,9 +125,12 @@ def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
 
 
 def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
+    from velplan.render.i18n import label
+
     unit = "(m/s²)/mm" if res.kind == "acceleration" else "(m/s)/mm"
-    head = (f"{doc['mechanism']}: {res.kind} plan" + (f", position {doc['position']}" if doc["position"] else "")
-            + f", φ = {doc['phi_deg']:.3f}°, μ = {res.scale:g} {unit}, {res.mode}")
+    title = label(f"{res.kind}_plan", lang)
+    where = f", {label('position', lang).lower()} {doc['position']}" if doc["position"] else ""
+    head = f"{doc['mechanism']}: {title}{where}, φ = {doc['phi_deg']:.3f}°, μ = {res.scale:g} {unit}, {res.mode}"
     lines = [head, ""]
     lines += [f"{n}. {s}" for n, s in enumerate(res.describe(0, lang), 1)]
     lines.append("")

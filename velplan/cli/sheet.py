@@ -10,7 +10,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from velplan.cli.common import add_mechanism, positive_int
+from velplan.cli.common import add_mechanism, default_language, positive_int
 from velplan.errors import VelplanError
 
 _FORMATS = ("A1", "A2", "A3")
@@ -81,8 +81,8 @@ def register(sub) -> None:
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--lang", choices=_LANGS, default="ru", help="language of the drawing "
-                                                                "(default ru)")
+    p.add_argument("--lang", choices=_LANGS, default=default_language(),
+                   help="language of the drawing (default: the locale's — ru, uk, zh — else en)")
     p.add_argument("--png", action="store_true", help="also write a PNG (needs cairosvg)")
     p.add_argument("--pdf", action="store_true", help="also write a PDF (needs cairosvg)")
     p.add_argument("--dpi", type=float, default=150.0, help="PNG resolution (default 150)")
