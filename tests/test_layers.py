@@ -15,7 +15,7 @@ PACKAGE = Path(velplan.__file__).resolve().parent
 
 #: Layer of each top-level part of the package, lowest first. Imports may go down or sideways.
 LAYERS = {
-    "errors": 0, "io": 0,
+    "errors": 0, "io": 0, "__version__": 0,
     "mechanism": 1, "examples": 1,
     "analysis": 2,
     "plans": 3,

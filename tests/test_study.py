@@ -234,3 +234,40 @@ def test_study_of_given_angles_and_its_errors():
         velplan.Study("shaper", motion="wobbly")
     with pytest.raises(velplan.VelplanError, match="unknown plan kind 'jerk'"):
         study.plan("jerk")
+
+
+# -- the computed motion through the engine ------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["shaper", "slider-press"])
+def test_kinetostatics_at_the_computed_motion_balances_the_constant_driving_moment(name):
+    """In the steady state with a constant driving moment M_d, the crank's balancing moment at
+    the computed ω(φ), ε(φ) plus the moment J_I·ε of the constant inertias (flywheel, rotor:
+    they are not links) is M_d at every position — the dynamics (energy equation on the
+    reduced quantities) and the kinetostatics (link by link, at the variable speed) agree."""
+    study = velplan.Study(name, motion="dynamic", n=24, delta=0.05)
+    dyn = study.dynamics
+    w, e = study.crank_motion
+    assert isinstance(w, np.ndarray) and np.ptp(w) > 0 and np.ptp(e) > 0
+    assert np.allclose(study.kinematics.omega1, w) and np.allclose(study.kinematics.epsilon1, e)
+    mb = study.forces().balancing_moments
+    own = dict(dyn.constants).get(f"crank {study.mechanism.crank.link}", 0.0)  # a link mass already
+    balance = mb["kinetostatics"] + (dyn.inertia - own) * e
+    scale = np.abs(mb["kinetostatics"]).max()
+    assert np.abs(balance - study.sense * dyn.driving).max() <= 1e-10 * scale
+    assert study.forces().max_relative_difference() < 1e-9  # lever and power agree there too
+
+
+def test_forces_cli_at_the_computed_motion(capsys):
+    import json
+
+    from velplan.cli import main
+
+    data = "tests/dynamics/data/slider-dyn.toml"
+    assert main(["forces", data, "--motion", "dynamic", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    w = [p["omega1"] for p in doc["positions"]]
+    assert len(set(w)) == 12 and all(x < 0 for x in w)  # clockwise crank, speed varies
+    assert main(["forces", data, "--angles", "0,45", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [round(p["phi_deg"], 9) for p in doc["positions"]] == [0.0, 45.0]

@@ -66,10 +66,14 @@ class Study:
         The solver's engine (see `velplan.solve`).
     check_assembly : bool
         Check once, before anything is solved, that the mechanism closes over a whole turn.
+    delta : float, optional
+        The coefficient of speed fluctuation δ the dynamics sizes the flywheel for (overrides
+        the file's ``[dynamics] delta``).
     """
 
     def __init__(self, mechanism: Mechanism | str | Path, *, n: int = 12, angles=None,
-                 motion: Motion = "constant", engine: str = "numpy", check_assembly: bool = True):
+                 motion: Motion = "constant", engine: str = "numpy", check_assembly: bool = True,
+                 delta: float | None = None):
         self.mechanism = load(mechanism) if isinstance(mechanism, (str, Path)) else mechanism
         if motion not in ("constant", "dynamic"):
             raise VelplanError(f"unknown motion {motion!r}; known motions: constant, dynamic")
@@ -79,6 +83,7 @@ class Study:
         self.n = n if angles is None else len(self._angles)
         self.motion = motion
         self.engine = engine
+        self.delta = delta
         self._plans: dict = {}
         self._forces: dict = {}
         if check_assembly:
@@ -184,8 +189,9 @@ class Study:
 
     @cached_property
     def construction(self) -> Plan:
-        """The construction (steps) of the mechanism's plans."""
-        return Plan.of(self.mechanism)
+        """The construction (steps) of the mechanism's plans (with the crank's tangential
+        acceleration when the crank speeds up or slows down)."""
+        return Plan.of(self.mechanism, tangential=True if self.motion == "dynamic" else None)
 
     def plan(self, kind: Kind = "velocity", *, drafting: Drafting = EXACT, scale_v: float | None = None,
              scale_a: float | None = None, positions=None, only=None,
@@ -278,4 +284,4 @@ class Study:
         """The machine dynamics of the ``[dynamics]`` section (`velplan.dynamics`)."""
         from velplan.dynamics import analyse
 
-        return analyse(self.mechanism, loads=self.loads)
+        return analyse(self.mechanism, loads=self.loads, delta=self.delta)

@@ -1,0 +1,203 @@
+"""The machine dynamics of one mechanism: reduction, steady state (or periodic regime with a
+motor, or a run), flywheel — the result the CLI, the study and the sheet read.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Sequence
+
+import numpy as np
+
+from velplan.dynamics.flywheel import Flywheel, size_flywheel
+from velplan.dynamics.motor import Motor
+from velplan.dynamics.reduction import Profile, Reducer, profile, reducer
+from velplan.dynamics.run import Periodic, Run, periodic, simulate
+from velplan.dynamics.spec import DynamicsSpec, parse_dynamics
+from velplan.dynamics.steady import EnergyCurve, SteadyState, curve_of, steady_state
+from velplan.errors import VelplanError
+from velplan.mechanism.model import Mechanism
+
+PANELS = 128
+"""Default number of panels over a cycle (×16 exact solver positions)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Dynamics:
+    """The dynamics of a mechanism (see `analyse`).
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    spec : DynamicsSpec
+    reducer : Reducer
+    profile : Profile
+    constants : tuple of (str, float)
+        Constant inertias reduced to the crank (the crank's own, then the declared ones), kg·m².
+    declared : float
+        Their sum, kg·m².
+    driving : float
+        Constant driving moment from zero cycle work, N·m on the crank (positive when it drives).
+    curve : EnergyCurve
+        Total work A(θ) = driving·θ + Σ works of loads and gravity, and J(θ).
+    flywheel : Flywheel or None
+        Sized when δ is required.
+    inertia : float
+        Constant inertia the motion uses: max(flywheel exact, declared), else declared, kg·m².
+    steady : SteadyState or None
+        With the constant driving moment at the [crank] speed as ω_m (no run).
+    periodic : Periodic or None
+        With a speed-dependent motor (kloss or table) and no run.
+    run : Run or None
+    """
+
+    mechanism: Mechanism = field(repr=False)
+    spec: DynamicsSpec
+    reducer: Reducer = field(repr=False)
+    profile: Profile = field(repr=False)
+    constants: tuple
+    declared: float
+    driving: float
+    motor: Motor
+    curve: EnergyCurve = field(repr=False)
+    flywheel: Flywheel | None
+    inertia: float
+    steady: SteadyState | None
+    periodic: Periodic | None
+    run: Run | None
+
+    @property
+    def sense(self) -> float:
+        return self.reducer.sense
+
+    def travel(self, phi) -> np.ndarray:
+        """Crank travel from position 1 of crank angles ``phi`` (rad), in [0, 2π)."""
+        return np.mod(self.sense * (np.asarray(phi, dtype=float) - self.reducer.phi1), 2 * np.pi)
+
+    def speed_at_travel(self, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(t s, w = |ω| rad/s, dw/dt rad/s²) at travels ``theta`` (rad) of the computed motion."""
+        theta = np.atleast_1d(np.asarray(theta, dtype=float))
+        if self.run is not None:
+            return self.run.at_travel(np.clip(theta, 0.0, self.run.travel))
+        if self.periodic is not None:
+            return self.periodic.at_travel(theta)
+        st = self.steady
+        return st.time(theta), st.omega(theta), st.epsilon(theta)
+
+    def motion_at(self, phi) -> tuple[np.ndarray, np.ndarray]:
+        """(ω1, ε1) of the crank at crank angles ``phi`` (rad): signed, rad/s and rad/s²."""
+        _, w, e = self.speed_at_travel(self.travel(phi))
+        return self.sense * w, self.sense * e
+
+    @cached_property
+    def omega_mean(self) -> float:
+        return abs(self.mechanism.crank.omega)
+
+    def table(self, n: int = 12) -> dict[str, np.ndarray]:
+        """Per-position arrays at ``n`` standard positions (``n``·turns for a 4π cycle; over the
+        run's travel, both ends included, for a run): phi_deg (absolute), travel_deg, omega,
+        epsilon (signed), t, J_red (links + declared constants), J_red_prime (dJ/dφ),
+        J_total (with the flywheel), M_red (loads + gravity, positive when driving), M_sum,
+        A_drive, A_resist, A_sum and M_<load> per load."""
+        if self.run is not None:
+            theta = np.linspace(0.0, self.run.travel, n + 1)
+        else:
+            turns = self.spec.cycle_turns
+            theta = np.arange(n * turns) * (2 * np.pi / n)
+        t, w, e = self.speed_at_travel(theta)
+        red = self.reducer(np.mod(theta, self.profile.cycle))
+        whole, within = np.divmod(theta, self.profile.cycle)
+        works = self.profile.works(within) + whole * np.array(
+            [self.profile.cycle_work()[k] for k in self.profile.labels])[:, None] if self.profile.labels else \
+            np.zeros((0, theta.size))
+        a_res = works.sum(axis=0)
+        out = {
+            "phi_deg": np.mod(np.degrees(red.phi), 360.0), "travel_deg": np.degrees(theta),
+            "omega": self.sense * w, "epsilon": self.sense * e, "t": t,
+            "J_red": self.declared + red.J, "J_red_prime": self.sense * red.dJ,
+            "J_total": self.inertia + red.J, "M_red": red.resisting,
+        }
+        drive = self._drive_moment(w)
+        out["M_drive"] = drive
+        out["M_sum"] = drive + red.resisting
+        out["A_drive"] = self.driving * theta if self.run is None and self.periodic is None else np.full(theta.size, np.nan)
+        out["A_resist"] = a_res
+        out["A_sum"] = out["A_drive"] + a_res
+        for k, v in red.moments.items():
+            out[f"M_{k}"] = v
+        return out
+
+    @cached_property
+    def drive(self):
+        """The drive chosen by the file's ``[dynamics.drive]`` (seed 003), or None without one
+        (`velplan.dynamics.drive.select_drive` chooses one with the defaults on request)."""
+        if self.spec.drive is None:
+            return None
+        from velplan.dynamics.drive import select_drive
+
+        return select_drive(self)
+
+    def _drive_moment(self, w) -> np.ndarray:
+        if self.run is None and self.periodic is None:
+            return np.full(np.shape(w), self.driving)
+        return np.asarray(self.motor.moment(w), dtype=float)
+
+
+def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpec | None = None,
+            delta: float | None = None, panels: int = PANELS) -> Dynamics:
+    """The dynamics of ``mech`` from its ``[dynamics]`` section (or ``spec``).
+
+    Parameters
+    ----------
+    mech : Mechanism
+    loads : sequence of loads, optional
+        Default: the file's ``[[load]]`` tables.
+    spec : DynamicsSpec, optional
+        Default: `parse_dynamics` of the file; an absent section gives the defaults (steady
+        state with the constant driving moment, no flywheel sizing).
+    delta : float, optional
+        Overrides the required δ.
+    panels : int
+        Panels over a cycle (16 exact positions each).
+    """
+    spec = parse_dynamics(mech) if spec is None else spec
+    if delta is not None:
+        if not 0 < delta < 1:
+            raise VelplanError(f"--delta must be between 0 and 1 (exclusive), not {delta:g}")
+        from dataclasses import replace
+
+        spec = replace(spec, delta=float(delta))
+    red = reducer(mech, loads)
+    prof = profile(red, spec.cycle, panels)
+    constants = []
+    if red.crank_inertia > 0:
+        constants.append((f"crank {mech.crank.link}", red.crank_inertia))
+    constants += [(c.name, c.reduced) for c in spec.inertias]
+    declared = float(sum(j for _, j in constants))
+    driving = -sum(prof.cycle_work().values()) / spec.cycle
+    motor = Motor(spec.motor, driving)
+    curve = curve_of(prof, driving)
+    wm = abs(mech.crank.omega)
+    fly = None
+    if spec.delta is not None:
+        if wm == 0:
+            raise VelplanError("dynamics: sizing a flywheel needs the mean crank speed: give rpm or omega in [crank]")
+        fly = size_flywheel(curve, wm, spec.delta, declared, spec.flywheel)
+    inertia = max(fly.exact, declared) if fly is not None else declared
+    steady = per = run = None
+    if spec.run is not None:
+        r = spec.run
+        run = simulate(prof, inertia, motor.moment, abs(r.omega),
+                       travel=None if r.travel_deg is None else math.radians(r.travel_deg),
+                       time=r.time, time_limit=r.time_limit)
+    elif motor.depends_on_speed:
+        guess = motor.speed_for(driving, wm) or wm or 1.0
+        per = periodic(prof, inertia, motor.moment, guess)
+    else:
+        if wm == 0:
+            raise VelplanError("dynamics: the steady state needs the mean crank speed: give rpm or omega in [crank]")
+        steady = steady_state(curve, wm, inertia, driving, spec.cycle, prof)
+    return Dynamics(mech, spec, red, prof, tuple(constants), declared, driving, motor, curve, fly, inertia,
+                    steady, per, run)
