@@ -239,7 +239,17 @@ def test_study_of_given_angles_and_its_errors():
 # -- the computed motion through the engine ------------------------------------------------
 
 
-@pytest.mark.parametrize("name", ["shaper", "slider-press"])
+KLOSS = """
+[dynamics.motor]
+kind = "kloss"
+critical_torque = 60.0
+synchronous_rpm = 1500.0
+critical_rpm = 1200.0
+ratio = 4.8
+"""
+
+
+@pytest.mark.parametrize("name", ["shaper", "slider-press", "tests/dynamics/data/slider-dyn.toml"])
 def test_kinetostatics_at_the_computed_motion_balances_the_constant_driving_moment(name):
     """In the steady state with a constant driving moment M_d, the crank's balancing moment at
     the computed ω(φ), ε(φ) plus the moment J_I·ε of the constant inertias (flywheel, rotor:
@@ -271,3 +281,22 @@ def test_forces_cli_at_the_computed_motion(capsys):
     assert main(["forces", data, "--angles", "0,45", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert [round(p["phi_deg"], 9) for p in doc["positions"]] == [0.0, 45.0]
+
+
+def test_kinetostatics_at_a_motors_periodic_regime_balances_its_moment(tmp_path):
+    """The same balance with a Kloss motor (clockwise crank, periodic regime): M_b + J_I·ε equals
+    the motor's moment on the crank at the computed speed, position by position."""
+    from pathlib import Path
+
+    src = Path("tests/dynamics/data/slider-dyn.toml").read_text("utf-8")
+    path = tmp_path / "slider-kloss.toml"
+    path.write_text(src + KLOSS, "utf-8")
+    study = velplan.Study(path, motion="dynamic", n=24)
+    dyn = study.dynamics
+    assert dyn.periodic is not None and study.sense < 0
+    w, e = study.crank_motion
+    mb = study.forces().balancing_moments["kinetostatics"]
+    own = dict(dyn.constants).get(f"crank {study.mechanism.crank.link}", 0.0)
+    drive = study.sense * dyn.motor.moment(np.abs(w))
+    assert np.ptp(drive) > 0  # the motor's moment follows the speed
+    assert np.abs(mb + (dyn.inertia - own) * e - drive).max() <= 1e-8 * np.abs(mb).max()

@@ -154,3 +154,19 @@ density = 7200.0
     assert abs(f.on_shaft - f.added / 1.8333**2) < 1e-12 * f.exact
     assert abs(f.exact - 216.68764928629) < 1e-6  # unchanged by the declared inertias
     assert f.dimensions.shape == "rim"
+
+
+def test_a_4pi_cycle_of_loads_that_repeat_every_turn_is_two_equal_turns(with_dynamics):
+    """cycle_turns = 2 (a four-stroke engine's 4π) on loads that repeat every turn: the same
+    driving moment, δ and flywheel as the 2π cycle, and ω(φ) repeats after one turn."""
+    one = analyse(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\n")))
+    two = analyse(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\ncycle_turns = 2\n")))
+    assert two.spec.cycle == pytest.approx(4 * math.pi)
+    assert two.driving == pytest.approx(one.driving, rel=1e-12)
+    assert two.flywheel.exact == pytest.approx(one.flywheel.exact, rel=1e-9)
+    assert two.steady.delta == pytest.approx(one.steady.delta, rel=1e-9)
+    assert two.steady.period == pytest.approx(2 * one.steady.period, rel=1e-9)
+    theta = np.linspace(0.0, 2 * math.pi, 50)
+    w2 = two.speed_at_travel(theta)[1]
+    assert np.allclose(two.speed_at_travel(theta + 2 * math.pi)[1], w2, rtol=1e-9)
+    assert np.allclose(one.speed_at_travel(theta)[1], w2, rtol=1e-9)
