@@ -8,6 +8,7 @@ derivative (the acceleration analogue at ε1 = 0), safeguarded by bisection.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -146,11 +147,27 @@ def output_quantity(mech: Mechanism, kin: Kinematics | None = None) -> tuple[str
     )
 
 
+_STROKES: dict[int, tuple] = {}
+"""Memo of `stroke` by mechanism (an immutable value): the extremes are found once per
+mechanism however many results need them (the study's positions, the loads' strokes)."""
+
+
 def stroke(mech: Mechanism) -> Stroke | None:
     """Stroke H, extremes and K of the mechanism's output (None without an output).
 
     The slow stroke (the crank turns through π + θ) is taken as the working stroke.
     """
+    hit = _STROKES.get(id(mech))
+    if hit is not None and hit[0]() is mech:
+        return hit[1]
+    out = _stroke(mech)
+    key = id(mech)
+    _STROKES[key] = (weakref.ref(mech), out)
+    weakref.finalize(mech, _STROKES.pop, key, None)
+    return out
+
+
+def _stroke(mech: Mechanism) -> Stroke | None:
     q = output_quantity(mech)
     if q is None:
         return None

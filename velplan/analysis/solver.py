@@ -12,7 +12,6 @@ from typing import Iterable, Literal, Mapping
 
 import numpy as np
 
-from velplan.analysis import compiled
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
@@ -303,8 +302,8 @@ def solve(
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
     items = schedule(mech) if points is None else needed_items(mech, points)
-    if engine == "compiled" or (engine == "auto" and compiled.available()
-                                and (compiled.loaded() or phi.shape[0] >= AUTO_COMPILED)):
+    if engine == "compiled" or (engine == "auto" and _compiled().available()
+                                and (_compiled().loaded() or phi.shape[0] >= AUTO_COMPILED)):
         return _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order)
     w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
     out: _Outputs | None = None
@@ -316,6 +315,14 @@ def solve(
             out = _Outputs(st, conditions, phi.shape[0], order)
         out.write(st, conditions, slice(start, start + block.shape[0]))
     return out.kinematics(mech, phi, w1, e1, st)
+
+
+def _compiled():
+    """The compiled engine's module, imported when an engine choice needs it (it brings
+    hashlib and inspect, and numba only when it runs)."""
+    from velplan.analysis import compiled
+
+    return compiled
 
 
 def _crank_rate(value, what: str, n: int):
@@ -387,6 +394,7 @@ def _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order) -> Kinem
     st, conditions = _solve_block(mech, phi[:1] if phi.shape[0] else np.zeros(1), w1, e1, scale, "nan", items)
     n = phi.shape[0]
     out = _Outputs(st, conditions, n, 2)
+    compiled = _compiled()
     ops, par, ground = compiled.encode(mech, out.names, out.links, out.slide_names, out.groups, scale, items)
     valid = np.empty(n, dtype=bool)
     compiled.kernel()(ops, par, ground, np.ascontiguousarray(phi), float(w1), float(e1),

@@ -170,11 +170,9 @@ def output_track(mech: Mechanism, where: str = "load") -> Track:
         raise MechanismError(f"{where}: needs an output slider (output = a point on a guide); "
                              f"mechanism {mech.name!r} has {what}")
     pt, link, pair = found
-    st = stroke(mech)
-    k = solve(mech, [st.start.phi, st.end.phi], omega1=1.0, epsilon1=0.0)
-    s = k.slide(pair)[:, 0]
+    st = stroke(mech)  # the output slider's stroke: its extremes' values are the slide s there
     return Track(pt, link, pair, 1.0 if mech.crank.omega >= 0 else -1.0, st.start.phi, st.end.phi,
-                 float(s[0]), float(s[1]), float(math.pi + st.theta), mech)
+                 float(st.start.value), float(st.end.value), float(math.pi + st.theta), mech)
 
 
 def _where(name: str) -> str:

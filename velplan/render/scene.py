@@ -25,7 +25,7 @@ from typing import Iterable, Iterator, Literal, Union, get_args
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.render.shapes import text_box
+from velplan.render.shapes import DESCENDER_DEPTH, text_box, text_extent
 from velplan.render.style import LINE_TYPES, LineType
 
 Point = tuple[float, float]
@@ -274,8 +274,18 @@ class Text:
     @property
     def bounds(self) -> Bounds:
         """(xmin, ymin, xmax, ymax) of the estimated text box, mm."""
+        if self.rotation_deg == 0.0:
+            # the upright box in plain arithmetic: the same numbers as text_box, without arrays
+            width, _ = text_extent(self.text, self.size_mm)
+            lx = -width * _ANCHOR[self.anchor]
+            y = self.position[1] - _DROP[self.baseline] * self.size_mm
+            return (self.position[0] + lx, y + -DESCENDER_DEPTH * self.size_mm,
+                    self.position[0] + (lx + width), y + self.size_mm)
         return _box(text_box(self))
 
+
+_ANCHOR = {"start": 0.0, "middle": 0.5, "end": 1.0}
+_DROP = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 Primitive = Union[Polyline, Polygon, Circle, Arrow, Text]
 PRIMITIVE_TYPES: tuple[type, ...] = (Polyline, Polygon, Circle, Arrow, Text)
