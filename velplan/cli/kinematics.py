@@ -18,6 +18,8 @@ from velplan.study import Study
 
 def register(sub) -> None:
     p = sub.add_parser("examples", help="list the bundled example mechanisms")
+    p.add_argument("--all", action="store_true",
+                   help="also list the catalogue of course-work mechanisms (velplan.catalogue)")
     p.set_defaults(run=run_examples)
 
     p = sub.add_parser("info", help="structure, mobility, groups, extreme positions, stroke, K")
@@ -43,6 +45,15 @@ def run_examples(args) -> int:
     for name in example_names():
         mech = load(name)
         lines.append(f"{name:<14} {mech.description or mech.title}")
+    if getattr(args, "all", False):
+        from velplan.mechanism.loader import catalogue_names
+
+        names = catalogue_names()
+        width = max(len(n) for n in names) if names else 0
+        lines += ["", "catalogue:"]
+        for name in names:
+            mech = load(name)
+            lines.append(f"{name:<{width}} {mech.description or mech.title}")
     emit("\n".join(lines), None)
     return 0
 

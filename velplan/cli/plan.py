@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -47,6 +48,9 @@ def register(sub) -> None:
     p.add_argument("--scale-v", metavar="MU", type=float, help="μv the table was drawn at, (m/s)/mm")
     p.add_argument("--precision", metavar="MM", type=float, default=0.5, help="drafting precision, mm (default 0.5)")
     p.add_argument("--angle-precision", metavar="DEG", type=float, default=0.5, help="angular precision, deg (default 0.5)")
+    p.add_argument("--key", metavar="answers.json", help="grade against this answer key of velplan batch instead")
+    p.add_argument("--variant", metavar="N", help="the variant of --key the table belongs to")
+    p.add_argument("--tolerance", metavar="P%", default="5%", help="with --key: allowed error, %% of each row's largest value (default 5%%)")
     add_output(p)
     p.set_defaults(run=run_check)
 
@@ -201,7 +205,27 @@ def compare_rows(res: PlanResult) -> list[dict]:
 
 
 def run_check(args) -> int:
+    if args.key is not None or args.variant is not None:
+        return _run_grade(args)
     mech = Study(args.mechanism).mechanism
     report = check_table(mech, args.table, scale_v=args.scale_v, drafting=Drafting(args.precision, args.angle_precision))
     emit(report.text(), args.output)
+    return 0
+
+
+def _run_grade(args) -> int:
+    from velplan.plans.grade import grade_table, read_key
+
+    if args.key is None or args.variant is None:
+        raise VelplanError("--key and --variant go together: the answer key and the student's variant")
+    text = args.tolerance.strip()
+    try:
+        tol = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+    except ValueError:
+        raise VelplanError(f"--tolerance: {args.tolerance!r} is not a percentage such as 5%") from None
+    base = read_key(args.key, args.variant).get("base", "")
+    names = {str(args.mechanism), Path(str(args.mechanism)).stem}
+    if base and not names & {str(base), Path(str(base)).stem}:
+        raise VelplanError(f"variant {args.variant} of {args.key} is a variant of {base!r}, not of {args.mechanism!r}")
+    emit(grade_table(args.table, args.key, args.variant, tolerance=tol).text(), args.output)
     return 0

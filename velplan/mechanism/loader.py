@@ -42,16 +42,27 @@ def example_names() -> list[str]:
     return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
 
 
+def catalogue_names() -> list[str]:
+    """Names of the catalogue's course-work mechanisms (`velplan.catalogue`)."""
+    files = resources.files("velplan.catalogue")
+    return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
+
+
 def load(source: str | Path) -> Mechanism:
-    """Load a mechanism: a bundled example name (``"shaper"``) or a path to a TOML file.
+    """Load a mechanism: a bundled example name (``"shaper"``), a catalogue name
+    (``"whitworth"``, see `catalogue_names`) or a path to a TOML file.
 
     The file is parsed and its structure checked (names, lengths, the order the groups can be
     solved in); whether it assembles over a turn and what its loads mean is checked by the
     `velplan.study.Study` that studies it.
     """
     path = Path(source)
-    if path.suffix.lower() != ".toml" and str(source) in example_names():
+    bundled = path.suffix.lower() != ".toml"
+    if bundled and str(source) in example_names():
         text = resources.files("velplan.examples").joinpath(f"{source}.toml").read_text("utf-8")
+        name = str(source)
+    elif bundled and str(source) in catalogue_names():
+        text = resources.files("velplan.catalogue").joinpath(f"{source}.toml").read_text("utf-8")
         name = str(source)
     elif path.is_file():
         try:
@@ -62,7 +73,7 @@ def load(source: str | Path) -> Mechanism:
     else:
         raise MechanismError(
             f"unknown mechanism {str(source)!r}: not a bundled example ({', '.join(example_names())}) "
-            "and no such file"
+            "nor a catalogue name (velplan examples --all) and no such file"
         )
     return loads(text, name=name)
 

@@ -5,7 +5,7 @@ Everything here is derived from a `Mechanism` value; nothing is solved numerical
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Union
 
 from velplan.errors import MechanismError
@@ -212,7 +212,11 @@ def material_points(mech: Mechanism) -> dict[str, tuple[str, ...]]:
 
 
 def pairs(mech: Mechanism) -> tuple[Pair, ...]:
-    """All lower pairs, named after their point (``"P:<slider link>/<guide link>"`` for sliders)."""
+    """All lower pairs, named after their point (``"P:<slider link>/<guide link>"`` for sliders).
+
+    A compound hinge (three or more links on one point) has one pair per added link; the
+    second and later pairs there are named ``"<point>:<link>/<link>"`` so that every name is
+    unique."""
     owner = point_owners(mech)
     c = mech.crank
     out = [Pair(c.pivot, "R", (c.link, GROUND), c.pivot, "crank")]
@@ -250,6 +254,11 @@ def pairs(mech: Mechanism) -> tuple[Pair, ...]:
                 Pair(f"P:{a}/{b}", "P", (a, b), g.joint, g.name),
                 Pair(f"P:{b}/{g.guide.link}", "P", (b, g.guide.link), g.joint, g.name),
             ]
+    seen: set[str] = set()
+    for k, p in enumerate(out):
+        if p.name in seen:
+            out[k] = replace(p, name=f"{p.name}:{p.links[0]}/{p.links[1]}")
+        seen.add(out[k].name)
     return tuple(out)
 
 

@@ -1,0 +1,589 @@
+"""Variant batches: a department's table of variants → per-variant sheets and an answer key.
+
+A variant table has one row per variant: a base mechanism (a bundled example, a catalogue
+name or a TOML path) and overrides of its numbers by dotted keys into the mechanism file:
+
+=========================  ==========================================================
+key                         what it sets
+=========================  ==========================================================
+``crank.length``            the crank's length, m (``crank.rpm`` / ``crank.omega`` its speed;
+                            giving one drops the other)
+``ground.O2.1``             a coordinate of a fixed point (0 = x, 1 = y), m
+``group.2-3.lengths.0``     an entry of a group's list (the group named ``2-3``)
+``group.4-5.length``        a group's number; ``group.4-5.guide.offset`` inside its guide
+``point.B.along``           a point on a link
+``link.4.mass``             a link's mass (``inertia`` J_S)
+``load.Fc.force``           a number of the load named ``Fc`` (``load.P.p_max`` …)
+``dynamics.delta``          a number of the ``[dynamics]`` section
+``positions``               the number of positions of the variant (default 12)
+=========================  ==========================================================
+
+CSV: a header ``variant,base,key,key,…`` (``variant`` optional: rows are numbered from 1;
+``base`` optional when ``--base`` gives it); an empty cell keeps the base's value.
+TOML: ``[[variant]]`` tables with ``name``, ``base`` and the keys (quoted when dotted, or as
+nested tables: ``crank = { length = 0.1 }``).
+
+Random variants (`random_variants`): for each student id ``s`` of the assignment ``a`` the
+generator is ``numpy.random.default_rng(int(sha256(f"{s}\\x1f{a}")[:16 bytes], big-endian))``;
+it multiplies every length (crank, groups, points along their links, guide offsets and fixed
+points' coordinates that are not zero), the crank speed, the masses and inertias and the
+loads' magnitudes by independent factors uniform in [1 − spread, 1 + spread] (in the order
+the base file writes them) and rounds each to 3 significant digits. A draw that does not
+assemble over the whole turn (or whose output does not reverse) is drawn again from the
+same generator, at most `MAX_TRIES` times. The same (student, assignment, base, spread)
+always gives the same variant, on any machine.
+
+`run_batch` studies the variants on every core (one process per core), writes
+``<variant>.svg`` (and ``.png``) and the answer key ``answers.json`` + ``answers.csv``:
+per variant and position the crank angle, V/ω1 of the points (m), ω/ω1 of the links
+(signed, + in the crank's sense), the balancing moment M_b (N·m, kinetostatics, when the
+mechanism has masses or loads), and the stroke H and coefficient K.
+"""
+
+from __future__ import annotations
+
+import copy
+import csv
+import hashlib
+import io
+import json
+import math
+import os
+import sys
+import tomllib
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from velplan.errors import VelplanError
+from velplan.io import write_atomic
+
+MAX_TRIES = 50
+"""Draws per random variant before it is reported as failed."""
+
+DEFAULT_POSITIONS = 12
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One row of a variant table: its name, base mechanism, overrides and the row it came from."""
+
+    name: str
+    base: str
+    overrides: dict[str, Any] = field(default_factory=dict)
+    row: str = ""
+
+    @property
+    def where(self) -> str:
+        return f"variant {self.name}" + (f" ({self.row})" if self.row else "")
+
+
+@dataclass(frozen=True)
+class Failure:
+    """A variant that could not be studied: its name, where it came from, and why."""
+
+    variant: str
+    where: str
+    message: str
+
+    def line(self) -> str:
+        return f"{self.where}: {self.message}"
+
+
+@dataclass
+class BatchReport:
+    """What a batch produced: the answers of the studied variants and the failures."""
+
+    answers: list[dict]
+    failures: list[Failure]
+    files: list[Path]
+
+
+# -- reading tables -------------------------------------------------------------------------
+
+
+def read_variants(source: str | Path, *, base: str | None = None) -> list[Variant]:
+    """Read a variant table (CSV or TOML); raises `VelplanError` only for an unreadable file —
+    bad cells are found when each variant is built, so the others still run."""
+    path = Path(source)
+    try:
+        text = path.read_text("utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise VelplanError(f"cannot read variant table {path}: {exc}") from None
+    if path.suffix.lower() == ".toml":
+        return _read_toml(text, path, base)
+    if path.suffix.lower() in (".csv", ".txt"):
+        return _read_csv(text, path, base)
+    raise VelplanError(f"variant table {path}: use a .csv or .toml file, not {path.suffix or 'no suffix'!r}")
+
+
+def _read_csv(text: str, path: Path, base: str | None) -> list[Variant]:
+    first = text.splitlines()[0] if text.strip() else ""
+    delim = ";" if first.count(";") > first.count(",") else ","
+    rows = [r for r in csv.reader(io.StringIO(text), delimiter=delim) if any(c.strip() for c in r)]
+    if not rows:
+        raise VelplanError(f"variant table {path} is empty")
+    head = [c.strip() for c in rows[0]]
+    dupes = sorted({h for h in head if head.count(h) > 1})
+    if dupes:
+        raise VelplanError(f"variant table {path}: column {dupes[0]!r} appears twice")
+    out = []
+    for i, r in enumerate(rows[1:], start=2):
+        cells = dict(zip(head, (c.strip() for c in r)))
+        if len(r) > len(head):
+            cells["\0extra"] = f"{len(r)} cells, the header has {len(head)}"
+        name = cells.pop("variant", "") or str(i - 1)
+        b = cells.pop("base", "") or base or ""
+        over = {k: (v.replace(",", ".") if delim == ";" else v) for k, v in cells.items() if v != ""}
+        out.append(Variant(name, b, over, f"row {i}"))
+    return out
+
+
+def _read_toml(text: str, path: Path, base: str | None) -> list[Variant]:
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise VelplanError(f"malformed TOML in {path}: {exc}") from None
+    default = data.get("base", base)
+    rows = data.get("variant")
+    if not isinstance(rows, list) or not rows:
+        raise VelplanError(f"variant table {path}: needs [[variant]] tables")
+    out = []
+    for i, t in enumerate(rows, start=1):
+        t = dict(t)
+        name = str(t.pop("name", t.pop("variant", i)))
+        b = str(t.pop("base", default or ""))
+        out.append(Variant(name, b, _flatten(t), f"[[variant]] #{i}"))
+    return out
+
+
+def _flatten(t: dict, prefix: str = "") -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for k, v in t.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out.update(_flatten(v, key + "."))
+        else:
+            out[key] = v
+    return out
+
+
+# -- building a variant -----------------------------------------------------------------------
+
+
+def base_text(base: str) -> tuple[str, str]:
+    """(name, TOML text) of a base mechanism: an example, a catalogue name or a TOML path."""
+    from velplan.mechanism.loader import catalogue_names, example_names
+
+    if not base:
+        raise VelplanError("no base mechanism (give a 'base' column or --base)")
+    p = Path(base)
+    if p.suffix.lower() != ".toml":
+        for package, names in (("velplan.examples", example_names()), ("velplan.catalogue", catalogue_names())):
+            if base in names:
+                return base, resources.files(package).joinpath(f"{base}.toml").read_text("utf-8")
+    if p.is_file():
+        try:
+            return p.stem, p.read_text("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise VelplanError(f"cannot read base {p}: {exc}") from None
+    raise VelplanError(f"unknown base mechanism {base!r}: not a bundled example, a catalogue name or a file")
+
+
+def apply_overrides(data: dict, overrides: dict[str, Any]) -> tuple[dict, int]:
+    """A copy of the parsed mechanism ``data`` with ``overrides`` applied, and the number of
+    positions; `VelplanError` naming the key for an unknown key or a value that is not a number."""
+    data = copy.deepcopy(data)
+    positions = DEFAULT_POSITIONS
+    for key, raw in overrides.items():
+        if key == "\0extra":
+            raise VelplanError(f"the row has {raw}")
+        value = _number(key, raw)
+        if key == "positions":
+            if value != int(value) or value < 1:
+                raise VelplanError(f"positions: must be a whole number ≥ 1, not {raw!r}")
+            positions = int(value)
+            continue
+        _set(data, key, value)
+    return data, positions
+
+
+def _number(key: str, raw: Any) -> float | int:
+    if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
+        raise VelplanError(f"{key}: {raw!r} is not a number")
+    try:
+        value = float(raw)
+    except ValueError:
+        raise VelplanError(f"{key}: {raw!r} is not a number") from None
+    if not math.isfinite(value):
+        raise VelplanError(f"{key}: {raw!r} is not a finite number")
+    return int(value) if value.is_integer() and (key.endswith(("branch", "harmonics")) or key == "positions") else value
+
+
+_NAMED_LISTS = ("group", "point", "load")
+
+
+def _set(data: dict, key: str, value) -> None:
+    parts = key.split(".")
+    if len(parts) < 2 and parts[0] not in ("gravity", "reference_deg"):
+        raise VelplanError(f"unknown key {key!r}: use a dotted key such as crank.length or link.4.mass")
+    node: Any = data
+    trail = []
+    i = 0
+    while i < len(parts) - 1:
+        part = parts[i]
+        trail.append(part)
+        if isinstance(node, dict) and part in _NAMED_LISTS and node is data and i == 0:
+            items = node.get(part) or []
+            name = parts[i + 1] if i + 1 < len(parts) else ""
+            found = [t for t in items if isinstance(t, dict) and str(t.get("name", "")) == name]
+            if not found:
+                known = ", ".join(str(t.get("name", "?")) for t in items) or "none"
+                raise VelplanError(f"unknown key {key!r}: no {part} named {name!r}; known: {known}")
+            node = found[0]
+            trail.append(name)
+            i += 2
+            continue
+        if node is data and part == "link":
+            links = node.setdefault("link", {})
+            name = parts[i + 1] if i + 1 < len(parts) else ""
+            if name not in links:
+                known = ", ".join(links) or "none"
+                raise VelplanError(f"unknown key {key!r}: the base has no [link.{name}]; links with masses: {known}")
+            node = links[name]
+            trail.append(name)
+            i += 2
+            continue
+        node = _child(node, part, key, " ".join(trail[:-1]) or "the file")
+        i += 1
+    last = parts[-1]
+    if isinstance(node, list):
+        idx = _index(node, last, key)
+        if not isinstance(node[idx], (int, float)):
+            raise VelplanError(f"unknown key {key!r}: entry {idx} is not a number")
+        node[idx] = value
+        return
+    if not isinstance(node, dict):
+        raise VelplanError(f"unknown key {key!r}: {'.'.join(trail)} is not a table")
+    if last in ("rpm", "omega") and node is data.get("crank"):
+        node.pop("omega" if last == "rpm" else "rpm", None)
+        node[last] = value
+        return
+    if last not in node:
+        if last not in _OPTIONAL:
+            have = ", ".join(k for k, v in node.items() if isinstance(v, (int, float, list, dict))) or "none"
+            raise VelplanError(f"unknown key {key!r}: {' '.join(trail) or 'the file'} has no {last!r}; it has {have}")
+    elif not isinstance(node[last], (int, float)) or isinstance(node[last], bool):
+        raise VelplanError(f"unknown key {key!r}: {last!r} is not a number in the base (give an entry: {key}.0)")
+    node[last] = value
+
+
+_OPTIONAL = {"inertia", "offset", "epsilon", "along", "angle_deg", "gravity", "reference_deg", "delta", "fx", "fy"}
+"""Numeric keys an override may add where the base file leaves them at their defaults."""
+
+
+def _child(node, part: str, key: str, where: str):
+    if isinstance(node, dict):
+        if part not in node:
+            have = ", ".join(k for k, v in node.items() if not isinstance(v, str)) or "nothing to set"
+            raise VelplanError(f"unknown key {key!r}: {where} has no {part!r}; it has {have}")
+        return node[part]
+    if isinstance(node, list):
+        return node[_index(node, part, key)]
+    raise VelplanError(f"unknown key {key!r}: {part!r} is inside a number")
+
+
+def _index(node: list, part: str, key: str) -> int:
+    try:
+        idx = int(part)
+    except ValueError:
+        raise VelplanError(f"unknown key {key!r}: {part!r} is not an index of a list of {len(node)}") from None
+    if not 0 <= idx < len(node):
+        raise VelplanError(f"unknown key {key!r}: index {idx} outside 0…{len(node) - 1}")
+    return idx
+
+
+def build_variant(v: Variant):
+    """(mechanism, positions) of a variant; `VelplanError` for a bad key, value or file."""
+    from velplan.mechanism.loader import from_dict
+
+    name, text = base_text(v.base)
+    data = tomllib.loads(text)
+    data, n = apply_overrides(data, v.overrides)
+    data["name"] = f"{name}-{v.name}"
+    return from_dict(data, name=data["name"]), n
+
+
+# -- random variants --------------------------------------------------------------------------
+
+
+def generator(student: str, assignment: str) -> np.random.Generator:
+    """The reproducible generator of (student, assignment): SHA-256 of ``student``, a unit
+    separator and ``assignment``; its first 16 bytes, big-endian, seed numpy's default_rng."""
+    digest = hashlib.sha256(f"{student}\x1f{assignment}".encode("utf-8")).digest()
+    return np.random.default_rng(int.from_bytes(digest[:16], "big"))
+
+
+def _random_keys(data: dict) -> list[str]:
+    """Dotted keys of the numbers a random variant varies, in the order the file writes them."""
+    keys = []
+    for p, (x, y) in data.get("ground", {}).items():
+        keys += [f"ground.{p}.{j}" for j, c in enumerate((x, y)) if c != 0]
+    crank = data.get("crank", {})
+    keys.append("crank.length")
+    keys.append("crank.rpm" if "rpm" in crank else "crank.omega")
+    for g in data.get("group", []):
+        n = g.get("name")
+        if "lengths" in g:
+            keys += [f"group.{n}.lengths.{j}" for j in range(len(g["lengths"]))]
+        if "length" in g:
+            keys.append(f"group.{n}.length")
+        for gk in ("offset",):
+            if g.get(gk):
+                keys.append(f"group.{n}.{gk}")
+        if isinstance(g.get("guide"), dict) and g["guide"].get("offset"):
+            keys.append(f"group.{n}.guide.offset")
+    for p in data.get("point", []):
+        if p.get("along"):
+            keys.append(f"point.{p['name']}.along")
+    for link, t in data.get("link", {}).items():
+        keys += [f"link.{link}.{k}" for k in ("mass", "inertia") if t.get(k)]
+    for ld in data.get("load", []):
+        if "name" in ld:
+            keys += [f"load.{ld['name']}.{k}" for k in ("force", "p_max", "moment", "fx", "fy") if ld.get(k)]
+    return keys
+
+
+def _round3(x: float) -> float:
+    if x == 0:
+        return 0.0
+    return float(f"{x:.3g}")
+
+
+def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
+                    students: list[str] | None = None) -> tuple[list[Variant], list[Failure]]:
+    """``n`` random variants of ``base`` (or one per id in ``students``), each assembled."""
+    from velplan.analysis.assembly import check_full_rotation
+    from velplan.analysis.extremes import stroke
+    from velplan.mechanism.loader import from_dict
+
+    if not 0 < spread < 1:
+        raise VelplanError(f"--spread must be between 0 and 100 %, not {spread * 100:g} %")
+    name, text = base_text(base)
+    data = tomllib.loads(text)
+    keys = _random_keys(data)
+    ids = list(students) if students else [str(i) for i in range(1, n + 1)]
+    out, failures = [], []
+    for sid in ids:
+        rng = generator(sid, assignment)
+        last = ""
+        for _ in range(MAX_TRIES):
+            factors = rng.uniform(1 - spread, 1 + spread, size=len(keys))
+            over = {}
+            for k, f in zip(keys, factors):
+                over[k] = _round3(_get(data, k) * f)
+            try:
+                d, _n = apply_overrides(data, over)
+                mech = from_dict(d, name=f"{name}-{sid}")
+                check_full_rotation(mech)
+                if mech.output is not None:
+                    stroke(mech)
+            except VelplanError as exc:
+                last = str(exc)
+                continue
+            out.append(Variant(sid, base, over, f"student {sid}"))
+            break
+        else:
+            failures.append(Failure(sid, f"variant {sid} (student {sid})",
+                                    f"no draw of {MAX_TRIES} assembles; the last: {last}"))
+    return out, failures
+
+
+def _get(data: dict, key: str) -> float:
+    d = copy.deepcopy(data)
+    marker = object()
+    # walk the same way `_set` does, reading instead of writing
+    parts = key.split(".")
+    node: Any = d
+    i = 0
+    while i < len(parts) - 1:
+        part = parts[i]
+        if node is d and part in _NAMED_LISTS:
+            node = next(t for t in node[part] if str(t.get("name")) == parts[i + 1])
+            i += 2
+        elif node is d and part == "link":
+            node = node["link"][parts[i + 1]]
+            i += 2
+        else:
+            node = node[int(part)] if isinstance(node, list) else node[part]
+            i += 1
+    last = parts[-1]
+    v = node[int(last)] if isinstance(node, list) else node.get(last, marker)
+    return float(v)
+
+
+def variants_csv(variants: list[Variant]) -> str:
+    """The variant table as CSV (``variant,base,key…``), as `read_variants` reads it."""
+    keys: list[str] = []
+    for v in variants:
+        keys += [k for k in v.overrides if k not in keys]
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["variant", "base", *keys])
+    for v in variants:
+        w.writerow([v.name, v.base, *(_fmt(v.overrides.get(k, "")) for k in keys)])
+    return buf.getvalue()
+
+
+def _fmt(x) -> str:
+    return f"{x:.10g}" if isinstance(x, float) else str(x)
+
+
+# -- running ----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Options:
+    outdir: str
+    png: bool = False
+    lang: str = "en"
+    fmt: str = "A1"
+    sheets: bool = True
+
+
+def study_variant(v: Variant, opts: Options) -> dict | Failure:
+    """Study one variant, write its sheet and return its answers (or the failure). Runs in a
+    worker process; never raises for a problem of the variant itself."""
+    from velplan.study import Study
+
+    try:
+        mech, n = build_variant(v)
+        study = Study(mech, n=n)
+        answers = _answers(v, study)
+        if opts.sheets:
+            from velplan.sheets.kinematic import build_sheet
+
+            sheet = build_sheet(study, fmt=opts.fmt, lang=opts.lang)
+            files = sheet.write(Path(opts.outdir) / f"{_safe(v.name)}.svg", png=opts.png)
+            answers["files"] = [f.name for f in files]
+        return answers
+    except VelplanError as exc:
+        return Failure(v.name, v.where, str(exc))
+    except (ValueError, ArithmeticError) as exc:  # a value the loader let through but the study cannot use
+        return Failure(v.name, v.where, f"{type(exc).__name__}: {exc}")
+
+
+def _safe(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
+
+
+def _answers(v: Variant, study) -> dict:
+    table = study.table
+    mech = study.mechanism
+    st = study.stroke
+    out: dict[str, Any] = {
+        "variant": v.name,
+        "base": v.base,
+        "overrides": v.overrides,
+        "positions": int(study.n),
+        "phi_deg": [round(float(math.degrees(p) % 360), 9) for p in study.phi],
+        "V": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("V_")},
+        "omega": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("w_")},
+    }
+    if st is not None:
+        angular = st.quantity.startswith("link")
+        out["H"] = float(st.H)
+        out["H_unit"] = "rad" if angular else "m"
+        out["K"] = float(st.K)
+    if mech.masses or mech.loads:
+        out["M_b"] = _clean(study.forces().balancing_moments["kinetostatics"])
+    return out
+
+
+def _clean(vals) -> list[float]:
+    """Floats, with round-off zeros (below 1e-12 of the row's largest value) written as 0."""
+    a = np.asarray(vals, dtype=float)
+    big = float(np.nanmax(np.abs(a))) if a.size else 0.0
+    return [0.0 if abs(x) <= 1e-12 * big else float(x) for x in a]
+
+
+ProgressFn = Callable[[int, int, str], None]
+
+
+def progress_bar(stream=None, width: int = 30) -> ProgressFn:
+    """A plain-text progress bar on ``stream`` (stderr): ``[#####·····] 12/30 variant 7``."""
+    stream = stream or sys.stderr
+
+    def show(done: int, total: int, label: str) -> None:
+        fill = int(width * done / total) if total else width
+        stream.write(f"\r[{'#' * fill}{'·' * (width - fill)}] {done}/{total} {label:<24}")
+        if done >= total:
+            stream.write("\n")
+        stream.flush()
+
+    return show
+
+
+def run_batch(variants: list[Variant], opts: Options, *, jobs: int | None = None,
+              progress: ProgressFn | None = None, failures: list[Failure] | None = None,
+              extra: dict | None = None) -> BatchReport:
+    """Study every variant (on ``jobs`` processes, default all cores), write the sheets and the
+    answer key into ``opts.outdir``; failures are collected, not raised."""
+    out = Path(opts.outdir)
+    if not out.is_dir():
+        raise VelplanError(f"cannot write the batch: directory {out} does not exist")
+    names = [v.name for v in variants]
+    dupes = sorted({n for n in names if names.count(n) > 1})
+    if dupes:
+        raise VelplanError(f"variant {dupes[0]!r} appears twice in the table")
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(variants) or 1))
+    results: dict[str, dict | Failure] = {}
+    total = len(variants)
+    if jobs == 1:
+        for i, v in enumerate(variants):
+            results[v.name] = study_variant(v, opts)
+            if progress:
+                progress(i + 1, total, v.where)
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            futures = {pool.submit(study_variant, v, opts): v for v in variants}
+            for i, fut in enumerate(as_completed(futures)):
+                v = futures[fut]
+                results[v.name] = fut.result()
+                if progress:
+                    progress(i + 1, total, v.where)
+    answers = [r for v in variants if isinstance(r := results[v.name], dict)]
+    fails = list(failures or []) + [r for v in variants if isinstance(r := results[v.name], Failure)]
+    from velplan import __version__
+
+    key = {"velplan": __version__, **(extra or {}), "variants": answers,
+           "failures": [{"variant": f.variant, "where": f.where, "error": f.message} for f in fails]}
+    files = [write_atomic(out / "answers.json", json.dumps(key, ensure_ascii=False, indent=1) + "\n"),
+             write_atomic(out / "answers.csv", answers_csv(answers))]
+    return BatchReport(answers, fails, files)
+
+
+def answers_csv(answers: list[dict]) -> str:
+    """The key as CSV: ``variant,quantity,unit,1,2,…`` — φ, V/ω1 of the points, ω/ω1 of the
+    links, M_b at each position, then H and K (in column 1)."""
+    n = max((a["positions"] for a in answers), default=0)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["variant", "quantity", "unit", *range(1, n + 1)])
+    for a in answers:
+        v = a["variant"]
+        w.writerow([v, "φ", "deg", *(f"{x:.4f}" for x in a["phi_deg"])])
+        for p, vals in a["V"].items():
+            w.writerow([v, f"V{p}/ω1", "m", *(f"{x:.6g}" for x in vals)])
+        for link, vals in a["omega"].items():
+            w.writerow([v, f"ω{link}/ω1", "", *(f"{x:.6g}" for x in vals)])
+        if "M_b" in a:
+            w.writerow([v, "M_b", "N·m", *(f"{x:.6g}" for x in a["M_b"])])
+        if "H" in a:
+            w.writerow([v, "H", a["H_unit"], f"{a['H']:.6g}"])
+            w.writerow([v, "K", "", f"{a['K']:.6g}"])
+    return buf.getvalue()

@@ -1,0 +1,116 @@
+"""Grading a student's table of transfer functions against a batch's answer key.
+
+The table is read as `velplan.plans.check.read_table` reads it (``quantity,1,2,…``; rows
+``VA/ω1`` or ``V_A`` and ``ω3/ω1`` or ``w_3``); the key is the ``answers.json`` that
+``velplan batch`` writes. An entry is right when it is within ``tolerance`` × the largest
+magnitude of its row in the key, plus half a unit of the last digit the row is written to.
+An ω row with a negative entry is compared signed (+ in the crank's sense), a row of
+magnitudes by magnitude.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from velplan.errors import TableError
+from velplan.plans.check import _LINK, _POINT, _decimals, read_table
+
+
+@dataclass(frozen=True)
+class Graded:
+    quantity: str
+    position: int
+    given: float
+    key: float
+    tolerance: float
+
+    @property
+    def right(self) -> bool:
+        return abs(self.given - self.key) <= self.tolerance
+
+
+@dataclass(frozen=True)
+class GradeReport:
+    variant: str
+    tolerance: float
+    entries: tuple[Graded, ...]
+
+    @property
+    def right(self) -> int:
+        return sum(e.right for e in self.entries)
+
+    @property
+    def score(self) -> float:
+        """Share of the entries that are right, 0…1."""
+        return self.right / len(self.entries) if self.entries else 0.0
+
+    def text(self) -> str:
+        lines = [f"variant {self.variant}: {self.right} of {len(self.entries)} entries right "
+                 f"({100 * self.score:.0f} %) within {100 * self.tolerance:g} % of each row's largest value"]
+        wrong = [e for e in self.entries if not e.right]
+        if wrong:
+            lines.append(f"{'quantity':<10}{'pos':>4}{'given':>11}{'key':>11}{'tol':>10}")
+            for e in wrong:
+                lines.append(f"{e.quantity:<10}{e.position:>4}{e.given:>11.4g}{e.key:>11.4g}{e.tolerance:>10.2g}  ✗")
+        return "\n".join(lines)
+
+
+def read_key(source: str | Path, variant: str) -> dict:
+    """The answers of ``variant`` in an ``answers.json``; `TableError` naming what is missing."""
+    path = Path(source)
+    try:
+        data = json.loads(path.read_text("utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise TableError(f"cannot read answer key {path}: {exc}") from None
+    rows = data.get("variants") if isinstance(data, dict) else None
+    if not isinstance(rows, list):
+        raise TableError(f"{path} is not an answer key of velplan batch (no 'variants')")
+    for a in rows:
+        if str(a.get("variant")) == str(variant):
+            return a
+    known = ", ".join(str(a.get("variant")) for a in rows) or "none"
+    raise TableError(f"answer key {path} has no variant {variant!r}; it has {known}")
+
+
+def grade_table(table: str | Path, key: str | Path, variant: str, *, tolerance: float = 0.05) -> GradeReport:
+    """Grade the student's ``table`` against ``variant`` of the answer ``key``."""
+    if not 0 < tolerance < 1:
+        raise TableError(f"tolerance must be between 0 and 100 %, not {100 * tolerance:g} %")
+    answers = read_key(key, variant)
+    head, rows = read_table(table)
+    n = len(head) - (1 if len(head) > 1 and head[-1] == head[0] else 0)
+    try:
+        numbers = [int(float(c)) for c in head[:n]]
+    except ValueError:
+        raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
+    if numbers != list(range(1, n + 1)):
+        raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
+    if n != answers["positions"]:
+        raise TableError(f"the table has {n} positions; variant {variant} of the key has {answers['positions']}")
+    entries = []
+    for name, vals in rows.items():
+        ref, signed = _key_row(name, answers, vals[:n])
+        top = max(abs(x) for x in ref) if ref else 0.0
+        tol = tolerance * top + 0.5 * 10.0 ** -_decimals(vals[:n])
+        for j, g in enumerate(vals[:n]):
+            if g is None:
+                continue
+            k = ref[j] if signed else abs(ref[j])
+            entries.append(Graded(name, j + 1, g, k, tol))
+    return GradeReport(str(variant), tolerance, tuple(entries))
+
+
+def _key_row(name: str, answers: dict, vals) -> tuple[list[float], bool]:
+    key = name.replace(" ", "")
+    m = _LINK.match(key)
+    if m and m.group(1) in answers["omega"]:
+        return answers["omega"][m.group(1)], any(v is not None and v < 0 for v in vals)
+    m = _POINT.match(key)
+    if m and m.group(1) in answers["V"]:
+        return answers["V"][m.group(1)], False
+    raise TableError(
+        f"unknown quantity {name!r}; the key has V<point>/ω1 for {', '.join(answers['V'])} "
+        f"and ω<link>/ω1 for {', '.join(answers['omega'])}"
+    )
