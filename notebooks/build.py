@@ -813,11 +813,148 @@ NB04 = [
 ]
 
 
+# --------------------------------------------------------------------------------------------
+# 05: the shaper's machine dynamics: reduction, steady state, flywheel by three methods, a run
+
+NB05 = [
+    md("""
+    # 5 · The flywheel and the equation of motion
+
+    The first half of the course takes the crank's speed as given. The second half computes
+    it: the masses and the loads are reduced to the crank, the equation of motion gives ω(φ),
+    and a flywheel keeps its fluctuation within the coefficient δ the machine allows.
+
+    **What you will learn**
+
+    * how the reduced moment of inertia J_red(φ) = Σ m·(V_S/ω1)² + J_S·(ω_i/ω1)² and the
+      reduced moment M_red(φ) (power equality) come from the velocity analogues of the
+      analytic solver, with no numerical differentiation;
+    * how the constant driving moment follows from zero work over the cycle, and ΔT(φ) from the
+      works;
+    * how ω(φ) follows from the energy equation, ε(φ) from Lagrange's equation, and δ from ω;
+    * the flywheel for δ = 0.05 by the exact energy–mass envelope, by Wittenbauer's diagram
+      (drawn, with its tangents) and by Mertsalov's approximation, and its disc's dimensions;
+    * a start-up under an asynchronous motor (Kloss's formula), integrated in time.
+    """),
+    code("""
+    from importlib.resources import files
+
+    import numpy as np
+    import matplotlib.pyplot as plt
+    from IPython.display import display
+
+    import velplan
+    from velplan.notebook import draw_dynamics
+
+    study = velplan.Study("shaper", delta=0.05)   # the shaper of seed 000, δ = 0.05
+    d = study.dynamics
+    print(study.mechanism.title)
+    """),
+    md("""
+    ## Reduction to the crank
+
+    At 12 positions, the variable part J_II of the reduced inertia (the links other than the
+    crank) and the reduced moment of the loads and gravity (negative when they resist).
+    """),
+    code("""
+    table = d.table(12)
+    for k in range(12):
+        print(f"J_II[{k + 1}] = {table['J_red'][k] - d.declared:.6f} kg·m²")
+    for k in range(12):
+        print(f"M_red[{k + 1}] = {table['M_red'][k]:.6f} N·m")
+    """, "readout"),
+    md("""
+    ## The steady state
+
+    The driving moment is constant and does the work of the resistances over the cycle:
+    M_d·2π + ∮ M_red dφ = 0. The energy equation ½·(J_I + J_II)·ω² = T₀ + A(φ) then gives
+    ω(φ), with T₀ chosen so that the mean speed (ω_max + ω_min)/2 is the crank's nominal one.
+    """),
+    code("""
+    st = d.steady
+    print(f"M_d = {d.driving:.6f} N·m")
+    print(f"ω_m = {st.omega_mean:.9f} rad/s")
+    print(f"ω_max = {st.omega_max:.9f} rad/s")
+    print(f"ω_min = {st.omega_min:.9f} rad/s")
+    print(f"δ = {st.delta:.9f}")
+    """, "readout"),
+    code("""
+    c = d.curves(720)
+    fig, ax = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
+    ax[0].plot(c["travel_deg"], c["A_sum"], label="ΔT = A_d + A_r, J")
+    ax[0].plot(c["travel_deg"], c["A_resist"], label="A_r, J")
+    ax[0].legend(); ax[0].grid(True)
+    ax[1].plot(c["travel_deg"], np.abs(c["omega"]))
+    ax[1].set_xlabel("crank travel from position 1, °"); ax[1].set_ylabel("ω, rad/s"); ax[1].grid(True)
+    plt.show()
+    """),
+    md("""
+    ## The flywheel by three methods
+
+    *Exact*: the constant inertia J_I for which max(A − k₊J) − min(A − k₋J) = (k₊ − k₋)·J_I,
+    k± = ½ω_m²(1 ± δ/2)². *Wittenbauer*: the same envelope drawn — the tangents to the
+    ΔT–J curve at tan ψ = (μJ/μT)·k± cut the segment kl on the ΔT axis, J_I = μT·kl/(ω_m²δ).
+    *Mertsalov*: ΔT_I ≈ A − ½ω_m²(J − J(0)), J_I ≈ (max − min)ΔT_I/(ω_m²δ).
+    """),
+    code("""
+    fly = d.flywheel
+    print(f"J_I exact = {fly.exact:.6f} kg·m²")
+    print(f"J_I Wittenbauer = {fly.wittenbauer:.6f} kg·m²")
+    print(f"J_I Mertsalov = {fly.mertsalov:.6f} kg·m²")
+    dims = fly.dimensions
+    print(f"disc diameter D = {dims.diameter:.3f} m")
+    print(f"disc width b = {dims.width:.3f} m")
+    print(f"disc inertia = {dims.inertia:.6f} kg·m²")
+    """, "readout"),
+    code("""
+    display(draw_dynamics(study, "wittenbauer"))
+    """),
+    md("""
+    The whole sheet is `velplan sheet shaper --kind dynamics --delta 0.05` on the command
+    line, or `velplan.notebook.draw_dynamics_sheet(study)` here.
+
+    ## A start-up under an asynchronous motor
+
+    The same shaper with that flywheel, driven through a gearbox (u = 17.6) by a motor whose
+    torque follows Kloss's formula M = 2·M_K·s·s_K/(s² + s_K²), started at a tenth of the
+    nominal speed and run for three turns.
+    """),
+    code("""
+    base = (files("velplan.examples") / "shaper.toml").read_text("utf-8")
+    extra = "\\n".join([
+        "[dynamics]",
+        "[[dynamics.inertia]]", 'name = "flywheel"', f"inertia = {fly.exact:.6f}", "ratio = 1.0",
+        "[dynamics.motor]", 'kind = "kloss"', "critical_torque = 40.0", "synchronous_rpm = 1500.0",
+        "critical_rpm = 1200.0", "ratio = 17.6",
+        "[dynamics.run]", f"omega = {0.1 * study.mechanism.crank.omega:.6f}", "travel_deg = 1080.0"])
+    run = velplan.Study(velplan.loads(base + "\\n" + extra, name="shaper-start")).dynamics
+    r = run.curves(2000)
+    plt.figure(figsize=(8, 3))
+    plt.plot(r["t"], np.abs(r["omega"]))
+    plt.xlabel("t, s"); plt.ylabel("ω, rad/s"); plt.grid(True)
+    plt.show()
+    print(f"three turns take {run.run.time:.3f} s; the crank ends at {abs(run.run.omega_end):.3f} rad/s")
+    """),
+    md("""
+    ## Exercises
+
+    1. Halve δ. How do the three flywheels change, and why does Mertsalov's error shrink?
+    2. Put the flywheel on the motor's shaft (`[dynamics.flywheel] ratio = 17.6`). How much
+       lighter is it?
+    3. Draw the Wittenbauer diagram by hand at the scales of the sheet and read kl off your
+       drawing: what J_I do you get, and how far is it from the exact one?
+    4. Start the motor with a weaker critical torque until the crank stops: what does velplan
+       say?
+    """),
+]
+
+
 NOTEBOOKS = {
     "01-velocity-plan-step-by-step": NB01,
     "02-graphical-vs-analytic": NB02,
     "03-acceleration-plan-coriolis": NB03,
     "04-your-own-mechanism": NB04,
+    "05-flywheel-and-equation-of-motion": NB05,
 }
 
 

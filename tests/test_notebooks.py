@@ -38,7 +38,8 @@ ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"
 CELL_TIMEOUT_S = 120
 STEMS = ("01-velocity-plan-step-by-step", "02-graphical-vs-analytic",
-         "03-acceleration-plan-coriolis", "04-your-own-mechanism")
+         "03-acceleration-plan-coriolis", "04-your-own-mechanism",
+         "05-flywheel-and-equation-of-motion")
 
 
 # -- executing ------------------------------------------------------------------------------
@@ -418,8 +419,73 @@ def expected_04() -> Expected:
     return Expected(fixed)
 
 
+def _reduced_by_power(mech, loads, phi):
+    """(J_II kg·m², M_red N·m) at crank angles ``phi`` by power equality, from the solver's
+    velocities at a unit crank speed in the sense of rotation: J_II = Σ m·V_S² + J_S·ω² over the
+    links other than the crank, M_red = Σ F·V (loads) + Σ m·g·V_S (gravity)."""
+    from velplan.forces.inertia import inertia_of
+
+    sense = math.copysign(1.0, mech.crank.omega)
+    kin = velplan.solve(mech, phi, omega1=sense)
+    J = np.zeros(len(phi))
+    M = np.zeros(len(phi))
+    for m in mech.masses:
+        v = kin.velocity(m.centre)
+        M += -m.mass * mech.gravity * v[:, 1]
+        if m.link != mech.crank.link:
+            J += m.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + inertia_of(mech, m) * kin.omega(m.link) ** 2
+    for load in loads:
+        for f in load.actions(kin).forces:
+            v = kin.velocity(f.point)
+            M += f.vector.real * v[:, 0] + f.vector.imag * v[:, 1]
+    return J, M
+
+
+def expected_05() -> Expected:
+    """The shaper's dynamics for δ = 0.05: reduction by power equality at the 12 positions;
+    the driving moment, ω extremes and the flywheel by the envelope on a fine grid (trapezoids
+    over 72 000 steps: about 1e-5 relative with the loads' jumps between nodes)."""
+    study = velplan.Study("shaper", delta=0.05)
+    mech = study.mechanism
+    sense = math.copysign(1.0, mech.crank.omega)
+    phi12 = study.phi
+    J12, M12 = _reduced_by_power(mech, study.loads, phi12)
+    fixed = {}
+    for k in range(12):
+        fixed[f"J_II[{k + 1}]"] = Near(float(J12[k]), SIX)
+        fixed[f"M_red[{k + 1}]"] = Near(float(M12[k]), SIX)
+    steps = 72000
+    theta = np.linspace(0.0, 2 * math.pi, steps + 1)
+    J, M = _reduced_by_power(mech, study.loads, phi12[0] + sense * theta)
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (M[1:] + M[:-1]) * np.diff(theta))])
+    md = -work[-1] / (2 * math.pi)
+    A = md * theta + work
+    wm, delta = abs(mech.crank.omega), 0.05
+    kp, km = 0.5 * wm**2 * (1 + delta / 2) ** 2, 0.5 * wm**2 * (1 - delta / 2) ** 2
+    exact = float(((A - kp * J).max() - (A - km * J).min()) / (kp - km))
+    mert = float(np.ptp(A - 0.5 * wm**2 * (J - J[0])) / (delta * wm**2))
+    fixed.update({
+        "M_d": Near(md, 1e-4 * abs(md)),
+        "ω_m": Near(wm, 1e-8),
+        "ω_max": Near(wm * (1 + delta / 2), 1e-8),   # δ met exactly, about the mean
+        "ω_min": Near(wm * (1 - delta / 2), 1e-8),
+        "δ": Near(delta, 1e-8),
+        "J_I exact": Near(exact, 5e-5 * exact),
+        "J_I Wittenbauer": Near(exact, 5e-5 * exact),
+        "J_I Mertsalov": Near(mert, 5e-5 * mert),
+    })
+    # the disc (b = 0.2·D, steel) for what is added to the crank's own inertia, mm rounded up
+    crank = [m for m in mech.masses if m.link == mech.crank.link]
+    assert not crank  # the shaper's crank carries no mass: all of J_I is the flywheel
+    d_star = (32 * exact / (7800.0 * math.pi * 0.2)) ** 0.2
+    fixed["disc diameter D"] = Within(d_star * (1 - 5e-4), d_star * (1 + 5e-4) + 0.001)
+    fixed["disc width b"] = Within(0.2 * d_star * (1 - 5e-4), 0.2 * (d_star * (1 + 5e-4) + 0.001) + 0.001)
+    fixed["disc inertia"] = Within(exact * (1 - 1e-3), exact * 1.02)
+    return Expected(fixed)
+
+
 EXPECTED = {STEMS[0]: expected_01, STEMS[1]: expected_02, STEMS[2]: expected_03,
-            STEMS[3]: expected_04}
+            STEMS[3]: expected_04, STEMS[4]: expected_05}
 
 #: One line each, in order, for the broken variants of notebook 4.
 ERRORS_04 = ("group '4-5' (RRP) cannot be assembled for crank angles",

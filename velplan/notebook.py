@@ -267,6 +267,26 @@ def draw_sheet(mech: Study | Mechanism | str, **options) -> SvgDrawing:
     return SvgDrawing(sheet.svg(), sheet.scene)
 
 
+def draw_dynamics_sheet(mech: Study | Mechanism | str, **options) -> SvgDrawing:
+    """The machine-dynamics sheet (``velplan.sheets.dynamics.build_dynamics_sheet``)."""
+    from velplan.sheets.dynamics import build_dynamics_sheet
+
+    sheet = build_dynamics_sheet(mech, **options)
+    return SvgDrawing(sheet.svg(), sheet.scene)
+
+
+def draw_dynamics(mech: Study | Mechanism | str, view: str = "wittenbauer", *, lang: Lang = "en",
+                  fmt: str = "A1") -> SvgDrawing:
+    """One view of the dynamics sheet on its own: ``"moments"``, ``"works"``, ``"inertia"``,
+    ``"omega"``, ``"wittenbauer"``, ``"flywheel"`` or ``"results"``."""
+    from velplan.sheets.dynamics import build_dynamics_sheet
+
+    sheet = build_dynamics_sheet(mech, lang=lang, fmt=fmt)
+    if view not in sheet.views:
+        raise VelplanError(f"the dynamics sheet has no view {view!r}; it has {', '.join(sheet.views)}")
+    return _drawing(sheet.views[view].view, lang)
+
+
 def side_by_side(*drawings: SvgDrawing, gap_mm: float = GAP_MM,
                  lang: Lang = "en") -> SvgDrawing:
     """Drawings (each with its scene) in one row, bottoms aligned, `gap_mm` apart."""
@@ -349,5 +369,5 @@ def crank_slider(mech: Study | Mechanism | str, callback: Callable[[Kinematics],
     return side_by_side(*(at(a) for a in offsets), lang=lang)
 
 
-__all__ = ["SvgDrawing", "crank_slider", "draw_diagrams", "draw_mechanism", "draw_plan",
+__all__ = ["SvgDrawing", "crank_slider", "draw_diagrams", "draw_dynamics", "draw_dynamics_sheet", "draw_mechanism", "draw_plan",
            "draw_sheet", "draw_steps", "side_by_side"]

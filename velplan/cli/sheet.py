@@ -15,7 +15,7 @@ from velplan.errors import VelplanError
 
 _FORMATS = ("A1", "A2", "A3")
 _KINDS = ("velocity", "acceleration", "both")
-_SHEET_KINDS = _KINDS + ("forces",)
+_SHEET_KINDS = _KINDS + ("forces", "dynamics")
 _LANGS = ("en", "ru", "uk", "zh")
 
 
@@ -37,13 +37,17 @@ def register(sub) -> None:
     p.add_argument("--kind", choices=_SHEET_KINDS, default="both",
                    help="which plans (default both); forces: the force-analysis sheet "
                         "(groups with their forces, force polygons, Zhukovsky's lever, the "
-                        "balancing moment)")
+                        "balancing moment); dynamics: the machine-dynamics sheet (reduced "
+                        "moments, works, J_red, ω, Wittenbauer's diagram, the flywheel)")
     p.add_argument("--format", choices=_FORMATS, default="A1", help="sheet format (default A1)")
     p.add_argument("--diagrams", choices=("auto", "yes", "no"), default="auto",
                    help="kinematic diagrams on the sheet: when they fit (auto, the default), "
                         "always (an error if they do not fit), never")
     p.add_argument("--no-table", action="store_true",
                    help="leave out the table of transfer functions")
+    p.add_argument("--delta", metavar="δ", type=float,
+                   help="with --kind dynamics: size the flywheel for this coefficient of speed "
+                        "fluctuation (overrides the file's [dynamics] delta)")
     _common(p)
     p.add_argument("--frame", choices=("eskd", "iso"),
                    help="title block: ESKD form 1 (default for ru, uk) or the captioned "
@@ -113,13 +117,17 @@ def run_sheet(args) -> int:
     from velplan.study import Study
 
     plans = parse_plans(args.plans)
-    study = Study(args.mechanism, n=args.positions)
+    if args.delta is not None and args.kind != "dynamics":
+        raise VelplanError("--delta belongs to --kind dynamics")
+    study = Study(args.mechanism, n=args.positions, delta=args.delta)
     mech = study.mechanism
     fields = {k: getattr(args, k) for k in ("title", "designation", "author", "checker",
                                              "approved", "organisation", "date")
               if getattr(args, k)}
     if args.kind == "forces":
         return _run_force_sheet(args, study, plans, fields)
+    if args.kind == "dynamics":
+        return _run_dynamics_sheet(args, study, plans, fields)
     info = None
     if fields:
         frame = args.frame or ("eskd" if args.lang in ("ru", "uk") else "iso")
@@ -150,6 +158,23 @@ def _run_force_sheet(args, study, plans, fields) -> int:
                               diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                               table=not args.no_table)
     output = args.output or f"{mech.name}-forces.svg"
+    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    return 0
+
+
+def _run_dynamics_sheet(args, study, plans, fields) -> int:
+    from velplan.sheets.dynamics import build_dynamics_sheet, default_dynamics_title
+    from velplan.sheets.frame import TitleInfo
+
+    if plans is not None:
+        raise VelplanError("--plans has no meaning for the dynamics sheet (it draws the whole cycle)")
+    mech = study.mechanism
+    info = None
+    if fields:
+        base = default_dynamics_title(mech, args.lang, "")
+        info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
+    sheet = build_dynamics_sheet(study, fmt=args.format, lang=args.lang, frame_style=args.frame, info=info)
+    output = args.output or f"{mech.name}-dynamics.svg"
     _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
     return 0
 

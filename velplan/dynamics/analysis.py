@@ -95,39 +95,81 @@ class Dynamics:
     def omega_mean(self) -> float:
         return abs(self.mechanism.crank.omega)
 
-    def table(self, n: int = 12) -> dict[str, np.ndarray]:
+    def table(self, n: int = 12, *, exact: bool = True) -> dict[str, np.ndarray]:
         """Per-position arrays at ``n`` standard positions (``n``·turns for a 4π cycle; over the
         run's travel, both ends included, for a run): phi_deg (absolute), travel_deg, omega,
         epsilon (signed), t, J_red (links + declared constants), J_red_prime (dJ/dφ),
         J_total (with the flywheel), M_red (loads + gravity, positive when driving), M_sum,
-        A_drive, A_resist, A_sum and M_<load> per load."""
+        A_drive, A_resist, A_sum and M_<load> per load.
+
+        ``exact=False`` reads J, J′ and the moments off the tabulated profile instead of
+        solving at these positions (equal to round-off between the loads' jumps; for curves
+        of many points)."""
         if self.run is not None:
             theta = np.linspace(0.0, self.run.travel, n + 1)
         else:
             turns = self.spec.cycle_turns
             theta = np.arange(n * turns) * (2 * np.pi / n)
+        return self._rows(theta, exact)
+
+    def curves(self, m: int = 720) -> dict[str, np.ndarray]:
+        """The `table` quantities at ``m`` + 1 evenly spaced travels over the cycle (or the
+        run's travel), both ends included, from the profile (no solve): for drawing."""
+        end = self.run.travel if self.run is not None else self.profile.cycle
+        return self._rows(np.linspace(0.0, end, m + 1), False)
+
+    def _rows(self, theta: np.ndarray, exact: bool) -> dict[str, np.ndarray]:
         t, w, e = self.speed_at_travel(theta)
-        red = self.reducer(np.mod(theta, self.profile.cycle))
-        whole, within = np.divmod(theta, self.profile.cycle)
-        works = self.profile.works(within) + whole * np.array(
-            [self.profile.cycle_work()[k] for k in self.profile.labels])[:, None] if self.profile.labels else \
-            np.zeros((0, theta.size))
+        cycle = self.profile.cycle
+        whole, within = np.divmod(theta, cycle)
+        last = (within == 0) & (whole > 0)  # the end of a cycle: the cycle's own values
+        whole, within = np.where(last, whole - 1, whole), np.where(last, cycle, within)
+        if exact:
+            red = self.reducer(np.mod(theta, cycle))
+            J, dJ, moments = red.J, red.dJ, red.moments
+        else:
+            vals = self.profile.values(np.mod(theta, cycle))
+            J, dJ = vals[0], vals[1]
+            moments = {k: vals[2 + i] for i, k in enumerate(self.profile.labels)}
+        labels = self.profile.labels
+        works = (self.profile.works(within) + whole * np.array(
+            [self.profile.cycle_work()[k] for k in labels])[:, None]) if labels else np.zeros((0, theta.size))
         a_res = works.sum(axis=0)
+        resisting = sum(moments.values(), np.zeros(theta.size))
         out = {
-            "phi_deg": np.mod(np.degrees(red.phi), 360.0), "travel_deg": np.degrees(theta),
+            "phi_deg": np.mod(np.degrees(self.reducer.phi(theta)), 360.0), "travel_deg": np.degrees(theta),
             "omega": self.sense * w, "epsilon": self.sense * e, "t": t,
-            "J_red": self.declared + red.J, "J_red_prime": self.sense * red.dJ,
-            "J_total": self.inertia + red.J, "M_red": red.resisting,
+            "J_red": self.declared + J, "J_red_prime": self.sense * dJ,
+            "J_total": self.inertia + J, "M_red": resisting,
         }
         drive = self._drive_moment(w)
         out["M_drive"] = drive
-        out["M_sum"] = drive + red.resisting
-        out["A_drive"] = self.driving * theta if self.run is None and self.periodic is None else np.full(theta.size, np.nan)
+        out["M_sum"] = drive + resisting
         out["A_resist"] = a_res
-        out["A_sum"] = out["A_drive"] + a_res
-        for k, v in red.moments.items():
+        if self.run is None and self.periodic is None:
+            out["A_drive"] = self.driving * theta
+            out["A_sum"] = out["A_drive"] + a_res
+        else:
+            # the motor's work from the motion itself: ΔT = ½(J_I + J)w² − its value at θ = 0
+            _, w0, _ = self.speed_at_travel(np.zeros(1))
+            j0 = float(self.profile.values(np.zeros(1))[0, 0])
+            out["A_sum"] = 0.5 * (self.inertia + J) * w * w - 0.5 * (self.inertia + j0) * float(w0[0]) ** 2
+            out["A_drive"] = out["A_sum"] - a_res
+        for k, v in moments.items():
             out[f"M_{k}"] = v
         return out
+
+    def wittenbauer(self, size_mm: float = 150.0, precision: float = 0.5, *, mu_J: float | None = None,
+                    mu_T: float | None = None):
+        """Wittenbauer's diagram of the sized flywheel at scales fitting ``size_mm`` (mm) or
+        at the scales given (kg·m²/mm, J/mm), its segment read off at ``precision`` mm
+        (`velplan.dynamics.flywheel.wittenbauer`); None when no δ is required."""
+        if self.flywheel is None:
+            return None
+        from velplan.dynamics.flywheel import wittenbauer
+
+        return wittenbauer(self.curve, self.flywheel.omega_mean, self.flywheel.delta,
+                           size_mm=size_mm, precision=precision, mu_J=mu_J, mu_T=mu_T)
 
     @cached_property
     def drive(self):

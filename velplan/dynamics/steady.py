@@ -175,7 +175,7 @@ def steady_state(c: EnergyCurve, omega_mean: float, inertia: float, driving: flo
     if mean_speed(lo) >= omega_mean:
         raise VelplanError(
             f"dynamics: the crank would stop: with the constant inertia {inertia:.6g} kg·m² the "
-            f"speed cannot average {omega_mean:.6g} rad/s over the cycle; add inertia (a flywheel)")
+            f"speed cannot average {omega_mean:.6g} rad/s over the cycle; add inertia (a flywheel: [dynamics] delta or --delta sizes one)")
     hi = lo + 0.5 * float(Jt.max()) * omega_mean**2 + 1.0
     while mean_speed(hi) < omega_mean:
         hi = lo + 2.0 * (hi - lo)

@@ -215,8 +215,14 @@ def fit_text(text: str, cell: Bounds, *, layer: str, size_mm: float = 3.5,
     return _cell_lines([text], cell, layer, MIN_TEXT_HEIGHT_MM, anchor, padding_mm)
 
 
+#: Rendered Latin and Cyrillic run up to ~10 % wider than `text_extent`'s estimate: a cell
+#: keeps that margin.
+_CELL_MARGIN = 1.15
+
+
 def _wrap(text: str, width: float, size: float, count: int) -> list[str] | None:
     """Greedy word wrap onto at most `count` lines no wider than `width`; None if not."""
+    width = width / _CELL_MARGIN
     words = text.split()
     lines: list[str] = []
     for word in words:

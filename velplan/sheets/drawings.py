@@ -28,6 +28,8 @@ TOLERANCE = 0.0015
 OPTIONS = {"n": 12, "kind": "both", "fmt": "A1", "lang": "ru"}
 #: Options of the force-analysis sheets (``velplan.sheets.forces.build_force_sheet``).
 FORCE_OPTIONS = {"n": 12, "fmt": "A1", "lang": "ru"}
+#: Examples that get a dynamics sheet (``velplan sheet NAME --kind dynamics --delta δ``) → δ.
+DYNAMICS = {"shaper": 0.05}
 PNG_OF = "shaper"
 PNG_DPI = 100.0
 
@@ -50,6 +52,14 @@ the balancing moment by the three methods.
 
 {force_files}
 
+The machine dynamics, as `velplan sheet shaper --kind dynamics --delta 0.05` draws it: the
+reduced moments, the works and ΔT, the variable part of the reduced inertia and the crank's
+ω(φ) over the cycle; Wittenbauer's energy–mass diagram with the tangents at ψmax, ψmin and
+the segment kl; the flywheel's section with its dimensions; the table of results (the
+flywheel by the exact envelope, by Wittenbauer computed and drawn, and by Mertsalov).
+
+{dynamics_files}
+
 Regenerate them all with one command, from the top of the repository:
 
     python -m velplan.drawings
@@ -66,6 +76,7 @@ depends on the fonts installed, so it is not compared.
 def expected() -> dict[str, bytes]:
     """File name → the bytes it should hold."""
     from velplan.mechanism.loader import example_names
+    from velplan.sheets.dynamics import build_dynamics_sheet
     from velplan.sheets.forces import build_force_sheet, has_forces
     from velplan.sheets.kinematic import build_sheet
     from velplan.study import Study
@@ -78,6 +89,10 @@ def expected() -> dict[str, bytes]:
         if has_forces(study.mechanism):
             fopts = {k: v for k, v in FORCE_OPTIONS.items() if k != "n"}
             out[f"{name}-forces.svg"] = build_force_sheet(study, **fopts).svg().encode("utf-8")
+    for name, delta in DYNAMICS.items():
+        study = Study(name, n=OPTIONS["n"], delta=delta)
+        out[f"{name}-dynamics.svg"] = build_dynamics_sheet(study, fmt=OPTIONS["fmt"],
+                                                           lang=OPTIONS["lang"]).svg().encode("utf-8")
     out["README.md"] = expected_readme()
     return dict(sorted(out.items(), key=lambda kv: (kv[0] == "README.md", kv[0])))
 
@@ -88,7 +103,8 @@ def expected_readme() -> bytes:
 
     listing = "\n".join(f"* [`{name}.svg`]({name}.svg)" for name in example_names())
     forces = "\n".join(f"* [`{name}-forces.svg`]({name}-forces.svg)" for name in force_examples())
-    return README.format(files=listing, force_files=forces, png=PNG_OF,
+    dynamics = "\n".join(f"* [`{name}-dynamics.svg`]({name}-dynamics.svg)" for name in DYNAMICS)
+    return README.format(files=listing, force_files=forces, dynamics_files=dynamics, png=PNG_OF,
                          dpi=PNG_DPI).encode("utf-8")
 
 

@@ -198,6 +198,13 @@ _UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "m": MappingProxyType({"en": "m", "ru": "м", "uk": "м", "zh": "m"}),
     "rad": MappingProxyType({"en": "rad", "ru": "рад", "uk": "рад", "zh": "rad"}),
     "deg": MappingProxyType({"en": "°", "ru": "°", "uk": "°", "zh": "°"}),
+    "J": MappingProxyType({"en": "J", "ru": "Дж", "uk": "Дж", "zh": "J"}),
+    "N·m": MappingProxyType({"en": "N·m", "ru": "Н·м", "uk": "Н·м", "zh": "N·m"}),
+    "kg·m²": MappingProxyType({"en": "kg·m²", "ru": "кг·м²", "uk": "кг·м²", "zh": "kg·m²"}),
+    "kg": MappingProxyType({"en": "kg", "ru": "кг", "uk": "кг", "zh": "kg"}),
+    "kg/m³": MappingProxyType({"en": "kg/m³", "ru": "кг/м³", "uk": "кг/м³", "zh": "kg/m³"}),
+    "rad/s": MappingProxyType({"en": "rad/s", "ru": "рад/с", "uk": "рад/с", "zh": "rad/s"}),
+    "s": MappingProxyType({"en": "s", "ru": "с", "uk": "с", "zh": "s"}),
 })
 
 

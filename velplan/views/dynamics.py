@@ -1,0 +1,354 @@
+"""Views of the machine dynamics (`velplan.dynamics`): curves over the crank's travel,
+Wittenbauer's energy–mass diagram with its tangents, the flywheel's section with its
+dimensions and the table of results.
+
+Every view draws arrays it is given (`Dynamics.curves`, `Dynamics.table`, a `Wittenbauer`
+of the chosen size); nothing here solves. Layers: ``"dynamics"`` (curves and axes),
+``"dynamics-lines"`` (construction lines: tangents, projections), ``"dynamics-labels"``
+(text), ``"flywheel"`` and ``"table"``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+import shapely
+
+from velplan.render.i18n import label
+from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
+from velplan.render.style import LineType
+from velplan.views.base import View, make_view, number, place_labels, unit
+from velplan.views.diagram import standard_up
+from velplan.views.table import grid_table
+
+LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
+
+
+@dataclass(frozen=True)
+class Series:
+    """One curve of a panel: values at the panel's travels, its line and its name."""
+
+    values: np.ndarray
+    line: LineType
+    name: str
+
+
+@dataclass(frozen=True)
+class DynamicsSizes:
+    """Text heights, mm."""
+
+    title_mm: float = 3.5
+    label_mm: float = 2.5
+
+
+def nice_step(span: float, count: int = 5) -> float:
+    """A 1, 2, 2.5 or 5 × 10ᵏ step that divides ``span`` into about ``count`` parts."""
+    if not span > 0:
+        return 1.0
+    raw = span / count
+    e = math.floor(math.log10(raw))
+    for m in (1.0, 2.0, 2.5, 5.0, 10.0):
+        if m * 10.0**e >= raw * (1 - 1e-12):
+            return m * 10.0**e
+    return 10.0 ** (e + 1)
+
+
+def _ticks(lo: float, hi: float, step: float) -> np.ndarray:
+    k0, k1 = math.ceil(lo / step - 1e-9), math.floor(hi / step + 1e-9)
+    return np.arange(k0, k1 + 1) * step
+
+
+def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycle: float,
+                positions: int, length_mm: float, height_mm: float, title: str,
+                ordinate: str, unit_text: str, lang: str, sizes: DynamicsSizes = DynamicsSizes(),
+                base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = ()
+                ) -> View:
+    """Curves over the crank's travel, as a diagram of a course sheet.
+
+    Parameters
+    ----------
+    travel : ndarray
+        Crank travel from position 1 of the curves' points, rad (0 … ``cycle``).
+    series : sequence of Series
+        The curves; the ordinate of a value v is (v − ``base``)/μ.
+    cycle : float
+        Travel the φ axis spans, rad (its length is ``length_mm``: μφ = cycle/length).
+    positions : int
+        Positions per turn marked (and numbered) on the φ axis.
+    height_mm : float
+        Largest span of the ordinates, mm: μ is the standard scale keeping it within.
+    base : float
+        The value on the φ axis (ω_m for the speed, else 0), units of the values.
+    marks : sequence of (travel rad, value, text)
+        Points marked with a dot and a label (the extremes of ω).
+    """
+    vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
+    top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
+    low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
+    span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
+    mu = standard_up(span / height_mm)
+    mu_phi = cycle / length_mm
+    L = length_mm
+    top, bottom = max(top_v / mu, 5.0), min(low_v / mu, 0.0)
+    items: list[Primitive] = []
+    size = sizes.label_mm
+    items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), LAYER, "thin", 3.0, 1.0))
+    items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), LAYER, "thin", 3.0, 1.0))
+    items.append(Text((L + 9.0, -1.0), "φ", LABELS, size, "start", "top"))
+    items.append(Text((-1.5, top + 6.0), f"{ordinate}, {unit_text}", LABELS, size, "end", "top"))
+    # positions on the φ axis
+    count = int(round(positions * cycle / (2 * math.pi)))
+    every = max(1, int(math.ceil(positions / 12)))
+    for k in range(count + 1):
+        x = k * L / count
+        items.append(Polyline([(x, -1.0), (x, 1.0)], LAYER, "thin"))
+        if k % every == 0:
+            items.append(Text((x, -1.8), str(k % positions + 1), LABELS, 0.8 * size if size > 2.5 else size,
+                              "middle", "top"))
+    # ordinate ticks with their values
+    step = nice_step((top - bottom) * mu)
+    for v in _ticks(bottom * mu, top * mu, step):
+        y = v / mu
+        if abs(y) < 1e-9:
+            continue
+        items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
+        items.append(Text((-1.8, y), number(base + v, lang, 4), LABELS, 0.8 * size, "end", "middle"))
+    # the curves, each named near its largest ordinate
+    names = []
+    lines = []
+    x = np.asarray(travel, float) / mu_phi
+    for s in series:
+        v = np.asarray(s.values, float)
+        ok = np.isfinite(v)
+        if ok.sum() < 2:
+            continue
+        xy = np.column_stack([x[ok], (v[ok] - base) / mu])
+        items.append(Polyline(xy, LAYER, s.line))
+        lines.append(shapely.LineString(xy))
+        if s.name:
+            j = int(np.argmax(np.abs(xy[:, 1]))) if len(series) > 1 else len(xy) // 3
+            px, py = xy[j]
+            names.append(Text((float(px) + 1.5, float(py) + (1.5 if py >= 0 else -1.5 - size)), s.name,
+                              LABELS, size, "start", "baseline"))
+    for t, v, text in marks:
+        px, py = t / mu_phi, (v - base) / mu
+        items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
+        names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
+                          "baseline"))
+    axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
+    items += list(place_labels(names, lines + axes))
+    # title, scales and notes above the plot
+    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μφ = {number(mu_phi, lang)} "
+             f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
+    text_lines = [scale] + list(notes)
+    y = top + 8.0 + 1.6 * size * len(text_lines)
+    items.append(Text((0.0, y + 1.8 * size), title, LABELS, sizes.title_mm))
+    for k, line in enumerate(text_lines):
+        items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
+    return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base})
+
+
+def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequence[tuple[float, float]], *,
+                     omega_mean: float, delta: float, lang: str, sizes: DynamicsSizes = DynamicsSizes()) -> View:
+    """Wittenbauer's energy–mass diagram: ΔT against the variable inertia J at the scales of
+    ``w`` (a `velplan.dynamics.flywheel.Wittenbauer`), the positions numbered on the curve,
+    the tangents at ψ_max and ψ_min to the ΔT axis, the segment kl they cut and J_I from it.
+
+    Parameters
+    ----------
+    curve_J, curve_T : ndarray
+        The closed curve: J (kg·m²) and ΔT (J) at fine travels over the cycle.
+    points : sequence of (J, ΔT)
+        The numbered positions.
+    """
+    mJ, mT = w.mu_J, w.mu_T
+    size = sizes.label_mm
+    x, y = np.asarray(curve_J) / mJ, np.asarray(curve_T) / mT
+    kx, ky = 0.0, w.intercept_max / mT
+    lx, ly = 0.0, w.intercept_min / mT
+    tmax = (w.touch_max[0] / mJ, w.touch_max[1] / mT)
+    tmin = (w.touch_min[0] / mJ, w.touch_min[1] / mT)
+    ends = {}
+    for mark, (ax, ay), (tx, ty) in (("k", (kx, ky), tmax), ("l", (lx, ly), tmin)):
+        ex = tx + 10.0
+        ends[mark] = (ex, ay + (ty - ay) * ex / tx if tx > 0 else ay)
+    ey = [e[1] for e in ends.values()]
+    right = max(float(x.max()), tmax[0], tmin[0]) + 12.0
+    top = max(float(y.max()), ky, 0.0, *ey) + 10.0
+    bottom = min(float(y.min()), ly, 0.0, *ey) - 6.0
+    items: list[Primitive] = [
+        Arrow((0.0, 0.0), (right, 0.0), LAYER, "thin", 3.0, 1.0),
+        Arrow((0.0, bottom), (0.0, top), LAYER, "thin", 3.0, 1.0),
+        Text((right + 1.0, -1.0), f"J, {unit('kg·m²', lang)}", LABELS, size, "start", "top"),
+        Text((-1.5, top), f"ΔT, {unit('J', lang)}", LABELS, size, "end", "top"),
+        Polyline(np.column_stack([x, y]), LAYER, "thick"),
+    ]
+    names = []
+    for k, (pj, pt) in enumerate(points):
+        px, py = pj / mJ, pt / mT
+        items.append(Circle((px, py), 0.6, LAYER, "thin", "solid"))
+        names.append(Text((px + 1.2, py + 1.2), str(k + 1), LABELS, size, "start", "baseline"))
+    # the tangents: from the ΔT axis through the touch points and a little beyond
+    for (ax, ay), (tx, ty), psi, mark in (((kx, ky), tmax, w.psi_max_deg, "k"), ((lx, ly), tmin, w.psi_min_deg, "l")):
+        ex, ey = ends[mark]
+        items.append(Polyline([(ax, ay), (ex, ey)], LINES, "thin"))
+        items.append(Circle((ax, ay), 0.7, LAYER, "thin", "solid"))
+        items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
+        names.append(Text((ax - 1.5, ay), mark, LABELS, sizes.title_mm, "end", "middle"))
+        sym = "ψ_max" if mark == "k" else "ψ_min"
+        names.append(Text((ex + 1.0, ey), f"{sym.replace('_max', 'max').replace('_min', 'min')} = "
+                          f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
+    # the segment kl, dimensioned beside the ΔT axis
+    dx = -10.0
+    items.append(Polyline([(0.0, ky), (dx - 2.0, ky)], LINES, "thin"))
+    items.append(Polyline([(0.0, ly), (dx - 2.0, ly)], LINES, "thin"))
+    mid = 0.5 * (ky + ly)
+    items.append(Arrow((dx, mid), (dx, ky), LINES, "thin", 2.5, 0.8))
+    items.append(Arrow((dx, mid), (dx, ly), LINES, "thin", 2.5, 0.8))
+    items.append(Text((dx - 1.0, mid), f"kl = {number(w.segment_drawn_mm, lang, 4)} {unit('mm', lang)}",
+                      LABELS, size, "middle", "baseline", 90.0))
+    lines = [shapely.LineString(np.column_stack([x, y])),
+             shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
+    items += list(place_labels(names, lines))
+    w2d = omega_mean**2 * delta
+    text = [f"μJ = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
+            f"μT = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
+            f"tg ψmax,min = (μJ/μT)·ω²m(1 ± δ/2)²/2;  ωm = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
+            f"δ = {number(delta, lang)}",
+            f"JI = μT·kl/(ω²m·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
+            f"{number(w2d, lang)} = {number(w.inertia_drawn, lang)} {unit('kg·m²', lang)}"]
+    ytext = top + 4.0 + 1.6 * size * len(text)
+    items.append(Text((0.0, ytext + 1.8 * size), label("energy_mass", lang), LABELS, sizes.title_mm))
+    for k, line in enumerate(text):
+        items.append(Text((0.0, ytext - 1.6 * size * k), line, LABELS, size))
+    return make_view("wittenbauer", items, pad_mm=2.0, meta={"mu_J": mJ, "mu_T": mT,
+                                                             "segment_mm": w.segment_drawn_mm})
+
+
+def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = DynamicsSizes(),
+                  scale_text: str = "") -> View:
+    """The flywheel's axial section at ``scale`` (m per mm): a disc, or a rim on a web and a
+    hub, hatched, with its axis and the dimensions ⌀D (⌀D₁, ⌀D₂) and b; mass and inertia.
+
+    ``dims`` is a `velplan.dynamics.flywheel.FlywheelDimensions`."""
+    s = 1.0 / scale
+    R, b = 0.5 * dims.outer * s, dims.width * s
+    size = sizes.label_mm
+    items: list[Primitive] = []
+    hub = max(0.12 * R, 3.0)
+    if dims.shape == "disc":
+        for sign in (1, -1):
+            items.append(Polygon([(0, sign * hub), (b, sign * hub), (b, sign * R), (0, sign * R)],
+                                 "flywheel", "thick", "hatch"))
+    else:
+        r1 = 0.5 * dims.inner * s
+        web = max(0.25 * b, 1.0)
+        hub_w = 0.8 * b
+        for sign in (1, -1):
+            items.append(Polygon([(0, sign * r1), (b, sign * r1), (b, sign * R), (0, sign * R)],
+                                 "flywheel", "thick", "hatch"))
+            items.append(Polygon([(0.5 * (b - web), sign * 1.6 * hub), (0.5 * (b + web), sign * 1.6 * hub),
+                                  (0.5 * (b + web), sign * r1), (0.5 * (b - web), sign * r1)],
+                                 "flywheel", "thick", "hatch"))
+            items.append(Polygon([(0.5 * (b - hub_w), sign * hub), (0.5 * (b + hub_w), sign * hub),
+                                  (0.5 * (b + hub_w), sign * 1.6 * hub), (0.5 * (b - hub_w), sign * 1.6 * hub)],
+                                 "flywheel", "thick", "hatch"))
+    # the axis
+    items.append(Polyline([(-6.0, 0.0), (b + 6.0, 0.0)], "flywheel", "axis"))
+    # ⌀D to the left, b below
+    diam = [("⌀D" if dims.shape == "disc" else "⌀D₂", R, dims.outer)]
+    if dims.shape == "rim":
+        diam.append(("⌀D₁", 0.5 * dims.inner * s, dims.inner))
+    for k, (sym, r, value) in enumerate(diam):
+        xd = -8.0 - 8.0 * k
+        items.append(Polyline([(0.0, r), (xd - 2.0, r)], "flywheel", "thin"))
+        items.append(Polyline([(0.0, -r), (xd - 2.0, -r)], "flywheel", "thin"))
+        items.append(Arrow((xd, 0.0), (xd, r), "flywheel", "thin", 2.5, 0.8))
+        items.append(Arrow((xd, 0.0), (xd, -r), "flywheel", "thin", 2.5, 0.8))
+        items.append(Text((xd - 1.0, 0.5 * r), f"{sym} {number(1000 * value, lang, 4)}", LABELS, size,
+                          "middle", "baseline", 90.0))
+    yb = -R - 8.0
+    items.append(Polyline([(0.0, -R), (0.0, yb - 2.0)], "flywheel", "thin"))
+    items.append(Polyline([(b, -R), (b, yb - 2.0)], "flywheel", "thin"))
+    items.append(Arrow((0.5 * b, yb), (0.0, yb), "flywheel", "thin", 2.5, 0.8))
+    items.append(Arrow((0.5 * b, yb), (b, yb), "flywheel", "thin", 2.5, 0.8))
+    items.append(Text((0.5 * b, yb - 1.5), f"b = {number(1000 * dims.width, lang, 4)}", LABELS, size, "middle", "top"))
+    lines = [f"{label('flywheel', lang)} ({label(dims.shape, lang)}){'  ' + scale_text if scale_text else ''}",
+             f"m = {number(dims.mass, lang)} {unit('kg', lang)};  J = {number(dims.inertia, lang)} "
+             f"{unit('kg·m²', lang)} (≥ {number(dims.required, lang)})",
+             f"ρ = {number(dims.density, lang)} {unit('kg/m³', lang)}"]
+    x0, y = b + 10.0, R
+    for k, line in enumerate(lines):
+        height = sizes.title_mm if k == 0 else size
+        y -= height
+        items.append(Text((x0, y), line, LABELS, height))
+        y -= 0.8 * height
+    return make_view("flywheel", items, pad_mm=2.0, mu=scale, meta={"scale": scale})
+
+
+def results_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
+    """(quantity, value, unit) rows of the dynamics' results; ``w`` the drawn `Wittenbauer`
+    (or None)."""
+    deg = unit("deg", lang)
+    rads = unit("rad/s", lang)
+    if d.run is not None:
+        r = d.run
+        return [("t", number(r.time, lang, 5), unit("s", lang)),
+                ("φ", number(math.degrees(r.travel), lang, 5), deg),
+                ("ω₀", number(r.omega_start, lang, 5), rads),
+                ("ω (t)", number(r.omega_end, lang, 5), rads),
+                ("ωmax", number(r.omega_max, lang, 5), rads),
+                ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(r.theta_min), lang, 4)}{deg}"),
+                 number(r.omega_min, lang, 5), rads),
+                ("JI", number(d.inertia, lang, 5), unit("kg·m²", lang))]
+    rows = []
+    if d.periodic is None:
+        rows.append((label("driving_moment", lang) + " M" + label("symbol_drive", lang), number(d.driving, lang, 5),
+                     unit("N·m", lang)))
+    st = d.steady or d.periodic
+    if st is not None:
+        rows += [
+            (label("mean_speed", lang) + " ωm", number(st.omega_mean, lang, 5), unit("rad/s", lang)),
+            ("ωmax, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_max), lang, 4)}{deg}"),
+             number(st.omega_max, lang, 5), unit("rad/s", lang)),
+            ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_min), lang, 4)}{deg}"),
+             number(st.omega_min, lang, 5), unit("rad/s", lang)),
+            (label("delta_obtained", lang), number(st.delta, lang, 4), ""),
+        ]
+    fly = d.flywheel
+    if fly is not None:
+        kgm2 = unit("kg·m²", lang)
+        rows += [(label("delta_required", lang), number(fly.delta, lang, 4), ""),
+                 (f"JI ({label('method_exact', lang)})", number(fly.exact, lang, 6), kgm2),
+                 (f"JI ({label('method_wittenbauer', lang)})", number(fly.wittenbauer, lang, 6), kgm2)]
+        if w is not None:
+            err = 100.0 * (w.inertia_drawn - fly.exact) / fly.exact
+            rows.append((f"JI ({label('method_wittenbauer_drawn', lang)})",
+                         f"{number(w.inertia_drawn, lang, 6)} ({'+' if err >= 0 else '−'}{number(abs(err), lang, 2)} %)",
+                         kgm2))
+        rows += [(f"JI ({label('method_mertsalov', lang)})",
+                  f"{number(fly.mertsalov, lang, 6)} ({'+' if fly.mertsalov_difference >= 0 else '−'}"
+                  f"{number(abs(100 * fly.mertsalov_difference), lang, 3)} %)", kgm2),
+                 (label("declared_inertia", lang), number(fly.declared, lang, 5), kgm2),
+                 (label("flywheel_added", lang), number(fly.added, lang, 6) if fly.added > 0 else label("no_flywheel", lang),
+                  kgm2 if fly.added > 0 else "")]
+        if fly.added > 0:
+            rows.append((label("flywheel_on_shaft", lang).format(ratio=number(fly.ratio, lang, 4)),
+                         number(fly.on_shaft, lang, 6), kgm2))
+    return rows
+
+
+def results_view(rows: Sequence[tuple[str, str, str]], *, lang: str, size_mm: float = 2.5,
+                 title_mm: float = 3.5) -> View:
+    """The results as a ruled table of three columns under its title."""
+    grid = [[label("quantity", lang), label("value", lang), label("unit", lang)]] + [list(r) for r in rows]
+    items, total_w, total_h = grid_table(grid, size_mm)
+    items.append(Text((0.0, total_h + 2.5), label("dynamics_results", lang), "table", title_mm))
+    return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm})
+
+
+__all__ = ["DynamicsSizes", "Series", "curve_panel", "flywheel_view", "nice_step", "results_rows",
+           "results_view", "wittenbauer_view"]
