@@ -44,6 +44,10 @@ class Stroke:
         Extremes at the start and end of the slow (working) stroke.
     theta : float
         Angle of overlap θ (rad): the crank turns π + θ in the slow stroke, π − θ in the return.
+    reversals : int
+        Extreme positions of the output per turn: 2 for a plain back-and-forth stroke; more
+        (a dwell mechanism, an output that doubles back) make H the overall travel between the
+        highest and lowest extremes and θ, K refer to those two only.
     """
 
     quantity: str
@@ -51,6 +55,7 @@ class Stroke:
     start: Extreme
     end: Extreme
     theta: float
+    reversals: int = 2
 
     @property
     def K(self) -> float:
@@ -191,7 +196,7 @@ def _stroke(mech: Mechanism) -> Stroke | None:
         start, end, span = lo, hi, span_lo_hi
     else:
         start, end, span = hi, lo, 2 * np.pi - span_lo_hi
-    return Stroke(label, abs(hi.value - lo.value), start, end, float(span - np.pi))
+    return Stroke(label, abs(hi.value - lo.value), start, end, float(span - np.pi), len(roots))
 
 
 def reference_angle(mech: Mechanism) -> float:

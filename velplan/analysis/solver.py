@@ -230,6 +230,15 @@ class Kinematics:
             self.__dict__[key] = out  # a frozen dataclass: cached like functools.cached_property
         return out
 
+    @property
+    def singular(self) -> np.ndarray:
+        """(n,) positions where every group closes but one is at a toggle: refused (``valid``
+        False) because velocities there are not determined to `SINGULAR_BOUND`."""
+        if self.condition.shape[1] == 0 or self.order < 1:
+            return np.zeros(len(self), dtype=bool)
+        closed = np.isfinite(self.condition).all(axis=1) & np.isfinite(self.positions).all(axis=(1, 2))
+        return closed & ~self.valid
+
     def min_condition(self) -> np.ndarray:
         """(n,) smallest condition estimate over all groups at each position."""
         if self.condition.shape[1] == 0:
@@ -530,6 +539,8 @@ class _Outputs:
             for row in self.rates[0]:
                 if row.size and (row.max(initial=-np.inf) > np.pi or row.min(initial=np.inf) <= -np.pi):
                     row[:] = wrap_angle(row)
+        if self.order >= 1 and self.condition.size:
+            valid = valid & (velocity_bound(self.condition) <= SINGULAR_BOUND)
         rates = self.rates.transpose(0, 2, 1)
         return Kinematics(
             mechanism=mech,
@@ -552,6 +563,20 @@ class _Outputs:
             valid=valid,
             order=self.order,
         )
+
+
+SINGULAR_BOUND = 1e-6
+"""A position whose velocities' round-off bound (`Kinematics.error_bound`) exceeds this relative
+error is refused as singular (``valid`` False): a group there is at, or within about 10⁻⁴ of, a
+toggle (change point), where velocities are not determined."""
+
+
+def velocity_bound(condition: np.ndarray) -> np.ndarray:
+    """(n,) relative round-off bound of velocities from the groups' condition estimates
+    (G, n): 64·ε·(1 + Σ c⁻²); groups that do not close (NaN) are left out."""
+    c = np.where(np.isfinite(condition), condition, np.inf)
+    with np.errstate(divide="ignore"):
+        return 64 * np.finfo(float).eps * (1.0 + np.sum(np.abs(c) ** -2.0, axis=0))
 
 
 def transfer_functions(kin: Kinematics) -> dict[str, np.ndarray]:

@@ -40,11 +40,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _check_common(args) -> None:
+    """Options many commands share, checked once: an output name, a PNG resolution."""
+    import math
+
+    out = getattr(args, "output", None)
+    if out is not None and not str(out).strip():
+        raise VelplanError("-o/--output: give a file name, not an empty string")
+    dpi = getattr(args, "dpi", None)
+    if dpi is not None and not (math.isfinite(dpi) and 10 <= dpi <= 2400):
+        raise VelplanError(f"--dpi must be between 10 and 2400, not {dpi:g}")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        _check_common(args)
         return int(args.run(args) or 0)
     except VelplanError as exc:
         sys.stderr.write(f"velplan: error: {exc}\n")

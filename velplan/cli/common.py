@@ -34,7 +34,10 @@ def emit(text: str, output: str | None) -> None:
 
 
 def parse_angles(text: str) -> np.ndarray:
-    """``"0,30,45.5"`` → radians; a one-line error naming the bad item."""
+    """``"0,30,45.5"`` → radians; a one-line error naming the bad item. Angles are reduced
+    modulo 360° in degrees (exactly) before they are converted."""
+    if not text.strip():
+        raise VelplanError("--angles: give at least one angle in degrees, e.g. --angles 0,90,200")
     out = []
     for item in text.split(","):
         item = item.strip()
@@ -44,7 +47,7 @@ def parse_angles(text: str) -> np.ndarray:
             raise VelplanError(f"--angles: {item!r} is not a number of degrees") from None
         if not math.isfinite(value):
             raise VelplanError(f"--angles: {item!r} is not a finite angle")
-        out.append(value)
+        out.append(math.fmod(value, 360.0))
     return np.radians(out)
 
 

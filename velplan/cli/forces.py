@@ -118,20 +118,27 @@ def to_table(res, numbers: list[int], load_names: list[str]) -> str:
     kin, ks = res.kinematics, res.kinetostatics
     idx = [k - 1 for k in numbers] if len(numbers) < len(kin) else list(range(len(kin)))
     bm = res.balancing_moments
-    head = f"{'quantity':<22}" + "".join(f"{k:>11}" for k in numbers)
-    lines = [f"{kin.mechanism.name}: {_omega1_text(kin, idx)}; loads: {', '.join(load_names) or 'none'}",
-             head, f"{'φ, deg':<22}" + "".join(f"{x:>11.2f}" for x in np.degrees(kin.phi[idx]) % 360.0)]
+    from velplan.forces.agreement import lever_difference_percent
 
-    def row(label: str, values) -> str:
-        values = np.asarray(values)[idx]
-        return f"{label:<22}" + "".join(f"{v:>11.5g}" if math.isfinite(v) else f"{'—':>11}" for v in values)
+    labels = [f"  {k}" for k in bm] + ["  lever − kinetost., %"] + [
+        f"  {name} ({r.pair.links[0]}←{r.pair.links[1]})" for name, r in ks.reactions.items()]
+    w = max(len(x) for x in labels + ["quantity"]) + 2
+    head = f"{'quantity':<{w}}" + "".join(f"{k:>12}" for k in numbers)
+    lines = [f"{kin.mechanism.name}: {_omega1_text(kin, idx)}; loads: {', '.join(load_names) or 'none'}",
+             head, f"{'φ, deg':<{w}}" + "".join(f"{x:>12.2f}" for x in np.degrees(kin.phi[idx]) % 360.0)]
+
+    def row(label: str, values, scale: float | None = None) -> str:
+        # round-off (below 1e-9 of the row's largest value, or of ``scale``) prints as 0, never −0
+        values = np.asarray(values, dtype=float)[idx]
+        finite = np.isfinite(values)
+        big = scale if scale is not None else float(np.max(np.abs(values[finite]), initial=0.0))
+        values = np.where(finite & (np.abs(values) <= 1e-9 * big), 0.0, values) + 0.0
+        return f"{label:<{w}}" + "".join(f"{v:>12.5g}" if math.isfinite(v) else f"{'—':>12}" for v in values)
 
     lines.append("balancing moment M_b, N·m")
     for k, v in bm.items():
         lines.append(row(f"  {k}", v))
-    from velplan.forces.agreement import lever_difference_percent
-
-    lines.append(row("  lever − kinetost., %", lever_difference_percent(bm["lever"], bm["kinetostatics"])))
+    lines.append(row("  lever − kinetost., %", lever_difference_percent(bm["lever"], bm["kinetostatics"]), 1e3))
     lines.append("reactions |R|, N (on the first link from the second)")
     for name, r in ks.reactions.items():
         lines.append(row(f"  {name} ({r.pair.links[0]}←{r.pair.links[1]})", np.abs(r.force)))

@@ -83,6 +83,9 @@ def run_info(args) -> int:
         h = f"{math.degrees(s.H):.6g}°" if s.quantity.startswith("link") else f"{s.H:.9g} m"
         out.append(f"output {s.quantity}: stroke H = {h}, θ = {math.degrees(s.theta):.6f}°, K = {s.K:.6f}")
         out.append(f"  working (slow) stroke from φ = {math.degrees(s.start.phi):.6f}° to {math.degrees(s.end.phi):.6f}°")
+        if s.reversals > 2:
+            out.append(f"  warning: the output reverses {s.reversals} times per turn: H is its overall travel, "
+                       "θ and K refer to its highest and lowest extremes only")
     out.append(f"reference position 1 at φ = {math.degrees(study.reference):.6f}°")
     emit("\n".join(out), None)
     return 0
@@ -147,8 +150,9 @@ def to_csv(kin: Kinematics) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(head)
-    for r in rows:
-        w.writerow([int(r[0])] + [f"{x:.12g}" for x in r[1:]])
+    for ok, r in zip(kin.valid, rows):
+        # a position not assembled or singular: its angle, then empty cells
+        w.writerow([int(r[0]), f"{r[1]:.12g}"] + [f"{x:.12g}" if ok and math.isfinite(x) else "" for x in r[2:]])
     return buf.getvalue()
 
 
@@ -160,10 +164,15 @@ def to_table(kin: Kinematics) -> str:
     lines = [f"{kin.mechanism.name}: ω1 = {kin.omega1:+.6g} rad/s", head,
              f"{'φ, deg':<14}" + "".join(f"{x:>11.2f}" for x in kin.phi_deg)]
 
+    ok = kin.valid
+
     def row(label: str, values) -> str:
-        values = np.asarray(values, dtype=float)
-        big = np.nanmax(np.abs(values), initial=0.0)
-        values = np.where(np.abs(values) <= 1e-12 * big, 0.0, values)  # round-off at dead centres
+        # positions not assembled or singular print "—"; round-off at dead centres prints 0,
+        # judged against the row's largest finite value at the good positions
+        values = np.where(ok, np.asarray(values, dtype=float), np.nan)
+        finite = np.isfinite(values)
+        big = float(np.max(np.abs(values[finite]), initial=0.0))
+        values = np.where(finite & (np.abs(values) <= 1e-12 * big), 0.0, values)
         return f"{label:<14}" + "".join(f"{v:>11.4g}" if math.isfinite(v) else f"{'—':>11}" for v in values)
 
     lines.append("transfer functions (velocity analogues)")
@@ -182,7 +191,11 @@ def to_table(kin: Kinematics) -> str:
     for k, j in kin.link_index.items():
         lines.append(row(f"ω{k}, rad/s", kin.omegas[:, j]))
         lines.append(row(f"ε{k}, rad/s²", kin.epsilons[:, j]))
-    if not kin.valid.all():
-        bad = ", ".join(str(i + 1) for i in np.flatnonzero(~kin.valid))
+    singular = kin.singular
+    if singular.any():
+        bad = ", ".join(f"{i + 1} (condition {kin.min_condition()[i]:.2g})" for i in np.flatnonzero(singular))
+        lines.append(f"singular (a group at a toggle, velocities undetermined) at positions: {bad}")
+    if (~kin.valid & ~singular).any():
+        bad = ", ".join(str(i + 1) for i in np.flatnonzero(~kin.valid & ~singular))
         lines.append(f"not assembled at positions: {bad}")
     return "\n".join(lines)

@@ -167,10 +167,13 @@ def run_compare(args) -> int:
         emit(json.dumps({"mechanism": mech.name, "mode": args.mode, "rows": rows}, indent=1, ensure_ascii=False), args.output)
         return 0
     lines = [f"{'quantity':<12}{'pos':>4}{'φ, °':>9}{'graphical':>14}{'analytic':>14}{'abs error':>12}{'rel error':>11}{'  flag'}"]
+    def cell(x, spec: str, width: int) -> str:
+        return f"{'—':>{width}}" if x is None else f"{x:>{width}{spec}}"
+
     for r in rows:
-        rel = "—" if r["rel_error"] is None else f"{r['rel_error']:.2e}"
-        lines.append(f"{r['quantity']:<12}{r['position']:>4}{r['phi_deg']:>9.2f}{r['graphical']:>14.6g}{r['analytic']:>14.6g}"
-                     f"{r['abs_error']:>12.2e}{rel:>11}{'  ' + r['flag'] if r['flag'] else ''}")
+        lines.append(f"{r['quantity']:<12}{r['position']:>4}{r['phi_deg']:>9.2f}{cell(r['graphical'], '.6g', 14)}"
+                     f"{cell(r['analytic'], '.6g', 14)}{cell(r['abs_error'], '.2e', 12)}{cell(r['rel_error'], '.2e', 11)}"
+                     f"{'  ' + r['flag'] if r['flag'] else ''}")
     emit("\n".join(lines), args.output)
     return 0
 
@@ -188,8 +191,14 @@ def compare_rows(res: PlanResult) -> list[dict]:
         quantities += [(f"ε{k}", v, kin.epsilon(k)[res.index]) for k, v in res.epsilons.items()]
     else:
         quantities += [(f"ω{k}", v, kin.omega(k)[res.index]) for k, v in res.omegas.items()]
+    singular = kin.singular
     for name, got, exact in quantities:
         for i, j in enumerate(res.index):
+            if not kin.valid[j]:  # nothing to compare: say why
+                rows.append({"quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                             "graphical": None, "analytic": None, "abs_error": None, "rel_error": None,
+                             "flag": "singular" if singular[j] else "not assembled"})
+                continue
             err = abs(got[i] - exact[i])
             flag = ""
             mine = [f for f in res.flags if f.index == i]

@@ -76,7 +76,7 @@ def register(sub) -> None:
     p.add_argument("--position", metavar="K", type=positive_int, required=True,
                    help="the position (1-based) whose plans are built")
     p.add_argument("-o", "--output", metavar="DIR", required=True,
-                   help="directory to write step-v-01.svg, … into (created if missing)")
+                   help="directory to write step-v-01.svg, … into (created if missing; its parent must exist)")
     p.add_argument("--positions", metavar="N", type=positive_int, default=12,
                    help="number of positions the crank circle is divided into (default 12)")
     p.add_argument("--kind", choices=_KINDS, default="both", help="which plans (default both)")
@@ -221,8 +221,10 @@ def run_steps(args) -> int:
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise VelplanError(f"cannot write steps into {out}: it is a file, not a directory")
+    if not out.parent.is_dir():
+        raise VelplanError(f"cannot write steps into {out}: directory {out.parent} does not exist")
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        out.mkdir(exist_ok=True)
     except OSError as exc:
         raise VelplanError(f"cannot create {out}: {exc.strerror or exc}") from None
     style = SheetStyle(language=args.lang)

@@ -154,6 +154,8 @@ def _num(t: dict, key: str, where: str, default: float | None = None) -> float:
         raise MechanismError(f"{where}: {key} must be a number, not {v!r}")
     if not math.isfinite(v):
         raise MechanismError(f"{where}: {key} must be finite, not {v}")
+    if abs(v) > 1e12:
+        raise MechanismError(f"{where}: {key} = {v:g} is out of range (at most 1e12 in magnitude)")
     return float(v)
 
 

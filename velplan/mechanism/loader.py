@@ -135,6 +135,8 @@ def _crank(t: dict) -> Crank:
     if ("omega" in t) == ("rpm" in t):
         raise MechanismError("[crank] needs exactly one of omega (rad/s) or rpm (rev/min), sign = sense (+ counter-clockwise)")
     omega = _finite(t["omega"], "crank omega") if "omega" in t else _finite(t["rpm"], "crank rpm") * math.pi / 30
+    if 0 < abs(omega) < 1e-9:
+        raise MechanismError(f"crank speed {omega:g} rad/s is below 1e-9 rad/s: give 0 or a real speed")
     return Crank(
         link=_name(t, "link", "[crank]"),
         pivot=_name(t, "pivot", "[crank]"),
@@ -212,7 +214,10 @@ def _point(t: Any, i: int) -> LinkPoint:
         raise MechanismError(f"point #{i + 1} must be a table, not {t!r}")
     _no_unknown(t, {"name", "link", "along", "offset"}, f"point #{i + 1}")
     name = _name(t, "name", f"point #{i + 1}")
-    return LinkPoint(name, _name(t, "link", f"point {name!r}"), _finite(t.get("along", 0.0), f"point {name!r} along"),
+    link = _name(t, "link", f"point {name!r}")
+    if link == GROUND:
+        raise MechanismError(f"point {name!r}: link {GROUND!r} is the frame; a fixed point goes in [ground]")
+    return LinkPoint(name, link, _finite(t.get("along", 0.0), f"point {name!r} along"),
                      _finite(t.get("offset", 0.0), f"point {name!r} offset"))
 
 
@@ -289,8 +294,21 @@ def _check_names(mech: Mechanism) -> None:
 
 
 def _new_points(g: Group) -> list[str]:
+    """The point names a group brings, each once (a name given twice in one group is an error)."""
     from velplan.mechanism.structure import points_out
 
+    named = [("point", getattr(g, "point", None))]
+    co = getattr(g, "coincident", None)
+    named += [("coincident", c) for c in (co if isinstance(co, tuple) else (co,))]
+    named += [("origin", getattr(g, "origin_name", None) if isinstance(g, RPP) else None)]
+    seen: dict[str, str] = {}
+    for key, name in named:
+        if not name:
+            continue
+        if name in seen:
+            raise MechanismError(f"group {g.name!r}: {key} {name!r} is already its {seen[name]}; "
+                                 "give each point its own name")
+        seen[name] = key
     return list(points_out(g))
 
 
@@ -333,18 +351,29 @@ def _opt_name(t: dict, key: str) -> str | None:
     return None if v in (None, "") else str(v)
 
 
+MAGNITUDE = 1e9
+"""Largest magnitude of any number in a mechanism file (m, rad/s, rpm, kg, kg·m², °): beyond it
+products of lengths, speeds and masses leave double precision."""
+SMALLEST_LENGTH = 1e-9
+"""Shortest length a link may have, m."""
+
+
 def _finite(v: Any, what: str) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         raise MechanismError(f"{what} must be a number, not {v!r}")
     v = float(v)
     if not math.isfinite(v):
         raise MechanismError(f"{what} must be finite, not {v}")
+    if abs(v) > MAGNITUDE:
+        raise MechanismError(f"{what} = {v:g} is out of range (at most {MAGNITUDE:g} in magnitude)")
     return v
 
 
 def _positive(v: float, what: str) -> float:
     if not v > 0:
         raise MechanismError(f"{what} must be > 0 m, not {v}")
+    if v < SMALLEST_LENGTH:
+        raise MechanismError(f"{what} = {v:g} m is shorter than {SMALLEST_LENGTH:g} m")
     return v
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,6 +23,7 @@ from velplan.errors import TableError
 from velplan.mechanism.model import Mechanism
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import Plan, auto_scale
+from velplan.plans.scale import check_drawable, check_scale
 
 _POINT = re.compile(r"^V_?([A-Za-z][A-Za-z0-9]*?)(?:/(?:ω1|w1|omega1))?(?:,\s*m)?$")
 _LINK = re.compile(r"^(?:ω|w|omega)_?([A-Za-z0-9]+?)(?:/(?:ω1|w1|omega1))?$")
@@ -98,9 +100,12 @@ def read_table(source: str | Path) -> tuple[list[str], dict[str, list[float | No
                 vals.append(None)
                 continue
             try:
-                vals.append(float(cell))
+                value = float(cell)
             except ValueError:
                 raise TableError(f"table {path}: row {name!r}: {cell!r} is not a number") from None
+            if not math.isfinite(value):
+                raise TableError(f"table {path}: row {name!r}: {cell!r} is not a finite number")
+            vals.append(value)
         out[name] = vals
     return head[1:], out
 
@@ -145,11 +150,15 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
         raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
     phi = positions(mech, n)
     kin = solve(mech, phi)
-    mu = scale_v or auto_scale(kin, np.arange(n), "velocity")
+    mu = check_scale(scale_v, "--scale-v") if scale_v is not None else auto_scale(kin, np.arange(n), "velocity")
+    check_drawable(kin, np.arange(n), mu, "velocity", drafting)
     plan = Plan.of(mech)
     points = list(plan.images["v"])
     links = [k for k in plan.figures["v"] if k != "0"]
     quantities = {name: _quantity(name, points, links) for name in table}
+    for name, (kind, x) in quantities.items():  # an ω row with a negative entry is signed
+        if kind == "w" and any(v is not None and v < 0 for v in table[name]):
+            quantities[name] = ("ws", x)
     w1 = np.abs(kin.omega1)
     exact = {name: _analytic(q, kin, w1) for name, q in quantities.items()}
     spread = _drafting_spread(mech, plan, phi, mu, drafting, quantities, exact, seed)
@@ -175,6 +184,8 @@ def _analytic(q: tuple[str, str], kin, w1: float) -> np.ndarray:
     kind, x = q
     if kind == "V":
         return np.hypot(*kin.velocity(x).T) / w1
+    if kind == "ws":  # + when the link turns in the crank's sense
+        return kin.omega(x) / kin.omega1
     return np.abs(kin.omega(x)) / w1
 
 
@@ -197,7 +208,10 @@ def _drafting_spread(mech, plan, phi, mu, drafting, quantities, exact, seed) -> 
     w1 = np.abs(kin.omega1)
     out = {}
     for name, (kind, x) in quantities.items():
-        got = np.hypot(*res.vector(x).T) / w1 if kind == "V" else np.abs(res.omegas[x]) / w1
+        if kind == "V":
+            got = np.hypot(*res.vector(x).T) / w1
+        else:
+            got = res.omegas[x] / kin.omega1 if kind == "ws" else np.abs(res.omegas[x]) / w1
         dev = np.abs(got.reshape(MC_RUNS, n) - exact[name][None, :])
         out[name] = np.nanquantile(dev, 0.95, axis=0)
     return out

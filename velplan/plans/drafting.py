@@ -29,10 +29,11 @@ class Drafting:
 
     def __post_init__(self):
         if not self.exact:
-            for name in ("length_mm", "angle_deg"):
+            for name, most in (("length_mm", 10.0), ("angle_deg", 10.0)):
                 v = getattr(self, name)
-                if not (math.isfinite(v) and v > 0):
-                    raise VelplanError(f"drafting precision {name} must be > 0, not {v}")
+                if not (math.isfinite(v) and 0 < v <= most):
+                    raise VelplanError(f"drafting precision {name} must be > 0 and at most {most:g} "
+                                       f"(a draughtsman's), not {v}")
 
     @property
     def mode(self) -> str:

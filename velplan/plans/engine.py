@@ -18,7 +18,7 @@ from velplan.plans import text as T
 from velplan.plans.build import construct
 from velplan.plans.context import Context, Figure, Lazy
 from velplan.plans.drafting import EXACT, Drafting
-from velplan.plans.scale import check_scale, standard_scale
+from velplan.plans.scale import check_drawable, check_scale, standard_scale
 from velplan.plans.steps import Intersect, Step
 
 Kind = Literal["velocity", "acceleration"]
@@ -169,6 +169,10 @@ class Plan:
         }
         if kind == "acceleration":
             mu["a"] = check_scale(scale_a, "scale μa") if scale_a is not None else auto_scale(kin, sel, "acceleration")
+        if velocity is None and scale_v is not None:
+            check_drawable(kin, sel, mu["v"], "velocity", drafting)
+        if kind == "acceleration" and scale_a is not None:
+            check_drawable(kin, sel, mu["a"], "acceleration", drafting)
         refuse = REFUSE_BELOW[drafting.mode] if refuse_below is None else refuse_below
         steps = self.needed(self.targets_for(kind, only))
         ctx = Context(kin, sel, mu, drafting, refuse, self.by_target)

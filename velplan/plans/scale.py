@@ -28,3 +28,28 @@ def check_scale(mu: float, what: str) -> float:
     if not (isinstance(mu, (int, float)) and math.isfinite(mu) and mu > 0):
         raise ScaleError(f"{what} must be a positive number of units per mm, not {mu!r}")
     return float(mu)
+
+
+DRAWABLE_MM = (5.0, 5000.0)
+"""A drafted plan's longest vector must lie between these lengths, mm (and be at least four
+drafting precisions long): shorter, its readings are drafting noise; longer, no sheet holds it."""
+
+
+def check_drawable(kin, sel, mu: float, kind: str, drafting) -> None:
+    """Refuse to draft a plan at ``mu`` whose longest vector (positions ``sel``) is too short to
+    read at the drafting precision or too long for any sheet (`DRAWABLE_MM`); exact plans pass."""
+    if getattr(drafting, "exact", False):
+        return
+    largest = kin.largest(kind, sel)
+    if not (math.isfinite(largest) and largest > 0):
+        return
+    symbol = "μv" if kind == "velocity" else "μa"
+    longest = largest / mu
+    low = max(DRAWABLE_MM[0], 4.0 * drafting.length_mm)
+    if longest < low:
+        raise ScaleError(f"{symbol} = {mu:g} draws the longest vector {longest:.3g} mm long, under {low:g} mm "
+                         f"(drafting precision {drafting.length_mm:g} mm): its readings would be noise; "
+                         f"use {symbol} ≤ {largest / low:.3g}")
+    if longest > DRAWABLE_MM[1]:
+        raise ScaleError(f"{symbol} = {mu:g} draws the longest vector {longest:.3g} mm long, over "
+                         f"{DRAWABLE_MM[1]:g} mm: no sheet holds it; use {symbol} ≥ {largest / DRAWABLE_MM[1]:.3g}")

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from velplan.mechanism.model import RPP, Mechanism
+from velplan.mechanism.model import GROUND, RPP, Mechanism
 from velplan.mechanism.structure import pairs
 from velplan.plans.engine import PlanResult
 from velplan.plans.table import TransferTable, transfer_table
@@ -30,7 +30,10 @@ _WIDE = 1.3
 def table_points(mech: Mechanism, names) -> list[str]:
     """Points worth a row: the moving joints and named points, not the centres of mass
     (unless a joint is one) nor an RPP runner's construction origin."""
-    ground = set(mech.ground_points)
+    from velplan.mechanism.structure import coincident_points
+
+    # the frame's points (a coincident point of a fixed guide among them) do not move
+    ground = set(mech.ground_points) | {n for n, link in coincident_points(mech).items() if link == GROUND}
     joints = {p.point for p in pairs(mech)}
     centres = {m.centre for m in mech.masses}
     origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
