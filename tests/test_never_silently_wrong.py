@@ -176,3 +176,43 @@ def test_forces_table_is_clean(capsys):
 
 def test_a_plain_stroke_has_two_reversals():
     assert velplan.Study("shaper").stroke.reversals == 2
+
+
+def _jamming_four_bar(gap_deg: float, centre_deg: float) -> str:
+    """A four-bar whose coupler and rocker, stretched out, just fail to reach across |AD| for
+    ``gap_deg`` around the crank angle ``centre_deg`` (closed form: |AD| > l2 + l3)."""
+    a, d, b = 0.1, 0.3, 0.2
+    half = math.radians(gap_deg / 2)
+    c = math.sqrt(a * a + d * d + 2 * a * d * math.cos(half)) - b
+    rot = math.radians(centre_deg - 180.0)
+    return f"""
+name = "jam"
+[ground]
+O = [0.0, 0.0]
+D = [{d * math.cos(rot)!r}, {d * math.sin(rot)!r}]
+[crank]
+link = "1"
+pivot = "O"
+tip = "A"
+length = {a}
+omega = 1.0
+[[group]]
+kind = "RRR"
+name = "2-3"
+links = ["2", "3"]
+joints = ["A", "D"]
+point = "B"
+lengths = [{b}, {c!r}]
+"""
+
+
+@pytest.mark.parametrize("gap, centre", [(0.06, 180.05), (0.004, 123.4567), (2.0, 200.0)])
+def test_assembly_limits_are_exact(gap, centre):
+    from velplan.analysis.assembly import limits
+    from velplan.errors import AssemblyError
+
+    mech = velplan.loads(_jamming_four_bar(gap, centre))
+    ((lo, hi),) = limits(mech)["2-3"]
+    assert lo == pytest.approx(centre - gap / 2, abs=1e-6) and hi == pytest.approx(centre + gap / 2, abs=1e-6)
+    with pytest.raises(AssemblyError, match="cannot be assembled for crank angles"):
+        velplan.Study(mech)
