@@ -207,11 +207,15 @@ class Kinematics:
         """
         power = {"position": 1, "velocity": 2, "acceleration": 3}[quantity]
         eps = np.finfo(float).eps
+        spread = length_spread(self.mechanism)
+        far = 0.0
+        if quantity == "position":  # absolute coordinates carry ε·|x| of their own
+            far = float(np.max(np.abs([xy for _, xy in self.mechanism.ground]))) / length_scale(self.mechanism)
         if self.condition.shape[1] == 0:
-            return np.full(len(self), 64 * eps)
+            return np.full(len(self), 64 * eps * (spread + far))
         c = np.where(np.isfinite(self.condition), self.condition, 0.0)
         with np.errstate(divide="ignore"):
-            return 64 * eps * (1.0 + np.sum(c ** -float(power), axis=1))
+            return 64 * eps * (spread * (1.0 + np.sum(c ** -float(power), axis=1)) + far)
 
     def largest(self, quantity: Literal["velocity", "acceleration"], idx=slice(None)) -> float:
         """The largest |V| (m/s) or |a| (m/s²) of any point at positions ``idx`` (indices or a
@@ -307,6 +311,15 @@ def solve(
         unit = solve(mech, phi, omega1=1.0, epsilon1=0.0, points=points, order=order,
                      on_failure=on_failure, engine=engine)
         return unit.at_speed(w1, e1)
+    local, shift = _about_pivot(mech)
+    kin = _solve_scalar_rate(local, phi, w1, e1, points, order, on_failure, engine)
+    if local is not mech:  # solved about the pivot: velocities do not lose digits to |x|
+        kin = replace(kin, mechanism=mech, positions=kin.positions + shift)
+    return kin
+
+
+def _solve_scalar_rate(mech, phi, w1, e1, points, order, on_failure, engine) -> Kinematics:
+    """`solve` at one crank speed and acceleration."""
     scale = length_scale(mech)
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
@@ -484,6 +497,27 @@ def length_scale(mech: Mechanism) -> float:
     pts = np.array([p for _, p in mech.ground])
     span = float(np.ptp(pts, axis=0).max()) if len(pts) > 1 else 0.0
     return max(max(lengths), span)
+
+
+def length_spread(mech: Mechanism) -> float:
+    """The largest length of ``mech`` (`length_scale`) over its shortest link length (≥ 1)."""
+    lengths = [mech.crank.length]
+    for g in mech.groups:
+        lengths.extend(getattr(g, "lengths", ()))
+        lengths.append(getattr(g, "length", 0.0))
+    shortest = min((x for x in lengths if x > 0), default=1.0)
+    return max(1.0, length_scale(mech) / shortest)
+
+
+def _about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
+    """``mech`` moved so that its crank's pivot is at the origin, and the shift (m)."""
+    pivot = np.array(dict(mech.ground)[mech.crank.pivot], float)
+    if not pivot.any():
+        return mech, pivot
+    from dataclasses import replace
+
+    ground = tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in mech.ground)
+    return replace(mech, ground=ground), pivot
 
 
 class _Outputs:
