@@ -216,3 +216,16 @@ def test_assembly_limits_are_exact(gap, centre):
     assert lo == pytest.approx(centre - gap / 2, abs=1e-6) and hi == pytest.approx(centre + gap / 2, abs=1e-6)
     with pytest.raises(AssemblyError, match="cannot be assembled for crank angles"):
         velplan.Study(mech)
+
+
+def test_sizes_are_capped(tmp_path, capsys):
+    rc, _, err = _run(capsys, "analyze", "shaper", "--positions", "400")
+    assert rc == 2 and "at most 360" in err
+    rc, out, _ = _run(capsys, "analyze", "crank-slider", "--positions", "400", "--format", "csv")
+    assert rc == 0 and len(out.splitlines()) == 401
+    text = (EXAMPLES / "shaper.toml").read_text() + "".join(
+        f'\n[[point]]\nname = "Q{i}"\nlink = "4"\nalong = 0.1\n' for i in range(600))
+    path = tmp_path / "many.toml"
+    path.write_text(text)
+    rc, _, err = _run(capsys, "analyze", path)
+    assert rc == 2 and "[point]: 603 entries; a mechanism file holds at most 500" in err

@@ -40,10 +40,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+POSITION_LIMITS = {"analyze": 1_000_000, "sheet": 72, "diagrams": 720, "steps": 360, "plan": 3600,
+                   "compare": 3600, "forces": 36_000, "dynamics": 3600, "batch": 72}
+"""Most --positions each command accepts: beyond them a drawing or a table is unreadable (and
+`analyze` as a table stops at 360 columns; as CSV or JSON at 10⁶ rows, ≈ 1 GB)."""
+
+
 def _check_common(args) -> None:
-    """Options many commands share, checked once: an output name, a PNG resolution."""
+    """Options many commands share, checked once: an output name, a PNG resolution, the
+    number of positions."""
     import math
 
+    n = getattr(args, "positions", None)
+    most = POSITION_LIMITS.get(getattr(args, "command", ""), None)
+    if getattr(args, "command", "") == "analyze" and getattr(args, "format", "table") == "table":
+        most = 360
+    if isinstance(n, int) and most is not None and n > most:
+        raise VelplanError(f"--positions {n} is more than velplan {args.command} draws or prints usefully "
+                           f"(at most {most})")
     out = getattr(args, "output", None)
     if out is not None and not str(out).strip():
         raise VelplanError("-o/--output: give a file name, not an empty string")

@@ -109,7 +109,7 @@ def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
         "images": {k: [_f(v[i, 0]), _f(v[i, 1])] for k, v in res.images.items()},
         key: {k: dict(zip(comps, (_f(v[i, 0]), _f(v[i, 1])))) for k, v in res.vectors.items()},
         "analytic": {k: dict(zip(comps, (_f(ref[j, res.kin.point_index[k], 0]), _f(ref[j, res.kin.point_index[k], 1]))))
-                     for k in res.vectors},
+                     for k in res.vectors if k in res.kin.point_index},
         "omegas": {k: _f(v[i]) for k, v in res.omegas.items()},
         "components": [
             {"name": name, "of": res.component_point(name), "segment": label,
@@ -185,8 +185,10 @@ def compare_rows(res: PlanResult) -> list[dict]:
     ref = kin.accelerations if acc else kin.velocities
     sym = "a" if acc else "V"
     rows = []
+    # the plan's own construction points (a coincident point the file does not name) have no
+    # analytic counterpart among the solver's points: they are not compared
     quantities = [(f"{sym}_{p}", np.hypot(*v.T), np.hypot(*ref[res.index, kin.point_index[p]].T)) for p, v in res.vectors.items()
-                  if p not in dict(kin.mechanism.ground)]
+                  if p not in dict(kin.mechanism.ground) and p in kin.point_index]
     if acc:
         quantities += [(f"ε{k}", v, kin.epsilon(k)[res.index]) for k, v in res.epsilons.items()]
     else:

@@ -90,6 +90,10 @@ def loads(text: str, *, name: str = "mechanism") -> Mechanism:
 def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
     """Build a `Mechanism` from parsed TOML data (structure and values validated)."""
     _no_unknown(data, _TOP_KEYS, "the file")
+    for key, most in SIZE_LIMITS.items():
+        count = len(data.get(key) or ())
+        if count > most:
+            raise MechanismError(f"[{key}]: {count} entries; a mechanism file holds at most {most}")
     ground = _ground(_table(data, "ground", required=True))
     crank = _crank(_table(data, "crank", required=True))
     groups = tuple(_group(g, i) for i, g in enumerate(_list(data, "group")))
@@ -351,6 +355,8 @@ def _opt_name(t: dict, key: str) -> str | None:
     return None if v in (None, "") else str(v)
 
 
+SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100}
+"""Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""
 MAGNITUDE = 1e9
 """Largest magnitude of any number in a mechanism file (m, rad/s, rpm, kg, kg·m², °): beyond it
 products of lengths, speeds and masses leave double precision."""
