@@ -28,8 +28,8 @@ from velplan.mechanism.model import Mechanism
 from velplan.render.i18n import check_language, label
 from velplan.render.scene import Scene
 from velplan.render.style import SheetStyle
-from velplan.sheets.frame import TitleInfo, frame_bounds, sheet_scene, title_block_bounds
-from velplan.sheets.layout import FORMATS, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, fits
+from velplan.sheets.frame import TitleInfo, sheet_scene
+from velplan.sheets.layout import FORMATS, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text, unit
 from velplan.views.dynamics import (
@@ -152,10 +152,7 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
     base = SIZES[fmt]
     sizes = DynamicsSizes(base.diagram.title_mm, base.diagram.label_mm)
     g = base.gap
-    fx0, fy0, fx1, fy1 = frame_bounds(fmt)
-    tx0, ty0, tx1, ty1 = title_block_bounds(fmt, frame_style)
-    m = 4.0
-    fx0, fy0, fx1, fy1 = fx0 + m, fy0 + m, fx1 - m, fy1 - m
+    (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1) = drawing_area(fmt, frame_style)
     W, H = fx1 - fx0, fy1 - fy0
     views: dict[str, PlacedView] = {}
     scales: dict[str, float] = {}

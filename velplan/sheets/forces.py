@@ -34,10 +34,11 @@ from velplan.views.forces import (
     moment_diagram_view, moments_table_view, polygon_extent, polygon_view, slug)
 from velplan.render.i18n import check_language, label
 from velplan.render.scene import Scene
-from velplan.sheets.frame import TitleInfo, frame_bounds, sheet_scene, title_block_bounds
+from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.sheets.layout import FORMATS, MIN_CRANK_MM, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, fits
+from velplan.sheets.layout import (
+    FORMATS, MIN_CRANK_MM, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits)
 from velplan.study import Study
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
@@ -194,10 +195,7 @@ def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequ
     fsizes = FORCE_SIZES[fmt]
     g = sizes.gap
 
-    fx0, fy0, fx1, fy1 = frame_bounds(fmt)
-    tx0, ty0, tx1, ty1 = title_block_bounds(fmt, frame_style)
-    m = 4.0
-    fx0, fy0, fx1, fy1 = fx0 + m, fy0 + m, fx1 - m, fy1 - m
+    (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1) = drawing_area(fmt, frame_style)
     W, H = fx1 - fx0, fy1 - fy0
     views: dict[str, PlacedView] = {}
     scales: dict[str, float] = {}

@@ -38,12 +38,11 @@ from velplan.render.i18n import check_language, label
 from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import PlanSizes, extent_mm, plan_view
 from velplan.render.scene import Scene
-from velplan.sheets.frame import (
-    TitleInfo, frame_bounds, free_area, sheet_scene, title_block_bounds)
+from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
 from velplan.sheets.layout import (
     FORMATS, GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, SIZES, SheetOutput, Sizes,
-    check_layout, fits, write_outputs)
+    check_layout, drawing_area, fits, write_outputs)
 from velplan.views.table import sheet_table, table_view
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 
@@ -205,10 +204,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
 
     fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
 
-    fx0, fy0, fx1, fy1 = frame_bounds(fmt)
-    tx0, ty0, tx1, ty1 = title_block_bounds(fmt, frame_style)
-    m = 4.0  # clearance from the frame lines
-    fx0, fy0, fx1, fy1 = fx0 + m, fy0 + m, fx1 - m, fy1 - m
+    (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1) = drawing_area(fmt, frame_style)
     W, H = fx1 - fx0, fy1 - fy0
     views: dict[str, PlacedView] = {}
 

@@ -13,7 +13,7 @@ import shapely
 
 from velplan.errors import ScaleError, VelplanError
 from velplan.io import write_atomic
-from velplan.sheets.frame import free_area
+from velplan.sheets.frame import free_area, frame_bounds, title_block_bounds
 from velplan.views.base import PlacedView, View
 from velplan.views.diagram import DiagramSizes
 from velplan.views.mechanism import MechanismSizes
@@ -29,6 +29,17 @@ GOOD_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 90.0, "A2": 70.0, "A
 MIN_CRANK_MM = 8.0
 #: Shortest φ axis of a diagram, mm.
 MIN_DIAGRAM_MM = 60.0
+
+
+CLEARANCE_MM = 4.0
+"""Clearance kept between the views and the frame lines, mm."""
+
+
+def drawing_area(fmt: str, frame_style: str) -> tuple[tuple[float, float, float, float], tuple[float, float, float, float]]:
+    """(the inside of the frame less `CLEARANCE_MM`, the title block), sheet mm."""
+    fx0, fy0, fx1, fy1 = frame_bounds(fmt)
+    m = CLEARANCE_MM
+    return (fx0 + m, fy0 + m, fx1 - m, fy1 - m), title_block_bounds(fmt, frame_style)
 
 
 @dataclass(frozen=True)
