@@ -1,7 +1,7 @@
 """``velplan sheet``, ``velplan diagrams`` and ``velplan steps``: drawings.
 
-Every file is written atomically (SVG always; PNG and PDF through cairosvg when asked) and
-named on standard output; an error leaves no file behind.
+Every file is written atomically (SVG always; PNG and PDF through cairosvg, DXF through ezdxf
+when asked) and named on standard output; an error leaves no file behind.
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ def register(sub) -> None:
     add_mechanism(p, optional=True)
     p.add_argument("-o", "--output", metavar="FILE",
                    help="SVG file to write (default: MECH-sheet.svg in the current directory, "
-                        "MECH-forces.svg with --kind forces); a .png or .pdf name writes that "
-                        "too, beside the SVG")
+                        "MECH-forces.svg with --kind forces); a .png, .pdf or .dxf name writes "
+                        "that too, beside the SVG")
     p.add_argument("--positions", metavar="N", type=positive_int, default=12,
                    help="number of positions of the scheme, table and diagrams (default 12)")
     p.add_argument("--plans", metavar="K,…",
@@ -89,6 +89,8 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="language of the drawing (default: the locale's — ru, uk, zh — else en)")
     p.add_argument("--png", action="store_true", help="also write a PNG (needs cairosvg)")
     p.add_argument("--pdf", action="store_true", help="also write a PDF (needs cairosvg)")
+    p.add_argument("--dxf", action="store_true",
+                   help="also write a DXF (R2013, mm, a layer per line type) for CAD")
     p.add_argument("--dpi", type=float, default=150.0, help="PNG resolution (default 150)")
 
 
@@ -104,6 +106,27 @@ def parse_plans(text: str | None) -> tuple[int, ...] | None:
         except ValueError:
             raise VelplanError(f"--plans: {item!r} is not a position number") from None
     return tuple(out)
+
+
+def _write(svg: str, scene, style, path, args) -> list[Path]:
+    """Write a drawing's SVG to `path` (a .png, .pdf or .dxf name: beside it) and the PNG, PDF
+    and DXF asked for; the DXF is made before any file is written."""
+    from velplan.sheets.layout import write_outputs
+
+    target = Path(path)
+    dxf = None
+    if args.dxf or target.suffix.lower() == ".dxf":
+        from velplan.render.dxf import to_dxf
+
+        dxf = to_dxf(scene, style)
+        if target.suffix.lower() == ".dxf":
+            target = target.with_suffix(".svg")
+    written = write_outputs(svg, target, png=args.png, pdf=args.pdf, dpi=args.dpi)
+    if dxf is not None:
+        from velplan.render.export import write_dxf
+
+        written.append(write_dxf(dxf, target.with_suffix(".dxf")))
+    return written
 
 
 def _report(paths) -> None:
@@ -140,7 +163,7 @@ def run_sheet(args) -> int:
                         diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                         table=not args.no_table)
     output = args.output or f"{mech.name}-sheet.svg"
-    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
     return 0
 
 
@@ -158,7 +181,7 @@ def _run_force_sheet(args, study, plans, fields) -> int:
                               diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
                               table=not args.no_table)
     output = args.output or f"{mech.name}-forces.svg"
-    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
     return 0
 
 
@@ -175,7 +198,7 @@ def _run_dynamics_sheet(args, study, plans, fields) -> int:
         info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
     sheet = build_dynamics_sheet(study, fmt=args.format, lang=args.lang, frame_style=args.frame, info=info)
     output = args.output or f"{mech.name}-dynamics.svg"
-    _report(sheet.write(output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
     return 0
 
 
@@ -185,7 +208,6 @@ def run_diagrams(args) -> int:
     from velplan.render.scene import Scene
     from velplan.render.style import SheetStyle
     from velplan.render.svg import to_svg
-    from velplan.sheets.layout import write_outputs
 
     if not 60.0 <= args.length <= 600.0:
         raise VelplanError(f"--length must be between 60 and 600 mm, not {args.length:g}")
@@ -199,9 +221,9 @@ def run_diagrams(args) -> int:
     margin = 10.0
     scene = Scene(tuple(view.at(margin, margin).primitives), view.width_mm + 2 * margin,
                   view.height_mm + 2 * margin)
-    svg = to_svg(scene, SheetStyle(language=args.lang))
+    style = SheetStyle(language=args.lang)
     output = args.output or f"{mech.name}-diagrams.svg"
-    _report(write_outputs(svg, output, png=args.png, pdf=args.pdf, dpi=args.dpi))
+    _report(_write(to_svg(scene, style), scene, style, output, args))
     return 0
 
 
@@ -210,7 +232,6 @@ def run_steps(args) -> int:
     from velplan.views.steps import step_figures
     from velplan.render.style import SheetStyle
     from velplan.render.svg import to_svg
-    from velplan.sheets.layout import write_outputs
 
     study = Study(args.mechanism, n=args.positions)
     if not 1 <= args.position <= study.n:
@@ -231,7 +252,6 @@ def run_steps(args) -> int:
     written = []
     for f in figures:
         name = out / f"step-{f.kind}-{f.number:02d}.svg"
-        written += write_outputs(to_svg(f.scene, style), name, png=args.png, pdf=args.pdf,
-                                 dpi=args.dpi)
+        written += _write(to_svg(f.scene, style), f.scene, style, name, args)
     _report(written)
     return 0

@@ -1,4 +1,4 @@
-"""Writing sheets to disk: SVG as is, PNG and PDF through cairosvg (optional).
+"""Writing sheets to disk: SVG and DXF as they are, PNG and PDF through cairosvg (optional).
 
 Every write is atomic: the bytes go to a temporary file in the target's directory, which
 then replaces the target with :func:`os.replace`. A failed conversion or write leaves the
@@ -33,6 +33,32 @@ def write_svg(svg_text: str, path: str | os.PathLike) -> Path:
         The written file.
     """
     return write_atomic(path, svg_text)
+
+
+def write_dxf(dxf_text: str, path: str | os.PathLike) -> Path:
+    """Write a DXF document atomically, UTF-8 encoded (as DXF R2007 and later require).
+
+    Parameters
+    ----------
+    dxf_text : str
+        The DXF document, e.g. from :func:`velplan.render.dxf.to_dxf`.
+    path : str or PathLike
+        Target file.
+
+    Returns
+    -------
+    Path
+        The written file.
+
+    Raises
+    ------
+    VelplanError
+        If `dxf_text` is not a DXF document, or the file cannot be written.
+    """
+    if not isinstance(dxf_text, str) or dxf_text.split(None, 2)[:2] != ["0", "SECTION"]:
+        raise VelplanError(f"write_dxf needs the text of a DXF document (from to_dxf), got "
+                           f"{type(dxf_text).__name__} {str(dxf_text)[:20]!r}")
+    return write_atomic(path, dxf_text)
 
 
 def write_png(svg_text: str, path: str | os.PathLike, *, dpi: float = 150.0,
