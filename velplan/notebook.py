@@ -254,7 +254,8 @@ def draw_diagrams(mech: Study | Mechanism | str, n: int = 12, *, lang: Lang = "e
     the analytic curves), over `n` positions (a study brings its own)."""
     from velplan.views.diagram import diagram_view
 
-    view = diagram_view(_study(mech, n).diagrams, lang=lang, arrangement=arrangement,
+    study = _study(mech, n)
+    view = diagram_view(study.diagrams, lang=lang, arrangement=arrangement, omega=study.mechanism.crank.omega,
                         length_mm=120.0)
     return _drawing(view, lang)
 

@@ -69,3 +69,21 @@ def test_diagram_view_writes_h_scales_and_error():
     assert f"H = {sc.H_v:g} mm" in texts and f"H = {sc.H_a:g} mm" in texts
     assert "μv = μs/(μφ·H)" in texts and "μa = μv/(μφ·H)" in texts
     assert f"δ = {100 * d.error_v:.2g} %" in texts or f"δ = {100 * d.error_v:.3g} %" in texts
+
+
+def test_diagrams_read_in_time_give_the_solver_speed():
+    """With ω1 the velocity diagram is V = ω1·dS/dφ at μv = μs/(μt·H), μt = μφ/ω1: its analytic
+    curve, read at the printed μv, is the ram's speed along its guide from the solver."""
+    study = velplan.Study("shaper")
+    w = abs(study.mechanism.crank.omega)
+    view = diagram_view(study.diagrams, lang="en", arrangement="column", omega=w)
+    sc = view.meta["scales"]
+    texts = [t.text for t in view.primitives if isinstance(t, Text)]
+    mu_v = sc.mu_v * w
+    assert any(f"μv = μs/(μt·H) = {mu_v:.3g}" in t for t in texts)
+    assert any(f"μt = μφ/ω1 = {sc.mu_phi / w:.3g} s/mm" in t for t in texts)
+    d = study.diagrams
+    turn = velplan.solve(study.mechanism, study.phi[0] + study.sense * d.phi_fine)
+    vx = turn.velocity("F")[:, 0]  # the ram runs along x
+    sign = np.sign(np.dot(vx, d.v_exact))
+    assert np.allclose(sign * vx, w * d.v_exact, atol=1e-9 * np.abs(vx).max())

@@ -44,7 +44,7 @@ def test_diagrams_command(tmp_path, capsys):
     assert capsys.readouterr().out == f"wrote {out}\n"
     svg = out.read_text(encoding="utf-8")
     for text in ("Діаграма переміщень", "Діаграма швидкостей", "Діаграма прискорень",
-                 "H = ", "μv = μs/(μφ·H)", "δ = "):
+                 "H = ", "μv = μs/(μt·H)", "μt = μφ/ω1 = ", "(м/с)/мм", "δ = "):
         assert text in svg
 
 

@@ -216,7 +216,7 @@ def run_diagrams(args) -> int:
     study = Study(args.mechanism, n=args.positions)
     mech = study.mechanism
     d = study.diagrams
-    view = diagram_view(d, length_mm=args.length, height_mm=40.0, lang=args.lang,
+    view = diagram_view(d, length_mm=args.length, height_mm=40.0, lang=args.lang, omega=mech.crank.omega,
                         arrangement="column")
     margin = 10.0
     scene = Scene(tuple(view.at(margin, margin).primitives), view.width_mm + 2 * margin,

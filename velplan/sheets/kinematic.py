@@ -302,7 +302,7 @@ def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View
     best = None
 
     def build(length, height):
-        return diagram_view(d, length_mm=length, height_mm=height, lang=lang,
+        return diagram_view(d, length_mm=length, height_mm=height, lang=lang, omega=study.mechanism.crank.omega,
                             arrangement="row", sizes=sizes.diagram)
 
     # the longest φ axis (μφ a round number of degrees per mm) that fits with the lowest

@@ -205,6 +205,14 @@ _UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "kg/m³": MappingProxyType({"en": "kg/m³", "ru": "кг/м³", "uk": "кг/м³", "zh": "kg/m³"}),
     "rad/s": MappingProxyType({"en": "rad/s", "ru": "рад/с", "uk": "рад/с", "zh": "rad/s"}),
     "s": MappingProxyType({"en": "s", "ru": "с", "uk": "с", "zh": "s"}),
+    "s/mm": MappingProxyType({"en": "s/mm", "ru": "с/мм", "uk": "с/мм", "zh": "s/mm"}),
+    "m/s": MappingProxyType({"en": "m/s", "ru": "м/с", "uk": "м/с", "zh": "m/s"}),
+    "m/s²": MappingProxyType({"en": "m/s²", "ru": "м/с²", "uk": "м/с²", "zh": "m/s²"}),
+    "rad/s²": MappingProxyType({"en": "rad/s²", "ru": "рад/с²", "uk": "рад/с²", "zh": "rad/s²"}),
+    "(rad/s)/mm": MappingProxyType({"en": "(rad/s)/mm", "ru": "(рад/с)/мм", "uk": "(рад/с)/мм",
+                                    "zh": "(rad/s)/mm"}),
+    "(rad/s²)/mm": MappingProxyType({"en": "(rad/s²)/mm", "ru": "(рад/с²)/мм", "uk": "(рад/с²)/мм",
+                                     "zh": "(rad/s²)/mm"}),
 })
 
 

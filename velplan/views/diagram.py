@@ -95,20 +95,29 @@ class DiagramSizes:
     label_mm: float = 2.5
 
 
-def _names(d: Diagrams, lang: str) -> tuple[str, str, str, str]:
-    """Ordinate symbols of s, v, a and the unit of s."""
+def _names(d: Diagrams, lang: str, timed: bool) -> tuple[str, str, str, str, str, str]:
+    """Ordinate symbols of s, v, a and their units: velocities and accelerations in time at a
+    constant crank speed (``timed``), else the analogues."""
     if d.angular:
-        return "ψ", "dψ/dφ", "d²ψ/dφ²", unit("rad", lang)
-    return "S", "dS/dφ", "d²S/dφ²", unit("m", lang)
+        if timed:
+            return "ψ", "ω", "ε", unit("rad", lang), unit("rad/s", lang), unit("rad/s²", lang)
+        return "ψ", "dψ/dφ", "d²ψ/dφ²", unit("rad", lang), "", ""
+    if timed:
+        return "S", "V", "a", unit("m", lang), unit("m/s", lang), unit("m/s²", lang)
+    return "S", "dS/dφ", "d²S/dφ²", unit("m", lang), unit("m", lang), unit("m", lang)
 
 
 def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: str,
-          sizes: DiagramSizes, text_top: float | None = None) -> list[Primitive]:
-    """One diagram with its origin at (0, 0), mm."""
+          sizes: DiagramSizes, text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
+    """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
+    ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
+    μt = μφ/ω — else as the analogues."""
     L = sc.length_mm
     n = d.n
+    w = abs(omega)
+    timed = w > 0
     items: list[Primitive] = []
-    sym_s, sym_v, sym_a, u = _names(d, lang)
+    sym_s, sym_v, sym_a, u, u_v, u_a = _names(d, lang, timed)
     if kind == "s":
         mu, sym, H = sc.mu_s, sym_s, None
         gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.s, d.s[0])
@@ -123,19 +132,20 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: 
         gy = np.concatenate([[edge], d.v_chord, [edge]])
         fx, fy = d.phi_fine, d.v_exact
         error = d.error_v
-        title = label("velocity_diagram", lang)
+        title = label("velocity_diagram" if timed else "velocity_analogue_diagram", lang)
     else:
         mu, sym, H = sc.mu_a, sym_a, sc.H_a
         gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.a_chord, d.a_chord[0])
         fx, fy = d.phi_fine, d.a_exact
         error = d.error_a
-        title = label("acceleration_diagram", lang)
+        title = label("acceleration_diagram" if timed else "acceleration_analogue_diagram", lang)
     top, bottom = _span(fy, gy, mu)
     # axes with arrowheads
     items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), "diagram", "thin", 3.0, 1.0))
     items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), "diagram", "thin", 3.0, 1.0))
     items.append(Text((L + 9.0, -1.0), "φ", "diagram-labels", sizes.label_mm, "start", "top"))
-    items.append(Text((-1.5, top + 6.0), f"{sym}, {u}" if kind != "v" or not d.angular else sym,
+    unit_of = {"s": u, "v": u_v, "a": u_a}[kind]
+    items.append(Text((-1.5, top + 6.0), f"{sym}, {unit_of}" if unit_of else sym,
                       "diagram-labels", sizes.label_mm, "end", "top"))
     # positions on the φ axis
     every = max(1, int(math.ceil(n / 12)))
@@ -173,6 +183,18 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: 
         lines = [scale_text("μ" + ("ψ" if d.angular else "s"), mu, unit_key, lang),
                  scale_text("μφ", sc.mu_phi, "rad/mm", lang) +
                  f" ({number(math.degrees(sc.mu_phi), lang, 3)}°/{unit('mm', lang)})"]
+    elif timed:
+        # the same drawing read in time: μt = μφ/ω, μv = μs/(μt·H), μa = μv/(μt·H)
+        up = "μs" if kind == "v" else "μv"
+        sym_mu = "μv" if kind == "v" else "μa"
+        value = mu * w if kind == "v" else mu * w * w
+        unit_key = {("v", False): "(m/s)/mm", ("a", False): "(m/s²)/mm",
+                    ("v", True): "(rad/s)/mm", ("a", True): "(rad/s²)/mm"}[kind, d.angular]
+        lines = [f"H = {number(H, lang, 3)} {unit('mm', lang)};  μt = μφ/ω1 = "
+                 f"{number(sc.mu_phi / w, lang, 3)} {unit('s/mm', lang)};  {sym_mu} = {up}/(μt·H) = "
+                 f"{number(value, lang, 3)} {unit(unit_key, lang)}",
+                 f"δ = {number(100 * error, lang, 2)} % ({label('error', lang)}, "
+                 f"{label('chord_method', lang)})"]
     else:
         up = "μs" if kind == "v" else "μv"
         sym_mu = "μv" if kind == "v" else "μa"
@@ -214,7 +236,8 @@ def _legend(x: float, y: float, lang: str, size: float) -> list[Primitive]:
 
 def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40.0,
                  lang: str = "ru", arrangement: Arrangement = "column",
-                 sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0) -> View:
+                 sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0,
+                 omega: float = 0.0) -> View:
     """The three diagrams of `d` as one view.
 
     Parameters
@@ -227,11 +250,15 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
         Largest ordinate of each diagram, mm (the scales are chosen to keep within it).
     arrangement : {"row", "column"}
         Diagrams side by side, or one above the other (φ axes aligned).
+    omega : float
+        The crank's constant speed, rad/s: the velocity and acceleration diagrams are then
+        read in time (V in m/s, a in m/s², with the time scale μt = μφ/ω); 0 draws the
+        analogues dS/dφ, d²S/dφ² (m) under their own titles.
     """
     sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
     tops = _tops(d, sc)
     common = max(tops) if arrangement == "row" else None
-    plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common)
+    plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common, omega=omega)
              for k in "sva"]
     from velplan.views.base import bounds_of, shift
 
@@ -250,5 +277,5 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     items += _legend(x0, y0 - 4.0, lang, sizes.label_mm)
     return make_view("diagrams", items, pad_mm=2.0,
                      meta={"scales": sc, "error_v": d.error_v, "error_a": d.error_a,
-                           "quantity": d.quantity})
+                           "quantity": d.quantity, "omega": abs(omega)})
 
