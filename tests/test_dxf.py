@@ -395,21 +395,25 @@ def _grow(mask: np.ndarray, steps: int) -> np.ndarray:
     return out
 
 
-def test_the_dxf_drawn_back_inks_where_the_svg_does(docs, sheets, tmp_path):
+def test_the_dxf_drawn_back_inks_where_the_svg_does(sheets, tmp_path):
+    """The lines, arrows, circles and hatching (no text: its fonts differ from one renderer and
+    machine to another) drawn back from the DXF ink where the SVG's do."""
     cairosvg = pytest.importorskip("cairosvg")
     pytest.importorskip("PIL")
+    from velplan.render.svg import to_svg
+
     sheet = sheets["kinematic"]
     w, h = sheet.scene.width_mm, sheet.scene.height_mm
+    scene = Scene(tuple(p for p in sheet.scene.primitives if not isinstance(p, Text)), w, h)
     dxf_png, svg_png = tmp_path / "dxf.png", tmp_path / "svg.png"
-    dxf_to_png(docs["kinematic"][0], dxf_png, w, h, dpi=40)
-    cairosvg.svg2png(bytestring=sheet.svg().encode(), write_to=str(svg_png), dpi=40,
+    dxf_to_png(to_dxf(scene, sheet.style), dxf_png, w, h, dpi=40)
+    cairosvg.svg2png(bytestring=to_svg(scene, sheet.style).encode(), write_to=str(svg_png), dpi=40,
                      background_color="white")
     shape = (round(h / 25.4 * 40), round(w / 25.4 * 40))
     dxf, svg = _ink(dxf_png, shape), _ink(svg_png, shape)
-    # 99 % of either's ink lies within 1 px (0.64 mm) of the other's: the rest is the fonts
-    # (DejaVu stands in for Arial), thin lines 0.25 mm wide instead of 0.35, and what a white
-    # fill hides in the SVG and not in the DXF
-    assert dxf.sum() > 0.03 * dxf.size and 0.9 < dxf.sum() / svg.sum() < 1.1
+    # 98 % of either's ink lies within 1 px (0.64 mm) of the other's: the rest is thin lines
+    # 0.25 mm wide instead of 0.35, and what a white fill hides in the SVG and not in the DXF
+    assert dxf.sum() > 0.02 * dxf.size and 0.85 < dxf.sum() / svg.sum() < 1.15
     assert (dxf & _grow(svg, 1)).sum() / dxf.sum() > 0.98
     assert (svg & _grow(dxf, 1)).sum() / svg.sum() > 0.98
 

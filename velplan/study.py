@@ -185,6 +185,18 @@ class Study:
         return solve(self.mechanism, self.phi[0] + self.sense * rot, omega1=1.0, epsilon1=0.0,
                      engine=self.engine)
 
+    @cached_property
+    def other_extreme(self) -> Kinematics | None:
+        """The mechanism at the extreme position that ends the working stroke, when it is not
+        one of the n positions (None otherwise, or without an output): the scheme draws it."""
+        st = self.stroke
+        if st is None:
+            return None
+        gap = np.abs((self.phi - st.end.phi + np.pi) % (2 * np.pi) - np.pi)
+        if gap.min() < np.radians(0.5):
+            return None
+        return solve(self.mechanism, [st.end.phi], omega1=1.0, epsilon1=0.0, order=0, engine=self.engine)
+
     # -- plans -------------------------------------------------------------------------------
 
     @cached_property

@@ -87,3 +87,24 @@ def test_diagrams_read_in_time_give_the_solver_speed():
     vx = turn.velocity("F")[:, 0]  # the ram runs along x
     sign = np.sign(np.dot(vx, d.v_exact))
     assert np.allclose(sign * vx, w * d.v_exact, atol=1e-9 * np.abs(vx).max())
+
+
+def test_sheet_carries_input_data_and_the_other_extreme():
+    from velplan.sheets.kinematic import build_sheet, sheet_text
+
+    study = velplan.Study("shaper")
+    sheet = build_sheet(study, lang="en")
+    st = study.stroke
+    text = sheet_text(sheet)
+    assert "Input data and results" in text
+    assert f"H = {st.H:.4g} m; θ = {math.degrees(st.theta):.4g}°; K = {st.K:.4g}" in text
+    assert "lO₂A = 0.1605 m" in text and "Fc = 1400 N" in text
+    # the end of the working stroke is not one of the 12 positions: drawn dashed, marked 1′
+    assert study.other_extreme is not None
+    dashed = [p for p in sheet.views["mechanism"].view.primitives
+              if getattr(p, "line", None) == "hidden" and p.layer == "positions"]
+    assert dashed and "1′" in text
+    end = study.other_extreme.position("F")[0]
+    assert abs(end[0] - study.mechanism.ground[0][1][0]) >= 0  # solved at the extreme
+    v = velplan.solve(study.mechanism, [st.end.phi]).velocity("F")[0]
+    assert np.hypot(*v) < 1e-9 * abs(study.mechanism.crank.omega)

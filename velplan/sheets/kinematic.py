@@ -139,7 +139,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                 kind: Kind = "both", fmt: Format = "A1", lang: str = "ru",
                 frame_style: str | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
-                style: SheetStyle | None = None) -> Sheet:
+                style: SheetStyle | None = None, data: bool = True) -> Sheet:
     """Compose the kinematic-analysis sheet of `mech`.
 
     Parameters
@@ -167,6 +167,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
         an A3 sheet has no room for them beside the table).
     table : bool
         Draw the table of transfer functions.
+    data : bool
+        Write the input data and the main results (H, θ, K, the extreme positions) where the
+        top band has room for them (`velplan.views.data`).
 
     Raises
     ------
@@ -239,7 +242,8 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     # failing that, the scheme that leaves the plans the longest vectors
     best, failure = None, None
     drawn: dict = {}  # (kind, number, μ) → (result, view): a plan's view does not depend on its cell
-    for mview in _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt):
+    for mview in _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt,
+                                       extreme=study.other_extreme):
         # the plans go to the right of the scheme, or below it across the sheet
         regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
                    (fx0, band_top + g, fx1, fy1 - mview.height_mm - g)]
@@ -263,6 +267,10 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     _, mview, plan_views, results = best
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
+    if data:
+        placed = _place_data(study, lang, sizes, views, (fx0, band_top + g, fx1, fy1), g)
+        if placed is not None:
+            views["data"] = placed
 
     scales = {"mu_l": mview.mu}
     for name, res in results.items():
@@ -275,12 +283,36 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
-        k for k in ("diagrams", "table") if k in views]
+        k for k in ("data", "diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),
                  MappingProxyType(results), MappingProxyType(index), chosen, n, fmt, lang,
                  frame_style, style, info)
+
+
+def _place_data(study: Study, lang, sizes: Sizes, views, region, gap):
+    """The data block in the top band where no view is, at the largest text that fits: the
+    free spot nearest the scheme's lower left corner; None when there is no room."""
+    from velplan.views.data import data_view
+
+    x0, y0, x1, y1 = region
+    taken = np.array([shapely.box(*v.bounds).buffer(gap) for v in views.values()])
+    corner = np.array([views["mechanism"].bounds[0], views["mechanism"].bounds[1]])
+    for size, title in ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)):
+        view = data_view(study, lang=lang, size_mm=size, title_mm=title)
+        w, h = view.width_mm, view.height_mm
+        if w > x1 - x0 or h > y1 - y0:
+            continue
+        xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
+        xs, ys = xs.ravel(), ys.ravel()
+        boxes = shapely.box(xs, ys, xs + w, ys + h)
+        free = ~shapely.intersects(boxes[:, None], taken[None, :]).any(axis=1)
+        if free.any():
+            k = np.flatnonzero(free)
+            best = k[np.argmin(np.hypot(xs[k] - corner[0], ys[k] + h - corner[1]))]
+            return view.at(xs[best], ys[best])
+    return None
 
 
 def _fit_table(study: Study, lang, sizes: Sizes, *, max_width: float, fmt: str) -> View:
@@ -350,7 +382,7 @@ def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View
     return best[1]
 
 
-def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region, *,
+def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region, *, extreme=None,
                           fmt: str, count: int = 3):
     """Up to `count` schemes at successive ESKD scales, the largest that fits first."""
     x0, y0, x1, y1 = region
@@ -363,7 +395,7 @@ def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region,
         if mech.crank.length / mu < MIN_CRANK_MM:
             break
         view = mechanism_view(mech, mu_l=mu, n=n, thick=thick, lang=lang,
-                              sizes=sizes.mechanism, kin=kin, fine=fine)
+                              sizes=sizes.mechanism, kin=kin, fine=fine, extreme=extreme)
         if fits(view, w, h):
             yield view
             found += 1

@@ -199,6 +199,7 @@ _UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "rad": MappingProxyType({"en": "rad", "ru": "рад", "uk": "рад", "zh": "rad"}),
     "deg": MappingProxyType({"en": "°", "ru": "°", "uk": "°", "zh": "°"}),
     "J": MappingProxyType({"en": "J", "ru": "Дж", "uk": "Дж", "zh": "J"}),
+    "N": MappingProxyType({"en": "N", "ru": "Н", "uk": "Н", "zh": "N"}),
     "N·m": MappingProxyType({"en": "N·m", "ru": "Н·м", "uk": "Н·м", "zh": "N·m"}),
     "kg·m²": MappingProxyType({"en": "kg·m²", "ru": "кг·м²", "uk": "кг·м²", "zh": "kg·m²"}),
     "kg": MappingProxyType({"en": "kg", "ru": "кг", "uk": "кг", "zh": "kg"}),

@@ -281,7 +281,8 @@ class MechanismSizes:
 
 def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
                    thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
-                   title: bool = True, single: bool = False) -> View:
+                   title: bool = True, single: bool = False,
+                   extreme: Kinematics | None = None) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
     Parameters
@@ -301,6 +302,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     single : bool
         Draw the thick position alone: no other positions, trajectories or numbers (the
         step-by-step figures).
+    extreme : Kinematics, optional
+        The other extreme position of the output (one position), drawn dashed and marked
+        ``1′`` at the output point (`velplan.study.Study.other_extreme`).
 
     Returns
     -------
@@ -330,6 +334,11 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         for s in geo.segments(i):
             items += link(mm(s.a), mm(s.b), trim_a_mm=0.0, trim_b_mm=0.0, layer="positions",
                           line="thin")
+
+    if extreme is not None and not single and extreme.valid[0]:
+        other = _Geometry(mech, extreme)
+        for sg in other.segments(0):
+            items.append(Polyline([mm(sg.a), mm(sg.b)], "positions", "hidden"))
 
     # the thick position: guides, pivots, links, blocks, joints
     centre = mm(_centroid(kin))
@@ -374,6 +383,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
             out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP))
         labels += _output_numbers(kin, out, mm, sizes.number_mm, on_track and bool(tracks),
                                   centre, guide_sides.get(out))
+    if extreme is not None and not single and extreme.valid[0] and out is not None:
+        at = mm(extreme.position(out)[0])
+        labels.append(Text((at[0] + 1.5, at[1] + 1.5), "1′", "labels", sizes.number_mm))
     omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
     items += omega[:-1]
     labels.append(omega[-1])

@@ -1,0 +1,87 @@
+"""The block of input data and main results a course sheet carries: the lengths, the crank's
+speed, masses and loads as given, and the output's stroke H, the angle θ, the time-ratio K and
+both extreme positions. Layer ``"data"``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR
+from velplan.render.i18n import label
+from velplan.render.scene import Primitive, Text
+from velplan.views.base import View, digits_down, make_view, number, subscript, unit
+
+
+def _l(a: str, b: str) -> str:
+    """The length symbol of a link between two points: ``l_O2A`` → ``lO₂A``."""
+    return f"l{subscript(a)}{subscript(b)}"
+
+
+def data_lines(study, lang: str) -> list[str]:
+    """The lines of the block (without its title), in the sheet's language."""
+    mech = study.mechanism
+    m = unit("m", lang)
+    c = mech.crank
+    lengths = [f"{_l(c.pivot, c.tip)} = {number(c.length, lang)} {m}"]
+    offsets = []
+    for g in mech.groups:
+        if isinstance(g, RRR):
+            (a, d), (l1, l2) = g.joints, g.lengths
+            lengths += [f"{_l(a, g.point)} = {number(l1, lang)} {m}", f"{_l(d, g.point)} = {number(l2, lang)} {m}"]
+        elif isinstance(g, RRP):
+            lengths.append(f"{_l(g.joint, g.point)} = {number(g.length, lang)} {m}")
+        if isinstance(g, (RRP, RPP)) and g.guide.offset:
+            offsets.append(f"e{digits_down(g.links[1])} = {number(g.guide.offset, lang)} {m}")
+        if isinstance(g, RPR) and g.offset:
+            offsets.append(f"e{digits_down(g.links[1])} = {number(g.offset, lang)} {m}")
+        if isinstance(g, PRP):
+            offsets += [f"e{digits_down(k)} = {number(gd.offset, lang)} {m}" for k, gd in zip(g.links, g.guides)
+                        if gd.offset]
+    ground = ", ".join(f"{subscript(n)} ({number(x, lang)}; {number(y, lang)})" for n, (x, y) in mech.ground)
+    w1 = c.omega
+    crank = f"ω{digits_down(c.link)} = {number(w1, lang)} {unit('rad/s', lang)} (n = {number(w1 * 30 / math.pi, lang)} "
+    crank += ("об/мин" if lang == "ru" else "об/хв" if lang == "uk" else "rpm") + ")"
+    origins = study.kinematics.link_origins
+    for p in mech.points:
+        if not p.name.startswith("S") and p.along and not p.offset and p.link in origins:
+            lengths.append(f"{_l(origins[p.link], p.name)} = {number(abs(p.along), lang)} {m}")
+    lines = ["; ".join(lengths[k:k + 4]) for k in range(0, len(lengths), 4)]
+    if offsets:
+        lines.append("; ".join(offsets))
+    lines += [f"{ground}, {m}", crank]
+    masses = [f"m{digits_down(ms.link)} = {number(ms.mass, lang)} {unit('kg', lang)}"
+              + (f", J{subscript('S' + ms.link)} = {number(ms.inertia, lang)} {unit('kg·m²', lang)}"
+                 if ms.inertia else "") for ms in mech.masses]
+    lines += ["; ".join(masses[k:k + 3]) for k in range(0, len(masses), 3)]
+    loads = []
+    for ld in mech.loads:  # as the file gives them (parsing them would place them on the stroke)
+        value = ld.get("force", ld.get("p_max"))
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and value:
+            loads.append(f"{ld.get('name', '')} = {number(float(value), lang)} {unit('N', lang)}")
+    if loads:
+        lines.append("; ".join(loads))
+    st = study.stroke
+    if st is not None:
+        sym = "H" if st.quantity.startswith("slide") or st.quantity.startswith("point") else "ψmax"
+        value = number(st.H, lang) + " " + (m if sym == "H" else unit("rad", lang))
+        lines.append(f"{sym} = {value}; θ = {number(math.degrees(st.theta), lang)}°; "
+                     f"K = {number(st.K, lang)}")
+        lines.append(f"{label('extreme_positions', lang)}: φ = {number(math.degrees(st.start.phi) % 360, lang)}°, "
+                     f"{number(math.degrees(st.end.phi) % 360, lang)}° ({label('working_stroke', lang)} "
+                     f"{number(math.degrees(st.theta) + 180.0, lang)}°)")
+    return lines
+
+
+def data_view(study, *, lang: str, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
+    """The block: its title, then one text line per `data_lines` entry."""
+    lines = data_lines(study, lang)
+    items: list[Primitive] = [Text((0.0, 0.0), label("input_data", lang), "data", title_mm)]
+    y = -0.8 * title_mm
+    for line in lines:
+        y -= 1.6 * size_mm
+        items.append(Text((0.0, y), line, "data", size_mm))
+    return make_view("data", items, pad_mm=1.0, meta={"lines": tuple(lines), "size_mm": size_mm})
+
+
+__all__ = ["data_lines", "data_view"]
