@@ -108,3 +108,19 @@ def test_sheet_carries_input_data_and_the_other_extreme():
     assert abs(end[0] - study.mechanism.ground[0][1][0]) >= 0  # solved at the extreme
     v = velplan.solve(study.mechanism, [st.end.phi]).velocity("F")[0]
     assert np.hypot(*v) < 1e-9 * abs(study.mechanism.crank.omega)
+
+
+def test_step_captions_are_written_as_by_hand_and_the_series_has_one_page_size():
+    from velplan.views.steps import readable, step_figures
+
+    assert readable("Через точку a проводим прямую ∥ O3A (направление V_A4A).") == \
+        "Через точку a проводим прямую ∥ O₃A (направление VA₄A)."
+    assert readable("отрезок ak1 = 37,1 мм по V_отн (aⁿ_A4O3 = 2,237 м/с²), шаг 3/14") == \
+        "отрезок ak₁ = 37,1 мм по Vотн (aⁿA₄O₃ = 2,237 м/с²), шаг 3/14"
+    study = velplan.Study("shaper")
+    figs = step_figures(study.mechanism, study.kinematics,
+                        {k: study.plan(k) for k in ("velocity", "acceleration")}, 3, lang="ru")
+    assert len({(f.scene.width_mm, f.scene.height_mm) for f in figs}) == 1
+    for f in figs:
+        text = " ".join(t.text for t in f.scene.primitives if isinstance(t, Text) and t.layer == "labels")
+        assert "_" not in text

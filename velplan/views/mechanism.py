@@ -400,7 +400,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                           f"{label('position', lang)} {thick}" if single
                           else label("mechanism_positions", lang), "labels", sizes.title_mm))
         items.append(Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) +
-                          f"  (M {ratio_text(mu_l)})", "labels", sizes.label_mm))
+                          f"  ({'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l)})", "labels", sizes.label_mm))
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
 

@@ -9,6 +9,7 @@ worked solution is written ("Через точку a проводим пряму
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 
 from typing import Mapping
@@ -24,7 +25,7 @@ from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
     extent_mm, image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
-from velplan.views.base import eskd_scales, shift
+from velplan.views.base import digits_down, eskd_scales, shift
 
 _MARGIN = 10.0
 _SENTENCE_H = 26.0
@@ -72,16 +73,19 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     mview = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin, fine=kin,
                            sizes=MechanismSizes(3.5, 3.5, 2.5), single=True)
     figures: list[StepFigure] = []
+    series = []
     for kd in kinds:
         res0 = plans[kd]
         ew, eh = extent_mm(res0, i)
         mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
         res = res0.at_scale(mu)
-        full = plan_view(res, i, number=position, lang=lang)
-        drawings = plan_steps(res, i, number=position, lang=lang)
-        width = _MARGIN * 3 + mview.width_mm + full.width_mm
-        height = _MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
-        width, height = max(width, 297.0), max(height, 210.0)
+        series.append((kd, res, plan_view(res, i, number=position, lang=lang),
+                       plan_steps(res, i, number=position, lang=lang)))
+    # one page size for the whole series, velocity and acceleration alike
+    width = max([_MARGIN * 3 + mview.width_mm + full.width_mm for _, _, full, _ in series] + [297.0])
+    height = max([_MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
+                  for _, _, full, _ in series] + [210.0])
+    for kd, res, full, drawings in series:
         px = _MARGIN * 2 + mview.width_mm
         py = height - _MARGIN - full.height_mm
         total = len(drawings)
@@ -89,7 +93,7 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
             items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
             items += [shift(p, px, py) for p in partial_plan(res, i, k, full=full, drawings=drawings,
                                                              number=position, lang=lang)]
-            sentence = f"{label('step', lang)} {k}/{total}. {drawings[k - 1].sentence}"
+            sentence = f"{label('step', lang)} {k}/{total}. {readable(drawings[k - 1].sentence)}"
             box = (_MARGIN, _MARGIN, width - _MARGIN, _MARGIN + _SENTENCE_H - 4.0)
             items += fit_text(sentence, box, layer="labels", size_mm=5.0, anchor="start")
             items.append(Polygon([(0, 0), (width, 0), (width, height), (0, height)], "frame",
@@ -97,6 +101,18 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
             figures.append(StepFigure(k, kd[0], drawings[k - 1].sentence,
                                       Scene(tuple(items), width, height)))
     return figures
+
+
+_SYMBOL = re.compile(r"([VaRFωε])([ⁿᵗᵏʳ]?)_([A-Za-zА-Яа-яЁё0-9]+)")
+_INDEX = re.compile(r"(?<=[A-Za-zωεπ])(\d+)")
+
+
+def readable(sentence: str) -> str:
+    """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``VA₄A``,
+    ``aⁿ_A4O3`` → ``aⁿA₄O₃``, ``O3A`` → ``O₃A``, ``ak1`` → ``ak₁`` (no underscores; the
+    digits of point, image and link names as subscripts)."""
+    text = _SYMBOL.sub(lambda m: m.group(1) + m.group(2) + m.group(3), sentence)
+    return _INDEX.sub(lambda m: digits_down(m.group(1)), text)
 
 
 def partial_plan(res, i: int, k: int, *, full, drawings, number: int, lang: str) -> list:
