@@ -476,7 +476,8 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
             else label("assur_group", lang).format(name=group))
     items += _title_lines(items, [
         (head, sizes.title_mm),
-        (scale_text("μl", mu_l, "m/mm", lang) + f" (M {ratio_text(mu_l)})", sizes.label_mm)],
+        (scale_text("μl", mu_l, "m/mm", lang)
+         + f" ({'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l)})", sizes.label_mm)],
         text_layer)
     return make_view(f"group-{number}-{slug(group)}", items, pad_mm=2.0, mu=mu_l,
                      origin=(0.0, 0.0),

