@@ -232,7 +232,7 @@ def test_text_names_scales_groups_and_positions(name, force_sheets):
     assert text.count("Рычаг Жуковского\n") == len(sheet.positions)
     assert len(re.findall(r"^μF = \S+ Н/мм$", text, flags=re.M)) == len(
         _views(sheet, "polygon-"))
-    assert re.search(r"^μl = \S+ м/мм \(M 1:\S+\)$", text, flags=re.M)
+    assert re.search(r"^μl = \S+ м/мм \(М 1:\S+\)$", text, flags=re.M)  # Cyrillic М on a ru sheet
     assert re.search(r"^μv = \S+ \(м/с\)/мм$", text, flags=re.M)
     assert "Диаграмма уравновешивающего момента" in text and "μM = " in text
     assert f"ТММ.{name}.02" in text
