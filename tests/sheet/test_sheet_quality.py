@@ -39,3 +39,21 @@ def test_no_text_over_text_and_all_inside_the_frame(studies, lang):
         assert not pairs, (name, kind, [(a.text, b.text) for a, b in pairs[:5]])
         for t in sheet.scene.of_kind(Text):
             assert frame.contains(label_box(t)), (name, kind, t.text)
+
+
+def test_all_twelve_velocity_plans_on_one_sheet(tmp_path, capsys):
+    from velplan.cli import main
+    from velplan.sheets.layout import MIN_PLAN_MM
+
+    study = velplan.Study("shaper")
+    sheet = build_sheet(study, kind="velocity", plans=tuple(range(1, 13)), lang="en")
+    names = sorted(k for k in sheet.views if k.startswith("plan-v-"))
+    assert len(names) == 12
+    kin = study.kinematics
+    for name in names:
+        i = sheet.plan_index[name]
+        longest = max(float(abs(complex(*kin.velocities[i, j]))) for j in range(len(kin.point_index)))
+        assert longest / sheet.scales[name] >= MIN_PLAN_MM["A1"] or longest == 0
+    assert main(["sheet", "shaper", "--kind", "velocity", "--plans", "all", "-o", str(tmp_path / "a.svg")]) == 0
+    assert main(["sheet", "shaper", "--plans", "1,x", "-o", str(tmp_path / "b.svg")]) == 2
+    assert "(or give: all)" in capsys.readouterr().err

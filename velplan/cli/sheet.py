@@ -31,7 +31,8 @@ def register(sub) -> None:
     p.add_argument("--positions", metavar="N", type=positive_int, default=12,
                    help="number of positions of the scheme, table and diagrams (default 12)")
     p.add_argument("--plans", metavar="K,…",
-                   help="positions whose plans are drawn (default: two, about a quarter and "
+                   help="positions whose plans are drawn, or all (with --kind velocity: the 12 "
+                        "velocity plans of a course work; default: two, about a quarter and "
                         "three quarters of the turn); with --kind forces, the positions of the "
                         "force analysis (default: the largest balancing moment)")
     p.add_argument("--kind", choices=_SHEET_KINDS, default="both",
@@ -94,17 +95,22 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--dpi", type=float, default=150.0, help="PNG resolution (default 150)")
 
 
-def parse_plans(text: str | None) -> tuple[int, ...] | None:
-    """``"3,9"`` → (3, 9); a one-line error naming a bad item."""
+def parse_plans(text: str | None, n: int | None = None) -> tuple[int, ...] | None:
+    """``"3,9"`` → (3, 9); ``"all"`` → every position 1…n; a one-line error naming a bad
+    item."""
     if text is None:
         return None
+    if text.strip().lower() == "all":
+        if n is None:
+            raise VelplanError("--plans all needs the number of positions")
+        return tuple(range(1, n + 1))
     out = []
     for item in text.split(","):
         item = item.strip()
         try:
             out.append(int(item))
         except ValueError:
-            raise VelplanError(f"--plans: {item!r} is not a position number") from None
+            raise VelplanError(f"--plans: {item!r} is not a position number (or give: all)") from None
     return tuple(out)
 
 
@@ -139,7 +145,7 @@ def run_sheet(args) -> int:
     from velplan.sheets.kinematic import build_sheet, default_title
     from velplan.study import Study
 
-    plans = parse_plans(args.plans)
+    plans = parse_plans(args.plans, args.positions)
     if args.delta is not None and args.kind != "dynamics":
         raise VelplanError("--delta belongs to --kind dynamics")
     study = Study(args.mechanism, n=args.positions, delta=args.delta)

@@ -421,6 +421,10 @@ def _fit_plans(study: Study, chosen, kinds, lang, sizes: Sizes, region, gap, *, 
     position_major = [(kd, k) for k in chosen for kd in kinds]
     shapes = [(M, K, kind_major), (K, M, position_major), (1, K * M, kind_major),
               (K * M, 1, kind_major)]
+    # many plans (all 12 of a course work): the grids between one row and one column too
+    count = K * M
+    shapes += [(r, math.ceil(count / r), kind_major) for r in range(2, count)
+               if (r - 1) * math.ceil(count / r) < count]
     best = None
     cache: dict = {}
     drawn = {} if drawn is None else drawn
