@@ -28,7 +28,7 @@ def test_sheet_options_and_png(tmp_path, capsys):
 def test_sheet_errors_are_one_line_and_write_nothing(tmp_path, capsys):
     out = tmp_path / "x.svg"
     assert main(["sheet", "shaper", "-o", str(out), "--plans", "1,x"]) == 2
-    assert capsys.readouterr().err == "velplan: error: --plans: 'x' is not a position number\n"
+    assert capsys.readouterr().err == "velplan: error: --plans: 'x' is not a position number (or give: all)\n"
     assert main(["sheet", "shaper", "-o", str(out), "--format", "A3",
                  "--plans", "1,2,3,4,5,6"]) == 2
     err = capsys.readouterr().err
