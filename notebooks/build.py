@@ -949,12 +949,135 @@ NB05 = [
 ]
 
 
+# --------------------------------------------------------------------------------------------
+# 06: the catalogue of course mechanisms, variant batches with an answer key, DXF for CAD
+
+NB06 = [
+    md("""
+    # 6 · A course's worth of mechanisms: catalogue, variants, grading and CAD
+
+    A department hands out one variant per student: the same scheme with other lengths, speed,
+    masses and loads. velplan carries a catalogue of course-work mechanisms, draws reproducible
+    random variants, writes every variant's sheet and an answer key, grades a student's table
+    against it, and exports any sheet to DXF for KOMPAS-3D or AutoCAD.
+
+    **What you will learn**
+
+    * which mechanisms the catalogue holds, and the stroke H and time ratio K of one of them
+      against their closed form;
+    * how random variants are drawn from (student, assignment) so that the same pair always
+      gives the same variant, on any machine;
+    * how a batch writes the answer key, and how a student's table is graded against it;
+    * how a sheet becomes a DXF file with a layer per line type, checked by ezdxf's audit.
+    """),
+    code("""
+    import io
+    import math
+    import tempfile
+    from pathlib import Path
+
+    import velplan
+    from velplan.batch import Options, random_variants, run_batch
+    from velplan.mechanism.loader import catalogue_names
+    from velplan.plans.grade import grade_table
+
+    names = catalogue_names()
+    print(", ".join(names))
+    print(f"catalogue mechanisms = {len(names)}")
+    """, "readout"),
+    md("""
+    ## One catalogue mechanism
+
+    The shaper whose slotted lever carries a block on the ram (RPR + PRP): its crank of 0.10 m
+    turns about a pivot 0.30 m above the lever's pivot, so the lever swings through
+    θ = 2·asin(0.10/0.30) and the ram's stroke is 2·0.52·tan(θ/2).
+    """),
+    code("""
+    study = velplan.Study("shaper-lever-ram")
+    st = study.stroke
+    print(study.mechanism.title)
+    print(f"H = {st.H:.9f} m")
+    print(f"θ = {math.degrees(st.theta):.9f} deg")
+    print(f"K = {st.K:.9f}")
+    """, "readout"),
+    md("""
+    ## Random variants, reproducible
+
+    Each number of the base file is multiplied by a factor drawn uniformly within ±10 % from a
+    generator seeded by the student's id and the assignment's name (SHA-256), rounded to three
+    digits, and drawn again until the variant assembles over the whole turn.
+    """),
+    code("""
+    variants, failures = random_variants("shaper", 5, "TMM-2026 work 1", spread=0.10)
+    again, _ = random_variants("shaper", 5, "TMM-2026 work 1", spread=0.10)
+    print(f"variants drawn = {len(variants)}")
+    print(f"the same variants when drawn again = {int([v.overrides for v in variants] == [v.overrides for v in again])}")
+    for v in variants:
+        print(f"variant {v.name} crank length = {v.overrides['crank.length']} m")
+    """, "readout"),
+    md("""
+    ## The answer key, and a student's table graded against it
+
+    The batch studies every variant (here without drawing its sheet) and writes `answers.json`
+    and `answers.csv`. A student's table of V/ω1 for variant 2 with one wrong entry is graded
+    within 5 % of each row's largest value.
+    """),
+    code("""
+    with tempfile.TemporaryDirectory() as tmp:
+        report = run_batch(variants, Options(outdir=tmp, sheets=False), jobs=1)
+        key = report.answers[1]
+        rows = ["quantity," + ",".join(str(k) for k in range(1, 13))]
+        for point in ("A", "B", "F"):
+            values = [f"{x:.4f}" for x in key["V"][point]]
+            if point == "F":
+                values[4] = f"{2 * float(values[4]) + 0.1:.4f}"   # a slip of the ruler
+            rows.append(f"V{point}/ω1," + ",".join(values))
+        table = Path(tmp) / "student.csv"
+        table.write_text("\\n".join(rows) + "\\n", encoding="utf-8")
+        graded = grade_table(table, Path(tmp) / "answers.json", variants[1].name)
+    print(graded.text())
+    print(f"entries graded = {len(graded.entries)}")
+    print(f"entries wrong = {len(graded.entries) - graded.right}")
+    """, "readout"),
+    md("""
+    ## The sheet in CAD
+
+    `velplan sheet NAME -o NAME.dxf` writes the sheet's DXF beside its SVG: R2013, mm, a layer
+    per ESKD line type with its lineweight, texts in UTF-8, and only LINE, CIRCLE, LWPOLYLINE
+    and TEXT entities.
+    """),
+    code("""
+    import ezdxf
+    from velplan.render.dxf import to_dxf
+    from velplan.sheets.kinematic import build_sheet
+
+    sheet = build_sheet(study, lang="ru")
+    doc = ezdxf.read(io.StringIO(to_dxf(sheet.scene, sheet.style)))
+    auditor = doc.audit()
+    kinds = sorted({e.dxftype() for e in doc.modelspace()})
+    print("entity types:", ", ".join(kinds))
+    print(f"DXF audit errors = {len(auditor.errors)}")
+    print(f"DXF units code = {doc.header['$INSUNITS']}")
+    """, "readout"),
+    md("""
+    ## Exercises
+
+    1. Draw a gallery of the catalogue with `python -m velplan.catalogue.gallery OUTDIR`.
+    2. Give every student of your group a variant of the Whitworth mechanism, write their sheets
+       with `velplan batch --random 30 --seed "…" --base whitworth -o course/` and look at two.
+    3. Grade a table with a wrong sign in an ω row: what does the report say?
+    4. Open a DXF in a CAD program and switch the THIN layer off.
+    """),
+]
+
+
 NOTEBOOKS = {
     "01-velocity-plan-step-by-step": NB01,
     "02-graphical-vs-analytic": NB02,
     "03-acceleration-plan-coriolis": NB03,
     "04-your-own-mechanism": NB04,
     "05-flywheel-and-equation-of-motion": NB05,
+    "06-catalogue-variants-and-cad": NB06,
 }
 
 

@@ -39,7 +39,7 @@ NOTEBOOKS = ROOT / "notebooks"
 CELL_TIMEOUT_S = 120
 STEMS = ("01-velocity-plan-step-by-step", "02-graphical-vs-analytic",
          "03-acceleration-plan-coriolis", "04-your-own-mechanism",
-         "05-flywheel-and-equation-of-motion")
+         "05-flywheel-and-equation-of-motion", "06-catalogue-variants-and-cad")
 
 
 # -- executing ------------------------------------------------------------------------------
@@ -484,8 +484,33 @@ def expected_05() -> Expected:
     return Expected(fixed)
 
 
+def expected_06() -> Expected:
+    """The catalogue's size, a slotted-lever shaper's stroke by its closed form, reproducible
+    random variants within ±10 % of the shaper's crank, one wrong entry of 36 graded, a DXF
+    without audit errors in mm."""
+    from velplan.mechanism.loader import catalogue_names
+
+    theta = 2 * math.asin(0.10 / 0.30)  # the lever swings ±asin(r/d)
+    r = velplan.load("shaper").crank.length
+    fixed = {
+        "catalogue mechanisms": Near(len(catalogue_names()), 0),
+        "H": Near(2 * 0.52 * math.tan(theta / 2), 1e-8),
+        "θ": Near(math.degrees(theta), 1e-7),
+        "K": Near((math.pi + theta) / (math.pi - theta), 1e-8),
+        "variants drawn": Near(5, 0),
+        "the same variants when drawn again": Near(1, 0),
+        "entries graded": Near(36, 0),
+        "entries wrong": Near(1, 0),
+        "DXF audit errors": Near(0, 0),
+        "DXF units code": Near(4, 0),  # $INSUNITS 4 = millimetres
+    }
+    assert len(catalogue_names()) >= 20
+    crank = (re.compile(r"variant \d+ crank length"), lambda m: Within(0.9 * r * 0.995, 1.1 * r * 1.005))
+    return Expected(fixed, [crank], [(re.compile(r"variant \d+ crank length"), 5)])
+
+
 EXPECTED = {STEMS[0]: expected_01, STEMS[1]: expected_02, STEMS[2]: expected_03,
-            STEMS[3]: expected_04, STEMS[4]: expected_05}
+            STEMS[3]: expected_04, STEMS[4]: expected_05, STEMS[5]: expected_06}
 
 #: One line each, in order, for the broken variants of notebook 4.
 ERRORS_04 = ("group '4-5' (RRP) cannot be assembled for crank angles",
