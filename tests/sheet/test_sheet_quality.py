@@ -2,6 +2,7 @@
 boxes overlapping by more than 0.5 mm²), every text inside the frame, and the data block and
 the title in the sheet's language."""
 
+import numpy as np
 import pytest
 import shapely
 
@@ -57,3 +58,19 @@ def test_all_twelve_velocity_plans_on_one_sheet(tmp_path, capsys):
     assert main(["sheet", "shaper", "--kind", "velocity", "--plans", "all", "-o", str(tmp_path / "a.svg")]) == 0
     assert main(["sheet", "shaper", "--plans", "1,x", "-o", str(tmp_path / "b.svg")]) == 2
     assert "(or give: all)" in capsys.readouterr().err
+
+
+def test_values_read_off_the_plans_are_within_half_the_drafting_step():
+    from velplan.views.readings import PRECISION_MM, readings
+
+    study = velplan.Study("shaper")
+    sheet = build_sheet(study, lang="ru")
+    assert "readings" in sheet.views
+    count = 0
+    for name, res in sheet.plans.items():
+        i = int(np.flatnonzero(res.index == sheet.plan_index[name])[0])
+        for point, read, exact in readings(res, i):
+            # a length read to 0.5 mm is off by at most 0.25 mm: 0.25·μ in value
+            assert abs(read - exact) <= 0.5 * PRECISION_MM * res.scale * (1 + 1e-9), (name, point)
+            count += 1
+    assert count >= 20

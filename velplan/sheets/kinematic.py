@@ -168,8 +168,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     table : bool
         Draw the table of transfer functions.
     data : bool
-        Write the input data and the main results (H, θ, K, the extreme positions) where the
-        top band has room for them (`velplan.views.data`).
+        Write the input data and the main results (H, θ, K, the extreme positions), and the
+        values read off the drawn plans beside the analytic ones, where the top band has room
+        for them (`velplan.views.data`, `velplan.views.readings`).
 
     Raises
     ------
@@ -268,9 +269,21 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
     if data:
-        placed = _place_data(study, lang, sizes, views, (fx0, band_top + g, fx1, fy1), g)
+        from velplan.views.data import data_view
+        from velplan.views.readings import readings_view
+
+        top_band = (fx0, band_top + g, fx1, fy1)
+        placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
+                            ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, g)
         if placed is not None:
             views["data"] = placed
+        drawn = {name: (res, index) for name, res in results.items()
+                 for index in [int(name.rsplit("-", 1)[1]) - 1]}
+        drawn = {name: (res, int(np.flatnonzero(res.index == i)[0])) for name, (res, i) in drawn.items()}
+        placed = _free_spot(lambda s, t: readings_view(drawn, lang=lang, size_mm=s, title_mm=t),
+                            ((2.5, 3.5), (1.8, 2.5)), views, top_band, g)
+        if placed is not None:
+            views["readings"] = placed
 
     scales = {"mu_l": mview.mu}
     for name, res in results.items():
@@ -283,7 +296,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
-        k for k in ("data", "diagrams", "table") if k in views]
+        k for k in ("data", "readings", "diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),
@@ -291,16 +304,15 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                  frame_style, style, info)
 
 
-def _place_data(study: Study, lang, sizes: Sizes, views, region, gap):
-    """The data block in the top band where no view is, at the largest text that fits: the
-    free spot nearest the scheme's lower left corner; None when there is no room."""
-    from velplan.views.data import data_view
-
+def _free_spot(build, sizes, views, region, gap):
+    """``build(text size, title size)`` placed where no view is in ``region``, at the largest
+    of ``sizes`` that fits: the free spot nearest the scheme's lower left corner; None when
+    there is no room."""
     x0, y0, x1, y1 = region
     taken = np.array([shapely.box(*v.bounds).buffer(gap) for v in views.values()])
     corner = np.array([views["mechanism"].bounds[0], views["mechanism"].bounds[1]])
-    for size, title in ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)):
-        view = data_view(study, lang=lang, size_mm=size, title_mm=title)
+    for size, title in sizes:
+        view = build(size, title)
         w, h = view.width_mm, view.height_mm
         if w > x1 - x0 or h > y1 - y0:
             continue
