@@ -74,7 +74,7 @@ def test_missing_directory(tmp_path):
 
 def test_missing_cairosvg_says_how_to_install(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "cairosvg", None)
-    with pytest.raises(VelplanError, match=r"pip install velplan\[export\]") as info:
+    with pytest.raises(VelplanError, match=r"pip install cairosvg \(in a checkout: pip install '\.\[export\]'\)") as info:
         write_png(_svg(), tmp_path / "sheet.png")
     assert "\n" not in str(info.value)
     assert os.listdir(tmp_path) == []

@@ -234,7 +234,7 @@ def loaded() -> bool:
 def kernel():
     """The compiled kernel: loaded from numba's disk cache, or compiled on its first call."""
     if not available():
-        raise VelplanError("the compiled engine needs numba: pip install 'velplan[fast]'")
+        raise VelplanError("the compiled engine needs numba: pip install numba (in a checkout: pip install '.[fast]')")
     import numba
     env = {"__name__": __name__, "np": np, "prange": numba.prange, "CHUNK": CHUNK, "CRANK": CRANK, "POINT": POINT,
            "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP}

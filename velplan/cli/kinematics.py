@@ -34,7 +34,7 @@ def register(sub) -> None:
                        help="N positions evenly spaced from the reference position (default 12)")
     p.add_argument("--format", choices=("table", "csv", "json"), default="table")
     p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
-                   help="solver engine: compiled needs numba (pip install 'velplan[fast]'); "
+                   help="solver engine: compiled needs numba (pip install numba); "
                         "auto uses it from 2e6 angles when installed (default)")
     add_output(p)
     p.set_defaults(run=run_analyze)

@@ -14,7 +14,7 @@ from pathlib import Path
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
 
-_INSTALL_HINT = "pip install velplan[export]"
+_INSTALL_HINT = "pip install cairosvg (in a checkout: pip install '.[export]')"
 
 
 def write_svg(svg_text: str, path: str | os.PathLike) -> Path:
