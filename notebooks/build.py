@@ -1,11 +1,12 @@
 """Build the teaching notebooks of velplan, reproducibly, without outputs.
 
-    python notebooks/build.py            # (re)writes notebooks/*.ipynb
-    python notebooks/build.py OUTDIR     # writes them to OUTDIR instead
+    python notebooks/build.py                 # (re)writes notebooks/*.ipynb, executed
+    python notebooks/build.py OUTDIR          # writes them to OUTDIR instead
+    python notebooks/build.py --no-execute    # without outputs (fast)
 
-The notebooks are data generated here (fixed cell ids, no outputs, no execution counts), so
-the same script gives the same bytes; ``tests/test_notebooks.py`` checks that the stored
-notebooks are what this script writes, executes them and checks their readouts.
+The notebooks' sources are data generated here (fixed cell ids), stored executed with their
+outputs so that they read on a code host; ``tests/test_notebooks.py`` checks that the stored
+sources are what this script writes, executes them afresh and checks their readouts.
 
 Conventions the tests rely on:
 
@@ -1081,17 +1082,30 @@ NOTEBOOKS = {
 }
 
 
-def build(outdir: Path = HERE) -> list[Path]:
-    """Write every notebook to `outdir`; returns the files."""
+def build(outdir: Path = HERE, *, execute: bool = False) -> list[Path]:
+    """Write every notebook to `outdir`; returns the files. ``execute``: run each (kernel
+    python3, working directory ``notebooks/``) and store it with its outputs, so that it reads
+    on a code host without a kernel."""
     outdir = Path(outdir)
     written = []
     for stem, cells in NOTEBOOKS.items():
         path = outdir / f"{stem}.ipynb"
-        nbformat.write(notebook(stem, cells), str(path), version=4)
+        nb = notebook(stem, cells)
+        if execute:
+            from nbclient import NotebookClient
+
+            NotebookClient(nb, kernel_name="python3", timeout=300,
+                           resources={"metadata": {"path": str(HERE)}}).execute()
+            for cell in nb.cells:  # no timings or kernel ids: only what the cells printed or drew
+                cell.metadata.pop("execution", None)
+            # the kernel's versions are the machine's, not the notebook's
+            nb.metadata = nbformat.from_dict({"kernelspec": KERNEL, "language_info": LANGUAGE})
+        nbformat.write(nb, str(path), version=4)
         written.append(path)
     return written
 
 
 if __name__ == "__main__":
-    for path in build(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE):
+    args = [a for a in sys.argv[1:] if a != "--no-execute"]
+    for path in build(Path(args[0]) if args else HERE, execute="--no-execute" not in sys.argv):
         print(path)
