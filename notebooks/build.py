@@ -1,4 +1,4 @@
-"""Build the teaching notebooks of velplan, reproducibly, without outputs.
+"""Build the teaching notebooks of velplan, reproducibly, and run them to store their outputs.
 
     python notebooks/build.py                 # (re)writes notebooks/*.ipynb, executed
     python notebooks/build.py OUTDIR          # writes them to OUTDIR instead

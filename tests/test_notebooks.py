@@ -7,7 +7,7 @@ computed here, independently of the plans: from the analytic solver (``velplan.s
 from closed forms (V_A = ω1·l1, aᵏ = 2·ω·V_rel, the shaper's extreme crank angle and
 stroke, the four-bar's transmission angle). A readout this file does not know fails too, so
 no number reaches a student unchecked. The stored notebooks are exactly what
-``notebooks/build.py`` writes, without outputs.
+``notebooks/build.py`` writes (their outputs aside: they are stored executed).
 """
 
 from __future__ import annotations
