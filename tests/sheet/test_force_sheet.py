@@ -8,6 +8,7 @@ import re
 import numpy as np
 import pytest
 
+import velplan
 from velplan.sheets import drawings
 from velplan.cli import main
 from velplan.errors import ScaleError, VelplanError
@@ -221,7 +222,7 @@ def test_text_names_scales_groups_and_positions(name, force_sheets):
     sheet = force_sheets[name]
     text = force_sheet_text(sheet)
     mech = sheet.mechanism
-    assert sheet.info.title == f"Силовой анализ механизма: {name}"
+    assert sheet.info.title == f"Силовой анализ механизма: {velplan.load(name).name_in('ru')}"
     assert "Силовой анализ" in text  # the title block wraps it
     for k in sheet.positions:
         assert re.search(rf"^Положение {k}: φ = ", text, flags=re.M)

@@ -74,3 +74,16 @@ def test_values_read_off_the_plans_are_within_half_the_drafting_step():
             assert abs(read - exact) <= 0.5 * PRECISION_MM * res.scale * (1 + 1e-9), (name, point)
             count += 1
     assert count >= 20
+
+
+def test_the_title_names_the_mechanism_in_the_sheets_language(tmp_path):
+    study = velplan.Study("shaper")
+    assert build_sheet(study, lang="ru").info.title == "Кинематический анализ механизма: поперечно-строгальный станок"
+    assert build_sheet(study, lang="zh").info.title == "机构运动分析: 牛头刨床"
+    from importlib.resources import files
+
+    src = (files("velplan.examples") / "crank-slider.toml").read_text("utf-8")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(src.replace('zh = "曲柄滑块机构"', 'de = "Schubkurbel"'))
+    with pytest.raises(velplan.MechanismError, match=r"^\[names\]: unknown language 'de'; known languages: en, ru, uk, zh$"):
+        velplan.load(bad)

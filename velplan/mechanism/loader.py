@@ -32,7 +32,7 @@ from velplan.mechanism.structure import point_owners, schedule
 
 _TOP_KEYS = {
     "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
-    "point", "link", "gravity", "load", "dynamics",
+    "point", "link", "gravity", "load", "dynamics", "names",
 }
 
 
@@ -115,6 +115,7 @@ def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
         gravity=_finite(data.get("gravity", 9.81), "gravity"),
         loads=tuple(_list(data, "load")),
         dynamics=_table(data, "dynamics") or None,
+        names=_names_table(_table(data, "names")),
     )
     _check_names(mech)
     return mech
@@ -297,6 +298,18 @@ def _check_names(mech: Mechanism) -> None:
             raise MechanismError(f"output: unknown link {mech.output.link!r}; known links: {', '.join(links)}")
 
 
+def _names_table(t: dict) -> tuple[tuple[str, str], ...]:
+    """``[names]``: the mechanism's name per sheet language (en, ru, uk, zh)."""
+    out = []
+    for lang, text in t.items():
+        if lang not in SHEET_LANGUAGES:
+            raise MechanismError(f"[names]: unknown language {lang!r}; known languages: {', '.join(SHEET_LANGUAGES)}")
+        if not isinstance(text, str) or not text.strip():
+            raise MechanismError(f"[names] {lang} must be a non-empty string, not {text!r}")
+        out.append((lang, text.strip()))
+    return tuple(out)
+
+
 def _new_points(g: Group) -> list[str]:
     """The point names a group brings, each once (a name given twice in one group is an error)."""
     from velplan.mechanism.structure import points_out
@@ -355,6 +368,8 @@ def _opt_name(t: dict, key: str) -> str | None:
     return None if v in (None, "") else str(v)
 
 
+SHEET_LANGUAGES = ("en", "ru", "uk", "zh")
+"""Languages a ``[names]`` table may give (those of the sheets)."""
 SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100}
 """Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""
 MAGNITUDE = 1e9

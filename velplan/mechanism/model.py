@@ -249,6 +249,9 @@ class Mechanism:
         Raw load declarations, interpreted by the force analysis.
     dynamics : dict or None
         The raw ``[dynamics]`` section, interpreted by `velplan.dynamics`.
+    names : tuple of (str, str)
+        The mechanism's name in the sheets' languages (``[names]``: ``ru = "Строгальный
+        станок"``), for the title block; a sheet in another language writes ``name``.
     """
 
     name: str
@@ -264,6 +267,11 @@ class Mechanism:
     gravity: float = 9.81
     loads: tuple = ()
     dynamics: dict | None = field(default=None, compare=False)
+    names: tuple[tuple[str, str], ...] = ()
+
+    def name_in(self, lang: str) -> str:
+        """The mechanism's name in ``lang`` (``[names]``), else its ``name``."""
+        return dict(self.names).get(lang) or self.name
 
     @property
     def ground_points(self) -> dict[str, tuple[float, float]]:

@@ -72,7 +72,7 @@ class DynamicsSheet(SheetOutput):
 def default_dynamics_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
     """Title block of the dynamics sheet: the third document of the course work."""
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
-    return TitleInfo(title=f"{label('dynamic_analysis', lang)}: {mech.name}",
+    return TitleInfo(title=f"{label('dynamic_analysis', lang)}: {mech.name_in(lang)}",
                      designation=f"{prefix}.{mech.name}.03", scale=scale)
 
 

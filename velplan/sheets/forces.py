@@ -116,7 +116,7 @@ def default_force_positions(fa) -> tuple[int, ...]:
 def default_force_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
     """Title block of the force sheet: the second document of the course work."""
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
-    return TitleInfo(title=f"{label('force_analysis', lang)}: {mech.name}",
+    return TitleInfo(title=f"{label('force_analysis', lang)}: {mech.name_in(lang)}",
                      designation=f"{prefix}.{mech.name}.02", scale=scale)
 
 

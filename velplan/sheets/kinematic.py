@@ -131,7 +131,7 @@ def default_title(mech: Mechanism, lang: str, fmt: str, scale: str,
                   frame_style: str) -> TitleInfo:
     """Title block filled with what velplan knows; no date (velplan never reads the clock)."""
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
-    return TitleInfo(title=f"{label('kinematic_analysis', lang)}: {mech.name}",
+    return TitleInfo(title=f"{label('kinematic_analysis', lang)}: {mech.name_in(lang)}",
                      designation=f"{prefix}.{mech.name}.01", scale=scale)
 
 
