@@ -150,5 +150,29 @@ def test_batch_needs_a_table_or_random(tmp_path, capsys):
     assert main(["batch", "-o", str(tmp_path / "x")]) == 2
     assert "give a variant table or --random N" in capsys.readouterr().err
     assert main(["batch", "--random", "2", "--base", "shaper", "-o", str(tmp_path / "x")]) == 2
-    with pytest.raises(VelplanError, match="use a .csv or .toml file"):
+    with pytest.raises(VelplanError, match="use a .csv, .xlsx or .toml file"):
         batch.read_variants(__file__)
+
+
+def test_an_excel_workbook_reads_like_its_csv(tmp_path):
+    openpyxl = pytest.importorskip("openpyxl")
+    rows = [["variant", "base", "crank.length", "link.6.mass", "positions"],
+            ["A-1", "shaper", 0.15, 50, 12],
+            ["A-2", "shaper", 0.1605, None, 6],
+            ["текст", "shaper", "0.17", 48.5, 12]]
+    book = openpyxl.Workbook()
+    sheet = book.active
+    for r in rows:
+        sheet.append(r)
+    book.create_sheet("notes").append(["ignored"])  # only the first sheet is read
+    xlsx = tmp_path / "variants.xlsx"
+    book.save(xlsx)
+    csv_path = tmp_path / "variants.csv"
+    csv_path.write_text("variant,base,crank.length,link.6.mass,positions\n"
+                        "A-1,shaper,0.15,50,12\nA-2,shaper,0.1605,,6\nтекст,shaper,0.17,48.5,12\n", "utf-8")
+    got, want = batch.read_variants(xlsx), batch.read_variants(csv_path)
+    assert [(v.name, v.base, v.overrides) for v in got] == [(v.name, v.base, v.overrides) for v in want]
+    bad = tmp_path / "bad.xlsx"
+    bad.write_text("not a workbook")
+    with pytest.raises(VelplanError, match=r"^cannot read workbook .*bad\.xlsx"):
+        batch.read_variants(bad)

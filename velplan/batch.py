@@ -107,9 +107,16 @@ class BatchReport:
 
 
 def read_variants(source: str | Path, *, base: str | None = None) -> list[Variant]:
-    """Read a variant table (CSV or TOML); raises `VelplanError` only for an unreadable file —
-    bad cells are found when each variant is built, so the others still run."""
+    """Read a variant table (CSV, an Excel workbook's first sheet, or TOML); raises
+    `VelplanError` only for an unreadable file — bad cells are found when each variant is
+    built, so the others still run."""
     path = Path(source)
+    if path.suffix.lower() == ".xlsx":
+        from velplan.xlsx import read_rows
+
+        buf = io.StringIO()
+        csv.writer(buf, lineterminator="\n").writerows(read_rows(path))
+        return _read_csv(buf.getvalue(), path, base)
     try:
         text = path.read_text("utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
@@ -118,7 +125,7 @@ def read_variants(source: str | Path, *, base: str | None = None) -> list[Varian
         return _read_toml(text, path, base)
     if path.suffix.lower() in (".csv", ".txt"):
         return _read_csv(text, path, base)
-    raise VelplanError(f"variant table {path}: use a .csv or .toml file, not {path.suffix or 'no suffix'!r}")
+    raise VelplanError(f"variant table {path}: use a .csv, .xlsx or .toml file, not {path.suffix or 'no suffix'!r}")
 
 
 def _read_csv(text: str, path: Path, base: str | None) -> list[Variant]:

@@ -11,9 +11,9 @@ from velplan.plans.text import LANGS
 
 
 def register(sub) -> None:
-    p = sub.add_parser("batch", help="sheets and an answer key for a table of variants (CSV/TOML) or random variants")
+    p = sub.add_parser("batch", help="sheets and an answer key for a table of variants (CSV, Excel or TOML) or random variants")
     p.add_argument("table", metavar="VARIANTS", nargs="?",
-                   help="variant table: .csv (variant,base,key…) or .toml ([[variant]] tables)")
+                   help="variant table: .csv (variant,base,key…), .xlsx (the same columns on its first sheet) or .toml ([[variant]] tables)")
     p.add_argument("-o", "--output", metavar="DIR", default="batch",
                    help="output directory (created if its parent exists; default ./batch)")
     p.add_argument("--base", metavar="MECH", help="base mechanism for rows without one (and for --random)")
