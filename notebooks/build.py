@@ -969,7 +969,8 @@ NB06 = [
     * how random variants are drawn from (student, assignment) so that the same pair always
       gives the same variant, on any machine;
     * how a batch writes the answer key, and how a student's table is graded against it;
-    * how a sheet becomes a DXF file with a layer per line type, checked by ezdxf's audit.
+    * how a sheet becomes a DXF file with a layer per line type, checked by ezdxf's audit;
+    * how the interactive page shows the plans over the whole turn, step by step.
     """),
     code("""
     import io
@@ -1059,6 +1060,28 @@ NB06 = [
     print("entity types:", ", ".join(kinds))
     print(f"DXF audit errors = {len(auditor.errors)}")
     print(f"DXF units code = {doc.header['$INSUNITS']}")
+    """, "readout"),
+    md("""
+    ## The interactive page
+
+    `velplan html NAME -o page.html` writes one self-contained page (no network): a slider over
+    the crank's positions, the scheme and both plans, and the construction step by step. Here
+    it is shown inline; it needs no kernel once the notebook is saved.
+    """),
+    code("""
+    from IPython.display import display
+    from velplan.html import Page
+
+    import json
+    import re
+
+    page = Page("shaper-lever-ram", positions=24, lang="en")
+    display(page)
+    data = json.loads(re.search(r'<script type="application/json" id="velplan-data">(.*?)</script>',
+                                page.html, re.S).group(1))
+    print(f"page positions = {len(data['phi'])}")
+    print(f"first crank angle on the page = {data['phi'][0]} deg")
+    print(f"network addresses in the page = {page.html.count('http://') + page.html.count('https://')}")
     """, "readout"),
     md("""
     ## Exercises

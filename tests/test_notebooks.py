@@ -503,6 +503,9 @@ def expected_06() -> Expected:
         "entries wrong": Near(1, 0),
         "DXF audit errors": Near(0, 0),
         "DXF units code": Near(4, 0),  # $INSUNITS 4 = millimetres
+        "page positions": Near(24, 0),
+        "first crank angle on the page": Near(math.degrees(velplan.Study("shaper-lever-ram", n=24).phi[0]) % 360, 0.006),
+        "network addresses in the page": Near(0, 0),
     }
     assert len(catalogue_names()) >= 20
     crank = (re.compile(r"variant \d+ crank length"), lambda m: Within(0.9 * r * 0.995, 1.1 * r * 1.005))
