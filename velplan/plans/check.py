@@ -128,6 +128,19 @@ MC_RUNS = 400
 """Monte-Carlo drafts per position used to set the tolerance of each entry."""
 
 
+def position_count(head: list[str]) -> int:
+    """The number of positions N of a table whose position headers are ``1…N`` (a repeated
+    ``1`` at the end, as course works close the table, is not counted); `TableError` else."""
+    n = len(head) - (1 if len(head) > 1 and head[-1] == head[0] else 0)
+    try:
+        numbers = [int(float(c)) for c in head[:n]]
+    except ValueError:
+        raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
+    if numbers != list(range(1, n + 1)):
+        raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
+    return n
+
+
 def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = None,
                 drafting: Drafting = Drafting(), seed: int = 2026) -> CheckReport:
     """Compare a hand-made table with the exact transfer functions and explain the outliers.
@@ -141,13 +154,7 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
     on the plan).
     """
     head, table = read_table(source)
-    n = len(head) - (1 if len(head) > 1 and head[-1] == head[0] else 0)
-    try:
-        numbers = [int(float(c)) for c in head[:n]]
-    except ValueError:
-        raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
-    if numbers != list(range(1, n + 1)):
-        raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
+    n = position_count(head)
     phi = positions(mech, n)
     kin = solve(mech, phi)
     mu = check_scale(scale_v, "--scale-v") if scale_v is not None else auto_scale(kin, np.arange(n), "velocity")

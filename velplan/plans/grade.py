@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from velplan.errors import TableError
-from velplan.plans.check import _LINK, _POINT, _decimals, read_table
+from velplan.plans.check import _LINK, _POINT, _decimals, position_count, read_table
 
 
 @dataclass(frozen=True)
@@ -80,13 +80,7 @@ def grade_table(table: str | Path, key: str | Path, variant: str, *, tolerance: 
         raise TableError(f"tolerance must be between 0 and 100 %, not {100 * tolerance:g} %")
     answers = read_key(key, variant)
     head, rows = read_table(table)
-    n = len(head) - (1 if len(head) > 1 and head[-1] == head[0] else 0)
-    try:
-        numbers = [int(float(c)) for c in head[:n]]
-    except ValueError:
-        raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
-    if numbers != list(range(1, n + 1)):
-        raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
+    n = position_count(head)
     if n != answers["positions"]:
         raise TableError(f"the table has {n} positions; variant {variant} of the key has {answers['positions']}")
     entries = []
