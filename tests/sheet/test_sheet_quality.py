@@ -87,3 +87,16 @@ def test_the_title_names_the_mechanism_in_the_sheets_language(tmp_path):
     bad.write_text(src.replace('zh = "曲柄滑块机构"', 'de = "Schubkurbel"'))
     with pytest.raises(velplan.MechanismError, match=r"^\[names\]: unknown language 'de'; known languages: en, ru, uk, zh$"):
         velplan.load(bad)
+
+
+@pytest.mark.parametrize("fmt", ["A1", "A3"])
+def test_schemes_and_plans_fill_at_least_half_their_zones(studies, fmt):
+    """Each plan spans at least half its grid cell, and the scheme half of its share of the top
+    band, along one of the two directions (a standard scale one step larger would not fit)."""
+    for name in velplan.example_names():
+        sheet = build_sheet(studies[name], lang="en", fmt=fmt)
+        assert set(sheet.zones) == {"mechanism", *(k for k in sheet.views if k.startswith("plan-"))}
+        for view, (x0, y0, x1, y1) in sheet.zones.items():
+            b = sheet.views[view].bounds
+            share = max((b[2] - b[0]) / (x1 - x0), (b[3] - b[1]) / (y1 - y0))
+            assert share >= 0.5, (name, fmt, view, share)

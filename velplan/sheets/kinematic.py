@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 from typing import Literal, Mapping, Sequence
@@ -90,6 +90,9 @@ class Sheet(SheetOutput):
     frame_style: str
     style: SheetStyle
     info: TitleInfo
+    zones: Mapping[str, tuple] = field(default_factory=lambda: MappingProxyType({}))
+    """View name → the zone of the sheet it was fitted to (sheet mm): a plan's grid cell, the
+    scheme's share of the top band."""
 
 
 
@@ -253,19 +256,19 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
             if plan_region[2] - plan_region[0] < 40 or plan_region[3] - plan_region[1] < 40:
                 continue
             try:
-                plan_views, results, score = _fit_plans(study, chosen, kinds, lang, sizes,
-                                                        plan_region, g, fmt=fmt, drawn=drawn)
+                plan_views, results, score, cells = _fit_plans(study, chosen, kinds, lang, sizes,
+                                                               plan_region, g, fmt=fmt, drawn=drawn)
             except ScaleError as exc:
                 failure = failure or exc
                 continue
             if best is None or score > best[0]:
-                best = (score, mview, plan_views, results)
+                best = (score, mview, plan_views, results, cells)
             good = good or score >= GOOD_PLAN_MM[fmt]
         if good:
             break
     if best is None:
         raise failure
-    _, mview, plan_views, results = best
+    _, mview, plan_views, results, cells = best
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
     if data:
@@ -299,9 +302,11 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
         k for k in ("data", "readings", "diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
+    zones = dict(cells)
+    zones["mechanism"] = (top[0], top[1], top[0] + 0.62 * (top[2] - top[0]), top[3])
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),
                  MappingProxyType(results), MappingProxyType(index), chosen, n, fmt, lang,
-                 frame_style, style, info)
+                 frame_style, style, info, MappingProxyType(zones))
 
 
 def _free_spot(build, sizes, views, region, gap):
@@ -486,7 +491,7 @@ def _fit_plans(study: Study, chosen, kinds, lang, sizes: Sizes, region, gap, *, 
                          f"{MIN_PLAN_MM[fmt]:.0f} mm ({W:.0f} × {H:.0f} mm free); use fewer "
                          f"--plans or a larger --format")
     score, cols, order, cw, ch, fitted = best
-    placed, results = {}, {}
+    placed, results, zones = {}, {}, {}
     for j, (kind, number) in enumerate(order):
         res, view, _ = fitted[kind, number]
         results[view.name] = res
@@ -494,7 +499,8 @@ def _fit_plans(study: Study, chosen, kinds, lang, sizes: Sizes, region, gap, *, 
         cx = x0 + c * (cw + gap) + (cw - view.width_mm) / 2
         cy = y1 - r * (ch + gap) - ch + (ch - view.height_mm) / 2
         placed[view.name] = view.at(cx, cy)
-    return placed, results, score
+        zones[view.name] = (x0 + c * (cw + gap), y1 - r * (ch + gap) - ch, x0 + c * (cw + gap) + cw, y1 - r * (ch + gap))
+    return placed, results, score, zones
 
 
 def _standard_from(mu: float):
