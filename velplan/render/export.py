@@ -3,12 +3,21 @@
 Every write is atomic: the bytes go to a temporary file in the target's directory, which
 then replaces the target with :func:`os.replace`. A failed conversion or write leaves the
 directory as it was — no half-written file, an existing file untouched.
+
+Before cairosvg sees a sheet, its texts are fitted to what cairosvg can do
+(:func:`texts_for_cairo`): each gets the one font family that has all its characters
+(:mod:`velplan.render.fonts`; the bundled Velplan Sans when the named fonts lack some), and
+a centred or right-aligned text with indices (``<tspan>``) is measured and anchored at its
+start, since cairosvg would align each piece on its own. A character no font has is a
+one-line error rather than a box in the picture. The SVG written to disk keeps its
+font-family lists and anchors.
 """
 
 from __future__ import annotations
 
 import importlib
 import os
+import re
 from pathlib import Path
 
 from velplan.errors import VelplanError
@@ -109,9 +118,126 @@ def _cairosvg():
 
 def _convert(function: str, svg_text: str, **options) -> bytes:
     converter = getattr(_cairosvg(), function)
+    from velplan.render.fonts import CairoFonts, register_with_fontconfig
+
+    register_with_fontconfig()
+    fonts = CairoFonts(importlib.import_module("cairocffi"))
+    fitted = texts_for_cairo(svg_text, fonts, what=function.removeprefix("svg2").upper())
     try:
-        return converter(bytestring=svg_text.encode("utf-8"), **options)
+        return converter(bytestring=fitted.encode("utf-8"), **options)
     except Exception as exc:
         first_line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise VelplanError(f"cairosvg could not convert the sheet ({function}): "
                            f"{first_line}") from exc
+
+
+_SVG_NS = "{http://www.w3.org/2000/svg}"
+# Text properties a <text> inherits from its groups (presentation attributes only).
+_INHERITED = ("font-family", "font-size", "font-style", "text-anchor")
+
+
+def texts_for_cairo(svg_text: str, fonts, *, what: str = "PNG") -> str:
+    """The SVG document with its texts fitted to cairosvg.
+
+    Parameters
+    ----------
+    svg_text : str
+        The SVG document.
+    fonts : velplan.render.fonts.CairoFonts
+        Glyph coverage and advances as cairo sees them.
+    what : str
+        Name of the output, for the error message.
+
+    Returns
+    -------
+    str
+        The document, each ``<text>`` with a single font family that has all its
+        characters; a centred or right-aligned one with ``<tspan>`` children anchored at
+        its measured start.
+
+    Raises
+    ------
+    VelplanError
+        One line naming the characters no font has and the text they are in.
+    """
+    try:  # cairosvg's own dependency, hardened against entity expansion
+        from defusedxml import ElementTree
+    except ImportError:  # pragma: no cover - cairosvg brings it
+        from xml.etree import ElementTree
+
+    try:
+        root = ElementTree.fromstring(svg_text.encode("utf-8"))
+    except Exception as exc:
+        raise VelplanError(f"cannot convert to {what}: the SVG does not parse "
+                           f"({type(exc).__name__}: {exc})") from exc
+    problems = [problem for element, props in _text_elements(root, {})
+                if (problem := _fit_text(element, props, fonts))]
+    if problems:
+        raise VelplanError(_missing_glyphs_message(problems, what))
+    from xml.etree import ElementTree as SerialTree
+
+    return SerialTree.tostring(root, encoding="unicode")
+
+
+def _text_elements(element, inherited: dict):
+    """Each ``<text>`` under `element`, with the text properties it inherits, in order."""
+    props = {**inherited, **{k: element.get(k) for k in _INHERITED if element.get(k)}}
+    if element.tag == _SVG_NS + "text":
+        yield element, props
+        return
+    for child in element:
+        yield from _text_elements(child, props)
+
+
+def _fit_text(element, props: dict, fonts) -> tuple[str, str, list[str]] | None:
+    """Give a ``<text>`` the family that covers it (and a start anchor if it has pieces);
+    or return (text, characters no family has, the families tried)."""
+    from velplan.render.fonts import css_families
+
+    text = "".join(element.itertext())
+    families = css_families(props.get("font-family"))
+    italic = props.get("font-style") in ("italic", "oblique")
+    family = fonts.choose_family(families, text, italic=italic)
+    if family is None:
+        tried = fonts.usable(families)
+        lacking = "".join(c for c in fonts.missing(tried[0], text, italic=italic)
+                          if all(fonts.missing(f, c, italic=italic) for f in tried))
+        return text, lacking, tried
+    element.set("font-family", family)
+    if len(element) and props.get("text-anchor") in ("middle", "end"):
+        _anchor_at_start(element, props, family, italic, fonts)
+    return None
+
+
+def _anchor_at_start(element, props: dict, family: str, italic: bool, fonts) -> None:
+    """Turn a centred or right-aligned text made of pieces into a start-anchored one at
+    the same place (cairosvg aligns each ``<tspan>`` by itself); leave it as it is when its
+    position or sizes are not plain numbers."""
+    try:
+        x, size = float(element.get("x")), float(props["font-size"])
+        pieces = [(element.text or "", size)]
+        for child in element:
+            if len(child):
+                return
+            pieces += [(child.text or "", float(child.get("font-size", size))),
+                       (child.tail or "", size)]
+    except (TypeError, ValueError, KeyError):
+        return
+    width = sum(fonts.advance(family, re.sub(r"\s+", " ", t), s, italic=italic)
+                for t, s in pieces)
+    shift = width / 2.0 if props["text-anchor"] == "middle" else width
+    element.set("x", f"{x - shift:.3f}")
+    element.set("text-anchor", "start")
+
+
+def _missing_glyphs_message(problems: list[tuple[str, str, list[str]]], what: str) -> str:
+    """One line: the first text that cannot be drawn, what it lacks, what was tried."""
+    text, lacking, tried = problems[0]
+    if lacking:
+        what_lacks = "no installed font has " + ", ".join(
+            f"{c} (U+{ord(c):04X})" for c in lacking[:5])
+    else:
+        what_lacks = "no installed font has all of its characters"
+    more = f"; and {len(problems) - 1} more text(s)" if len(problems) > 1 else ""
+    return (f"cannot draw the text {text[:40]!r} in the {what}: {what_lacks} (tried "
+            f"{', '.join(tried)}){more}; install a font that has it, or change the text")

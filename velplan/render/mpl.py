@@ -18,6 +18,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from velplan.render.canvas import render
+from velplan.render.fonts import GENERIC_FAMILIES, candidate_families, register_with_matplotlib
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import (
     Stroke, arrow_shape, arrow_size, circle_outline, hatch_segments, hatch_stroke,
@@ -32,16 +33,16 @@ _POINTS_PER_INCH = 72.0
 __all__ = ["MplCanvas", "render"]
 
 
-_GENERIC_FAMILIES = frozenset({"serif", "sans-serif", "cursive", "fantasy", "monospace"})
-
-
 def _installed_families(families: tuple[str, ...]) -> list[str]:
-    """The families matplotlib can find, in order (skipping the rest avoids its warnings)."""
+    """The families matplotlib can find, in order, with the bundled Velplan Sans among them
+    as in PNG and PDF sheets (:func:`velplan.render.fonts.candidate_families`); skipping the
+    rest avoids matplotlib's warnings. matplotlib falls back glyph by glyph along the list."""
     from matplotlib import font_manager
 
+    register_with_matplotlib()
     known = {f.name for f in font_manager.fontManager.ttflist}
-    found = [f for f in families if f in known or f in _GENERIC_FAMILIES]
-    return found or ["sans-serif"]
+    return [f for f in candidate_families(list(families))
+            if f in known or f.lower() in GENERIC_FAMILIES]
 
 
 class MplCanvas:

@@ -7,6 +7,7 @@ millimetres, origin at the bottom-left corner, y up; angles are degrees, counter
 
 from __future__ import annotations
 
+import functools
 import math
 import unicodedata
 from typing import TYPE_CHECKING, NamedTuple
@@ -24,6 +25,12 @@ NARROW_CHAR_WIDTH = 0.7
 WIDE_CHAR_WIDTH = 1.0
 #: Depth of descenders below the baseline, as a fraction of the text height.
 DESCENDER_DEPTH = 0.25
+#: Size of an index (sub- or superscript) drawn as a shifted character, relative to the text.
+SCRIPT_SCALE = 0.7
+#: How far an index's baseline is moved from the text's, as a fraction of the text height:
+#: down for a subscript (its digits stay above the descender line), up for a superscript.
+SUBSCRIPT_DROP = 0.25
+SUPERSCRIPT_RISE = 0.45
 # Head length over full head width: an opening angle of 2·atan(1/6) ≈ 19°.
 _HEAD_LENGTH_PER_WIDTH = 3.0
 
@@ -191,6 +198,61 @@ def is_wide_char(char: str) -> bool:
     return unicodedata.east_asian_width(char) in ("W", "F")
 
 
+class TextRun(NamedTuple):
+    """A piece of a text drawn at one size and baseline.
+
+    Attributes
+    ----------
+    text : str
+        The characters, indices already turned into the plain ones ("₅" → "5").
+    script : {"", "sub", "super"}
+        "" for the text's own size and baseline, else an index drawn at
+        :data:`SCRIPT_SCALE` of the size, moved by :data:`SUBSCRIPT_DROP` or
+        :data:`SUPERSCRIPT_RISE`.
+    """
+
+    text: str
+    script: str
+
+
+@functools.lru_cache(maxsize=4096)
+def script_of(char: str) -> tuple[str, str]:
+    """The plain character and script ("sub", "super" or "") of one character.
+
+    Unicode subscripts ("₅", "ₐ") and the superscripts outside Latin-1 ("ⁿ", "ᵏ", "ʳ") are
+    drawn as shifted plain characters: CJK fonts lack most of them. "²", "³" and the
+    ordinals are in every font and stay as they are.
+    """
+    kind, _, code = unicodedata.decomposition(char).partition(" ")
+    if " " in code or not code:
+        return char, ""
+    if kind == "<sub>":
+        return chr(int(code, 16)), "sub"
+    if kind == "<super>" and ord(char) > 0xFF:
+        return chr(int(code, 16)), "super"
+    return char, ""
+
+
+def text_runs(text: str) -> tuple[TextRun, ...]:
+    """Split `text` into runs of one script each; a text without indices is one run.
+
+    Examples
+    --------
+    >>> text_runs("ω₂")
+    (TextRun(text='ω', script=''), TextRun(text='2', script='sub'))
+    >>> [run.text for run in text_runs("aⁿ_A4O3 = 2 м/с²")]
+    ['a', 'n', '_A4O3 = 2 м/с²']
+    """
+    runs: list[TextRun] = []
+    for char in text:
+        plain, script = script_of(char)
+        if runs and runs[-1].script == script:
+            runs[-1] = TextRun(runs[-1].text + plain, script)
+        else:
+            runs.append(TextRun(plain, script))
+    return tuple(runs)
+
+
 def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     """Estimated width and height of a one-line text, mm.
 
@@ -204,10 +266,15 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     Returns
     -------
     (float, float)
-        Width ≈ 0.7·h per Latin/Cyrillic character and 1.0·h per CJK character;
+        Width ≈ 0.7·h per Latin/Cyrillic character and 1.0·h per CJK character, an index
+        ("₅", "ⁿ") counted at :data:`SCRIPT_SCALE` of that, as backends draw it;
         height from the descender line to the capital line, 1.25·h.
     """
-    units = sum(WIDE_CHAR_WIDTH if is_wide_char(c) else NARROW_CHAR_WIDTH for c in text)
+    units = 0.0
+    for char in text:
+        plain, script = script_of(char)
+        width = WIDE_CHAR_WIDTH if is_wide_char(plain) else NARROW_CHAR_WIDTH
+        units += width * (SCRIPT_SCALE if script else 1.0)
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
 
 

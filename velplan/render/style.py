@@ -14,6 +14,7 @@ from types import MappingProxyType
 from typing import Literal, Mapping
 
 from velplan.errors import VelplanError
+from velplan.render.fonts import BUNDLED_FAMILY
 from velplan.render.i18n import LANGUAGES, Language
 
 LineType = Literal["thick", "thin", "construction", "axis", "hidden"]
@@ -31,11 +32,12 @@ MIN_TEXT_HEIGHT_MM = 1.8
 # per character; a normal-width sans runs ~20 % wider than that in Cyrillic.
 _LATIN_FONTS = ("DejaVu Sans Condensed", "Liberation Sans Narrow", "Arial Narrow",
                 "DejaVu Sans", "Arial", "sans-serif")
-# cairosvg uses only the first family of the list, so the first one must be the most
-# likely installed CJK face; browsers and matplotlib walk the rest as fallbacks.
+# An installed CJK face first, else the bundled Velplan Sans (which PNG and PDF sheets and
+# matplotlib always have, velplan.render.fonts), before any Latin face: cairosvg draws a
+# text with one font, and a sheet should not mix them. Browsers walk the list the same way.
 _CJK_FONTS = ("Noto Sans CJK SC", "Source Han Sans SC", "WenQuanYi Micro Hei",
-              "Microsoft YaHei", "SimHei", "PingFang SC", "DejaVu Sans Condensed",
-              "DejaVu Sans", "sans-serif")
+              "Microsoft YaHei", "SimHei", "PingFang SC", BUNDLED_FAMILY,
+              "DejaVu Sans Condensed", "DejaVu Sans", "sans-serif")
 
 DEFAULT_FONT_FAMILIES: Mapping[str, tuple[str, ...]] = MappingProxyType(
     {"en": _LATIN_FONTS, "ru": _LATIN_FONTS, "uk": _LATIN_FONTS, "zh": _CJK_FONTS})

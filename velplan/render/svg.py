@@ -21,8 +21,8 @@ import svgwrite
 from velplan.render.canvas import render
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import (
-    Stroke, arrow_shape, arrow_size, circle_outline, hatch_segments, hatch_stroke,
-    stroke_for, text_origin)
+    SCRIPT_SCALE, SUBSCRIPT_DROP, SUPERSCRIPT_RISE, Stroke, arrow_shape, arrow_size,
+    circle_outline, hatch_segments, hatch_stroke, stroke_for, text_origin, text_runs)
 from velplan.render.style import SheetStyle
 
 _INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
@@ -127,7 +127,33 @@ class SvgCanvas:
             attributes["font-style"] = "italic"
         if item.rotation_deg:
             attributes["transform"] = f"rotate({self._num(-item.rotation_deg)} {x} {y})"
-        self._add(item.layer, self._drawing.text(item.text, insert=(x, y), **attributes))
+        runs = text_runs(item.text)
+        first = runs[0].text if runs and not runs[0].script else ""
+        element = self._drawing.text(first, insert=(x, y), **attributes)
+        if len(runs) > 1 or first != item.text:
+            # Indices are drawn as shifted plain characters ("R24"): the label keeps its
+            # meaning ("R₂₄") for screen readers and for whoever searches the file.
+            element.attribs["aria-label"] = item.text
+            for tspan in self._index_tspans(runs[1:] if first else runs, item.size_mm):
+                element.add(tspan)
+        self._add(item.layer, element)
+
+    def _index_tspans(self, runs, size_mm: float) -> list:
+        """Tspans for the runs after a text's first plain one: indices smaller and moved off
+        the baseline by ``dy`` (which cairosvg, browsers and Inkscape all follow), the text
+        after an index moved back."""
+        tspans, shift = [], 0.0
+        for run in runs:
+            target = {"sub": SUBSCRIPT_DROP, "super": -SUPERSCRIPT_RISE, "": 0.0}[run.script]
+            attributes = {}
+            if target != shift:
+                attributes["dy"] = [self._num((target - shift) * size_mm)]
+            if run.script:
+                attributes["font-size"] = self._num(
+                    self.style.font_size_em(size_mm * SCRIPT_SCALE))
+            tspans.append(self._drawing.tspan(run.text, **attributes))
+            shift = target
+        return tspans
 
     def finish(self) -> str:
         """Return the SVG document as a string (UTF-8 XML with declaration)."""
