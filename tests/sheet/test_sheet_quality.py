@@ -1,12 +1,14 @@
 """Every sheet of every bundled example, in the four languages: no text over text (estimated
-boxes overlapping by more than 0.5 mm²), every text inside the frame, and the data block and
-the title in the sheet's language."""
+boxes overlapping by more than 0.5 mm²), every text inside the frame and every glyph in the
+bundled font; plans and schemes filling their zones; the data block, the readings and the
+title in the sheet's language."""
 
 import numpy as np
 import pytest
 import shapely
 
 import velplan
+from velplan.render.fonts import missing_in_bundled
 from velplan.render.layout import label_box, overlapping_labels
 from velplan.render.scene import Text
 from velplan.sheets.dynamics import build_dynamics_sheet
@@ -40,6 +42,7 @@ def test_no_text_over_text_and_all_inside_the_frame(studies, lang):
         assert not pairs, (name, kind, [(a.text, b.text) for a, b in pairs[:5]])
         for t in sheet.scene.of_kind(Text):
             assert frame.contains(label_box(t)), (name, kind, t.text)
+            assert not missing_in_bundled(t.text), (name, kind, t.text)  # every glyph in Velplan Sans
 
 
 def test_all_twelve_velocity_plans_on_one_sheet(tmp_path, capsys):
