@@ -26,7 +26,7 @@ from velplan.render.style import SheetStyle
 from velplan.study import Study
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
 from velplan.html.text import templates
-from velplan.views.base import eskd_scales, ratio_text, scale_text, subscript, unit
+from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
 from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
 from velplan.views.plan import image_letters, plan_steps
 from velplan.views.steps import readable
@@ -96,7 +96,7 @@ def scheme_frames(study: Study, lang: str, style: SheetStyle) -> dict:
         frames.append(frame)
     box = extent(under + shared + [r for recs in per_position for r in recs or ()])
     return {"mu_l": mu_l, "scale": scale_text("μl", mu_l, "m/mm", lang) +
-            f"  ({'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l)})",
+            f"  ({scale_mark(mu_l, lang)})",
             "under": under, "shared": shared, "frames": frames, "box": _padded(box)}
 
 

@@ -31,7 +31,7 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.sheets.layout import FORMATS, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits
 from velplan.study import Study
-from velplan.views.base import PlacedView, View, eskd_scales, ratio_text, unit
+from velplan.views.base import PlacedView, View, eskd_scales, ratio_text, scale_mark, unit
 from velplan.views.dynamics import (
     DynamicsSizes, Series, curve_panel, flywheel_view, results_rows, results_view, wittenbauer_view)
 
@@ -196,7 +196,7 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
         table = results_view(results_rows(d, wit, lang), lang=lang, size_mm=table.meta["size_mm"],
                              title_mm=base.table_title)
         views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
-    scale = ratio_text(scales["flywheel"]) if "flywheel" in scales else ""
+    scale = ratio_text(scales["flywheel"], lang) if "flywheel" in scales else ""
     if info is None:
         info = default_dynamics_title(mech, lang, scale)
     elif not info.scale and scale:
@@ -245,7 +245,7 @@ def _fit_flywheel(dims, lang, sizes, region) -> View | None:
     for mu in eskd_scales():
         if dims.outer / mu > 0.8 * h:
             continue
-        view = flywheel_view(dims, scale=mu, lang=lang, sizes=sizes, scale_text=f"{'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu)}")
+        view = flywheel_view(dims, scale=mu, lang=lang, sizes=sizes, scale_text=scale_mark(mu, lang))
         if fits(view, w, h):
             return view
     return None

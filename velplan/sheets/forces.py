@@ -235,9 +235,9 @@ def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequ
     scales.update(top_scales)
 
     if info is None:
-        info = default_force_title(mech, lang, ratio_text(scales["mu_l"]))
+        info = default_force_title(mech, lang, ratio_text(scales["mu_l"], lang))
     elif not info.scale:
-        info = replace(info, scale=ratio_text(scales["mu_l"]))
+        info = replace(info, scale=ratio_text(scales["mu_l"], lang))
     check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = [k for k in views if k not in ("mb-diagram", "table")] + [

@@ -292,10 +292,10 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     for name, res in results.items():
         scales[name] = res.scale
     if info is None:
-        info = default_title(mech, lang, fmt, ratio_text(mview.mu), frame_style)
+        info = default_title(mech, lang, fmt, ratio_text(mview.mu, lang), frame_style)
     elif not info.scale:
         from dataclasses import replace
-        info = replace(info, scale=ratio_text(mview.mu))
+        info = replace(info, scale=ratio_text(mview.mu, lang))
     check_layout(views, fmt, frame_style)
     scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [

@@ -238,12 +238,21 @@ def eskd_scales() -> tuple[float, ...]:
     return tuple(0.001 * b / a for a, b in ESKD_RATIOS)
 
 
-def ratio_text(mu_l: float) -> str:
-    """The ESKD scale of μl (m/mm) as written in the title block: ``0.0025`` → ``"1:2,5"``."""
+def ratio_text(mu_l: float, lang: str = "ru") -> str:
+    """The ESKD scale of μl (m/mm) as written in the title block: ``0.0025`` → ``"1:2,5"``
+    (a decimal comma in ru and uk, a point otherwise)."""
+    comma = lang in ("ru", "uk")
     for a, b in ESKD_RATIOS:
         if math.isclose(0.001 * b / a, mu_l, rel_tol=1e-9):
-            return f"{a:g}:{b:g}".replace(".", ",")
-    return f"1:{1000 * mu_l:g}".replace(".", ",")
+            text = f"{a:g}:{b:g}"
+            return text.replace(".", ",") if comma else text
+    text = f"1:{1000 * mu_l:g}"
+    return text.replace(".", ",") if comma else text
+
+
+def scale_mark(mu_l: float, lang: str) -> str:
+    """The scale as a drawing writes it: ``"М 1:2,5"`` (Cyrillic М in ru, uk), ``"M 1:2.5"``."""
+    return f"{'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l, lang)}"
 
 
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,

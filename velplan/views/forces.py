@@ -48,7 +48,7 @@ from velplan.views.table import grid_table
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
 from velplan.views.base import (
-    View, bounds_of, digits_down, fixed, make_view, place_labels, ratio_text,
+    View, bounds_of, digits_down, fixed, make_view, place_labels, scale_mark,
     scale_text, subscript, unit)
 from velplan.views.base import number as _num
 
@@ -477,7 +477,7 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
     items += _title_lines(items, [
         (head, sizes.title_mm),
         (scale_text("μl", mu_l, "m/mm", lang)
-         + f" ({'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l)})", sizes.label_mm)],
+         + f" ({scale_mark(mu_l, lang)})", sizes.label_mm)],
         text_layer)
     return make_view(f"group-{number}-{slug(group)}", items, pad_mm=2.0, mu=mu_l,
                      origin=(0.0, 0.0),

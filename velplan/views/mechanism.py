@@ -29,7 +29,7 @@ from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
 from velplan.views.base import (
-    View, bounds_of, digits_down, make_view, place_labels, ratio_text, scale_text, subscript)
+    View, bounds_of, digits_down, make_view, place_labels, scale_mark, scale_text, subscript)
 
 #: Slider block length and width, mm.
 BLOCK_MM = (12.0, 7.0)
@@ -400,7 +400,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                           f"{label('position', lang)} {thick}" if single
                           else label("mechanism_positions", lang), "labels", sizes.title_mm))
         items.append(Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) +
-                          f"  ({'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l)})", "labels", sizes.label_mm))
+                          f"  ({scale_mark(mu_l, lang)})", "labels", sizes.label_mm))
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
 
