@@ -103,3 +103,23 @@ def test_schemes_and_plans_fill_at_least_half_their_zones(studies, fmt):
             b = sheet.views[view].bounds
             share = max((b[2] - b[0]) / (x1 - x0), (b[3] - b[1]) / (y1 - y0))
             assert share >= 0.5, (name, fmt, view, share)
+
+
+def test_texts_keep_off_the_drawn_lines(studies):
+    """Estimated text boxes crossed by a thick line or a vector over more than 1 mm: at most
+    one per sheet (a position number where a curve crosses the φ axis at that very tick, a
+    letter squeezed between vectors; before the numbers moved off the curves, 4 to 8)."""
+    from velplan.render.scene import Arrow, Polyline
+
+    for name, kind, sheet in _sheets(studies, "ru"):
+        lines = [shapely.LineString(p.points) for p in sheet.scene.primitives
+                 if isinstance(p, Polyline) and p.line == "thick"]
+        lines += [shapely.LineString([p.start, p.end]) for p in sheet.scene.primitives
+                  if isinstance(p, Arrow) and p.length > 0]
+        tree = shapely.STRtree(lines)
+        crossed = []
+        for t in sheet.scene.of_kind(Text):
+            box = label_box(t)
+            if any(lines[j].intersection(box).length > 1.0 for j in tree.query(box, predicate="intersects")):
+                crossed.append(t.text)
+        assert len(crossed) <= 1, (name, kind, crossed)

@@ -255,6 +255,33 @@ def scale_mark(mu_l: float, lang: str) -> str:
     return f"{'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l, lang)}"
 
 
+def axis_numbers_clear(items: list, curves) -> list:
+    """Position numbers hung under a φ axis (``baseline="top"``) kept clear: the one under the
+    origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
+    mirrored about it; ``curves`` are polylines' points in the same mm. Other primitives pass
+    unchanged."""
+    import shapely
+
+    from velplan.render.layout import label_box
+    from velplan.render.scene import Text
+
+    lines = [shapely.LineString(c) for c in curves if len(c) >= 2]
+    if not lines:
+        return items
+    field = shapely.STRtree(lines)
+    out = []
+    for p in items:
+        if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0:
+            if abs(p.position[0]) < 1e-9:  # under the origin: beside the ordinate axis instead
+                p = _moved(p, position=(0.8, p.position[1]), anchor="start")
+            if len(field.query(label_box(p), predicate="intersects")):
+                up = _moved(p, position=(p.position[0], -p.position[1]), baseline="baseline")
+                if not len(field.query(label_box(up), predicate="intersects")):
+                    p = up
+        out.append(p)
+    return out
+
+
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
                  rings: int = 8) -> tuple:
     """Move labels, in order, clear of `obstacles` and of the labels placed before them.

@@ -22,7 +22,7 @@ from velplan.errors import ScaleError
 from velplan.plans.scale import standard_scale
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.views.base import View, make_view, number, scale_text, unit
+from velplan.views.base import View, axis_numbers_clear, make_view, number, scale_text, unit
 
 Arrangement = Literal["row", "column"]
 
@@ -170,8 +170,11 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: 
                 items.append(Polyline([(-H, 0.0), (0.0, float(yi))], "diagram-lines",
                                       "construction"))
     # curves: analytic thin dashed, graphical thick through its points
-    items.append(Polyline(np.column_stack([fx / sc.mu_phi, fy / mu]), "diagram", "hidden"))
-    items.append(Polyline(np.column_stack([gx / sc.mu_phi, gy / mu]), "diagram", "thick"))
+    exact_xy = np.column_stack([fx / sc.mu_phi, fy / mu])
+    drawn_xy = np.column_stack([gx / sc.mu_phi, gy / mu])
+    items.append(Polyline(exact_xy, "diagram", "hidden"))
+    items.append(Polyline(drawn_xy, "diagram", "thick"))
+    items = axis_numbers_clear(items, [exact_xy, drawn_xy])
     marks = (d.phi, d.s) if kind == "s" else ((d.phi_mid, d.v_chord) if kind == "v"
                                               else (d.phi, d.a_chord))
     for x, y in zip(*marks):

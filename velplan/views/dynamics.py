@@ -20,7 +20,7 @@ import shapely
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
-from velplan.views.base import View, make_view, number, place_labels, unit
+from velplan.views.base import View, axis_numbers_clear, make_view, number, place_labels, unit
 from velplan.views.diagram import standard_up
 from velplan.views.table import grid_table
 
@@ -138,6 +138,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
         names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
                           "baseline"))
+    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     items += list(place_labels(names, lines + axes))
     # title, scales and notes above the plot

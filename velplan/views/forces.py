@@ -48,7 +48,7 @@ from velplan.views.table import grid_table
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
 from velplan.views.base import (
-    View, bounds_of, digits_down, fixed, make_view, place_labels, scale_mark,
+    View, axis_numbers_clear, bounds_of, digits_down, fixed, make_view, place_labels, scale_mark,
     scale_text, subscript, unit)
 from velplan.views.base import number as _num
 
@@ -857,6 +857,7 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
     ok = np.isfinite(mom)
     xy = np.column_stack([turn[ok] / mu_phi, mom[ok] / mu_m])
     items.append(Polyline(xy, layer, "thick"))
+    items = axis_numbers_clear(items, [xy])
     for k, v in enumerate(at):
         if np.isfinite(v):
             items.append(Circle((k * L / n, float(v) / mu_m), 0.6, layer, "thin", "solid"))
