@@ -123,3 +123,19 @@ def test_texts_keep_off_the_drawn_lines(studies):
             if any(lines[j].intersection(box).length > 1.0 for j in tree.query(box, predicate="intersects")):
                 crossed.append(t.text)
         assert len(crossed) <= 1, (name, kind, crossed)
+
+
+@pytest.mark.parametrize("lang", LANGS)
+def test_every_sheet_renders_to_png_with_every_glyph(studies, lang, tmp_path):
+    """Every bundled sheet through the PNG export, whose font choice refuses a text no font can
+    draw (one-line error): each comes out, an image of the sheet's size."""
+    pytest.importorskip("cairosvg")
+    from PIL import Image
+
+    from velplan.render.export import write_png
+
+    for name, kind, sheet in _sheets(studies, lang):
+        path = write_png(sheet.svg(), tmp_path / f"{name}-{kind}.png", dpi=20)
+        with Image.open(path) as im:
+            assert im.size == (round(841 / 25.4 * 20), round(594 / 25.4 * 20)), (name, kind, im.size)
+            assert im.convert("L").getextrema()[0] < 100  # something is drawn
