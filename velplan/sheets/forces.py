@@ -38,7 +38,8 @@ from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.sheets.layout import (
-    FORMATS, MIN_CRANK_MM, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits)
+    FORMATS, MIN_CRANK_MM, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fill_bottom_band,
+    fits)
 from velplan.study import Study
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
@@ -201,25 +202,13 @@ def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequ
     scales: dict[str, float] = {}
 
     # the bottom band: the table above the title block, the diagram to their left
-    right_w = tx1 - tx0
-    band_top = ty1 + g
-    if table:
-        tview = _fit_table(fa, lang, sizes, max_width=0.62 * W, fmt=fmt)
-        right_w = max(right_w, tview.width_mm)
-        band_top = ty1 + g + tview.height_mm
-        views["table"] = tview.at(fx1 - tview.width_mm, ty1 + g)
-    if diagrams is not False:
-        region = (fx0, fy0, fx1 - right_w - g, max(band_top, fy0 + 0.26 * H))
-        try:
-            dview = _fit_diagram(study, lang, sizes, region, fmt=fmt)
-        except ScaleError:
-            if diagrams:
-                raise
-            dview = None
-        if dview is not None:
-            band_top = max(band_top, fy0 + dview.height_mm)
-            views["mb-diagram"] = dview.at(fx0, fy0)
-            scales["mu_m"] = dview.meta["mu_m"]
+    tview = _fit_table(fa, lang, sizes, max_width=0.62 * W, fmt=fmt) if table else None
+    band_top, dview = fill_bottom_band(
+        views, (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1), g, table_view=tview,
+        fit_diagram=None if diagrams is False else (lambda r: _fit_diagram(study, lang, sizes, r, fmt=fmt)),
+        diagram_share=0.26, required=bool(diagrams), diagram_name="mb-diagram")
+    if dview is not None:
+        scales["mu_m"] = dview.meta["mu_m"]
 
     # the top band: a row per position of groups with their polygons, then the lever
     top = (fx0, band_top + g, fx1, fy1)

@@ -42,7 +42,7 @@ from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
 from velplan.sheets.layout import (
     FORMATS, GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, SIZES, SheetOutput, Sizes,
-    check_layout, drawing_area, fits, write_outputs)
+    check_layout, drawing_area, fill_bottom_band, fits, write_outputs)
 from velplan.views.table import sheet_table, table_view
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 
@@ -216,27 +216,14 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     views: dict[str, PlacedView] = {}
 
     # the bottom band: the table above the title block, the diagrams to their left
-    right_w = tx1 - tx0
-    band_top = ty1 + g
-    tview = None
-    if table:
-        tview = _fit_table(study, lang, sizes, max_width=0.62 * W, fmt=fmt)
-        right_w = max(right_w, tview.width_mm)
-        band_top = ty1 + g + tview.height_mm
-        views["table"] = tview.at(fx1 - tview.width_mm, ty1 + g)
     if diagrams and mech.output is None:
         raise VelplanError(f"{mech.name} names no output, so it has no kinematic diagrams")
-    if diagrams is not False and mech.output is not None:
-        region = (fx0, fy0, fx1 - right_w - g, max(band_top, fy0 + 0.3 * H))
-        try:
-            dview = _fit_diagrams(study, lang, sizes, region, fmt=fmt)
-        except ScaleError:
-            if diagrams:
-                raise
-            dview = None
-        if dview is not None:
-            band_top = max(band_top, fy0 + dview.height_mm)
-            views["diagrams"] = dview.at(fx0, fy0)
+    tview = _fit_table(study, lang, sizes, max_width=0.62 * W, fmt=fmt) if table else None
+    band_top, _ = fill_bottom_band(
+        views, (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1), g, table_view=tview,
+        fit_diagram=(lambda r: _fit_diagrams(study, lang, sizes, r, fmt=fmt))
+        if diagrams is not False and mech.output is not None else None,
+        diagram_share=0.3, required=bool(diagrams), diagram_name="diagrams")
 
     # the top band: the scheme, then the plans to its right
     top = (fx0, band_top + g, fx1, fy1)

@@ -42,6 +42,34 @@ def drawing_area(fmt: str, frame_style: str) -> tuple[tuple[float, float, float,
     return (fx0 + m, fy0 + m, fx1 - m, fy1 - m), title_block_bounds(fmt, frame_style)
 
 
+def fill_bottom_band(views: dict, area, title_block, gap: float, *, table_view: View | None,
+                     fit_diagram, diagram_share: float, required: bool, diagram_name: str):
+    """The bottom band every sheet shares: ``table_view`` right-aligned above the title block,
+    the diagram that ``fit_diagram(region)`` draws to their left (at least ``diagram_share`` of
+    the height tall). Places them in ``views``; returns (the band's top, the diagram's view or
+    None — when it does not fit and is not ``required``)."""
+    fx0, fy0, fx1, fy1 = area
+    tx0, _, tx1, ty1 = title_block
+    right_w = tx1 - tx0
+    band_top = ty1 + gap
+    if table_view is not None:
+        right_w = max(right_w, table_view.width_mm)
+        band_top = ty1 + gap + table_view.height_mm
+        views["table"] = table_view.at(fx1 - table_view.width_mm, ty1 + gap)
+    dview = None
+    if fit_diagram is not None:
+        region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
+        try:
+            dview = fit_diagram(region)
+        except ScaleError:
+            if required:
+                raise
+        if dview is not None:
+            band_top = max(band_top, fy0 + dview.height_mm)
+            views[diagram_name] = dview.at(fx0, fy0)
+    return band_top, dview
+
+
 @dataclass(frozen=True)
 class Sizes:
     gap: float
