@@ -29,9 +29,15 @@ def _column(letters: str) -> int:
 
 
 def _text(node) -> str:
-    """The text of a string item: its runs ``<t>`` joined (phonetic runs left out)."""
-    return "".join(t.text or "" for t in node.iter(f"{_MAIN}t")
-                   if not any(p.tag == f"{_MAIN}rPh" for p in node.iter() if t in list(p)))
+    """The text of a string item: its plain ``<t>`` and its rich-text runs' ``<t>`` joined
+    (phonetic runs ``<rPh>`` left out)."""
+    parts = []
+    for child in node:
+        if child.tag == f"{_MAIN}t":
+            parts.append(child.text or "")
+        elif child.tag == f"{_MAIN}r":
+            parts += [t.text or "" for t in child.iter(f"{_MAIN}t")]
+    return "".join(parts)
 
 
 def _number(text: str) -> str:

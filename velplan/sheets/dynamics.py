@@ -31,7 +31,7 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.sheets.layout import FORMATS, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits
 from velplan.study import Study
-from velplan.views.base import PlacedView, View, eskd_scales, ratio_text, scale_mark, unit
+from velplan.views.base import PlacedView, View, eskd_scales, number, ratio_text, scale_mark, unit
 from velplan.views.dynamics import (
     DynamicsSizes, Series, curve_panel, flywheel_view, results_rows, results_view, wittenbauer_view)
 
@@ -76,8 +76,8 @@ def default_dynamics_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
                      designation=f"{prefix}.{mech.name}.03", scale=scale)
 
 
-def _panels(d, lang: str, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
-    c = d.curves(720 * d.spec.cycle_turns if d.run is None else 720)
+def _panels(d, c, lang: str, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
+    """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`)."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
     kw = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang, sizes=sizes)
@@ -114,8 +114,6 @@ def _panels(d, lang: str, length: float, height: float, sizes: DynamicsSizes, po
 
 
 def _n(x: float, lang: str) -> str:
-    from velplan.views.base import number
-
     return number(x, lang, 5)
 
 
@@ -160,7 +158,9 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
     # the left column: four panels on one φ axis, the longest axis and then the tallest
     # ordinates that fit
     share = 0.56 if d.flywheel is not None else 0.75
-    left = _fit_panels(d, lang, sizes, n, share * W, H, g, fmt)
+    # the curves over the cycle (or the run), read once for every panel and the energy–mass diagram
+    curves = d.curves(720 * d.spec.cycle_turns if d.run is None else 720)
+    left = _fit_panels(d, curves, lang, sizes, n, share * W, H, g, fmt)
     y = fy1
     for name in PANELS:
         v = left[name]
@@ -189,7 +189,7 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
         band_top = max(band_top, region[1] + fw.height_mm)
     if d.flywheel is not None:
         region = (right_x0, band_top + g, fx1, fy1)
-        wv, wit = _fit_wittenbauer(d, lang, sizes, region, fmt, n)
+        wv, wit = _fit_wittenbauer(d, curves, lang, sizes, region, fmt, n)
         views["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
         scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
         # the table reads the segment off this drawing
@@ -208,18 +208,18 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
                          frame_style, style, info)
 
 
-def _fit_panels(d, lang, sizes, n, width, height, gap, fmt) -> dict[str, View]:
+def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt) -> dict[str, View]:
     """The four panels at the longest φ axis, then the tallest ordinates, that fit."""
     lengths = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
     heights = (120.0, 100.0, 80.0, 70.0, 60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0)
     for length in lengths:
         if length < MIN_DIAGRAM_MM:
             break
-        low = _panels(d, lang, length, heights[-1], sizes, n)
+        low = _panels(d, c, lang, length, heights[-1], sizes, n)
         if max(v.width_mm for v in low.values()) > width:
             continue
         for h in heights:
-            views = low if h == heights[-1] else _panels(d, lang, length, h, sizes, n)
+            views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n)
             total = sum(v.height_mm for v in views.values()) + gap * (len(views) - 1)
             if total <= height and max(v.width_mm for v in views.values()) <= width:
                 return views
@@ -251,10 +251,9 @@ def _fit_flywheel(dims, lang, sizes, region) -> View | None:
     return None
 
 
-def _fit_wittenbauer(d, lang, sizes, region, fmt, n):
+def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    c = d.curves(720 * d.spec.cycle_turns)
     J = c["J_red"] - d.declared
     T = c["A_sum"]
     per_turn = d.table(n, exact=False)

@@ -256,6 +256,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     if best is None:
         raise failure
     _, mview, plan_views, results, cells = best
+    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
     if data:
@@ -267,10 +268,8 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                             ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, g)
         if placed is not None:
             views["data"] = placed
-        drawn = {name: (res, index) for name, res in results.items()
-                 for index in [int(name.rsplit("-", 1)[1]) - 1]}
-        drawn = {name: (res, int(np.flatnonzero(res.index == i)[0])) for name, (res, i) in drawn.items()}
-        placed = _free_spot(lambda s, t: readings_view(drawn, lang=lang, size_mm=s, title_mm=t),
+        on_sheet = {name: (res, index[name]) for name, res in results.items()}
+        placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
                             ((2.5, 3.5), (1.8, 2.5)), views, top_band, g)
         if placed is not None:
             views["readings"] = placed
@@ -288,7 +287,6 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
         k for k in ("data", "readings", "diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
-    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
     zones = dict(cells)
     zones["mechanism"] = (top[0], top[1], top[0] + 0.62 * (top[2] - top[0]), top[3])
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),

@@ -199,8 +199,8 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         items.append(Circle((ax, ay), 0.7, LAYER, "thin", "solid"))
         items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
         names.append(Text((ax - 1.5, ay), mark, LABELS, sizes.title_mm, "end", "middle"))
-        sym = "ψ_max" if mark == "k" else "ψ_min"
-        names.append(Text((ex + 1.0, ey), f"{sym.replace('_max', 'max').replace('_min', 'min')} = "
+        sym = "ψmax" if mark == "k" else "ψmin"
+        names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
     # the segment kl, dimensioned beside the ΔT axis
     dx = -10.0
