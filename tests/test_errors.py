@@ -121,7 +121,7 @@ def test_malformed_toml():
 def test_unknown_key_and_kind():
     with pytest.raises(MechanismError, match=r"^\[crank\]: unknown key 'lenght'; allowed: "):
         velplan.loads(four_bar().replace("length =", "lenght ="))
-    with pytest.raises(MechanismError, match=r"^group #1: unknown kind 'RRX'; known kinds: RRR, RRP, RPR, PRP, RPP$"):
+    with pytest.raises(MechanismError, match=r"^group #1: unknown kind 'RRX'; known kinds: RRR, RRP, RPR, PRP, RPP, triad$"):
         velplan.loads(four_bar().replace('"RRR"', '"RRX"'))
 
 

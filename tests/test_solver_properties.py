@@ -7,6 +7,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import velplan
+import velplan.analysis.compiled
 from tests.strategies import KINDS, fixed_points, mechanisms
 
 angles = st.lists(st.floats(0, 2 * math.pi), min_size=1, max_size=6).map(np.array)

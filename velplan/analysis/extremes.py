@@ -15,7 +15,7 @@ import numpy as np
 
 from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
-from velplan.mechanism.model import PRP, RPP, RRP, Mechanism
+from velplan.mechanism.model import PRP, RPP, RRP, Mechanism, Triad
 
 GRID = 1440
 
@@ -147,6 +147,10 @@ def output_quantity(mech: Mechanism, kin: Kinematics | None = None) -> tuple[str
         if isinstance(g, RPP) and out.point in (g.coincident, g.origin_name):
             pair = f"P:{g.links[1]}/{g.guide.link}"
             return f"point {out.point}", "slide", kin.slide_index[pair]
+        if isinstance(g, Triad):
+            for joint, lead in zip(g.joints, g.leads):
+                if lead.slider and out.point == joint:
+                    return f"point {out.point}", "slide", kin.slide_index[f"P:{lead.link}/{lead.guide.link}"]
     raise MechanismError(
         f"output point {out.point!r} is not a slider on a guide; give output = {{link = ...}} for a rocker"
     )

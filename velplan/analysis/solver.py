@@ -14,7 +14,7 @@ import numpy as np
 
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
 from velplan.errors import AssemblyError, MechanismError
-from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism
+from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import guides_of, joints_in, points_out, schedule
 
 
@@ -324,6 +324,14 @@ def _solve_scalar_rate(mech, phi, w1, e1, points, order, on_failure, engine) -> 
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
     items = schedule(mech) if points is None else needed_items(mech, points)
+    triads = [g.name for g in items if isinstance(g, Triad)]
+    if triads and engine in ("compiled", "auto"):
+        if engine == "compiled":
+            import warnings
+
+            warnings.warn(f"engine='compiled' does not cover class III groups (group {triads[0]!r}); "
+                          "solving with the numpy engine", stacklevel=3)
+        engine = "numpy"
     if engine == "compiled" or (engine == "auto" and _compiled().available()
                                 and (_compiled().loaded() or phi.shape[0] >= AUTO_COMPILED)):
         return _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order)
@@ -441,11 +449,11 @@ def _solve_block(mech, phi, w1, e1, scale, on_failure, items) -> tuple[State, di
     st.links[GROUND] = LinkMotion(mech.ground[0][0], zr, zr, zr)
     conditions: dict[str, np.ndarray] = {}
     with np.errstate(all="ignore"):  # singular positions give inf/NaN, masked by `valid`
-        _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure)
+        _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech)
     return st, conditions
 
 
-def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure) -> None:
+def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech) -> None:
     for item in items:
         if isinstance(item, Crank):
             _solve_crank(item, st, phi, w1, e1)
@@ -455,7 +463,13 @@ def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure) -> None:
             st.points[item.name] = Motion(*link_point(o.p, o.v, o.a, link.theta, link.omega, link.epsilon,
                                                       item.along, item.offset))
         else:
-            res = solve_group(item, st, scale)
+            if isinstance(item, Triad):
+                from velplan.analysis import triad
+
+                trk = triad.track(triad.upstream(mech, item), item)
+                res = triad.solve_triad(item, st, phi, trk, scale)
+            else:
+                res = solve_group(item, st, scale)
             _check(item, res.closed, phi, on_failure)
             st.points.update(res.points)
             st.links.update(res.links)
@@ -473,6 +487,8 @@ def group_point(g: Group) -> str:
     """The point a group is said to solve for, used in messages."""
     if isinstance(g, (RPR, RPP)):
         return g.coincident or g.joint
+    if isinstance(g, Triad):
+        return g.joints[0]
     return g.point
 
 
@@ -488,12 +504,18 @@ def _check(g: Group, closed: np.ndarray, phi: np.ndarray, on_failure: str) -> No
         )
 
 
+def group_lengths(g: Group) -> tuple[float, ...]:
+    """The lengths a group gives (m): rods, and a triad's base-link sides."""
+    if isinstance(g, Triad):
+        return g.sides + tuple(lead.length for lead in g.leads)
+    return tuple(getattr(g, "lengths", ())) + (getattr(g, "length", 0.0),)
+
+
 def length_scale(mech: Mechanism) -> float:
     """A characteristic length of ``mech`` (m): its largest given length or ground span."""
     lengths = [mech.crank.length]
     for g in mech.groups:
-        lengths.extend(getattr(g, "lengths", ()))
-        lengths.append(getattr(g, "length", 0.0))
+        lengths.extend(group_lengths(g))
     pts = np.array([p for _, p in mech.ground])
     span = float(np.ptp(pts, axis=0).max()) if len(pts) > 1 else 0.0
     return max(max(lengths), span)
@@ -503,8 +525,7 @@ def length_spread(mech: Mechanism) -> float:
     """The largest length of ``mech`` (`length_scale`) over its shortest link length (≥ 1)."""
     lengths = [mech.crank.length]
     for g in mech.groups:
-        lengths.extend(getattr(g, "lengths", ()))
-        lengths.append(getattr(g, "length", 0.0))
+        lengths.extend(group_lengths(g))
     shortest = min((x for x in lengths if x > 0), default=1.0)
     return max(1.0, length_scale(mech) / shortest)
 
@@ -517,7 +538,9 @@ def _about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
     from dataclasses import replace
 
     ground = tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in mech.ground)
-    return replace(mech, ground=ground), pivot
+    groups = tuple(replace(g, assembly=tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in g.assembly))
+                   if isinstance(g, Triad) else g for g in mech.groups)
+    return replace(mech, ground=ground, groups=groups), pivot
 
 
 class _Outputs:

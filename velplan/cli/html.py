@@ -29,6 +29,8 @@ def register(sub) -> None:
                    help="drafting precision the errors are read at, mm (default 0.5)")
     p.add_argument("--angle-precision", metavar="DEG", type=float, default=0.5,
                    help="angular drafting precision, deg (default 0.5)")
+    p.add_argument("--centres", action="store_true",
+                   help="mark each position's instant centres (found by Kennedy lines) on the scheme")
     p.set_defaults(run=run_html)
 
 
@@ -49,7 +51,7 @@ def run_html(args) -> int:
         raise VelplanError(f"cannot write {out}: directory {out.parent} does not exist")
     study = Study(args.mechanism, n=args.positions)
     page = Page(study, lang=args.lang, scale_v=args.scale_v, scale_a=args.scale_a,
-                drafting=Drafting(args.precision, args.angle_precision))
+                drafting=Drafting(args.precision, args.angle_precision), centres=args.centres)
     page.save(out)
     sys.stdout.write(f"wrote {out}\n")
     return 0

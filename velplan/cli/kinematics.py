@@ -70,6 +70,7 @@ def run_info(args) -> int:
     out.append("groups:")
     for name, kind, cls, order, links in st.groups:
         out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}")
+    out.append(f"mechanism of class {st.mechanism_class}; structure: {st.structure_formula(c.link)}")
     out.append("extreme positions (crank angle → value):")
     for q, roots in study.extremes.items():
         unit = "°" if q.startswith("link") else " m"

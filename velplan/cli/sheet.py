@@ -46,6 +46,8 @@ def register(sub) -> None:
                         "always (an error if they do not fit), never")
     p.add_argument("--no-table", action="store_true",
                    help="leave out the table of transfer functions")
+    p.add_argument("--centres", metavar="K,…",
+                   help="mark the instant centres (found by Kennedy lines) of these positions on the scheme")
     p.add_argument("--delta", metavar="δ", type=float,
                    help="with --kind dynamics: size the flywheel for this coefficient of speed "
                         "fluctuation (overrides the file's [dynamics] delta)")
@@ -80,7 +82,8 @@ def register(sub) -> None:
                    help="directory to write step-v-01.svg, … into (created if missing; its parent must exist)")
     p.add_argument("--positions", metavar="N", type=positive_int, default=12,
                    help="number of positions the crank circle is divided into (default 12)")
-    p.add_argument("--kind", choices=_KINDS, default="both", help="which plans (default both)")
+    p.add_argument("--kind", choices=_KINDS + ("centres",), default="both",
+                   help="which plans (default both), or the instant centres by Kennedy lines")
     _common(p)
     p.set_defaults(run=run_steps)
 
@@ -167,7 +170,8 @@ def run_sheet(args) -> int:
     sheet = build_sheet(study, plans=plans, kind=args.kind, fmt=args.format,
                         lang=args.lang, frame_style=args.frame, info=info,
                         diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
-                        table=not args.no_table)
+                        table=not args.no_table,
+                        centres=parse_plans(args.centres, study.n) if args.centres else ())
     output = args.output or f"{mech.name}-sheet.svg"
     _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
     return 0
@@ -243,8 +247,16 @@ def run_steps(args) -> int:
     if not 1 <= args.position <= study.n:
         raise VelplanError(f"--position {args.position} is outside 1…{study.n}")
     kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
-    figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},
-                           args.position, kind=args.kind, lang=args.lang)
+    if args.kind == "centres":
+        from velplan.plans.centres import construct_centres
+        from velplan.views.centres import centre_step_figures
+
+        study.require_assembled([args.position - 1])
+        figures = centre_step_figures(construct_centres(study.kinematics, args.position - 1),
+                                      fine=study.turn, number=args.position, lang=args.lang)
+    else:
+        figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},
+                               args.position, kind=args.kind, lang=args.lang)
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise VelplanError(f"cannot write steps into {out}: it is a file, not a directory")

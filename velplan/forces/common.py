@@ -13,7 +13,7 @@ import numpy as np
 
 from velplan.analysis.solver import Kinematics
 from velplan.errors import MechanismError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, Mechanism
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, Mechanism, Triad
 from velplan.mechanism.structure import material_points, pairs, point_owners
 
 
@@ -77,6 +77,9 @@ def check_point_of_link(mech: Mechanism, link: str, name: str, where: str) -> No
 def _rotation_classes_of(groups: tuple) -> tuple[tuple[str, str], ...]:
     edges = []
     for g in groups:
+        if isinstance(g, Triad):  # a block lead turns with its guide's link
+            edges += [(lead.link, lead.guide.link) for lead in g.leads if lead.slider]
+            continue
         a, b = g.links
         if isinstance(g, RRP):
             edges.append((b, g.guide.link))

@@ -12,7 +12,7 @@ from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
 from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
 from velplan.forces.common import check_point_of_link, link_motion, material_points, point
-from velplan.mechanism.model import RRP, RRR, LinkMass, Mechanism
+from velplan.mechanism.model import RRP, RRR, LinkMass, Mechanism, Triad
 
 DEFAULT_K = 10.0
 """Default K in J_S ≈ m·l²/K (course works take K = 8…10)."""
@@ -20,10 +20,18 @@ DEFAULT_K = 10.0
 
 def link_length(mech: Mechanism, link: str) -> float:
     """Characteristic length l of ``link``, m: the crank's or a rod's given length, else the
-    largest distance between two named material points of the link at crank angle 0."""
+    largest distance between two named material points of the link at crank angle 0 (a triad's
+    base link: its longest side; its rod leads: their lengths)."""
     if link == mech.crank.link:
         return mech.crank.length
     for g in mech.groups:
+        if isinstance(g, Triad):
+            if link == g.base:
+                return max(g.sides)
+            rods = {lead.link: lead.length for lead in g.leads if not lead.slider}
+            if link in rods:
+                return rods[link]
+            continue
         if isinstance(g, RRR) and link in g.links:
             return g.lengths[g.links.index(link)]
         if isinstance(g, RRP) and link == g.links[0]:

@@ -22,7 +22,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics
 from velplan.forces.actions import Actions
 from velplan.forces.common import cross, dot, point
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Mechanism, Pair
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Mechanism, Pair, Triad
 from velplan.mechanism.structure import pairs
 
 
@@ -133,7 +133,8 @@ class Kinetostatics:
     polygons : Mapping[str, ForcePolygon]
         Group name (and ``"crank"``) → force polygon.
     condition : Mapping[str, ndarray]
-        Group name → 1/cond of its 6×6 system (0 = singular, e.g. a toggle position).
+        Group name → 1/cond of its system (6×6 for a dyad, 12×12 for a triad; 0 = singular,
+        e.g. a toggle position, or a triad's three lead lines through one point).
     """
 
     mechanism: Mechanism = field(repr=False)
@@ -192,7 +193,9 @@ class _Known:
         return f, m
 
 
-def _solve6(a: np.ndarray, b: np.ndarray, ok: np.ndarray) -> np.ndarray:
+def _solve(a: np.ndarray, b: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    """x of a·x = b per position (k×k systems, stacked over n positions); NaN where not ``ok``
+    or singular."""
     eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
     a = np.where(ok[:, None, None], a, eye)
     b = np.where(ok[:, None], b, 0.0)
@@ -207,6 +210,58 @@ def _solve6(a: np.ndarray, b: np.ndarray, ok: np.ndarray) -> np.ndarray:
                 pass
     x[~ok] = np.nan
     return x
+
+
+def group_system(g: Group, gp: list[Pair], refs: list[np.ndarray], dirs: list[np.ndarray],
+                 known: _Known) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The equilibrium equations of a group's links in its pairs' unknowns.
+
+    Parameters
+    ----------
+    g : Group
+        A dyad (2 links, 3 pairs) or a triad (4 links, 6 pairs).
+    gp : list of Pair
+        The group's pairs in the order of `pairs`.
+    refs, dirs : list of ndarray (n,) complex
+        Each pair's reference point (m) and, for a prismatic pair, the guide's unit direction.
+    known : _Known
+        The known forces and moments on the links.
+
+    Returns
+    -------
+    a : ndarray, shape (n, 3·links, 2·pairs)
+        Rows ΣFx, ΣFy, ΣM (about ``refs[1]``) per link in the order of ``g.links``; columns
+        Rx, Ry of a revolute pair, N and the couple M of a prismatic pair, in the order of ``gp``.
+    b : ndarray, shape (n, 3·links)
+        Minus the known actions' resultants (N, N·m).
+    origin : ndarray, shape (n,) complex
+        The moment centre, m.
+    """
+    n = refs[0].shape[0]
+    origin = refs[1]
+    a = np.zeros((n, 3 * len(g.links), 2 * len(gp)))
+    b = np.zeros((n, 3 * len(g.links)))
+    for row, link in enumerate(g.links):
+        r0 = 3 * row
+        for j, p in enumerate(gp):
+            if link not in p.links:
+                continue
+            s = 1.0 if p.links[0] == link else -1.0
+            r = refs[j] - origin
+            if p.kind == "R":
+                a[:, r0, 2 * j] += s
+                a[:, r0 + 1, 2 * j + 1] += s
+                a[:, r0 + 2, 2 * j] += -s * r.imag
+                a[:, r0 + 2, 2 * j + 1] += s * r.real
+            else:
+                nrm = 1j * dirs[j]
+                a[:, r0, 2 * j] += s * nrm.real
+                a[:, r0 + 1, 2 * j] += s * nrm.imag
+                a[:, r0 + 2, 2 * j] += s * cross(r, nrm)
+                a[:, r0 + 2, 2 * j + 1] += s
+        f, m = known.resultant(link, origin)
+        b[:, r0], b[:, r0 + 1], b[:, r0 + 2] = -f.real, -f.imag, -m
+    return a, b, origin
 
 
 def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetostatics:
@@ -226,11 +281,13 @@ def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetos
 
     Notes
     -----
-    Each class-II group is statically determinate: its three pairs bring six unknowns (Rx, Ry
-    of a revolute pair; N and the couple M of a prismatic pair) and its two links give six
-    equations, ΣF = 0 (two each) and ΣM = 0 about a common point. The groups are solved from
-    the last to the first, each passing its reactions (reversed) to the links it is attached
-    to; the crank then gives R01 = −ΣF and M_b = −ΣM_O1 (moments about its pivot).
+    Each Assur group is statically determinate: its pairs bring two unknowns each (Rx, Ry of a
+    revolute pair; N and the couple M of a prismatic pair) and its links give three equations
+    each, ΣF = 0 (two) and ΣM = 0 about a common point — 6 × 6 for a class-II dyad, 12 × 12 for
+    a class-III triad, every reaction component of the group solved together (`group_system`).
+    The groups are solved from the last to the first, each passing its reactions (reversed) to
+    the links it is attached to; the crank then gives R01 = −ΣF and M_b = −ΣM_O1 (moments about
+    its pivot).
     """
     n = len(kin)
     known = _Known(kin, actions)
@@ -243,35 +300,15 @@ def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetos
         gp = [p for p in all_pairs if p.group == g.name]
         refs = [_reference(g, p, kin) for p in gp]
         dirs = [np.exp(1j * kin.angle(p.links[0])) if p.kind == "P" else np.full(n, np.nan + 0j) for p in gp]
-        origin = refs[1]
-        a = np.zeros((n, 6, 6))
-        b = np.zeros((n, 6))
-        for row, link in enumerate(g.links):
-            r0 = 3 * row
-            for j, p in enumerate(gp):
-                if link not in p.links:
-                    continue
-                s = 1.0 if p.links[0] == link else -1.0
-                r = refs[j] - origin
-                if p.kind == "R":
-                    a[:, r0, 2 * j] += s
-                    a[:, r0 + 1, 2 * j + 1] += s
-                    a[:, r0 + 2, 2 * j] += -s * r.imag
-                    a[:, r0 + 2, 2 * j + 1] += s * r.real
-                else:
-                    nrm = 1j * dirs[j]
-                    a[:, r0, 2 * j] += s * nrm.real
-                    a[:, r0 + 1, 2 * j] += s * nrm.imag
-                    a[:, r0 + 2, 2 * j] += s * cross(r, nrm)
-                    a[:, r0 + 2, 2 * j + 1] += s
-            f, m = known.resultant(link, origin)
-            b[:, r0], b[:, r0 + 1], b[:, r0 + 2] = -f.real, -f.imag, -m
+        a, b, _ = group_system(g, gp, refs, dirs, known)
         ok = finite & np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=1)
-        x = _solve6(a, b, ok)
+        x = _solve(a, b, ok)
         with np.errstate(invalid="ignore"):
-            cond = np.where(ok, 1.0 / np.linalg.cond(np.where(ok[:, None, None], a, np.eye(6))), np.nan)
+            eye = np.eye(a.shape[-1])
+            cond = np.where(ok, 1.0 / np.linalg.cond(np.where(ok[:, None, None], a, eye)), np.nan)
         condition[g.name] = cond
         group_known = {k: list(known.forces.get(k, ())) for k in g.links}
+        group_moments = {k: list(known.moments.get(k, ())) for k in g.links}
         for j, p in enumerate(gp):
             if p.kind == "R":
                 force, moment = x[:, 2 * j] + 1j * x[:, 2 * j + 1], np.zeros(n)
@@ -283,7 +320,12 @@ def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetos
                 known.add_force(p.links[1], reaction_label(p.links[0], p.links[1]), -force, refs[j])
                 if p.kind == "P":
                     known.add_moment(p.links[1], -moment)
-        polygons[g.name] = _polygon(g, gp, reactions, group_known, kin)
+        if isinstance(g, Triad):
+            from velplan.forces.triad import triad_polygon
+
+            polygons[g.name] = triad_polygon(mech, g, gp, reactions, group_known, group_moments, kin)
+        else:
+            polygons[g.name] = _polygon(g, gp, reactions, group_known, kin)
     # The crank: R01 and M_b.
     c = mech.crank
     pivot = point(kin, c.pivot)

@@ -17,7 +17,7 @@ from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.forces.actions import Actions
 from velplan.forces.common import as_complex, cross, material_points, rotation_class
-from velplan.mechanism.model import GROUND, Mechanism
+from velplan.mechanism.model import GROUND, Mechanism, Triad
 
 
 def images_from_kinematics(kin: Kinematics, i: int | None, mu_v: float) -> dict[str, complex | np.ndarray]:
@@ -95,12 +95,14 @@ def _get(m: Mapping, name: str, what: str, needed: str):
 
 
 def _couple_points(mech: Mechanism, link: str, positions: Mapping, images: Mapping) -> tuple[str, str] | None:
-    """Two points of ``link``, or of a link turning with it, with images: the farthest apart."""
+    """Two points of ``link``, or of a link turning with it, with images: the farthest apart (a
+    triad's special point is left out: it runs to infinity where two lead lines turn parallel)."""
     mp = material_points(mech)
+    special = {g.special_name for g in mech.groups if isinstance(g, Triad)}
     for member in rotation_class(mech, link):
         if member == GROUND:
             continue
-        names = [p for p in mp.get(member, ()) if p in images and p in positions]
+        names = [p for p in mp.get(member, ()) if p in images and p in positions and p not in special]
         best, dist = None, 0.0
         for i, p in enumerate(names):
             for q in names[i + 1:]:

@@ -34,7 +34,7 @@ from velplan.errors import MechanismError
 from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
 from velplan.forces.common import as_complex, check_point_of_link, dot, guide_frame_link, link_motion, point
 from velplan.forces.fourier import FourierSeries, quadratic_coefficients
-from velplan.mechanism.model import PRP, RPP, RRP, Mechanism
+from velplan.mechanism.model import PRP, RPP, RRP, Mechanism, Triad
 
 TWO_PI = 2.0 * math.pi
 
@@ -151,6 +151,11 @@ def output_slider(mech: Mechanism) -> tuple[str, str, str] | None:
     if out is None or out.point is None:
         return None
     for g in mech.groups:
+        if isinstance(g, Triad):  # a block lead's joint slides on its guide
+            for j, lead in zip(g.joints, g.leads):
+                if lead.slider and out.point in (j, lead.coincident):
+                    return out.point, lead.link, f"P:{lead.link}/{lead.guide.link}"
+            continue
         a, b = g.links
         if isinstance(g, RRP) and g.point == out.point:
             return out.point, b, f"P:{b}/{g.guide.link}"

@@ -44,6 +44,14 @@ SMALLEST_FRAME_MM = 110.0
 PHI_DECIMALS = 2
 
 
+def _centre_marks(kin, i: int, view, mu_l: float) -> list:
+    """The instant centres of position ``i`` found by Kennedy lines, on the scheme ``view``."""
+    from velplan.plans.centres import construct_centres
+    from velplan.views.centres import centre_marks
+
+    return centre_marks(construct_centres(kin, i, mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
+
+
 def scheme_scale(study: Study) -> float:
     """μl of the scheme, m/mm: the largest ESKD scale that keeps it within `SCHEME_MM`."""
     fine = study.turn.take(slice(None, None, 3))
@@ -51,9 +59,10 @@ def scheme_scale(study: Study) -> float:
     return next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM), eskd_scales()[-1])
 
 
-def scheme_frames(study: Study, lang: str, style: SheetStyle) -> dict:
+def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool = False) -> dict:
     """The scheme at every position: ``under`` (trajectories, drawn first), ``shared`` records,
-    ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``."""
+    ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``; with
+    ``centres``, each position's instant centres found by Kennedy lines marked on it."""
     mech, kin = study.mechanism, study.kinematics
     fine = study.turn.take(slice(None, None, 3))
     mu_l = scheme_scale(study)
@@ -73,7 +82,8 @@ def scheme_frames(study: Study, lang: str, style: SheetStyle) -> dict:
         idx = sorted(set(reference) | {i})
         view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=idx.index(i) + 1, lang=lang,
                               kin=kin.take(idx), fine=fine, single=True, title=False)
-        per_position.append([r for p in view.primitives for r in encode(p, style, view.origin)])
+        marks = _centre_marks(kin, i, view, mu_l) if centres else []
+        per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
     # a record drawn at two positions or more is stored once
     count: dict[str, int] = {}
     for recs in per_position:

@@ -46,7 +46,7 @@ def _stroke_css(style: SheetStyle) -> str:
 
 
 def build_data(study: Study, lang: str, *, scale_v: float | None = None, scale_a: float | None = None,
-               drafting: Drafting = Drafting(0.5, 0.5)) -> dict:
+               drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> dict:
     """Everything the page's script draws and writes, as a JSON-ready dict."""
     style = SheetStyle(language=lang)
     kin = study.kinematics
@@ -60,13 +60,13 @@ def build_data(study: Study, lang: str, *, scale_v: float | None = None, scale_a
         "phi": phi_degrees(study), "valid": [bool(v) for v in kin.valid],
         "words": page_words(lang), "stroke": stroke_table(style),
         "units": {"omega": unit("rad/s", lang), "epsilon": unit("rad/s²", lang)},
-        "scheme": scheme_frames(study, lang, style), "plans": plans,
+        "scheme": scheme_frames(study, lang, style, centres=centres), "plans": plans,
         "rates": rates(study),
     }
 
 
 def page_html(study: Study, lang: str = "en", *, scale_v: float | None = None, scale_a: float | None = None,
-              drafting: Drafting = Drafting(0.5, 0.5)) -> str:
+              drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> str:
     """The whole page of `study` in `lang`: a self-contained HTML document.
 
     Parameters
@@ -79,6 +79,8 @@ def page_html(study: Study, lang: str = "en", *, scale_v: float | None = None, s
         scales that keep the longest vector within 100 and 120 mm).
     drafting : Drafting
         Precision of the drafted plans the errors are read from (default 0.5 mm, 0.5°).
+    centres : bool
+        Mark each position's instant centres found by Kennedy lines on the scheme.
     """
     if lang not in LANGUAGES:
         raise VelplanError(f"unknown language {lang!r}; known languages: {', '.join(LANGUAGES)}")
@@ -86,12 +88,12 @@ def page_html(study: Study, lang: str = "en", *, scale_v: float | None = None, s
         raise VelplanError(f"a page holds at most {MAX_POSITIONS} positions, not {len(study.kinematics)}")
     if not study.kinematics.valid.any():
         raise VelplanError(f"{study.mechanism.name} cannot be assembled at any of the positions")
-    data = build_data(study, lang, scale_v=scale_v, scale_a=scale_a, drafting=drafting)
+    data = build_data(study, lang, scale_v=scale_v, scale_a=scale_a, drafting=drafting, centres=centres)
     mech = study.mechanism
     e = html.escape
     words = data["words"]
     omega1 = f"ω₁ = {number(abs(mech.crank.omega), lang)} {unit('rad/s', lang)}"
-    sub = f"{mech.name} · {data['n']} {word('positions', lang)} · {omega1}"
+    sub = f"{mech.name_in(lang)} · {data['n']} {word('positions', lang)} · {omega1}"
     note = word("drafting_note", lang).format(mm=number(drafting.length_mm, lang),
                                               deg=number(drafting.angle_deg, lang))
     payload = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")
@@ -108,13 +110,13 @@ def page_html(study: Study, lang: str = "en", *, scale_v: float | None = None, s
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <meta name="generator" content="velplan">
-<title>{e(mech.name)} — {e(word('page_title', lang))}</title>
+<title>{e(mech.name_in(lang))} — {e(word('page_title', lang))}</title>
 <style>
 {_asset('page.css')}{_stroke_css(SheetStyle(language=lang))}
 </style>
 </head>
 <body>
-<h1>{e(mech.name)}: {e(word('page_title', lang))}</h1>
+<h1>{e(mech.name_in(lang))}: {e(word('page_title', lang))}</h1>
 <p class="sub">{e(sub)}</p>
 <div class="bar" id="controls">
 <button id="play" type="button" aria-pressed="false">▶ {e(words['play'])}</button>
@@ -166,7 +168,7 @@ class Page:
     positions : int
         Positions over a turn when ``study`` is a mechanism (default 72: every 5°).
     lang : {"en", "ru", "uk", "zh"}
-    scale_v, scale_a, drafting
+    scale_v, scale_a, drafting, centres
         As for `page_html`.
 
     Examples
@@ -178,14 +180,14 @@ class Page:
 
     def __init__(self, study: Study | str | Path, *, positions: int = 72, lang: str = "en",
                  scale_v: float | None = None, scale_a: float | None = None,
-                 drafting: Drafting = Drafting(0.5, 0.5)):
+                 drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False):
         if not isinstance(study, Study):
             if not 1 <= positions <= MAX_POSITIONS:
                 raise VelplanError(f"positions must be between 1 and {MAX_POSITIONS}, not {positions}")
             study = Study(study, n=positions)
         self.study = study
         self.lang = lang
-        self.html = page_html(study, lang, scale_v=scale_v, scale_a=scale_a, drafting=drafting)
+        self.html = page_html(study, lang, scale_v=scale_v, scale_a=scale_a, drafting=drafting, centres=centres)
 
     def __repr__(self) -> str:
         return f"Page({self.study.mechanism.name!r}, positions={len(self.study.kinematics)}, lang={self.lang!r})"
@@ -197,4 +199,4 @@ class Page:
     def _repr_html_(self) -> str:
         return (f'<iframe srcdoc="{html.escape(self.html, quote=True)}" sandbox="allow-scripts" '
                 f'style="width:100%;height:{NOTEBOOK_HEIGHT_PX}px;border:0" '
-                f'title="{html.escape(self.study.mechanism.name)}"></iframe>')
+                f'title="{html.escape(self.study.mechanism.name_in(self.lang))}"></iframe>')

@@ -24,9 +24,11 @@ from velplan.mechanism.model import (
     Group,
     Guide,
     LinkMass,
+    Lead,
     LinkPoint,
     Mechanism,
     Output,
+    Triad,
 )
 from velplan.mechanism.structure import point_owners, schedule
 
@@ -170,7 +172,9 @@ _GROUP_KEYS = {
     "RPR": {"links", "joint", "pivot", "offset", "branch", "coincident"},
     "PRP": {"links", "point", "guides", "coincident"},
     "RPP": {"links", "joint", "guide", "slot_angle_deg", "coincident", "origin"},
+    "TRIAD": {"base", "joints", "sides", "side", "leads", "assembly", "special", "pair"},
 }
+KINDS = "RRR, RRP, RPR, PRP, RPP, triad"
 
 
 def _group(t: Any, i: int) -> Group:
@@ -178,7 +182,9 @@ def _group(t: Any, i: int) -> Group:
         raise MechanismError(f"group #{i + 1} must be a table, not {t!r}")
     kind = str(t.get("kind", "")).upper()
     if kind not in _GROUP_KEYS:
-        raise MechanismError(f"group #{i + 1}: unknown kind {t.get('kind')!r}; known kinds: RRR, RRP, RPR, PRP, RPP")
+        raise MechanismError(f"group #{i + 1}: unknown kind {t.get('kind')!r}; known kinds: {KINDS}")
+    if kind == "TRIAD":
+        return _triad(t, i)
     links = _pair_of(t, "links", f"group #{i + 1}")
     name = str(t.get("name", "-".join(links)))
     where = f"group {name!r}"
@@ -212,6 +218,64 @@ def _group(t: Any, i: int) -> Group:
         raise MechanismError(f"{where}: slot_angle_deg = {slot} makes the slot parallel to the guide; the group cannot move")
     return RPP(name, links, _name(t, "joint", where), _guide(t.get("guide"), where), math.radians(slot),
                _opt_name(t, "coincident"), _opt_name(t, "origin"))
+
+
+def _triad(t: dict, i: int) -> Triad:
+    """A class III triad: ``base``, ``joints`` (B, C, D), ``sides`` (BC, CD, DB), ``side``,
+    ``leads`` (three tables: rod {link, joint, length} or block {link, guide, coincident}),
+    ``assembly`` {phi_deg, B = [x, y], …}, optional ``special`` and ``pair``."""
+    base = _name(t, "base", f"group #{i + 1}")
+    joints = _triple(t, "joints", f"group #{i + 1}")
+    leads_t = t.get("leads")
+    if not (isinstance(leads_t, list) and len(leads_t) == 3 and all(isinstance(x, dict) for x in leads_t)):
+        raise MechanismError(f"group #{i + 1}: leads must be a list of three tables "
+                             "({link, joint, length} or {link, guide}), not {leads_t!r}")
+    name = str(t.get("name", "-".join([base] + [str(x.get("link", "?")) for x in leads_t])))
+    where = f"group {name!r}"
+    _no_unknown(t, _GROUP_KEYS["TRIAD"] | {"kind", "name"}, where)
+    sides = tuple(_positive(_finite(x, f"{where} sides"), f"{where} side {k}")
+                  for x, k in zip(_triple(t, "sides", where, kind=float), ("BC", "CD", "DB")))
+    a, b, c = sorted(sides)
+    if a + b < c * (1 - 1e-12):
+        raise MechanismError(f"{where}: sides {sides[0]:g}, {sides[1]:g}, {sides[2]:g} m do not make a triangle "
+                             "(the longest exceeds the sum of the others)")
+    leads = tuple(_lead(x, k, f"{where} lead {k + 1}") for k, x in enumerate(leads_t))
+    if all(lead.slider for lead in leads):
+        raise MechanismError(f"{where}: at least one lead must be a rod (all three are blocks on guides)")
+    asm = t.get("assembly")
+    if not isinstance(asm, dict):
+        raise MechanismError(f"{where}: missing assembly = {{phi_deg = …, {joints[0]} = [x, y], …}}: the approximate "
+                             "position of the inner joints as drawn, which picks the branch")
+    _no_unknown(asm, set(joints) | {"phi_deg"}, f"{where} assembly")
+    near = tuple((j, tuple(_finite(v, f"{where} assembly {j}") for v in _pair_of(asm, j, f"{where} assembly", kind=float)))
+                 for j in joints if j in asm)
+    if not near:
+        raise MechanismError(f"{where}: assembly names none of the joints {', '.join(joints)}")
+    pair = t.get("pair")
+    if pair is not None:
+        if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(x, int) and 1 <= x <= 3 for x in pair)
+                and pair[0] != pair[1]):
+            raise MechanismError(f"{where}: pair must be two different lead numbers 1…3, not {pair!r}")
+        pair = (pair[0] - 1, pair[1] - 1)
+    return Triad(name, base, joints, sides, leads, near, math.radians(_finite(asm.get("phi_deg", 0.0),
+                 f"{where} assembly phi_deg")), _branch_key(t, "side", where), _opt_name(t, "special"), pair)
+
+
+def _lead(t: dict, k: int, where: str) -> Lead:
+    _no_unknown(t, {"link", "joint", "length", "guide", "coincident"}, where)
+    link = _name(t, "link", where)
+    if "guide" in t:
+        if "joint" in t or "length" in t:
+            raise MechanismError(f"{where}: a lead is a rod (joint, length) or a block on a guide, not both")
+        return Lead(link, guide=_guide(t["guide"], where), coincident=_opt_name(t, "coincident"))
+    return Lead(link, _name(t, "joint", where), _length(t, "length", where))
+
+
+def _triple(t: dict, key: str, where: str, kind=str) -> tuple:
+    v = t.get(key)
+    if not (isinstance(v, list) and len(v) == 3):
+        raise MechanismError(f"{where}: {key} must be a list of three values, not {v!r}")
+    return tuple(v) if kind is float else tuple(str(x) for x in v)
 
 
 def _point(t: Any, i: int) -> LinkPoint:
@@ -279,7 +343,7 @@ def _check_names(mech: Mechanism) -> None:
         raise MechanismError(f"link name {GROUND!r} is reserved for the frame")
     dup = sorted({k for k in links if links.count(k) > 1})
     if dup:
-        raise MechanismError(f"duplicate link name {dup[0]!r}: each group brings two new links")
+        raise MechanismError(f"duplicate link name {dup[0]!r}: each group brings new links (a dyad two, a triad four)")
     group_names = [g.name for g in mech.groups]
     dupg = sorted({k for k in group_names if group_names.count(k) > 1})
     if dupg:
@@ -318,6 +382,9 @@ def _new_points(g: Group) -> list[str]:
     co = getattr(g, "coincident", None)
     named += [("coincident", c) for c in (co if isinstance(co, tuple) else (co,))]
     named += [("origin", getattr(g, "origin_name", None) if isinstance(g, RPP) else None)]
+    if isinstance(g, Triad):
+        named = [("joint", j) for j in g.joints] + [("special point", g.special_name)]
+        named += [("coincident", lead.coincident) for lead in g.leads]
     seen: dict[str, str] = {}
     for key, name in named:
         if not name:
@@ -405,9 +472,13 @@ def _length(t: dict, key: str, where: str) -> float:
 
 
 def _branch(t: dict, where: str) -> int:
-    b = t.get("branch", 1)
+    return _branch_key(t, "branch", where)
+
+
+def _branch_key(t: dict, key: str, where: str) -> int:
+    b = t.get(key, 1)
     if b not in (1, -1) or isinstance(b, bool):
-        raise MechanismError(f"{where}: branch must be +1 or -1, not {b!r}")
+        raise MechanismError(f"{where}: {key} must be +1 or -1, not {b!r}")
     return int(b)
 
 

@@ -17,9 +17,13 @@ Conventions (SI units throughout: metres, radians, seconds):
   RPR        A (block), O (bar)          the bar's guide line (O → A when offset=0)
   PRP        C (both sliders)            guide 1; guide 2
   RPP        B (block), K (runner)       the slot; the external guide
+  triad      B (base link)               B → C
+             P (rod lead), J (block)     P → J (outer joint → inner joint); the guide
   =========  ==========================  ==========================================
 
   K, the runner's origin in an RPP group, is the point where its slot crosses its guide line.
+  A triad (class III group) has a ternary base link with inner joints B, C, D and three leads,
+  each a rod from a known outer joint P to an inner joint J, or a block at J sliding on a guide.
 
 The model knows nothing of solving or drawing (see `velplan.analysis` and `velplan.plans`).
 """
@@ -33,7 +37,7 @@ from typing import Literal, Union
 GROUND = "0"
 """Name of the frame (the fixed link)."""
 
-GroupKind = Literal["RRR", "RRP", "RPR", "PRP", "RPP"]
+GroupKind = Literal["RRR", "RRP", "RPR", "PRP", "RPP", "triad"]
 
 
 @dataclass(frozen=True)
@@ -179,7 +183,70 @@ class RPP:
         return self.origin or f"K{self.links[1]}"
 
 
-Group = Union[RRR, RRP, RPR, PRP, RPP]
+@dataclass(frozen=True)
+class Lead:
+    """One lead of a class III triad, ending at the inner joint ``joints[i]`` of the base link:
+    a rod ``link`` from the known outer joint ``joint`` (``length`` m), or a block ``link``
+    pivoted at the inner joint and sliding on ``guide`` (``coincident`` names the guide link's
+    point at the inner joint)."""
+
+    link: str
+    joint: str | None = None
+    length: float = 0.0
+    guide: Guide | None = None
+    coincident: str | None = None
+
+    @property
+    def slider(self) -> bool:
+        """True for a block on a guide, False for a rod."""
+        return self.guide is not None
+
+
+@dataclass(frozen=True)
+class Triad:
+    """Class III group of the third order (Assur's triad): a ternary base link with the inner
+    joints B, C, D (``joints``) tied by three leads (``leads[i]`` ends at ``joints[i]``) to
+    known links.
+
+    ``sides = (l_BC, l_CD, l_DB)`` in m; ``side = +1`` puts D to the left of B → C. The base
+    link's frame starts at B along B → C. ``assembly`` gives approximate positions (m) of one
+    or more inner joints at the crank angle ``assembly_deg``: the branch nearest to them is
+    followed continuously over the turn. ``special`` names Assur's special point (the crossing
+    of the lines of the two leads ``pair``, a point of the base link; ``None``: the pair whose
+    lines cross at the largest angle over the turn).
+    """
+
+    name: str
+    base: str
+    joints: tuple[str, str, str]
+    sides: tuple[float, float, float]
+    leads: tuple[Lead, Lead, Lead]
+    assembly: tuple[tuple[str, tuple[float, float]], ...]
+    assembly_deg: float = 0.0
+    side: int = 1
+    special: str | None = None
+    pair: tuple[int, int] | None = None
+    kind: GroupKind = field(default="triad", init=False)
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        """Base link first, then the leads' links."""
+        return (self.base,) + tuple(lead.link for lead in self.leads)
+
+    @property
+    def special_name(self) -> str:
+        """Name of Assur's special point (``special`` or ``"K" + base``)."""
+        return self.special or f"K{self.base}"
+
+    def local(self) -> tuple[complex, complex, complex]:
+        """B, C, D in the base link's frame (origin B, x along B → C), m."""
+        bc, cd, db = self.sides
+        along = (bc * bc + db * db - cd * cd) / (2 * bc)
+        across = math.sqrt(max(db * db - along * along, 0.0))
+        return 0j, complex(bc, 0.0), complex(along, self.side * across)
+
+
+Group = Union[RRR, RRP, RPR, PRP, RPP, Triad]
 
 
 @dataclass(frozen=True)
@@ -227,7 +294,8 @@ class Pair:
 
 @dataclass(frozen=True)
 class Mechanism:
-    """A single-degree-of-freedom planar linkage: crank + class-II groups, in solving order.
+    """A single-degree-of-freedom planar linkage: crank + Assur groups (class II dyads, class
+    III triads), in solving order.
 
     Attributes
     ----------

@@ -22,6 +22,7 @@ from velplan.mechanism.model import (
     LinkPoint,
     Mechanism,
     Pair,
+    Triad,
 )
 
 Item = Union[Crank, Group, LinkPoint]
@@ -29,6 +30,8 @@ Item = Union[Crank, Group, LinkPoint]
 
 def joints_in(group: Group) -> tuple[str, ...]:
     """Known points a group attaches to (its outer joints and its guides' points)."""
+    if isinstance(group, Triad):
+        return tuple(lead.guide.through if lead.slider else lead.joint for lead in group.leads)
     if isinstance(group, RRR):
         return group.joints
     if isinstance(group, RRP):
@@ -42,6 +45,8 @@ def joints_in(group: Group) -> tuple[str, ...]:
 
 def guides_of(group: Group) -> tuple[Guide, ...]:
     """The guides a group slides on (empty for RRR and RPR)."""
+    if isinstance(group, Triad):
+        return tuple(lead.guide for lead in group.leads if lead.slider)
     if isinstance(group, (RRP, RPP)):
         return (group.guide,)
     if isinstance(group, PRP):
@@ -51,6 +56,11 @@ def guides_of(group: Group) -> tuple[Guide, ...]:
 
 def points_out(group: Group) -> dict[str, str]:
     """Points a group determines → the link that owns each of them."""
+    if isinstance(group, Triad):
+        out = {j: group.base for j in group.joints}
+        out[group.special_name] = group.base
+        out.update({lead.coincident: lead.guide.link for lead in group.leads if lead.slider and lead.coincident})
+        return out
     a, b = group.links
     out: dict[str, str] = {}
     if isinstance(group, (RRR, RRP)):
@@ -77,6 +87,10 @@ def revolute_joints(group: Group) -> dict[str, tuple[str, ...]]:
     A joint centre is a material point of every link it joins, so a guide or a later group
     may refer to it on either link.
     """
+    if isinstance(group, Triad):
+        out = {j: (group.base, lead.link) for j, lead in zip(group.joints, group.leads)}
+        out.update({lead.joint: (lead.link,) for lead in group.leads if not lead.slider})
+        return out
     a, b = group.links
     if isinstance(group, RRR):
         return {group.joints[0]: (a,), group.point: (a, b), group.joints[1]: (b,)}
@@ -183,7 +197,10 @@ def coincident_points(mech: Mechanism) -> dict[str, str]:
     the slider's joint now: a different material point at each position)."""
     out = {}
     for g in mech.groups:
-        names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
+        if isinstance(g, Triad):  # the special point too: a different point of the base link each time
+            names = (g.special_name,) + tuple(lead.coincident for lead in g.leads)
+        else:
+            names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
         owners = points_out(g)
         out.update({n: owners[n] for n in names if n})
     return out
@@ -221,6 +238,9 @@ def pairs(mech: Mechanism) -> tuple[Pair, ...]:
     c = mech.crank
     out = [Pair(c.pivot, "R", (c.link, GROUND), c.pivot, "crank")]
     for g in mech.groups:
+        if isinstance(g, Triad):
+            out += _triad_pairs(g, owner)
+            continue
         a, b = g.links
         if isinstance(g, RRR):
             A, D = g.joints
@@ -262,6 +282,24 @@ def pairs(mech: Mechanism) -> tuple[Pair, ...]:
     return tuple(out)
 
 
+def _triad_pairs(g: Triad, owner: dict[str, str]) -> list[Pair]:
+    """A triad's six pairs, lead by lead: the outer pair (R at the rod's outer joint, or P of the
+    block on its guide), then the inner R joining the lead to the base link."""
+    out = []
+    for j, lead in zip(g.joints, g.leads):
+        if lead.slider:
+            out.append(Pair(f"P:{lead.link}/{lead.guide.link}", "P", (lead.link, lead.guide.link), j, g.name))
+        else:
+            out.append(Pair(lead.joint, "R", (lead.link, owner[lead.joint]), lead.joint, g.name))
+        out.append(Pair(j, "R", (lead.link, g.base), j, g.name))
+    return out
+
+
+def group_class(g: Group) -> tuple[int, int]:
+    """Assur's class and order of a group: (2, 2) for a dyad, (3, 3) for a triad."""
+    return (3, 3) if isinstance(g, Triad) else (2, 2)
+
+
 @dataclass(frozen=True)
 class Structure:
     """Result of the structural analysis.
@@ -273,11 +311,23 @@ class Structure:
     n_links: int
     p5: int
     p4: int
-    groups: tuple[tuple[str, str, int, int, tuple[str, str]], ...]
+    groups: tuple[tuple[str, str, int, int, tuple[str, ...]], ...]
 
     @property
     def mobility(self) -> int:
         return 3 * self.n_links - 2 * self.p5 - self.p4
+
+    @property
+    def mechanism_class(self) -> int:
+        """The mechanism's class: the highest class of its groups (1 for a crank alone)."""
+        return max((c for _, _, c, _, _ in self.groups), default=1)
+
+    def structure_formula(self, crank_link: str = "1") -> str:
+        """Formula of structure: I(0, 1) → II(2, 3) → III(4, 5, 6, 7) …"""
+        roman = {1: "I", 2: "II", 3: "III"}
+        parts = [f"I(0, {crank_link})"]
+        parts += [f"{roman.get(c, str(c))}({', '.join(links)})" for _, _, c, _, links in self.groups]
+        return " → ".join(parts)
 
     def formula(self) -> str:
         """The Chebyshev formula with numbers, e.g. ``W = 3·5 − 2·7 − 0 = 1``."""
@@ -285,9 +335,10 @@ class Structure:
 
 
 def analyse(mech: Mechanism) -> Structure:
-    """Structural analysis of ``mech``: link and pair counts and the Assur groups (class II, order 2)."""
+    """Structural analysis of ``mech``: link and pair counts and the Assur groups with their class
+    and order (dyads: class II, order 2; triads: class III, order 3)."""
     ps = pairs(mech)
-    groups = tuple((g.name, g.kind, 2, 2, g.links) for g in mech.groups)
+    groups = tuple((g.name, g.kind, *group_class(g), g.links) for g in mech.groups)
     return Structure(n_links=len(mech.links), p5=len(ps), p4=0, groups=groups)
 
 

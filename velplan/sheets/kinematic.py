@@ -142,7 +142,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                 kind: Kind = "both", fmt: Format = "A1", lang: str = "ru",
                 frame_style: str | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
-                style: SheetStyle | None = None, data: bool = True) -> Sheet:
+                style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = ()) -> Sheet:
     """Compose the kinematic-analysis sheet of `mech`.
 
     Parameters
@@ -174,6 +174,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
         Write the input data and the main results (H, θ, K, the extreme positions), and the
         values read off the drawn plans beside the analytic ones, where the top band has room
         for them (`velplan.views.data`, `velplan.views.readings`).
+    centres : sequence of int
+        Positions (1-based) whose instant centres found by Kennedy lines are marked on the
+        scheme, where they fall on it (`velplan.views.centres.centre_marks`).
 
     Raises
     ------
@@ -287,6 +290,16 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
         k for k in ("data", "readings", "diagrams", "table") if k in views]
     scene = scene.extend(*(views[k].primitives for k in order))
+    if centres:  # the instant centres of the chosen positions, on the scheme
+        from velplan.plans.centres import construct_centres
+        from velplan.views.centres import centre_marks
+
+        for k in centres:
+            if not 1 <= k <= len(kin):
+                raise VelplanError(f"--centres: position {k} is outside 1…{len(kin)}")
+            con = construct_centres(kin, k - 1, mu_l=mview.mu) if kin.valid[k - 1] else None
+            tag = f" ({k})" if len(centres) > 1 else ""
+            scene = scene.extend(centre_marks(con, views["mechanism"], tag=tag) if con else ())
     zones = dict(cells)
     zones["mechanism"] = (top[0], top[1], top[0] + 0.62 * (top[2] - top[0]), top[3])
     return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),

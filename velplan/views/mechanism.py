@@ -21,10 +21,11 @@ import shapely
 
 from velplan.analysis.solver import Kinematics
 from velplan.errors import ScaleError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
-from velplan.render.scene import Polyline, Primitive, Text
+from velplan.render.scene import Circle, Polyline, Primitive, Text
+from velplan.render.shapes import hatch_segments
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
@@ -107,7 +108,16 @@ class _Geometry:
                 out[g.links[0]] = (g.joint, g.point)
             elif isinstance(g, RPR):
                 out[g.links[1]] = (g.pivot, g.coincident or g.joint)
+            elif isinstance(g, Triad):
+                out[g.base] = (g.joints[0], g.joints[1])
+                out.update({ld.link: (ld.joint, j) for ld, j in zip(g.leads, g.joints)
+                            if not ld.slider})
         return out
+
+    def plates(self, i: int) -> list[tuple[str, np.ndarray]]:
+        """The ternary base links of the triads: (link, its joints B, C, D at position i, m)."""
+        return [(g.base, np.array([self.p(i, j) for j in g.joints]))
+                for g in self.mech.groups if isinstance(g, Triad)]
 
     def segments(self, i: int) -> list[Segment]:
         """Lines of every link at position i."""
@@ -136,7 +146,21 @@ class _Geometry:
                 if length > 0:
                     far = b + direction / length * 0.25 * max(length, 1e-9)
                     segs.append(Segment(g.links[1], k, far, (False, False)))
+            elif isinstance(g, Triad):
+                segs.extend(self._triad(g, i))
         segs.extend(self._point_arms(i))
+        return segs
+
+    def _triad(self, g: Triad, i: int) -> list[Segment]:
+        """The base link's three sides, each rod lead, and each moving guide of a block lead."""
+        b, c, d = g.joints
+        segs = [self._seg(g.base, b, c, i), self._seg(g.base, c, d, i),
+                self._seg(g.base, d, b, i)]
+        for lead, joint in zip(g.leads, g.joints):
+            if not lead.slider:
+                segs.append(self._seg(lead.link, lead.joint, joint, i))
+            elif lead.guide.link != GROUND:
+                segs.extend(self._moving_guide(lead.guide, self.p(i, joint), i))
         return segs
 
     def _bar(self, g: RPR, i: int) -> list[Segment]:
@@ -170,12 +194,16 @@ class _Geometry:
     def _point_arms(self, i: int) -> list[Segment]:
         """Lines to link points off a link's main line (triangular links, extensions)."""
         main = self.main_points()
+        plates = dict(self.plates(i))
         out = []
         for lp in self.mech.points:
             ends = main.get(lp.link)
             if ends is None or lp.name in ends:
                 continue
             p = self.p(i, lp.name)
+            if lp.link in plates:
+                out.extend(self._plate_arms(lp, plates[lp.link], p))
+                continue
             a, b = self.p(i, ends[0]), self.p(i, ends[1])
             d = b - a
             length = float(np.hypot(*d))
@@ -193,6 +221,15 @@ class _Geometry:
                 out.append(Segment(lp.link, a, p, (False, joint)))
         return out
 
+    def _plate_arms(self, lp, corners: np.ndarray, p: np.ndarray) -> list[Segment]:
+        """A point of a ternary link: none inside the plate (a centre of mass), else arms
+        from the two nearest joints."""
+        if shapely.Polygon(corners).buffer(1e-9).contains(shapely.Point(p)):
+            return []
+        near = np.argsort(np.hypot(*(corners - p).T))[:2]
+        joint = lp.name in self.revolute
+        return [Segment(lp.link, corners[k], p, (True, joint)) for k in near]
+
     def blocks(self, i: int) -> list[Block]:
         out = []
         for g in self.mech.groups:
@@ -208,6 +245,9 @@ class _Geometry:
                 guide_angle = self.theta(i, g.guide.link) + g.guide.angle
                 out.append(Block(g.links[1], self.p(i, g.origin_name), guide_angle))
                 out.append(Block(g.links[0], self.p(i, g.joint), guide_angle + g.slot_angle))
+            elif isinstance(g, Triad):
+                out += [Block(ld.link, self.p(i, j), self.theta(i, ld.guide.link) + ld.guide.angle)
+                        for ld, j in zip(g.leads, g.joints) if ld.slider]
         return out
 
     def tracks(self, fine: Kinematics) -> list[GuideTrack]:
@@ -221,6 +261,9 @@ class _Geometry:
                           if gd.link == GROUND]
             elif isinstance(g, RPP) and g.guide.link == GROUND:
                 guides = [(g.links[1], g.guide, g.origin_name)]
+            elif isinstance(g, Triad):
+                guides = [(ld.link, ld.guide, j) for ld, j in zip(g.leads, g.joints)
+                          if ld.slider and ld.guide.link == GROUND]
             else:
                 guides = []
             for lk, gd, point in guides:
@@ -234,10 +277,22 @@ class _Geometry:
         return out
 
 
+def special_points(mech: Mechanism) -> set[str]:
+    """Assur's special points of the triads: construction points of their base links, drawn
+    only where the plan's construction is shown (they may lie far off, or at infinity)."""
+    return {g.special_name for g in mech.groups if isinstance(g, Triad)}
+
+
+def _drawn_xy(kin: Kinematics) -> np.ndarray:
+    """Positions (m) of the points the scheme draws, every position, finite ones only."""
+    skip = special_points(kin.mechanism)
+    keep = [k for name, k in kin.point_index.items() if name not in skip]
+    xy = kin.positions[:, keep].reshape(-1, 2)
+    return xy[np.all(np.isfinite(xy), axis=1)]
+
+
 def _centroid(kin: Kinematics) -> np.ndarray:
-    xy = kin.positions.reshape(-1, 2)
-    xy = xy[np.all(np.isfinite(xy), axis=1)]
-    return xy.mean(axis=0)
+    return _drawn_xy(kin).mean(axis=0)
 
 
 def output_point(mech: Mechanism) -> str | None:
@@ -254,6 +309,8 @@ def output_point(mech: Mechanism) -> str | None:
     for g in mech.groups:
         if out.link in g.links and isinstance(g, (RRR, RRP)):
             return g.point
+        if out.link in g.links and isinstance(g, Triad):  # the inner joint of the output lead
+            return g.joints[max(g.links.index(out.link) - 1, 0)]
     return None
 
 
@@ -266,6 +323,8 @@ def trajectory_points(mech: Mechanism) -> list[str]:
     for g in mech.groups:
         if isinstance(g, (RRR, RRP, PRP)):
             names.append(g.point)
+        elif isinstance(g, Triad):
+            names += list(g.joints)
     names += [p.name for p in mech.points]
     return [n for n in dict.fromkeys(names) if n not in ground and n in owner]
 
@@ -282,7 +341,7 @@ class MechanismSizes:
 def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
                    thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
-                   extreme: Kinematics | None = None) -> View:
+                   extreme: Kinematics | None = None, special: bool = False) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
     Parameters
@@ -305,6 +364,10 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     extreme : Kinematics, optional
         The other extreme position of the output (one position), drawn dashed and marked
         ``1′`` at the output point (`velplan.study.Study.other_extreme`).
+    special : bool
+        Draw each triad's Assur special point in the thick position: the lines of the two
+        leads that cross there (thin, dash-dotted) and the point, lettered (the figures of a
+        plan's construction); it is left out where it falls far off the scheme.
 
     Returns
     -------
@@ -356,6 +419,8 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                               layer="mechanism")
         items += support
         obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+    for _, corners in geo.plates(t):
+        items += plate_corners(mm(corners))
     for s in thick_segments:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
@@ -380,7 +445,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     out = output_point(mech)
     if out is not None and out != mech.crank.tip and not single:
         on_track = any(g.point == out for g in mech.groups if isinstance(g, (RRP, PRP))) or any(
-            out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP))
+            out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP)) or any(
+            out == j and ld.slider for g in mech.groups if isinstance(g, Triad)
+            for ld, j in zip(g.leads, g.joints))
         labels += _output_numbers(kin, out, mm, sizes.number_mm, on_track and bool(tracks),
                                   centre, guide_sides.get(out))
     if extreme is not None and not single and extreme.valid[0] and out is not None:
@@ -392,6 +459,10 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in guide_sides.items()]
     labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, thick_segments, blocks, centre,
                             away_from_guides)
+    if special:
+        construction = _special_construction(geo, t, mm, sizes.label_mm)
+        items += [p for p in construction if not isinstance(p, Text)]
+        labels += [p for p in construction if isinstance(p, Text)]
     items += place_labels(labels, obstacles, rings=8)
 
     if title:
@@ -407,8 +478,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
 
 def extent_m(mech: Mechanism, kin: Kinematics, fine: Kinematics) -> tuple[float, float]:
     """Width and height of the scheme, m (positions and trajectories, no symbols)."""
-    xy = np.concatenate([kin.positions.reshape(-1, 2), fine.positions.reshape(-1, 2)])
-    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    xy = np.concatenate([_drawn_xy(kin), _drawn_xy(fine)])
     span = np.ptp(xy, axis=0)
     return float(span[0]), float(span[1])
 
@@ -600,6 +670,11 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
     mechanism's centre (away from guides and the numbers of positions)."""
     out = []
     done = set()
+    for link_name, corners in geo.plates(t):
+        inside = _plate_number_at(mm(corners), size)
+        if inside is not None:
+            done.add(link_name)
+            out.append(Text(inside, link_name, "labels", size, "middle", "middle"))
     for s in segs:
         if s.link in done:
             continue
@@ -628,4 +703,83 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
             normal = -normal
         where = mm(bl.centre) + normal * (BLOCK_MM[1] / 2 + 0.9 * size) - u * (BLOCK_MM[0] / 2)
         out.append(Text(where, bl.link, "labels", size, "middle", "middle"))
+    return out
+
+
+#: Reach of the hatching in each corner of a ternary link along its sides, mm.
+PLATE_CORNER_MM = 6.0
+
+
+def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: float = 1.2,
+                  layer: str = "mechanism") -> list[Primitive]:
+    """The hatched corners of a ternary link (GOST 2.770: the rods of one rigid link, their
+    joints hatched in the angle): thin strokes inside each corner of the triangle `corners`
+    (mm) out to `reach_mm` along its sides (less on a small triangle)."""
+    corners = np.asarray(corners, float)
+    sides = [float(np.hypot(*(corners[k] - corners[k - 1]))) for k in range(3)]
+    reach = min(reach_mm, 0.4 * min(sides))
+    out: list[Primitive] = []
+    if reach <= JOINT_RADIUS_MM + 0.5:
+        return out
+    for k in range(3):
+        v, u, w = corners[k], corners[k - 1], corners[(k + 1) % 3]
+        tip = [v, v + reach * (u - v) / np.hypot(*(u - v)), v + reach * (w - v) / np.hypot(*(w - v))]
+        for seg in hatch_segments(tip, spacing_mm, 45.0):
+            if math.dist(*seg) > 0.3:
+                out.append(Polyline(seg, layer, "thin"))
+    return out
+
+
+def _plate_number_at(corners, size: float):
+    """Where a ternary link's number goes: its triangle's incentre (mm), or None when the
+    inscribed circle cannot hold the number clear of the hatched corners."""
+    a, b, c = (float(np.hypot(*(corners[(k + 2) % 3] - corners[(k + 1) % 3]))) for k in range(3))
+    perimeter = a + b + c
+    if perimeter == 0:
+        return None
+    area = 0.5 * abs(float(np.cross(corners[1] - corners[0], corners[2] - corners[0])))
+    if 2 * area / perimeter < 1.2 * size:
+        return None
+    return (a * corners[0] + b * corners[1] + c * corners[2]) / perimeter
+
+
+def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primitive]:
+    """Each triad's special point in position t: the two lead lines through it (dash-dotted,
+    from the outer joint or the inner joint on to the point and a little beyond), the point
+    and its letter; nothing when it lies over three scheme-widths away."""
+    out: list[Primitive] = []
+    span = max(np.ptp(_drawn_xy(geo.kin), axis=0).max(), 1e-9)
+    for g in geo.mech.groups:
+        if not isinstance(g, Triad) or g.special_name not in geo.kin.point_index:
+            continue
+        k = geo.p(t, g.special_name)
+        centre = _drawn_xy(geo.kin.take([t])).mean(axis=0)
+        if not np.all(np.isfinite(k)) or np.hypot(*(k - centre)) > 3 * span:
+            continue
+        lines = []
+        for lead, joint in zip(g.leads, g.joints):
+            j = geo.p(t, joint)
+            if lead.slider:  # the normal to the guide through the inner joint
+                u = _unit(geo.theta(t, lead.guide.link) + lead.guide.angle)
+                u = np.array([-u[1], u[0]])
+                start = j
+            else:
+                start = geo.p(t, lead.joint)
+                u = (j - start) / max(np.hypot(*(j - start)), 1e-12)
+            off = abs(float(u[0] * (k - start)[1] - u[1] * (k - start)[0]))
+            lines.append((off, start, j))
+        lines.sort(key=lambda x: x[0])
+        for _, start, j in lines[:2]:
+            ends = [mm(start), mm(j), mm(k)]
+            direction = ends[2] - ends[0]
+            if np.hypot(*direction) < 1e-9:
+                direction = ends[1] - ends[0]
+            u = direction / max(np.hypot(*direction), 1e-9)
+            along = [float((e - ends[0]) @ u) for e in ends]
+            lo, hi = min(along) - 4.0, max(along) + 4.0
+            out.append(Polyline([ends[0] + u * lo, ends[0] + u * hi], "mechanism", "axis"))
+        at = mm(k)
+        out.append(Circle(at, 0.6, "mechanism", "thin", "solid"))
+        out.append(Text(at + np.array([1.2, 1.2]), subscript(g.special_name), "labels", size,
+                        "start", "baseline"))
     return out

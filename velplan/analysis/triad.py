@@ -1,0 +1,627 @@
+"""The class III triad, solved exactly: every assembly of the group at each crank angle, the one
+branch followed continuously over the turn, and its velocities and accelerations from the
+linear systems of the derivatives.
+
+Closure reduced to one unknown
+------------------------------
+Let J_r be the inner joint of the first rod lead (outer joint P_r, length l_r), θ the base
+link's angle (B → C) and Y = J_r − P_r. Every other joint is J_i = J_r + r_i(θ), r_i the
+joint's offset from J_r turned by θ. Each other lead gives one equation linear in Y:
+
+* a rod from P_i (length l_i): |Y + r_i − Q_i|² − |Y|² = l_i² − l_r², Q_i = P_i − P_r;
+* a block on a guide (base point b_i, direction u_i): cross(u_i, Y + r_i − (b_i − P_r)) = 0.
+
+The two linear equations give Y = N(θ)/Δ(θ) (N, Δ trigonometric polynomials of degree 2) and
+the rod r closes when G(θ) = |N|² − l_r²·Δ² = 0: a trigonometric polynomial of degree 4, so
+at most 8 assemblies. Its coefficients come exactly from 16 samples by the FFT, its roots
+from the eigenvalues of the companion matrix of z⁴·G(z) (z = e^{iθ}, roots on |z| = 1), and
+every root is polished by Newton's method on the three closure equations to round-off.
+
+Branch
+------
+The file's ``assembly`` (approximate joints at one crank angle) picks one root; `track`
+follows it over the turn in steps of at most 0.5° (halved where the nearest root is not
+clearly the nearest), finds where it ends (an assembly limit, by bisection) or checks that it
+comes back to itself after a full turn. At any crank angle the solver takes the root nearest
+to the tracked branch.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from velplan.analysis.groups import GroupResult, LinkMotion, Motion, carry, cis, cross, guide_line, slide_name
+from velplan.errors import MechanismError
+from velplan.mechanism.model import GROUND, Mechanism, Triad
+
+TRACK_STEP = math.radians(0.5)
+"""Largest step of the branch tracking, rad."""
+MAX_HALVINGS = 14
+"""Halvings of a tracking step before the branch is taken to end there (0.5°/2¹⁴ ≈ 3e-5°)."""
+EDGE_TOL = 1e-12
+"""Accuracy of an assembly limit of the tracked branch, rad."""
+FAR = 0.25
+"""Largest distance (configuration units: lengths / the group's size + radians) between the
+tracked branch and a root still taken as its continuation."""
+
+
+def dot(a, b):
+    """Scalar product of two complex-encoded vectors."""
+    return a.real * b.real + a.imag * b.imag
+
+
+# ---- inputs of one evaluation ----------------------------------------------------------------
+
+
+@dataclass
+class Lead3:
+    """The known motion a lead rests on, arrays over positions: a rod's outer joint P (p, v, a),
+    or a block's guide (the guide link's point, its θ, ω, ε, the guide's angle and offset)."""
+
+    rod: bool
+    length: float
+    p: np.ndarray = None
+    v: np.ndarray = None
+    a: np.ndarray = None
+    theta: np.ndarray = None
+    omega: np.ndarray = None
+    epsilon: np.ndarray = None
+    angle: float = 0.0
+    offset: float = 0.0
+
+    def take(self, idx) -> "Lead3":
+        """The same lead at positions ``idx`` only."""
+        pick = lambda a: a if a is None or np.ndim(a) == 0 else a[idx]  # noqa: E731
+        return Lead3(self.rod, self.length, pick(self.p), pick(self.v), pick(self.a), pick(self.theta),
+                     pick(self.omega), pick(self.epsilon), self.angle, self.offset)
+
+    def line(self):
+        """Guide: unit direction u and base point (arrays)."""
+        return guide_line(self.p, self.theta, self.angle, self.offset)
+
+    def carried(self, x):
+        """Velocity and acceleration of the guide link's point at ``x``."""
+        return carry(self.p, self.v, self.a, self.omega, self.epsilon, x)
+
+
+def inputs_from_state(g: Triad, st) -> list[Lead3]:
+    """The three leads' known motions from a solver `State`."""
+    out = []
+    for lead in g.leads:
+        if lead.slider:
+            m, link = st.points[lead.guide.through], st.links[lead.guide.link]
+            out.append(Lead3(False, 0.0, m.p, m.v, m.a, link.theta, link.omega, link.epsilon,
+                             lead.guide.angle, lead.guide.offset))
+        else:
+            m = st.points[lead.joint]
+            out.append(Lead3(True, lead.length, m.p, m.v, m.a))
+    return out
+
+
+def _size(g: Triad) -> float:
+    return max(max(g.sides), max(lead.length for lead in g.leads))
+
+
+# ---- all assemblies at each position -----------------------------------------------------------
+
+
+class _Closure:
+    """The closure of one triad at n positions, relative to the first rod's outer joint."""
+
+    def __init__(self, g: Triad, leads: list[Lead3]):
+        self.g, self.leads = g, leads
+        self.ref = next(i for i, x in enumerate(leads) if x.rod)
+        self.others = [i for i in range(3) if i != self.ref]
+        local = g.local()
+        self.local = [z - local[self.ref] for z in local]
+        self.origin = leads[self.ref].p
+        self.size = _size(g)
+
+    def offsets(self, theta):
+        """r_i(θ) for the three joints (arrays broadcast with θ)."""
+        e = cis(theta)
+        return [z * e for z in self.local]
+
+    def rows(self, theta):
+        """The two linear equations a·Y = h of the other leads at θ (arrays shaped like θ)."""
+        r = self.offsets(theta)
+        out = []
+        lr = self.leads[self.ref].length
+        for i in self.others:
+            lead = self.leads[i]
+            o = self.origin[..., None] if np.ndim(theta) > np.ndim(self.origin) else self.origin
+            if lead.rod:
+                q = (lead.p[..., None] if np.ndim(theta) > np.ndim(lead.p) else lead.p) - o
+                w = r[i] - q
+                out.append((2 * w, lead.length ** 2 - lr * lr - dot(w, w)))
+            else:
+                u, base = lead.line()
+                if np.ndim(theta) > np.ndim(u):
+                    u, base = u[..., None], base[..., None]
+                out.append((1j * u, cross(u, base - o - r[i])))
+        return out
+
+    def numerator(self, theta):
+        """N(θ) and Δ(θ): Y·Δ = N."""
+        (a1, h1), (a2, h2) = self.rows(theta)
+        return 1j * (h2 * a1 - h1 * a2), cross(a1, a2)
+
+    def candidates(self):
+        """All assemblies: J_r (complex) and θ, shape (n, 16), with a mask of those that close."""
+        n = self.origin.shape[0]
+        t = np.arange(16) * (2 * np.pi / 16)
+        theta = np.broadcast_to(t, (n, 16))
+        num, den = self.numerator(theta)
+        lr = self.leads[self.ref].length
+        gval = (num.real ** 2 + num.imag ** 2) - (lr * den) ** 2
+        c = np.fft.fft(gval, axis=1) / 16
+        coeffs = np.stack([c[:, k % 16] for k in range(4, -5, -1)], axis=1)  # z⁸ … z⁰
+        roots = _poly_roots(coeffs)
+        near = np.abs(np.abs(roots) - 1.0) < 1e-3
+        th = np.where(near, np.angle(roots), np.nan)
+        th = np.concatenate([th, th], axis=1)
+        y = self._first_guess(th)
+        y, th = self._newton(y, th)
+        ok = self._residual(y, th) <= 1e-9 * self.size
+        return np.where(ok, y + self.origin[:, None], np.nan), np.where(ok, th, np.nan), ok
+
+    def _first_guess(self, th):
+        """Y at each candidate θ: N/Δ, or where the two lines are parallel the two crossings of
+        one line with the rod's circle (first and second half of the columns)."""
+        num, den = self.numerator(th)
+        (a1, h1), (a2, _) = self.rows(th)
+        with np.errstate(all="ignore"):
+            y = num / den
+            size2 = dot(a1, a1)
+            flat = np.abs(den) <= 1e-9 * np.sqrt(size2 * dot(a2, a2))
+            foot = a1 * h1 / size2
+            lr = self.leads[self.ref].length
+            along = np.sqrt(np.maximum(lr * lr - dot(foot, foot), 0.0)) * 1j * a1 / np.sqrt(size2)
+        m = th.shape[1] // 2
+        y = np.where(flat, foot + along, y)
+        y[:, m:] = np.where(flat[:, m:], (foot - along)[:, m:], np.nan)
+        return y
+
+    def _equations(self, y, th):
+        """The three closure residuals (m) and their Jacobian rows ∂/∂(Yx, Yy, θ)."""
+        r = self.offsets(th)
+        f, rows = [], []
+        for i, lead in enumerate(self.leads):
+            if lead.rod:
+                q = 0.0 if i == self.ref else lead.p[:, None] - self.origin[:, None]
+                w = y + r[i] - q
+                f.append((dot(w, w) - lead.length ** 2) / (2 * lead.length))
+                rows.append((w.real / lead.length, w.imag / lead.length, dot(w, 1j * r[i]) / lead.length))
+            else:
+                u, base = lead.line()
+                u, base = u[:, None], base[:, None]
+                f.append(cross(u, y + r[i] - (base - self.origin[:, None])))
+                rows.append((-u.imag, u.real + 0 * y.real, cross(u, 1j * r[i])))
+        return f, rows
+
+    def _newton(self, y, th, steps: int = 6):
+        with np.errstate(all="ignore"):
+            for _ in range(steps):
+                f, rows = self._equations(y, th)
+                dx, dy, dt = _cramer3(rows, [-x for x in f])
+                y = y + dx + 1j * dy
+                th = th + dt
+        return y, th
+
+    def _residual(self, y, th):
+        f, _ = self._equations(y, th)
+        with np.errstate(invalid="ignore"):
+            res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))
+        return np.where(np.isfinite(res), res, np.inf)
+
+
+def _poly_roots(coeffs: np.ndarray) -> np.ndarray:
+    """(n, 8) roots of the polynomials (n, 9) (highest first) by the eigenvalues of their
+    companion matrices. For three rods the terms z⁸ and z⁰ vanish (the triad has at most six
+    assemblies): those rows are solved as sextics; a row with other missing terms is solved
+    alone (np.roots). Missing roots are NaN."""
+    n = coeffs.shape[0]
+    scale = np.max(np.abs(coeffs), axis=1)
+    tiny = 1e-11 * scale
+    octic = np.abs(coeffs[:, 0]) > tiny
+    sextic = ~octic & (np.abs(coeffs[:, 8]) <= tiny) & (np.abs(coeffs[:, 1]) > tiny)
+    out = np.full((n, 8), np.nan + 0j)
+    for rows, lo, hi in ((octic, 0, 9), (sextic, 1, 8)):
+        if rows.any():
+            out[rows, :hi - lo - 1] = _companion_roots(coeffs[rows, lo:hi])
+    for k in np.flatnonzero(~octic & ~sextic & (scale > 0) & np.isfinite(scale)):
+        r = np.roots(np.where(np.abs(coeffs[k]) > 1e-13 * scale[k], coeffs[k], 0.0))
+        out[k, :r.size] = r
+    return out
+
+
+def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
+    """(m, d) roots of the (m, d + 1) polynomials (highest first, leading term non-zero)."""
+    d = coeffs.shape[1] - 1
+    comp = np.zeros((coeffs.shape[0], d, d), complex)
+    comp[:, 0, :] = -coeffs[:, 1:] / coeffs[:, :1]
+    comp[:, np.arange(1, d), np.arange(d - 1)] = 1.0
+    return np.linalg.eigvals(comp)
+
+
+def _cramer3(rows, rhs):
+    """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns."""
+    (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
+    r1, r2, r3 = rhs
+    det = a1 * (b2 * c3 - b3 * c2) - b1 * (a2 * c3 - a3 * c2) + c1 * (a2 * b3 - a3 * b2)
+    x = (r1 * (b2 * c3 - b3 * c2) - b1 * (r2 * c3 - r3 * c2) + c1 * (r2 * b3 - r3 * b2)) / det
+    y = (a1 * (r2 * c3 - r3 * c2) - r1 * (a2 * c3 - a3 * c2) + c1 * (a2 * r3 - a3 * r2)) / det
+    z = (a1 * (b2 * r3 - b3 * r2) - b1 * (a2 * r3 - a3 * r2) + r1 * (a2 * b3 - a3 * b2)) / det
+    return x, y, z
+
+
+# ---- the tracked branch -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Track:
+    """The branch of a triad followed over the crank's turn.
+
+    ``t`` (rad, increasing) are crank angles relative to the assembly angle ``phi0``, with the
+    first rod's inner joint ``x`` (complex, m) and the base link's angle ``theta`` (rad) at
+    each; the branch exists on [t[0], t[-1]] (``full``: the whole turn, t from 0 to 2π).
+    ``pair`` are the two leads whose lines give Assur's special point.
+    """
+
+    phi0: float
+    t: np.ndarray
+    x: np.ndarray
+    theta: np.ndarray
+    full: bool
+    pair: tuple[int, int]
+    size: float
+
+    def reference(self, phi: np.ndarray):
+        """(x, θ, inside) of the branch at crank angles ``phi`` (linear between nodes)."""
+        if self.t.size == 0:
+            nan = np.full(phi.shape, np.nan)
+            return nan + 0j, nan, np.zeros(phi.shape, bool)
+        t = np.mod(phi - self.phi0, 2 * np.pi)
+        if not self.full:
+            t = np.where(t > self.t[-1] + EDGE_TOL, t - 2 * np.pi, t)
+        inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
+        tc = np.clip(t, self.t[0], self.t[-1])
+        x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
+        th = np.interp(tc, self.t, np.unwrap(self.theta))
+        return x, th, inside
+
+
+def _distance(x, th, x0, th0, size):
+    d = np.abs(x - x0) / size + np.abs(np.angle(np.exp(1j * (th - th0))))
+    return np.where(np.isfinite(d), d, np.inf)
+
+
+def upstream(mech: Mechanism, g: Triad) -> Mechanism:
+    """``mech`` cut before ``g``: ground, crank, earlier groups and the points on their links."""
+    k = mech.groups.index(g)
+    groups = mech.groups[:k]
+    links = {mech.crank.link} | {x for grp in groups for x in grp.links}
+    points = tuple(p for p in mech.points if p.link in links)
+    return Mechanism(name=mech.name, ground=mech.ground, crank=replace(mech.crank, omega=1.0, epsilon=0.0),
+                     groups=groups, points=points)
+
+
+def leads_at(up: Mechanism, g: Triad, phi: np.ndarray) -> list[Lead3]:
+    """The leads' known motions at crank angles ``phi`` (unit crank speed), by the solver on
+    ``up``, the mechanism cut before ``g`` (`upstream`)."""
+    from velplan.analysis.solver import solve
+
+    names = [lead.guide.through if lead.slider else lead.joint for lead in g.leads]
+    kin = solve(up, phi, order=2)
+    zc = lambda arr, name: arr[:, kin.point_index[name]] @ np.array([1, 1j])  # noqa: E731
+    out = []
+    for lead, name in zip(g.leads, names):
+        p, v, a = zc(kin.positions, name), zc(kin.velocities, name), zc(kin.accelerations, name)
+        if lead.slider:
+            k = lead.guide.link
+            zero = np.zeros(phi.shape)
+            th, w, e = (zero, zero, zero) if k == GROUND else (kin.angle(k), kin.omega(k), kin.epsilon(k))
+            out.append(Lead3(False, 0.0, p, v, a, th, w, e, lead.guide.angle, lead.guide.offset))
+        else:
+            out.append(Lead3(True, lead.length, p, v, a))
+    return out
+
+
+def _roots_at(mech, g, phi):
+    cl = _Closure(g, leads_at(mech, g, np.atleast_1d(phi)))
+    x, th, ok = cl.candidates()
+    local = g.local()
+    return x, th, ok, cl, local
+
+
+@lru_cache(maxsize=64)
+def track(mech: Mechanism, g: Triad) -> Track:
+    """The branch of ``g`` picked by its ``assembly``, followed over the crank's turn (cached
+    per geometry; ``mech`` may hold only what comes before ``g``)."""
+    size = _size(g)
+    phi0 = g.assembly_deg
+    x0, th0, ok0, cl, local = _roots_at(mech, g, np.array([phi0]))
+    if not ok0.any():
+        return Track(phi0, np.empty(0), np.empty(0, complex), np.empty(0), False, _pair(g, None), size)
+    # the root nearest to the joints as drawn
+    cost = np.zeros(x0.shape[1])
+    ref = cl.ref
+    for name, (px, py) in g.assembly:
+        j = g.joints.index(name)
+        pos = x0[0] + (local[j] - local[ref]) * np.exp(1j * th0[0])
+        cost = cost + np.abs(pos - complex(px, py)) ** 2
+    k = int(np.nanargmin(np.where(ok0[0], cost, np.inf)))
+    start = (x0[0, k], th0[0, k])
+    fwd = _walk(mech, g, phi0, start, +1, size)
+    full = fwd[-1][0] >= 2 * np.pi - EDGE_TOL
+    if full:
+        if _distance(fwd[-1][1], fwd[-1][2], start[0], start[1], size) > 1e-6:
+            raise MechanismError(
+                f"group {g.name!r} (triad): after one crank turn from {math.degrees(phi0):g}° it comes back in "
+                "another assembly; the mechanism does not repeat its motion each turn")
+        nodes = fwd
+    else:
+        bwd = _walk(mech, g, phi0, start, -1, size)
+        nodes = [(-t, x, th) for t, x, th in reversed(bwd[1:])] + fwd
+    t = np.array([n[0] for n in nodes])
+    x = np.array([n[1] for n in nodes])
+    th = np.array([n[2] for n in nodes])
+    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t)), size)
+
+
+def _walk(mech, g, phi0, start, sense, size):
+    """Nodes (t ≥ 0, x, θ) of the branch from ``start`` in the crank's ``sense`` (±1) up to a
+    full turn or to the limit where the branch ends."""
+    steps = int(round(2 * np.pi / TRACK_STEP))
+    t_grid = np.arange(steps + 1) * (2 * np.pi / steps)
+    xs, ths, oks, _, _ = _roots_at(mech, g, phi0 + sense * t_grid)
+    nodes = [(0.0, start[0], start[1])]
+    prev = None
+    for k in range(1, steps + 1):
+        cur = nodes[-1]
+        pred = _predict(cur, prev, t_grid[k])
+        pick = _pick(xs[k], ths[k], pred, size)
+        if pick is None:
+            sub = _refine(mech, g, phi0, sense, cur, prev, t_grid[k], size)
+            if sub is None or sub[-1][0] < t_grid[k]:
+                return nodes + (sub or [])
+            nodes += sub[:-1]
+            prev, cur = nodes[-1], sub[-1]
+            nodes.append(cur)
+            continue
+        prev = cur
+        nodes.append((t_grid[k], *pick))
+    return nodes
+
+
+def _predict(cur, prev, t):
+    if prev is None or cur[0] == prev[0]:
+        return cur[1], cur[2]
+    s = (t - cur[0]) / (cur[0] - prev[0])
+    return cur[1] + s * (cur[1] - prev[1]), cur[2] + s * (cur[2] - prev[2])
+
+
+def _pick(xs, ths, pred, size):
+    """The root clearly nearest to ``pred``, or None (none near, or two about as near)."""
+    d = _distance(xs, ths, pred[0], pred[1], size)
+    order = np.argsort(d)
+    d1 = d[order[0]]
+    if not d1 <= FAR:
+        return None
+    # the same root found twice (a complex pair polished onto one real root) is not a rival
+    rivals = [d[j] for j in order[1:] if _distance(xs[j], ths[j], xs[order[0]], ths[order[0]], size) > 1e-7]
+    if rivals and rivals[0] < 2.0 * d1 and d1 > 1e-9:
+        return None
+    return xs[order[0]], ths[order[0]]
+
+
+def _refine(mech, g, phi0, sense, cur, prev, t_end, size):
+    """Nodes from ``cur`` towards ``t_end`` in halved steps; ends at the branch's limit (found
+    by bisection) when no step, however short, continues it."""
+    nodes = []
+    step = (t_end - cur[0]) / 2
+    halvings = 1
+    while cur[0] < t_end - EDGE_TOL:
+        t = min(cur[0] + step, t_end)
+        xs, ths, _, _, _ = _roots_at(mech, g, np.array([phi0 + sense * t]))
+        pick = _pick(xs[0], ths[0], _predict(cur, prev, t), size)
+        if pick is None:
+            if halvings >= MAX_HALVINGS:
+                return nodes + [_limit(mech, g, phi0, sense, cur, t, size)]
+            step /= 2
+            halvings += 1
+            continue
+        prev, cur = cur, (t, *pick)
+        nodes.append(cur)
+    return nodes
+
+
+def _limit(mech, g, phi0, sense, cur, t_out, size):
+    """The last node of a branch that ends between ``cur`` (closes) and ``t_out`` (does not)."""
+    lo, hi, best = cur[0], t_out, cur
+    while hi - lo > EDGE_TOL:
+        mid = 0.5 * (lo + hi)
+        xs, ths, ok, _, _ = _roots_at(mech, g, np.array([phi0 + sense * mid]))
+        d = _distance(xs[0], ths[0], best[1], best[2], size)
+        j = int(np.argmin(d))
+        if d[j] <= FAR:
+            lo, best = mid, (mid, xs[0, j], ths[0, j])
+        else:
+            hi = mid
+    return best
+
+
+def _pair(g: Triad, sampled) -> tuple[int, int]:
+    """The leads whose lines give the special point: the file's, else the pair whose lines
+    cross at the largest smallest angle over the tracked branch."""
+    if g.pair is not None:
+        return g.pair
+    if sampled is None:
+        return (0, 1)
+    mech, x, th, t = sampled
+    leads = leads_at(mech, g, g.assembly_deg + t)
+    cl = _Closure(g, leads)
+    joints = [x + r for r in cl.offsets(th)]
+    dirs = [_lead_direction(lead, j) for lead, j in zip(leads, joints)]
+    best, score = (0, 1), -1.0
+    for a, b in ((0, 1), (0, 2), (1, 2)):
+        with np.errstate(all="ignore"):
+            s = np.abs(cross(dirs[a], dirs[b])) / (np.abs(dirs[a]) * np.abs(dirs[b]))
+        low = float(np.nanmin(s)) if np.isfinite(s).any() else 0.0
+        if low > score + 1e-12:
+            best, score = (a, b), low
+    return best
+
+
+def _lead_direction(lead: Lead3, joint):
+    """Direction of a lead's line: along the rod (P → J), or the guide's normal at the block."""
+    if lead.rod:
+        return joint - lead.p
+    return 1j * lead.line()[0]
+
+
+def special_pair(mech: Mechanism, g: Triad) -> tuple[int, int]:
+    """The two leads (indices 0…2) whose lines give the special point of ``g`` in ``mech``."""
+    from velplan.analysis.solver import _about_pivot
+
+    if g.pair is not None:
+        return g.pair
+    local, _ = _about_pivot(mech)
+    return track(upstream(local, local.groups[mech.groups.index(g)]), local.groups[mech.groups.index(g)]).pair
+
+
+# ---- the solution at the requested angles -------------------------------------------------
+
+
+def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> GroupResult:
+    """Positions of the branch, then V and a of the base link from the 3×3 systems
+
+        d_i·(V_X + i·ω3·r_i) = d_i·V_P            (rod: V_J − V_P ⊥ P J)
+        n_i·(V_X + i·ω3·r_i) = n_i·V_J(guide)     (block: V_J − V_J(guide) ∥ guide)
+
+    and the same rows for a_X, ε3 with the known normal, Coriolis terms on the right."""
+    leads = inputs_from_state(g, st)
+    cl = _Closure(g, leads)
+    x, theta, closed = _branch(cl, trk, phi)
+    joints = [x + ri for ri in cl.offsets(theta)]
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair)
+
+
+QUICK_MOVE = 1e-3
+"""Newton from the tracked branch is taken as it is when it moves the configuration less than
+this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is well conditioned."""
+QUICK_CONDITION = 0.05
+
+
+def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
+    """The tracked branch's assembly at each crank angle: Newton from the tracked configuration
+    where that is unambiguous (well conditioned, a small correction), else every assembly
+    found and the nearest to the branch taken. Returns J_r, θ and the mask of closed positions."""
+    xr, thr, inside = trk.reference(phi)
+    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5)
+    tol = 1e-9 * cl.size
+    f, rows = cl._equations(y, th)
+    with np.errstate(invalid="ignore"):
+        res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
+        cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
+    x, th = y[:, 0] + cl.origin, th[:, 0]
+    good = inside & (res <= tol) & (_distance(x, th, xr, thr, trk.size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    rest = np.flatnonzero(inside & ~good)
+    if rest.size:
+        sub = _Closure(cl.g, [lead.take(rest) for lead in cl.leads])
+        xs, ths, ok = sub.candidates()
+        d = _distance(xs, ths, xr[rest, None], thr[rest, None], trk.size)
+        k = np.argmin(d, axis=1)
+        row = np.arange(rest.size)
+        hit = ok[row, k] & (d[row, k] <= FAR)
+        x[rest] = np.where(hit, xs[row, k], np.nan)
+        th[rest] = np.where(hit, ths[row, k], np.nan)
+        good[rest] = hit
+    closed = inside & good
+    return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed
+
+
+def _motion(g, leads, x, theta, joints, closed, scale, pair):
+    rows, rhs_v, normals = [], [], []
+    for lead, j in zip(leads, joints):
+        rr = j - x
+        if lead.rod:
+            dvec = j - lead.p
+            rhs_v.append(dot(dvec, lead.v))
+        else:
+            u, _ = lead.line()
+            dvec = 1j * u
+            rhs_v.append(dot(dvec, lead.carried(j)[0]))
+        normals.append(dvec)
+        rows.append((dvec.real, dvec.imag, dot(dvec, 1j * rr)))
+    vx, vy, w = _cramer3(rows, rhs_v)
+    vX = vx + 1j * vy
+    vj = [vX + 1j * w * (j - x) for j in joints]
+    rhs_a = []
+    slides = []
+    for lead, j, v, dvec in zip(leads, joints, vj, normals):
+        rr = j - x
+        if lead.rod:
+            rel = v - lead.v
+            rhs_a.append(dot(dvec, lead.a) + w * w * dot(dvec, rr) - dot(rel, rel))
+        else:
+            u, base = lead.line()
+            gv, ga = lead.carried(j)
+            sd = dot(v - gv, u)
+            cor = 2j * lead.omega * sd * u
+            rhs_a.append(dot(dvec, ga + cor) + w * w * dot(dvec, rr))
+            slides.append((dot(j - base, u), sd, u, ga, cor))
+    ax, ay, e = _cramer3(rows, rhs_a)
+    aX = ax + 1j * ay
+    aj = [aX + (1j * e - w * w) * (j - x) for j in joints]
+    return _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair)
+
+
+def _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair):
+    """The group's points (joints, special point, coincident points), links and slides."""
+    B = joints[0]
+    points = {name: Motion(j, v, a) for name, j, v, a in zip(g.joints, joints, vj, aj)}
+    links = {g.base: LinkMotion(g.joints[0], theta, w, e)}
+    slide_out = {}
+    si = iter(slides)
+    for lead, spec, name, j, v, a in zip(leads, g.leads, g.joints, joints, vj, aj):
+        if lead.rod:
+            dvec = j - lead.p
+            d2 = dot(dvec, dvec)
+            wl = cross(dvec, v - lead.v) / d2
+            el = cross(dvec, a - lead.a + wl * wl * dvec) / d2
+            links[spec.link] = LinkMotion(spec.joint, np.angle(dvec), wl, el)
+        else:
+            s, sd, u, ga, cor = next(si)
+            gv, _ = lead.carried(j)
+            sdd = dot(a - ga - cor, u)
+            links[spec.link] = LinkMotion(name, lead.theta + lead.angle, lead.omega, lead.epsilon)
+            slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
+            if spec.coincident:
+                points[spec.coincident] = Motion(j, gv, ga)
+    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i])) for i in pair)
+    with np.errstate(all="ignore"):
+        K = a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
+    kv, ka = carry(B, vj[0], aj[0], w, e, K)
+    points[g.special_name] = Motion(K, kv, ka)
+    cond = _condition(rows, scale)
+    return GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
+                       closed=closed)
+
+
+def _condition(rows, scale):
+    """Hadamard ratio |det M| / Π‖row‖ of the velocity system (moment column over ``scale``):
+    1 for three lead lines at right angles through well-spread points, 0 when they meet in
+    one point or are parallel (the group's singular position)."""
+    m = [(a, b, c / scale) for a, b, c in rows]
+    (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = m
+    det = a1 * (b2 * c3 - b3 * c2) - b1 * (a2 * c3 - a3 * c2) + c1 * (a2 * b3 - a3 * b2)
+    norm = np.ones_like(det)
+    for a, b, c in m:
+        norm = norm * np.sqrt(a * a + b * b + c * c)
+    with np.errstate(all="ignore"):
+        return np.abs(det) / norm
