@@ -1094,6 +1094,161 @@ NB06 = [
     """),
 ]
 
+# --------------------------------------------------------------------------------------------
+# 07: a class III group by Assur's special point, and the instant centres of the same linkage
+
+NB07 = [
+    md("""
+    # 7 · A class III group by Assur's special point, and instant centres
+
+    Every group of notebooks 1–6 is a dyad: two links, and each vector equation of the plan has
+    just two unknowns. A **class III group** (Assur's triad) has a ternary base link tied by
+    three leads to links already known; no equation of it has only two unknowns. The course
+    solves it with **Assur's special point**: the crossing S of the lines of two leads, taken
+    as a point of the base link. Its velocity has a known direction from each of the two
+    leads, so two lines on the plan meet at s, and the rest of the group follows.
+
+    **What you will learn**
+
+    * the structure of a press whose punch is moved by a triad: class, order, the formula of
+      structure;
+    * its velocity and acceleration plans built step by step through the special point, with
+      the sentences of the worked solution in English and Russian;
+    * the second graphical method, the instant centres of velocity, found by the
+      Aronhold–Kennedy theorem, and the velocities they give, against the analytic solution.
+    """),
+    code("""
+    import numpy as np
+    from IPython.display import display
+
+    import velplan
+    from velplan.analysis.centres import instant_centres
+    from velplan.analysis.triad import special_pair
+    from velplan.notebook import draw_mechanism, draw_plan, draw_steps
+    from velplan.plans import Plan
+    from velplan.plans.centres import construct_centres, velocities_by_centres
+
+    mech = velplan.load("triad-press")
+    N = 12          # crank positions, 30° apart, from the reference position
+    POSITION = 3    # the position whose plans we build (1-based, as on the sheet)
+    i = POSITION - 1
+    kin = velplan.solve(mech, velplan.positions(mech, N))
+    print(mech.title)
+    print(f"position {POSITION}: crank angle {kin.phi_deg[i] % 360:.1f}°")
+    """),
+    md("""
+    ## Structure
+
+    The crank 1 (class I) carries a triad: the ternary link 3 with the joints B, C, D, the rod 2
+    from the crank's tip A to B, the rocker 4 from the frame's E to C, and the block 5 at D that
+    slides on a vertical guide of the frame. Four links and six lower pairs: W = 3·4 − 2·6 = 0,
+    as every Assur group. The mechanism's class is the highest class of its groups.
+    """),
+    code("""
+    s = velplan.analyse(mech)
+    print(f"n = {s.n_links}")
+    print(f"p5 = {s.p5}")
+    print(f"W = {s.mobility}")
+    print(f"mechanism class = {s.mechanism_class}")
+    print(f"triad order = {s.groups[0][3]}")
+    """, "readout"),
+    code("""
+    print(s.structure_formula(mech.crank.link))
+    triad = mech.groups[0]
+    a, b = special_pair(mech, triad)
+    print(f"special point {triad.special_name}: the crossing of the lines of leads "
+          f"{triad.leads[a].link} and {triad.leads[b].link}")
+    draw_mechanism(mech, kin, i)
+    """),
+    md("""
+    ## The velocity plan through the special point
+
+    The line of the rod 2 is AB; the "line" of the block 5 is the normal to its guide through
+    D (the block's reaction acts along it). S lies on both. As a point of link 3,
+    V_S = V_A + V_BA + V_SB, and V_BA and V_SB are both ⊥ AB: so V_S = V_A + (⊥ AB). Likewise
+    V_S = V_D(guide) + (∥ guide) = (∥ guide), the guide being fixed. Two lines, one
+    intersection: s. Then C: V_C = V_S + (⊥ SC) = V_E + (⊥ EC), and b, d by similarity.
+    """),
+    code("""
+    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[i])
+    russian = res.describe(0, "ru")
+    for k, ((sentence, drawing), ru) in enumerate(zip(draw_steps(res, 0), russian), start=1):
+        print(f"Step {k}. {sentence}")
+        print(f"        {ru}")
+        display(drawing)
+    """),
+    code("""
+    draw_plan(res)
+    """),
+    md("""
+    The readouts from the plan, then from the analytic solver (the triad's closure solved
+    exactly and its derivatives from linear systems): the plan is evaluated exactly here, so
+    the two agree to round-off.
+    """),
+    code("""
+    for p in ("B", "C", "D", triad.special_name):
+        print(f"V_{p} = {float(np.hypot(*res.vectors[p][0])):.6f} m/s")
+    for link in ("2", "3", "4"):
+        print(f"ω{link} = {res.omegas[link][0]:+.6f} rad/s")
+    worst = max(abs(float(np.hypot(*res.vectors[p][0])) - float(np.hypot(*kin.velocity(p)[i])))
+                for p in ("B", "C", "D"))
+    print(f"largest difference from the analytic velocities = {worst:.2e} m/s")
+    """, "readout"),
+    md("""
+    ## The acceleration plan
+
+    The same special point: a_S = a_A + aⁿ_BA + aⁿ_SB + (⊥ AB), where aⁿ_BA = ω2²·|AB| from B
+    towards A and aⁿ_SB = ω3²·|SB| from S towards B are known from the velocity plan; and
+    a_S = aⁿ_SD + (∥ guide). Then C as for the velocities, with its normal components.
+    """),
+    code("""
+    acc = Plan.of(mech).evaluate(kin, kind="acceleration", positions=[i], velocity=res)
+    for sentence in acc.describe(0, "en"):
+        print(sentence)
+    draw_plan(acc)
+    """),
+    code("""
+    for p in ("B", "C", "D"):
+        print(f"a_{p} = {float(np.hypot(*acc.vectors[p][0])):.6f} m/s²")
+    for link in ("2", "3", "4"):
+        print(f"ε{link} = {acc.epsilons[link][0]:+.6f} rad/s²")
+    """, "readout"),
+    md("""
+    ## Instant centres (Aronhold–Kennedy)
+
+    Six links (the frame included) have 6·5/2 = 15 instant centres. The joints give some at
+    once, the block on the fixed guide gives P05 at infinity ⊥ the guide, and every other one
+    is the crossing of two Kennedy lines (P_ij, P_jk, P_ik lie on one line). With the centres,
+    V_M = ω_i·|M P0i| for a point M of link i, and ω_j = ω_i·|P0i Pij| / |P0j Pij|.
+    """),
+    code("""
+    con = construct_centres(kin, i)
+    for line in con.describe("en"):
+        print(line)
+    """),
+    code("""
+    exact = instant_centres(kin.take([i]))
+    by_centres = velocities_by_centres(con)
+    print(f"instant centres = {len(exact.pairs)}")
+    print(f"reached by Kennedy lines = {sum(1 for st in con.steps if st.how != 'unreached')}")
+    worst = max(abs(abs(by_centres.velocities[p]) - float(np.hypot(*kin.velocity(p)[i])))
+                for p in ("B", "C", "D"))
+    print(f"largest difference of velocities by centres = {worst:.2e} m/s")
+    for link in ("3", "4"):
+        print(f"ω{link} by centres = {by_centres.omegas[link]:+.6f} rad/s")
+    """, "readout"),
+    md("""
+    ## Try it yourself
+
+    1. `velplan steps triad-press --position 3 -o steps/` writes each step as a figure;
+       `velplan steps triad-press --kind centres -o centres/` the Kennedy construction.
+    2. Force another special point: add `pair = [1, 2]` to the group in a copy of the file
+       (leads 2 and 4). Which plan is easier to draw, and why?
+    3. `velplan forces triad-press --positions 12` gives the balancing moment three ways: the
+       triad's reactions are all found together.
+    """),
+]
+
 
 NOTEBOOKS = {
     "01-velocity-plan-step-by-step": NB01,
@@ -1102,6 +1257,7 @@ NOTEBOOKS = {
     "04-your-own-mechanism": NB04,
     "05-flywheel-and-equation-of-motion": NB05,
     "06-catalogue-variants-and-cad": NB06,
+    "07-class-three-and-instant-centres": NB07,
 }
 
 

@@ -176,3 +176,43 @@ def test_an_excel_workbook_reads_like_its_csv(tmp_path):
     bad.write_text("not a workbook")
     with pytest.raises(VelplanError, match=r"^cannot read workbook .*bad\.xlsx"):
         batch.read_variants(bad)
+
+
+def test_a_class_iii_base_with_keys_into_the_triad(tmp_path):
+    """Dotted keys reach a triad's sides and leads; the key's V/ω1 of the inner joints are the
+    solver's for the same numbers set on the model directly, Assur's special point (a
+    construction point) is left out of the key, and each variant has its sheet."""
+    from dataclasses import replace
+
+    (tmp_path / "v.csv").write_text(
+        "variant,crank.length,group.3-2-4-5.sides.0,group.3-2-4-5.leads.1.length\n"
+        "1,0.075,0.245,0.350\n"
+        "2,0.078,,\n"
+        "3,,,\n", "utf-8")
+    variants = batch.read_variants(tmp_path / "v.csv", base="triad-rocker")
+    bad = batch.Variant("4", "triad-rocker", {"group.3-2-4-5.leads.3.length": "0.3"}, "row 5")
+    assert [v.name for v in variants] == ["1", "2", "3"] and variants[2].overrides == {}
+    out = tmp_path / "out"
+    out.mkdir()
+    report = batch.run_batch(variants[:2] + [bad], batch.Options(str(out), fmt="A3"), jobs=1)
+    answers, failures = report.answers, report.failures
+    assert sorted(p.name for p in out.iterdir()) == ["1.svg", "2.svg", "answers.csv", "answers.json"]
+    (fail,) = failures
+    assert "group.3-2-4-5.leads.3.length" in fail.message and "index 3 outside 0…2" in fail.message
+    one = next(a for a in answers if a["variant"] == "1")
+    base = velplan.load("triad-rocker")
+    (g,) = base.groups
+    leads = list(g.leads)
+    leads[1] = replace(leads[1], length=0.350)
+    mech = replace(base, crank=replace(base.crank, length=0.075),
+                   groups=(replace(g, sides=(0.245,) + g.sides[1:], leads=tuple(leads)),))
+    phi = velplan.positions(mech, 12)
+    kin = velplan.solve(mech, phi)
+    w1 = abs(mech.crank.omega)
+    assert "K3" not in one["V"] and {"B", "C", "D"} <= set(one["V"])
+    for p in ("A", "B", "C", "D"):
+        assert np.allclose(one["V"][p], np.hypot(*kin.velocity(p).T) / w1, rtol=1e-9, atol=1e-12)
+    assert np.allclose(one["omega"]["3"], kin.omega("3") / mech.crank.omega, rtol=1e-9, atol=1e-12)
+    # random variants vary the triad too
+    keys = batch._random_keys(__import__("tomllib").loads(batch.base_text("triad-rocker")[1]))
+    assert {"group.3-2-4-5.sides.2", "group.3-2-4-5.leads.0.length", "group.3-2-4-5.leads.2.length"} <= set(keys)

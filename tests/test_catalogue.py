@@ -26,7 +26,7 @@ def test_catalogue_is_a_course_worth_of_mechanisms():
     assert len(NAMES) >= 20
     assert not set(NAMES) & set(example_names())
     kinds = {g.kind for name in NAMES for g in velplan.load(name).groups}
-    assert kinds == {"RRR", "RRP", "RPR", "PRP", "RPP"}
+    assert kinds == {"RRR", "RRP", "RPR", "PRP", "RPP", "triad"}
     indicators = [n for n in NAMES if any(ld.get("kind") == "indicator" for ld in tomllib.loads(_text(n)).get("load", []))]
     assert len(indicators) >= 4
 

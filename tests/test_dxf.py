@@ -464,3 +464,24 @@ def test_cli_writes_the_dxf_beside_the_svg(tmp_path, capsys, sheets):
     err = capsys.readouterr().err
     assert err.startswith("velplan: error: cannot write") and err.count("\n") == 1
     assert not (tmp_path / "missing").exists()
+
+
+def test_a_class_iii_sheet_is_clean_and_equals_its_svg(tmp_path, capsys):
+    """The triad's kinematic sheet (its base link a plate with hatched corners, plans by
+    Assur's special point), in Chinese, through the CLI: a clean DXF whose segments, circles
+    and texts are the SVG's."""
+    assert main(["sheet", "triad-rocker", "--lang", "zh", "-o", str(tmp_path / "t.dxf")]) == 0
+    assert (tmp_path / "t.svg").is_file()
+    doc = ezdxf.readfile(tmp_path / "t.dxf")
+    auditor = doc.audit()
+    assert auditor.has_errors is False and len(auditor.fixes) == 0
+    assert set(Counter(e.dxftype() for e in doc.modelspace())) <= ALLOWED
+    from velplan.sheets.kinematic import build_sheet
+
+    sheet = build_sheet(velplan.Study("triad-rocker"), lang="zh")
+    svg = _svg_geometry(to_svg(sheet.scene, sheet.style, precision=9), sheet.scene.height_mm)
+    dxf = _dxf_geometry(doc)
+    a, b = _sorted_segments(svg["segments"]), _sorted_segments(dxf["segments"])
+    assert a.shape == b.shape and len(a) > 300 and np.abs(a - b).max() < 1e-3
+    texts = [e.dxf.text for e in doc.modelspace().query("TEXT")]
+    assert "机构位置图" in texts and "K₃" not in texts  # the special point stays off the scheme

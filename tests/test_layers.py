@@ -25,7 +25,7 @@ LAYERS = {
     "render": 6,
     "views": 7,
     "sheets": 8, "html": 8,
-    "notebook": 9, "cli": 9, "batch": 9, "catalogue": 9,
+    "notebook": 9, "cli": 9, "batch": 9, "catalogue": 9, "sweep": 9, "note": 9,
     "__init__": 10, "__main__": 10, "drawings": 10,
 }
 #: The drawing layers may not reach into the domain below the results they draw.

@@ -39,7 +39,8 @@ NOTEBOOKS = ROOT / "notebooks"
 CELL_TIMEOUT_S = 120
 STEMS = ("01-velocity-plan-step-by-step", "02-graphical-vs-analytic",
          "03-acceleration-plan-coriolis", "04-your-own-mechanism",
-         "05-flywheel-and-equation-of-motion", "06-catalogue-variants-and-cad")
+         "05-flywheel-and-equation-of-motion", "06-catalogue-variants-and-cad",
+         "07-class-three-and-instant-centres")
 
 
 # -- executing ------------------------------------------------------------------------------
@@ -512,8 +513,36 @@ def expected_06() -> Expected:
     return Expected(fixed, [crank], [(re.compile(r"variant \d+ crank length"), 5)])
 
 
+def expected_07() -> Expected:
+    """The triad press at position 3: structure (class 3), the plans through the special point
+    against the analytic solver, the 15 instant centres and the velocities they give."""
+    mech = velplan.load("triad-press")
+    kin = velplan.solve(mech, velplan.positions(mech, 12))
+    i = 2
+    g = mech.groups[0]
+    fixed = {
+        "n": Near(5, 0), "p5": Near(7, 0), "W": Near(1, 0),
+        "mechanism class": Near(3, 0), "triad order": Near(3, 0),
+        "largest difference from the analytic velocities": Within(0.0, 1e-12),
+        "instant centres": Near(15, 0),
+        "reached by Kennedy lines": Near(15, 0),
+        "largest difference of velocities by centres": Within(0.0, 1e-12),
+    }
+    for p in ("B", "C", "D", g.special_name):
+        fixed[f"V_{p}"] = Near(_speed(kin, p, i), SIX)
+    for p in ("B", "C", "D"):
+        fixed[f"a_{p}"] = Near(float(np.hypot(*kin.acceleration(p)[i])), SIX)
+    for link in ("2", "3", "4"):
+        fixed[f"ω{link}"] = Near(float(kin.omega(link)[i]), SIX)
+        fixed[f"ε{link}"] = Near(float(kin.epsilon(link)[i]), SIX)
+    for link in ("3", "4"):
+        fixed[f"ω{link} by centres"] = Near(float(kin.omega(link)[i]), SIX)
+    return Expected(fixed)
+
+
 EXPECTED = {STEMS[0]: expected_01, STEMS[1]: expected_02, STEMS[2]: expected_03,
-            STEMS[3]: expected_04, STEMS[4]: expected_05, STEMS[5]: expected_06}
+            STEMS[3]: expected_04, STEMS[4]: expected_05, STEMS[5]: expected_06,
+            STEMS[6]: expected_07}
 
 #: One line each, in order, for the broken variants of notebook 4.
 ERRORS_04 = ("group '4-5' (RRP) cannot be assembled for crank angles",

@@ -11,6 +11,8 @@ key                         what it sets
 ``ground.O2.1``             a coordinate of a fixed point (0 = x, 1 = y), m
 ``group.2-3.lengths.0``     an entry of a group's list (the group named ``2-3``)
 ``group.4-5.length``        a group's number; ``group.4-5.guide.offset`` inside its guide
+``group.G.sides.1``         a side of the triad ``G`` (0 = BC, 1 = CD, 2 = DB), m
+``group.G.leads.2.*``       a triad lead's ``length`` (leads 0…2), a block lead's ``guide.offset``
 ``point.B.along``           a point on a link
 ``link.4.mass``             a link's mass (``inertia`` J_S)
 ``load.Fc.force``           a number of the load named ``Fc`` (``load.P.p_max`` …)
@@ -25,8 +27,8 @@ nested tables: ``crank = { length = 0.1 }``).
 
 Random variants (`random_variants`): for each student id ``s`` of the assignment ``a`` the
 generator is ``numpy.random.default_rng(int(sha256(f"{s}\\x1f{a}")[:16 bytes], big-endian))``;
-it multiplies every length (crank, groups, points along their links, guide offsets and fixed
-points' coordinates that are not zero), the crank speed, the masses and inertias and the
+it multiplies every length (crank, groups, a triad's sides and leads, points along their
+links, guide offsets and fixed points' coordinates that are not zero), the crank speed, the masses and inertias and the
 loads' magnitudes by independent factors uniform in [1 − spread, 1 + spread] (in the order
 the base file writes them) and rounds each to 3 significant digits. A draw that does not
 assemble over the whole turn (or whose output does not reverse) is drawn again from the
@@ -354,6 +356,7 @@ def _random_keys(data: dict) -> list[str]:
                 keys.append(f"group.{n}.{gk}")
         if isinstance(g.get("guide"), dict) and g["guide"].get("offset"):
             keys.append(f"group.{n}.guide.offset")
+        keys += _triad_keys(g)
     for p in data.get("point", []):
         if p.get("along"):
             keys.append(f"point.{p['name']}.along")
@@ -365,6 +368,23 @@ def _random_keys(data: dict) -> list[str]:
     return keys
 
 
+def _triad_keys(g: dict) -> list[str]:
+    """A triad's varied numbers: the base link's sides, each rod lead's length and each block
+    lead's guide offset (``group.3-2-4-5.sides.0``, ``group.3-2-4-5.leads.1.length``)."""
+    if g.get("kind") != "triad":
+        return []
+    n = g.get("name")
+    keys = [f"group.{n}.sides.{j}" for j in range(len(g.get("sides", [])))]
+    for j, lead in enumerate(g.get("leads", [])):
+        if not isinstance(lead, dict):
+            continue
+        if "length" in lead:
+            keys.append(f"group.{n}.leads.{j}.length")
+        if isinstance(lead.get("guide"), dict) and lead["guide"].get("offset"):
+            keys.append(f"group.{n}.leads.{j}.guide.offset")
+    return keys
+
+
 def _round3(x: float) -> float:
     if x == 0:
         return 0.0
@@ -372,8 +392,14 @@ def _round3(x: float) -> float:
 
 
 def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
-                    students: list[str] | None = None) -> tuple[list[Variant], list[Failure]]:
-    """``n`` random variants of ``base`` (or one per id in ``students``), each assembled."""
+                    students: list[str] | None = None, require: list | None = None,
+                    stats: dict | None = None) -> tuple[list[Variant], list[Failure]]:
+    """``n`` random variants of ``base`` (or one per id in ``students``), each assembled.
+
+    ``require``: constraints on figures of merit (`velplan.sweep.require.parse_require`); a
+    draw that breaks one is drawn again. ``stats``, when given, receives the number of draws
+    (``"drawn"``), of those rejected by ``require`` (``"rejected"``) and of those that did not
+    assemble (``"not_assembled"``)."""
     from velplan.analysis.assembly import check_full_rotation
     from velplan.analysis.extremes import stroke
     from velplan.mechanism.loader import from_dict
@@ -385,6 +411,8 @@ def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
     keys = _random_keys(data)
     ids = list(students) if students else [str(i) for i in range(1, n + 1)]
     out, failures = [], []
+    count = {"drawn": 0, "rejected": 0, "not_assembled": 0} if stats is None else stats
+    count.update({k: count.get(k, 0) for k in ("drawn", "rejected", "not_assembled")})
     for sid in ids:
         rng = generator(sid, assignment)
         last = ""
@@ -393,13 +421,20 @@ def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
             over = {}
             for k, f in zip(keys, factors):
                 over[k] = _round3(_get(data, k) * f)
+            count["drawn"] += 1
             try:
                 d, _n = apply_overrides(data, over)
                 mech = from_dict(d, name=f"{name}-{sid}")
+                broken = _broken(mech, require) if require else ""
+                if broken:
+                    count["rejected"] += 1
+                    last = f"breaks {broken}"
+                    continue
                 check_full_rotation(mech)
                 if mech.output is not None:
                     stroke(mech)
             except VelplanError as exc:
+                count["not_assembled"] += 1
                 last = str(exc)
                 continue
             out.append(Variant(sid, base, over, f"student {sid}"))
@@ -408,6 +443,28 @@ def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
             failures.append(Failure(sid, f"variant {sid} (student {sid})",
                                     f"no draw of {MAX_TRIES} assembles; the last: {last}"))
     return out, failures
+
+
+def _broken(mech, require: list) -> str:
+    """The first constraint of ``require`` that ``mech`` breaks (with its value), or ""; a
+    mechanism that does not close over the turn raises `VelplanError`."""
+    from velplan.sweep.merit import figures
+    from velplan.sweep.require import check
+
+    figs, fail, _ = figures(mech, {})
+    if fail[0]:
+        raise VelplanError(fail[0])
+    return check(figs, require, angular=mech.output is not None and mech.output.link is not None)[0]
+
+
+def figures_of(mech) -> dict[str, float]:
+    """The figures of merit of ``mech`` (`velplan.sweep.merit.FIGURES`) for the answer key."""
+    from velplan.sweep.merit import figures
+
+    figs, _, group = figures(mech, {})
+    out = {k: (float(v[0]) if math.isfinite(v[0]) else None) for k, v in figs.items()}
+    out["gamma_group"] = group[0]
+    return out
 
 
 def _get(data: dict, key: str) -> float:
@@ -460,6 +517,9 @@ class Options:
     lang: str = "en"
     fmt: str = "A1"
     sheets: bool = True
+    figures: bool = False
+    note: str | None = None
+    """Write each variant's explanatory note too, in this format (docx, pdf, html, md)."""
 
 
 def study_variant(v: Variant, opts: Options) -> dict | Failure:
@@ -471,12 +531,20 @@ def study_variant(v: Variant, opts: Options) -> dict | Failure:
         mech, n = build_variant(v)
         study = Study(mech, n=n)
         answers = _answers(v, study)
+        if opts.figures:
+            answers["figures"] = figures_of(mech)
         if opts.sheets:
             from velplan.sheets.kinematic import build_sheet
 
             sheet = build_sheet(study, fmt=opts.fmt, lang=opts.lang)
             files = sheet.write(Path(opts.outdir) / f"{_safe(v.name)}.svg", png=opts.png)
             answers["files"] = [f.name for f in files]
+        if opts.note:
+            from velplan.note import build_note, write_note
+
+            path = write_note(build_note(study, fmt=opts.fmt, lang=opts.lang),
+                              Path(opts.outdir) / f"{_safe(v.name)}-note.{opts.note}")
+            answers["note"] = path.name
         return answers
     except VelplanError as exc:
         return Failure(v.name, v.where, str(exc))
@@ -492,13 +560,15 @@ def _answers(v: Variant, study) -> dict:
     table = study.table
     mech = study.mechanism
     st = study.stroke
+    special = {f"V_{g.special_name}" for g in mech.groups if g.kind == "triad"}  # construction points
     out: dict[str, Any] = {
         "variant": v.name,
         "base": v.base,
         "overrides": v.overrides,
         "positions": int(study.n),
         "phi_deg": [round(float(math.degrees(p) % 360), 9) for p in study.phi],
-        "V": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("V_")},
+        "V": {k[2:]: _clean(vals) for k, vals in table.rows.items()
+              if k.startswith("V_") and k not in special},
         "omega": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("w_")},
     }
     if st is not None:

@@ -105,7 +105,7 @@ class Study:
     @cached_property
     def sense(self) -> float:
         """+1 when the crank turns counter-clockwise, −1 clockwise."""
-        return 1.0 if self.mechanism.crank.omega >= 0 else -1.0
+        return self.mechanism.crank.sense
 
     @cached_property
     def stroke(self) -> Stroke | None:

@@ -210,7 +210,7 @@ def kinematic_diagrams(mech, nodes: Kinematics | int = 12, *, turn: Kinematics |
     from velplan.analysis.extremes import output_quantity, reference_angle
     from velplan.analysis.solver import solve
 
-    sense = (1.0 if mech.crank.omega >= 0 else -1.0) if sense is None else float(sense)
+    sense = mech.crank.sense if sense is None else float(sense)
     if isinstance(nodes, (int, np.integer)):
         n = int(nodes)
         if n < 3:

@@ -50,6 +50,29 @@ def encode(mech: Mechanism, points: list[str], links: list[str], slides: list[st
     Link registers are the output links in order, then the frame; point registers follow
     ``points``, whose first entries are the ground points.
     """
+    ops, pars = _program(mech, points, links, slides, groups, length_scale, items)
+    ground = np.array([complex(x, y) for _, (x, y) in mech.ground])
+    return np.array(ops, dtype=np.int64).reshape(-1, NI), np.array(pars, dtype=float).reshape(-1, NF), ground
+
+
+def encode_design(mech: Mechanism, V: int, points: list[str], links: list[str], slides: list[str],
+                  groups: list[str], length_scale, items: tuple | None = None):
+    """`encode` for V variants: ``mech``'s numbers (and ``length_scale``) may be (V,) arrays
+    (`velplan.analysis.design`). Returns ops (m, NI), params (V, m, NF), ground (V, Pg)."""
+    ops, pars = _program(mech, points, links, slides, groups, length_scale, items)
+    par = np.empty((V, len(pars), NF))
+    for k, row in enumerate(pars):
+        for j, x in enumerate(row):
+            par[:, k, j] = x
+    ground = np.empty((V, len(mech.ground)), dtype=complex)
+    for j, (_, (x, y)) in enumerate(mech.ground):
+        ground[:, j] = np.asarray(x, float) + 1j * np.asarray(y, float)
+    return np.array(ops, dtype=np.int64).reshape(-1, NI), par, ground
+
+
+def _program(mech, points, links, slides, groups, length_scale, items) -> tuple[list, list]:
+    """Rows of the program: opcodes with register slots, and real parameters (floats, or
+    arrays over variants)."""
     P = {k: i for i, k in enumerate(points)}
     L = {k: i for i, k in enumerate(links)}
     L[GROUND] = len(links)
@@ -104,34 +127,38 @@ def encode(mech: Mechanism, points: list[str], links: list[str], slides: list[st
                          Gi[item.name]], [g.angle, g.offset, item.slot_angle])
         else:  # pragma: no cover - the model has no other kinds
             raise TypeError(f"no compiled form for {type(item).__name__}")
-    ground = np.array([complex(x, y) for _, (x, y) in mech.ground])
-    return np.array(ops, dtype=np.int64).reshape(-1, NI), np.array(pars, dtype=float).reshape(-1, NF), ground
+    return ops, pars
 
 
-def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - one switch
+def _kernel(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid):  # noqa: C901 - one switch
     """Interpret the program at every angle of ``phi``; write Z (3, P, n) positions, velocities,
     accelerations; R (3, L, n) angles, ω, ε; S (S, 3, n) slides; C (G, n) conditions (NaN where
     a group does not close) and ``valid`` (n,).
 
-    Each thread takes a chunk of angles and runs the program over it one row at a time; the
-    chunk's slices of the outputs are its registers (the frame, link L, reads as zeros).
+    The angles are V variants × ``nper`` angles (variant-major); variant v has the parameters
+    ``par[v]`` (m, NF), ground points ``ground[v]`` and crank rates ``w1s[v]``, ``e1s[v]``.
+    Each thread takes a chunk of one variant's angles and runs the program over it one row at
+    a time; the chunk's slices of the outputs are its registers (the frame, link L, reads as
+    zeros).
     """
-    n = phi.shape[0]
     nP, nL, nS, nG = Z.shape[1], R.shape[1], S.shape[0], C.shape[0]
-    for chunk in prange((n + CHUNK - 1) // CHUNK):
-        i0 = chunk * CHUNK
-        i1 = min(n, i0 + CHUNK)
+    per = (nper + CHUNK - 1) // CHUNK  # chunks per variant
+    for unit in prange(par.shape[0] * per):
+        vi = unit // per
+        i0 = vi * nper + (unit - vi * per) * CHUNK
+        i1 = min(vi * nper + nper, i0 + CHUNK)
         m = i1 - i0
+        w1, e1 = w1s[vi], e1s[vi]
         zero = np.zeros(m)
         p, v, a = Z[0, :, i0:i1], Z[1, :, i0:i1], Z[2, :, i0:i1]
         th, om, ep = R[0, :, i0:i1], R[1, :, i0:i1], R[2, :, i0:i1]
         cn = C[:, i0:i1]
-        for j in range(ground.shape[0]):
+        for j in range(ground.shape[1]):
             for t in range(m):
-                p[j, t], v[j, t], a[j, t] = ground[j], 0.0, 0.0
+                p[j, t], v[j, t], a[j, t] = ground[vi, j], 0.0, 0.0
         for k in range(ops.shape[0]):
             o = ops[k]
-            f = par[k]
+            f = par[vi, k]
             op = o[0]
             if op == CRANK:
                 q, x, lk = o[1], o[2], o[3]
@@ -223,6 +250,47 @@ def _kernel(ops, par, ground, phi, w1, e1, Z, R, S, C, valid):  # noqa: C901 - o
             for j in range(nG):
                 ok = ok and cn[j, t] > 0
             valid[i0 + t] = ok
+
+
+SERIAL = 4096
+"""Up to this many angles a call runs on the calling thread alone: waking the other threads
+costs more than they save (milliseconds on a busy machine)."""
+
+_PREPARED: dict = {}
+"""Programs by mechanism content (`prepared`), the latest few."""
+
+
+def prepared(mech: Mechanism, items: tuple, length_scale: float, layout) -> tuple:
+    """(state, conditions, ops, params (1, m, NF), ground (1, Pg)) of ``mech``: ``layout()``
+    (the numpy engine on one angle: the outputs' names and order) and `encode`, memoised by
+    the mechanism's numbers and names, so that a repeated call costs only its kernel."""
+    key = (mech.ground, mech.crank, mech.groups, mech.points, items, length_scale)
+    hit = _PREPARED.get(key)
+    if hit is None:
+        st, conditions = layout()
+        names, links = list(st.points), [k for k in st.links if k != GROUND]
+        ops, par, ground = encode(mech, names, links, list(st.slides), list(conditions), length_scale, items)
+        hit = (st, conditions, ops, par[None], ground[None])
+        if len(_PREPARED) >= 32:
+            _PREPARED.pop(next(iter(_PREPARED)))
+        _PREPARED[key] = hit
+    return hit
+
+
+def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid) -> None:
+    """Call the kernel (`_kernel`'s arguments): on one thread up to `SERIAL` angles."""
+    k = kernel()
+    if phi.shape[0] > SERIAL:
+        k(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid)
+        return
+    import numba
+
+    before = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        k(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid)
+    finally:
+        numba.set_num_threads(before)
 
 
 def loaded() -> bool:

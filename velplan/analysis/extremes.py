@@ -186,7 +186,7 @@ def _stroke(mech: Mechanism) -> Stroke | None:
         raise MechanismError(f"output {label} has no extreme positions (it turns or slides without reversing)")
     hi = max(roots, key=lambda e: e.value)
     lo = min(roots, key=lambda e: e.value)
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    sense = mech.crank.sense
     span_lo_hi = (sense * (hi.phi - lo.phi)) % (2 * np.pi)
     if abs(span_lo_hi - np.pi) < 1e-9:
         # K = 1: both strokes take half a turn. The working stroke starts at the given
@@ -216,5 +216,5 @@ def positions(mech: Mechanism, n: int = 12) -> np.ndarray:
     """``n`` crank angles (rad) evenly spaced from the reference position in the sense of ω1."""
     if n < 1:
         raise MechanismError(f"number of positions must be ≥ 1, not {n}")
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
+    sense = mech.crank.sense
     return reference_angle(mech) + sense * np.arange(n) * (2 * np.pi / n)

@@ -421,14 +421,14 @@ process, "auto" always uses it."""
 def _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order) -> Kinematics:
     # the numpy engine on one angle fixes the output layout (names, order, link origins); the
     # kernel computes every derivative, the outputs keep those asked for
-    st, conditions = _solve_block(mech, phi[:1] if phi.shape[0] else np.zeros(1), w1, e1, scale, "nan", items)
     n = phi.shape[0]
-    out = _Outputs(st, conditions, n, 2)
     compiled = _compiled()
-    ops, par, ground = compiled.encode(mech, out.names, out.links, out.slide_names, out.groups, scale, items)
+    st, conditions, ops, par, ground = compiled.prepared(
+        mech, items, scale, lambda: _solve_block(mech, np.zeros(1), w1, e1, scale, "nan", items))
+    out = _Outputs(st, conditions, n, 2)
     valid = np.empty(n, dtype=bool)
-    compiled.kernel()(ops, par, ground, np.ascontiguousarray(phi), float(w1), float(e1),
-                      out.z, out.rates, out.slides, out.condition, valid)
+    compiled.run(ops, par, ground, np.ascontiguousarray(phi), np.array([float(w1)]), np.array([float(e1)]), n,
+                 out.z, out.rates, out.slides, out.condition, valid)
     if on_failure == "raise" and not valid.all():
         for item in items:  # the first group, in solving order, that fails to close
             if not isinstance(item, (Crank, LinkPoint)):

@@ -12,7 +12,7 @@ from importlib import import_module
 
 from velplan.errors import VelplanError
 
-COMMANDS = ("kinematics", "plan", "sheet", "forces", "dynamics", "batch", "html", "centres")
+COMMANDS = ("kinematics", "plan", "sheet", "forces", "dynamics", "batch", "html", "centres", "sweep", "note")
 """Modules of `velplan.cli` that register subcommands (a missing one is skipped)."""
 
 

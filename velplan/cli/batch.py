@@ -21,12 +21,17 @@ def register(sub) -> None:
     p.add_argument("--seed", metavar="TEXT", help="the assignment text the random variants are drawn from")
     p.add_argument("--students", metavar="ID,…", help="student ids, one variant each (default 1…N)")
     p.add_argument("--spread", metavar="P%", default="10%", help="random factor range ±P %% (default 10%%)")
+    p.add_argument("--require", metavar="C,…", help="with --random: draw only variants that meet these, e.g. "
+                   "'K>=1.4, gamma_min>=40deg, H=0.25..0.35' (H m, K, theta/gamma_min deg, v_max, a_max); "
+                   "their figures of merit go into the answer key")
     p.add_argument("--positions", metavar="N", type=positive_int,
                    help="positions of every variant (a 'positions' column overrides it; default 12)")
     p.add_argument("--png", action="store_true", help="also write a PNG of each sheet")
     p.add_argument("--lang", choices=LANGS, default="en")
     p.add_argument("--format", choices=("A1", "A2", "A3"), default="A1", help="sheet format (default A1)")
     p.add_argument("--no-sheets", action="store_true", help="only the answer key")
+    p.add_argument("--note", metavar="FORMAT", nargs="?", const="docx", choices=("docx", "pdf", "html", "md"),
+                   help="also write each variant's explanatory note (default format docx; needs '.[note]')")
     p.add_argument("--jobs", metavar="N", type=positive_int, help="worker processes (default: all cores)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=run_batch_cmd)
@@ -46,6 +51,13 @@ def run_batch_cmd(args) -> int:
 
     if (args.table is None) == (args.random is None):
         raise VelplanError("give a variant table or --random N (one of them)")
+    require = None
+    if args.require:
+        if args.random is None:
+            raise VelplanError("--require needs --random N (it constrains random draws)")
+        from velplan.sweep.require import parse_require
+
+        require = parse_require(args.require)
     out = Path(args.output)
     if not out.is_dir():
         if not (out.parent if str(out.parent) else Path(".")).is_dir():
@@ -58,12 +70,17 @@ def run_batch_cmd(args) -> int:
             raise VelplanError("--random needs --base MECH and --seed TEXT (the assignment)")
         students = [s.strip() for s in args.students.split(",") if s.strip()] if args.students else None
         spread = _spread(args.spread)
+        stats: dict = {}
         variants, failures = batch.random_variants(args.base, args.random, args.seed, spread=spread,
-                                                   students=students)
+                                                   students=students, require=require, stats=stats)
+        if require:
+            sys.stdout.write(f"--require: {stats['drawn']} draw(s), {stats['rejected']} rejected by the constraints, "
+                             f"{stats['not_assembled']} not assembling; {len(variants)} variant(s) kept\n")
         from velplan.io import write_atomic
 
         write_atomic(out / "variants.csv", batch.variants_csv(variants))
         extra = {"assignment": args.seed, "base": args.base, "spread": spread,
+                 **({"require": args.require, "draws": stats} if require else {}),
                  "rule": "numpy default_rng(int(sha256(student + '\\x1f' + assignment)[:16], big-endian)); "
                          "factors uniform in [1 - spread, 1 + spread], rounded to 3 significant digits"}
     else:
@@ -71,7 +88,8 @@ def run_batch_cmd(args) -> int:
     if args.positions:
         variants = [batch.Variant(v.name, v.base, {"positions": args.positions, **v.overrides}, v.row)
                     for v in variants]
-    opts = batch.Options(str(out), png=args.png, lang=args.lang, fmt=args.format, sheets=not args.no_sheets)
+    opts = batch.Options(str(out), png=args.png, lang=args.lang, fmt=args.format, sheets=not args.no_sheets,
+                         note=args.note, figures=bool(args.require))
     report = batch.run_batch(variants, opts, jobs=args.jobs, failures=failures, extra=extra,
                              progress=None if args.quiet else batch.progress_bar())
     sys.stdout.write(f"{len(report.answers)} variant(s) studied into {out}; answer key {report.files[0].name}, "

@@ -32,7 +32,9 @@ def register(sub) -> None:
     where.add_argument("--angles", metavar="DEG,DEG,…", help="absolute crank angles in degrees")
     where.add_argument("--positions", metavar="N", type=positive_int, default=12,
                        help="N positions evenly spaced from the reference position (default 12)")
-    p.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    p.add_argument("--format", choices=("table", "csv", "json", "jsonl"), default="table",
+                   help="table, csv (a row per position), json (one document) or jsonl (a JSON object per "
+                        "position, per line); csv and jsonl are written as they are computed")
     p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
                    help="solver engine: compiled needs numba (pip install numba); "
                         "auto uses it from 2e6 angles when installed (default)")
@@ -95,6 +97,13 @@ def run_info(args) -> int:
 def run_analyze(args) -> int:
     angles = parse_angles(args.angles) if args.angles is not None else None
     study = Study(args.mechanism, n=args.positions, angles=angles, engine=args.engine)
+    if args.format in ("csv", "jsonl"):
+        from velplan.cli.stream import open_output
+
+        with open_output(args.output, binary=True) as out:
+            for chunk in stream(study, args.format):
+                out.write(chunk)
+        return 0
     kin = study.kinematics
     render = {"json": to_json, "csv": to_csv, "table": to_table}[args.format]
     emit(render(kin), args.output)
@@ -108,24 +117,31 @@ def _num(x: float) -> float | None:
 def to_json(kin: Kinematics) -> str:
     """The analysis as JSON in SI units with radians (NaN → null where not assembled)."""
     doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "epsilon1": kin.epsilon1, "positions": []}
+    singular = kin.singular
     for i in range(len(kin)):
+        ok = bool(kin.valid[i])
+        rate = (lambda x: _num(x)) if ok else (lambda x: None)  # masked: never a wrong number
         pts = {
             k: dict(zip(("x", "y", "vx", "vy", "ax", "ay"),
-                        map(_num, (*kin.positions[i, j], *kin.velocities[i, j], *kin.accelerations[i, j]))))
+                        (*map(_num, kin.positions[i, j]), *map(rate, kin.velocities[i, j]),
+                         *map(rate, kin.accelerations[i, j]))))
             for k, j in kin.point_index.items()
         }
         links = {
-            k: {"angle": _num(kin.angles[i, j]), "omega": _num(kin.omegas[i, j]), "epsilon": _num(kin.epsilons[i, j])}
+            k: {"angle": _num(kin.angles[i, j]), "omega": rate(kin.omegas[i, j]), "epsilon": rate(kin.epsilons[i, j])}
             for k, j in kin.link_index.items()
         }
         slides = {
-            k: dict(zip(("s", "v", "a"), map(_num, kin.slides[i, j]))) for k, j in kin.slide_index.items()
+            k: dict(zip(("s", "v", "a"), (_num(kin.slides[i, j, 0]), *map(rate, kin.slides[i, j, 1:]))))
+            for k, j in kin.slide_index.items()
         }
         cond = {k: _num(kin.condition[i, j]) for k, j in kin.group_index.items()}
-        doc["positions"].append({
-            "position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": bool(kin.valid[i]),
-            "points": pts, "links": links, "slides": slides, "condition": cond,
-        })
+        entry = {"position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": ok,
+                 "points": pts, "links": links, "slides": slides, "condition": cond}
+        if not ok:
+            entry["reason"] = (f"singular: a group at a toggle (condition {kin.min_condition()[i]:.2g}), "
+                               "velocities undetermined" if singular[i] else "not assembled")
+        doc["positions"].append(entry)
     return json.dumps(doc, indent=1, ensure_ascii=False)
 
 
@@ -155,6 +171,89 @@ def to_csv(kin: Kinematics) -> str:
         # a position not assembled or singular: its angle, then empty cells
         w.writerow([int(r[0]), f"{r[1]:.12g}"] + [f"{x:.12g}" if ok and math.isfinite(x) else "" for x in r[2:]])
     return buf.getvalue()
+
+
+STREAM_CHUNK = 16384
+"""Positions solved and written at a time by `stream` (a few MB of arrays)."""
+
+
+def stream(study: Study, fmt: str = "csv", chunk: int = STREAM_CHUNK):
+    """The study's positions as CSV (`to_csv`'s bytes) or line-delimited JSON, in pieces of
+    ``chunk`` positions solved and formatted in turn: memory stays bounded however many
+    positions there are. JSON lines hold `to_json`'s per-position objects with numbers to 12
+    significant digits (as the CSV)."""
+    from velplan.analysis.chunks import chunked_kinematics
+    from velplan.cli.numfmt import rows
+
+    w, e = study.crank_motion
+    for a, kin in chunked_kinematics(study.mechanism, study.phi, omega1=w, epsilon1=e, engine=study.engine,
+                                     chunk=chunk):
+        if fmt == "csv":
+            head, cols = _columns(kin, a)
+            if a == 0:
+                buf = io.StringIO()
+                csv.writer(buf, lineterminator="\n").writerow(head)
+                yield buf.getvalue().encode("utf-8")
+            vals = np.column_stack(cols)
+            vals[~kin.valid, 2:] = np.nan  # a position not assembled or singular: empty cells
+            yield rows(vals, [b""] + [b","] * (vals.shape[1] - 1) + [b"\n"])
+        else:
+            lits, cols = _jsonl_layout(kin, a)
+            yield rows(np.column_stack(cols), lits, na=b"null", bools=[2])
+
+
+def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarray]]:
+    """CSV header and columns of `to_csv`, positions numbered from ``first`` + 1."""
+    head = ["position", "phi_deg"]
+    cols = [np.arange(first + 1, first + len(kin) + 1, dtype=float), kin.phi_deg]
+    for k, j in kin.point_index.items():
+        for q, arr in (("x", kin.positions[:, j, 0]), ("y", kin.positions[:, j, 1]),
+                       ("vx", kin.velocities[:, j, 0]), ("vy", kin.velocities[:, j, 1]),
+                       ("ax", kin.accelerations[:, j, 0]), ("ay", kin.accelerations[:, j, 1])):
+            head.append(f"{k}.{q}")
+            cols.append(arr)
+    for k, j in kin.link_index.items():
+        for q, arr in (("angle", kin.angles[:, j]), ("omega", kin.omegas[:, j]), ("epsilon", kin.epsilons[:, j])):
+            head.append(f"{k}.{q}")
+            cols.append(arr)
+    return head, cols
+
+
+def _jsonl_layout(kin: Kinematics, first: int = 0) -> tuple[list[bytes], list[np.ndarray]]:
+    """Literal text and number columns of one JSON object per position (`to_json`'s keys)."""
+    q = lambda name: json.dumps(name, ensure_ascii=False)  # noqa: E731
+    lits: list[str] = []
+    cols: list[np.ndarray] = []
+    pending = "{"
+
+    def number(key: str, arr: np.ndarray, sep: str) -> None:
+        nonlocal pending
+        lits.append(pending + sep + f"{q(key)}: ")
+        cols.append(arr)
+        pending = ""
+
+    number("position", np.arange(first + 1, first + len(kin) + 1, dtype=float), "")
+    number("phi_deg", kin.phi_deg, ", ")
+    number("valid", kin.valid.astype(float), ", ")
+    sections = [("points", kin.point_index, ("x", "y", "vx", "vy", "ax", "ay"),
+                 lambda j: (kin.positions[:, j, 0], kin.positions[:, j, 1], kin.velocities[:, j, 0],
+                            kin.velocities[:, j, 1], kin.accelerations[:, j, 0], kin.accelerations[:, j, 1])),
+                ("links", kin.link_index, ("angle", "omega", "epsilon"),
+                 lambda j: (kin.angles[:, j], kin.omegas[:, j], kin.epsilons[:, j])),
+                ("slides", kin.slide_index, ("s", "v", "a"), lambda j: tuple(kin.slides[:, j].T))]
+    for name, index, fields, arrays in sections:
+        pending += f", {q(name)}: {{"
+        for n, (k, j) in enumerate(index.items()):
+            pending += ("" if n == 0 else ", ") + f"{q(k)}: {{"
+            for m, (f, arr) in enumerate(zip(fields, arrays(j))):
+                number(f, arr, "" if m == 0 else ", ")
+            pending += "}"
+        pending += "}"
+    pending += ', "condition": {'
+    for n, (k, j) in enumerate(kin.group_index.items()):
+        number(k, kin.condition[:, j], "" if n == 0 else ", ")
+    lits.append(pending + "}}\n")
+    return [t.encode("utf-8") for t in lits], cols
 
 
 def to_table(kin: Kinematics) -> str:

@@ -33,7 +33,7 @@ def register(sub) -> None:
     p.add_argument("--plans", metavar="K,…",
                    help="positions whose plans are drawn, or all (with --kind velocity: the 12 "
                         "velocity plans of a course work; default: two, about a quarter and "
-                        "three quarters of the turn); with --kind forces, the positions of the "
+                        "three quarters of the turn, or the first alone where two do not fit); with --kind forces, the positions of the "
                         "force analysis (default: the largest balancing moment)")
     p.add_argument("--kind", choices=_SHEET_KINDS, default="both",
                    help="which plans (default both); forces: the force-analysis sheet "

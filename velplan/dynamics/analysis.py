@@ -20,8 +20,9 @@ from velplan.dynamics.steady import EnergyCurve, SteadyState, curve_of, steady_s
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
 
-PANELS = 128
-"""Default number of panels over a cycle (×16 exact solver positions)."""
+PANELS = None
+"""Default panels: `velplan.dynamics.reduction.PANELS`, doubled until the error estimate is at
+round-off (`velplan.dynamics.reduction.profile`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -169,7 +170,8 @@ class Dynamics:
         from velplan.dynamics.flywheel import wittenbauer
 
         return wittenbauer(self.curve, self.flywheel.omega_mean, self.flywheel.delta,
-                           size_mm=size_mm, precision=precision, mu_J=mu_J, mu_T=mu_T)
+                           size_mm=size_mm, precision=precision, mu_J=mu_J, mu_T=mu_T,
+                           found=list(self.flywheel.found) or None)
 
     @cached_property
     def drive(self):
@@ -181,6 +183,27 @@ class Dynamics:
 
         return select_drive(self)
 
+    def with_spec(self, spec: DynamicsSpec) -> Dynamics:
+        """The same mechanism and reduction under another ``spec`` of the same cycle (another
+        motor, inertias, run): no new solve."""
+        if abs(spec.cycle - self.profile.cycle) > 1e-12:
+            raise VelplanError(f"dynamics: with_spec needs the same cycle ({self.profile.cycle:g} rad), "
+                               f"not {spec.cycle:g}")
+        return assemble(self.mechanism, spec, self.reducer, self.profile)
+
+    @cached_property
+    def errors(self) -> dict[str, float]:
+        """Estimated errors of the results (absolute, in their units): ``driving_moment``
+        (N·m), ``flywheel_exact``, ``flywheel_mertsalov``, ``flywheel_wittenbauer`` (kg·m²),
+        ``omega`` (rad/s, of ω_max, ω_min, ω_m), ``delta``, ``period`` or ``time`` (s),
+        ``travel`` (rad, of a run to a time); from the panels' series and the ODE's tolerance."""
+        e = {"driving_moment": self.profile.errors["work"] / self.profile.cycle}
+        if self.flywheel is not None:
+            e.update({f"flywheel_{k}": v for k, v in self.flywheel.errors.items()})
+        motion = self.run or self.periodic or self.steady
+        e.update(motion.errors)
+        return {k: float(v) for k, v in e.items()}
+
     def _drive_moment(self, w) -> np.ndarray:
         if self.run is None and self.periodic is None:
             return np.full(np.shape(w), self.driving)
@@ -188,7 +211,7 @@ class Dynamics:
 
 
 def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpec | None = None,
-            delta: float | None = None, panels: int = PANELS) -> Dynamics:
+            delta: float | None = None, panels: int | None = PANELS) -> Dynamics:
     """The dynamics of ``mech`` from its ``[dynamics]`` section (or ``spec``).
 
     Parameters
@@ -201,8 +224,9 @@ def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpe
         state with the constant driving moment, no flywheel sizing).
     delta : float, optional
         Overrides the required δ.
-    panels : int
-        Panels over a cycle (16 exact positions each).
+    panels : int, optional
+        Panels over a cycle (16 exact positions each); None: 64, doubled while the estimated
+        relative error exceeds 1e-12.
     """
     spec = parse_dynamics(mech) if spec is None else spec
     if delta is not None:
@@ -212,7 +236,12 @@ def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpe
 
         spec = replace(spec, delta=float(delta))
     red = reducer(mech, loads)
-    prof = profile(red, spec.cycle, panels)
+    return assemble(mech, spec, red, profile(red, spec.cycle, panels))
+
+
+def assemble(mech: Mechanism, spec: DynamicsSpec, red: Reducer, prof: Profile) -> Dynamics:
+    """The dynamics of ``mech`` by ``spec`` on a reduction already tabulated (``prof`` over
+    ``spec.cycle``): what `analyse` and `Dynamics.with_spec` share."""
     constants = []
     if red.crank_inertia > 0:
         constants.append((f"crank {mech.crank.link}", red.crank_inertia))
@@ -233,10 +262,10 @@ def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpe
         r = spec.run
         run = simulate(prof, inertia, motor.moment, abs(r.omega),
                        travel=None if r.travel_deg is None else math.radians(r.travel_deg),
-                       time=r.time, time_limit=r.time_limit)
+                       time=r.time, time_limit=r.time_limit, scalar=motor.scalar())
     elif motor.depends_on_speed:
         guess = motor.speed_for(driving, wm) or wm or 1.0
-        per = periodic(prof, inertia, motor.moment, guess)
+        per = periodic(prof, inertia, motor.moment, guess, scalar=motor.scalar())
     else:
         if wm == 0:
             raise VelplanError("dynamics: the steady state needs the mean crank speed: give rpm or omega in [crank]")

@@ -175,9 +175,8 @@ def choose_motor(motors, required_w: float, preferred_rpm: float | None) -> Cata
 
 def select_drive(dyn, spec: DriveSpec | None = None) -> Drive:
     """Choose the drive of the mechanism of ``dyn`` (a `velplan.dynamics.Dynamics`) by
-    ``spec`` (the file's ``[dynamics.drive]``; its defaults when None)."""
-    from velplan.dynamics.analysis import analyse
-
+    ``spec`` (the file's ``[dynamics.drive]``; its defaults when None). The dynamics with the
+    motor reuse the reduction of ``dyn`` (`Dynamics.with_spec`)."""
     spec = spec or dyn.spec.drive or DriveSpec()
     wm = dyn.omega_mean
     if wm <= 0:
@@ -214,6 +213,6 @@ def select_drive(dyn, spec: DriveSpec | None = None) -> Drive:
         motor=MotorSpec(kind="kloss", critical_torque=m_k, synchronous_rpm=motor.synchronous_rpm,
                         critical_rpm=n_k, ratio=ratio,
                         efficiency=spec.coupling_efficiency * spec.gear_efficiency))
-    rerun = analyse(dyn.mechanism, dyn.reducer.loads, spec=again)
+    rerun = dyn.with_spec(again)
     return Drive(spec, theta, useful, useful_max, useful_mean, spent, required, motor, ratio, torques, rerun,
                  float(rerun.periodic.delta))

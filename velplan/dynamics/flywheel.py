@@ -15,12 +15,12 @@ k± = ½·ω_m²·(1 ± δ/2)²:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from velplan.dynamics.spec import FlywheelSpec
-from velplan.dynamics.steady import EnergyCurve, extreme
+from velplan.dynamics.steady import EnergyCurve, Target, extremes
 from velplan.errors import VelplanError
 
 NICE = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0)
@@ -117,6 +117,8 @@ class Flywheel:
     diagram : Wittenbauer
     dimensions : FlywheelDimensions or None
         None when no flywheel is needed.
+    errors : dict
+        Estimated errors of ``"exact"``, ``"mertsalov"``, ``"wittenbauer"`` (computed), kg·m².
     """
 
     delta: float
@@ -130,6 +132,8 @@ class Flywheel:
     on_shaft: float
     diagram: Wittenbauer
     dimensions: FlywheelDimensions | None
+    errors: dict = field(default_factory=dict)
+    found: tuple = field(default=(), repr=False)
 
     @property
     def mertsalov_difference(self) -> float:
@@ -137,43 +141,50 @@ class Flywheel:
         return (self.mertsalov - self.exact) / self.exact
 
 
-def envelope(c: EnergyCurve, omega_mean: float, delta: float):
-    """((θ₊, c₊), (θ₋, c₋), k₊, k₋): max of A − k₊J and min of A − k₋J."""
-    kp = 0.5 * omega_mean**2 * (1 + delta / 2) ** 2
-    km = 0.5 * omega_mean**2 * (1 - delta / 2) ** 2
-    A, J = c.on_grid
-    up = extreme(c.grid, A - kp * J, lambda t: c.A(t) - kp * c.J(t), lambda t: c.M(t) - kp * c.dJ(t), "max")
-    dn = extreme(c.grid, A - km * J, lambda t: c.A(t) - km * c.J(t), lambda t: c.M(t) - km * c.dJ(t), "min")
-    return up, dn, kp, km
+def _ks(omega_mean: float, delta: float) -> tuple[float, float]:
+    return 0.5 * omega_mean**2 * (1 + delta / 2) ** 2, 0.5 * omega_mean**2 * (1 - delta / 2) ** 2
 
 
-def exact_inertia(c: EnergyCurve, omega_mean: float, delta: float) -> float:
-    """J_I by the energy–mass envelope, kg·m²."""
-    (_, cp), (_, cm), kp, km = envelope(c, omega_mean, delta)
-    return (cp - cm) / (kp - km)
-
-
-def mertsalov_inertia(c: EnergyCurve, omega_mean: float, delta: float) -> float:
-    """J_I by Mertsalov's approximation, kg·m²."""
+def _found(c: EnergyCurve, omega_mean: float, delta: float) -> list[tuple[float, float]]:
+    """The four extremes the three methods need, found together: max of A − k₊J, min of
+    A − k₋J, max and min of A − k(J − J(0)) with k = ½ω_m²."""
+    kp, km = _ks(omega_mean, delta)
     k = 0.5 * omega_mean**2
     A, J = c.on_grid
     j0 = float(c.J(np.array([0.0]))[0])
-    vals = A - k * (J - j0)
-    f = lambda t: c.A(t) - k * (c.J(t) - j0)  # noqa: E731
-    df = lambda t: c.M(t) - k * c.dJ(t)  # noqa: E731
-    _, hi = extreme(c.grid, vals, f, df, "max")
-    _, lo = extreme(c.grid, vals, f, df, "min")
-    return (hi - lo) / (delta * omega_mean**2)
+    me = A - k * (J - j0)
+    return extremes(c, [Target(A - kp * J, "max", k=kp), Target(A - km * J, "min", k=km),
+                        Target(me, "max", k * j0, k), Target(me, "min", k * j0, k)])
+
+
+def envelope(c: EnergyCurve, omega_mean: float, delta: float, found=None):
+    """((θ₊, c₊), (θ₋, c₋), k₊, k₋): max of A − k₊J and min of A − k₋J."""
+    found = found or _found(c, omega_mean, delta)
+    kp, km = _ks(omega_mean, delta)
+    return found[0], found[1], kp, km
+
+
+def exact_inertia(c: EnergyCurve, omega_mean: float, delta: float, found=None) -> float:
+    """J_I by the energy–mass envelope, kg·m²."""
+    (_, cp), (_, cm), kp, km = envelope(c, omega_mean, delta, found)
+    return (cp - cm) / (kp - km)
+
+
+def mertsalov_inertia(c: EnergyCurve, omega_mean: float, delta: float, found=None) -> float:
+    """J_I by Mertsalov's approximation, kg·m²."""
+    found = found or _found(c, omega_mean, delta)
+    return (found[2][1] - found[3][1]) / (delta * omega_mean**2)
 
 
 def wittenbauer(c: EnergyCurve, omega_mean: float, delta: float, *, size_mm: float = 150.0,
-                precision: float = 0.5, mu_J: float | None = None, mu_T: float | None = None) -> Wittenbauer:
+                precision: float = 0.5, mu_J: float | None = None, mu_T: float | None = None,
+                found=None) -> Wittenbauer:
     """Wittenbauer's diagram at scales fitting the curve in ``size_mm`` (or given), its
     tangents and the segment they cut, computed and read at ``precision`` mm."""
     A, J = c.on_grid
     mu_J = mu_J or nice_scale(float(J.max()) / size_mm)
     mu_T = mu_T or nice_scale(float(A.max() - A.min()) / size_mm)
-    (tp, cp), (tm, cm), kp, km = envelope(c, omega_mean, delta)
+    (tp, cp), (tm, cm), kp, km = envelope(c, omega_mean, delta, found)
     w2d = omega_mean**2 * delta
     seg = (cp - cm) / mu_T
     drawn = round(seg / precision) * precision
@@ -215,10 +226,18 @@ def size_flywheel(c: EnergyCurve, omega_mean: float, delta: float, declared: flo
     ``declared`` constant inertias (kg·m², reduced), on its shaft, and its dimensions."""
     if not 0 < delta < 1:
         raise VelplanError(f"delta must be between 0 and 1 (exclusive), not {delta:g}")
-    ex = exact_inertia(c, omega_mean, delta)
-    me = mertsalov_inertia(c, omega_mean, delta)
-    wd = wittenbauer(c, omega_mean, delta, precision=precision)
+    found = _found(c, omega_mean, delta)
+    ex = exact_inertia(c, omega_mean, delta, found)
+    me = mertsalov_inertia(c, omega_mean, delta, found)
+    wd = wittenbauer(c, omega_mean, delta, precision=precision, found=found)
     added = ex - declared
     on_shaft = added / spec.ratio**2
     dims = dimensions(on_shaft, spec) if on_shaft > 0 else None
-    return Flywheel(delta, omega_mean, ex, me, wd.inertia, declared, added, spec.ratio, on_shaft, wd, dims)
+    kp, km = _ks(omega_mean, delta)
+    eA, eJ = c.errors["A"], c.errors["J"]
+    # each extreme errs by at most eA + k·eJ (a shifted maximum moves the value only to 2nd order)
+    errors = {"exact": (2 * eA + (kp + km) * eJ) / (kp - km),
+              "mertsalov": (2 * eA + omega_mean**2 * eJ) / (delta * omega_mean**2)}
+    errors["wittenbauer"] = errors["exact"]
+    return Flywheel(delta, omega_mean, ex, me, wd.inertia, declared, added, spec.ratio, on_shaft, wd, dims, errors,
+                    tuple(found))

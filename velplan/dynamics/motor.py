@@ -65,6 +65,26 @@ class Motor:
         m = self.shaft_torque(sp.ratio * np.asarray(w, dtype=float) * RPM)
         return np.where(m >= 0, m * sp.ratio * sp.efficiency, m * sp.ratio / sp.efficiency)
 
+    def scalar(self):
+        """``moment`` for one speed in plain floats (w rad/s → N·m): what an ODE's right-hand
+        side calls."""
+        sp = self.spec
+        if sp.kind == "constant":
+            value = (self.found or 0.0) if sp.torque is None else sp.torque * sp.ratio * (
+                sp.efficiency if sp.torque >= 0 else 1.0 / sp.efficiency)
+            return lambda w: value
+        up, down, k = sp.ratio * sp.efficiency, sp.ratio / sp.efficiency, sp.ratio * RPM
+        if sp.kind == "kloss":
+            n0, sk, mk = sp.synchronous_rpm, 1.0 - sp.critical_rpm / sp.synchronous_rpm, sp.critical_torque
+
+            def kloss_moment(w):
+                s = 1.0 - k * w / n0
+                m = 2.0 * mk * s * sk / (s * s + sk * sk)
+                return m * up if m >= 0 else m * down
+
+            return kloss_moment
+        return lambda w: float(self.moment(w))
+
     @property
     def depends_on_speed(self) -> bool:
         return self.spec.kind != "constant"

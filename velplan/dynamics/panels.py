@@ -1,7 +1,8 @@
 """Piecewise Gauss–Legendre panels over a cycle of crank travel.
 
-The cycle [0, L) is cut at the angles where a load jumps (its breakpoints) and each piece
-into panels. On every panel a quantity is known exactly at 16 Gauss–Legendre nodes; its
+The cycle [0, L) is cut at the angles where a load jumps or has a kink (its breakpoints:
+every node of a table, on each stroke it acts, and the output's extremes) and each piece into
+panels. On every panel a quantity is known exactly at 16 Gauss–Legendre nodes; its
 Legendre series through those nodes (degree 15) gives it, its integral and its value at any
 travel. For the reduced inertia and the moments of smooth loads between jumps this is exact
 to round-off (tests check 1e-12 against the solver), and no node ever sits on a jump.
@@ -84,33 +85,72 @@ class Panels:
         x = (t - self.edges[p]) / self.half[p] - 1.0
         return p, x
 
-    def evaluate(self, coef: np.ndarray, theta, *, p=None, x=None) -> np.ndarray:
-        """Values at travel ``theta`` (m,) of quantities with coefficients ``coef`` (Q, P, n) → (Q, m)."""
-        if p is None:
-            p, x = self.locate(theta)
-        c = coef[:, p, :]  # (Q, m, n)
-        return L.legval(x, np.moveaxis(c, -1, 0), tensor=False)
+    def evaluate(self, coef: np.ndarray, theta, *, deriv: bool = False):
+        """Values at travel ``theta`` (m,) of quantities with coefficients ``coef`` (Q, P, n) →
+        (Q, m); with ``deriv``, also their derivatives d/dθ (Q, m), per rad."""
+        p, x = self.locate(np.atleast_1d(theta))
+        B, dB = legendre_basis(x, coef.shape[-1], deriv)
+        c = coef[:, p, :]
+        vals = np.einsum("qmn,mn->qm", c, B)
+        if not deriv:
+            return vals
+        return vals, np.einsum("qmn,mn->qm", c, dB) / self.half[p]
 
-    def integrate_to(self, coef: np.ndarray, edge_integrals: np.ndarray, theta) -> np.ndarray:
+    def antiderivative(self, coef: np.ndarray) -> np.ndarray:
+        """(Q, P, n + 1) Legendre coefficients of ∫ from each panel's start (in travel, rad)."""
+        return L.legint(coef, lbnd=-1.0, axis=-1) * self.half[:, None]
+
+    def integrate_to(self, coef: np.ndarray, edge_integrals: np.ndarray, theta, *,
+                     icoef: np.ndarray | None = None) -> np.ndarray:
         """∫ from 0 to ``theta`` (m,) (within one cycle) of quantities (Q, P, n) → (Q, m).
 
-        ``edge_integrals`` (Q, P + 1) from `integral`."""
-        p, x = self.locate(theta)
-        c = np.moveaxis(coef[:, p, :], -1, 0)  # (n, Q, m)
-        ic = L.legint(c, lbnd=-1.0, axis=0)
-        part = L.legval(x, ic, tensor=False) * self.half[p]
-        return edge_integrals[:, p] + part
+        ``edge_integrals`` (Q, P + 1) from `integral`; ``icoef`` from `antiderivative` (computed
+        when None)."""
+        if icoef is None:
+            icoef = self.antiderivative(coef)
+        p, x = self.locate(np.atleast_1d(theta))
+        B, _ = legendre_basis(x, icoef.shape[-1])
+        return edge_integrals[:, p] + np.einsum("qmn,mn->qm", icoef[:, p, :], B)
+
+    def tail(self, coef: np.ndarray) -> np.ndarray:
+        """(…, P) |c_{n−2}| + |c_{n−1}|: the size of the last two terms of each panel's series,
+        an estimate of the error of a value read off it (a smooth quantity's series has
+        converged to round-off; a kink or a jump inside a panel leaves a slowly decaying
+        tail)."""
+        return np.abs(coef[..., -2]) + np.abs(coef[..., -1])
+
+
+def legendre_basis(x: np.ndarray, n: int, deriv: bool = False) -> tuple[np.ndarray, np.ndarray | None]:
+    """(m, n) Legendre polynomials P_k(x), k < n, and with ``deriv`` their derivatives P_k′(x)
+    (else None), by the three-term recurrences."""
+    x = np.asarray(x, dtype=float)
+    B = np.empty((x.size, n))
+    B[:, 0] = 1.0
+    if n > 1:
+        B[:, 1] = x
+    for k in range(1, n - 1):
+        B[:, k + 1] = ((2 * k + 1) * x * B[:, k] - k * B[:, k - 1]) / (k + 1)
+    if not deriv:
+        return B, None
+    dB = np.zeros((x.size, n))
+    if n > 1:
+        dB[:, 1] = 1.0
+    for k in range(1, n - 1):
+        dB[:, k + 1] = dB[:, k - 1] + (2 * k + 1) * B[:, k]
+    return B, dB
 
 
 def panels_over(cycle: float, breaks, count: int, order: int = ORDER) -> Panels:
-    """About ``count`` panels over [0, ``cycle``), with an edge at every break (rad of travel
-    in [0, cycle)); each piece between breaks gets panels in proportion to its length."""
+    """``count`` panels over [0, ``cycle``) (or one per piece, if there are more pieces), with
+    an edge at every break (rad of travel in [0, cycle)); the pieces between breaks share them
+    in proportion to their lengths (largest remainders)."""
     b = np.unique(np.concatenate(([0.0, cycle], np.mod(np.asarray(breaks, dtype=float), cycle))))
     b = b[np.concatenate(([True], np.diff(b) > 1e-12 * cycle))]
     if b[-1] < cycle:
         b[-1] = cycle
-    edges = [np.array([0.0])]
-    for lo, hi in zip(b[:-1], b[1:]):
-        m = max(1, int(np.ceil(count * (hi - lo) / cycle)))
-        edges.append(np.linspace(lo, hi, m + 1)[1:])
+    ideal = count * np.diff(b) / cycle
+    m = np.maximum(1, np.floor(ideal)).astype(int)
+    for _ in range(max(0, count - int(m.sum()))):
+        m[int(np.argmax(ideal / m))] += 1
+    edges = [np.array([0.0])] + [np.linspace(lo, hi, k + 1)[1:] for lo, hi, k in zip(b[:-1], b[1:], m)]
     return Panels(np.concatenate(edges), b, order)

@@ -23,7 +23,7 @@ import numpy as np
 
 from velplan.analysis.extremes import reference_angle
 from velplan.analysis.solver import solve
-from velplan.dynamics.panels import Panels, panels_over
+from velplan.dynamics.panels import Panels, legendre_basis, panels_over
 from velplan.errors import MechanismError
 from velplan.forces.common import dot, link_motion, point
 from velplan.forces.inertia import inertia_of
@@ -202,6 +202,45 @@ class Profile:
         """(k, P + 1) work of each moment from travel 0 to each panel edge, J."""
         return self.panels.integral(self._stack[2:])
 
+    @cached_property
+    def _icoef(self) -> np.ndarray:
+        return self.panels.antiderivative(self.coef[2:])
+
+    @cached_property
+    def fields(self) -> np.ndarray:
+        """(3, P, n) coefficients of J, J′ and the total moment of the loads and gravity."""
+        c = self.coef
+        return np.stack((c[0], c[1], c[2:].sum(axis=0) if c.shape[0] > 2 else np.zeros_like(c[0])))
+
+    @cached_property
+    def errors(self) -> dict[str, float]:
+        """Estimated errors of what is read off the series (see `Panels.tail`; round-off added):
+        ``"J"`` and ``"dJ"`` of a value of J (kg·m²) and J′ (kg·m²/rad), ``"M"`` of a value of
+        the total moment (N·m), ``"work"`` of any work of the total moment from travel 0 (J)."""
+        pn, f = self.panels, self.fields
+        stack = self._stack
+        tail = pn.tail(f)  # (3, P)
+        eps = np.finfo(float).eps
+        total = stack[2:].sum(axis=0) if stack.shape[0] > 2 else np.zeros(stack.shape[1:])
+        scale = [np.abs(stack[0]).max(), np.abs(stack[1]).max(), np.abs(stack[2:]).sum(axis=0).max()
+                 if stack.shape[0] > 2 else 0.0]
+        roundoff = 64 * eps * float(np.sum(np.abs(total) * pn.weights)) if stack.shape[0] > 2 else 0.0
+        return {"J": float(tail[0].max()) + 16 * eps * scale[0],
+                "dJ": float(tail[1].max()) + 16 * eps * scale[1],
+                "M": float(tail[2].max()) + 16 * eps * scale[2],
+                "work": float(np.sum(2.0 * pn.half * tail[2])) + roundoff}
+
+    @cached_property
+    def relative_error(self) -> float:
+        """The largest of the `errors` over the size of what they measure: the works over
+        ∫|M| of the loads, J, J′ and M over their largest magnitudes."""
+        e, st, w = self.errors, self._stack, self.panels.weights
+        sizes = {"J": np.abs(st[0]).max(), "dJ": np.abs(st[1]).max()}
+        if st.shape[0] > 2:
+            sizes["M"] = np.abs(st[2:].sum(axis=0)).max()
+            sizes["work"] = float(np.sum(np.abs(st[2:]) * w))
+        return max((e[k] / v for k, v in sizes.items() if v > 0), default=0.0)
+
     @property
     def cycle(self) -> float:
         return self.panels.cycle
@@ -214,22 +253,65 @@ class Profile:
         """(2 + k, m) J, J′ and the moments at travels ``theta`` (rad, taken within the cycle)."""
         return self.panels.evaluate(self.coef, np.atleast_1d(theta))
 
+    def local(self, theta) -> tuple[np.ndarray, np.ndarray]:
+        """((3, m) J, J′, M, (3, m) their derivatives d/dθ) at travels ``theta`` (rad), M the
+        total moment of the loads and gravity."""
+        return self.panels.evaluate(self.fields, np.atleast_1d(theta), deriv=True)
+
+    @cached_property
+    def _energy_coef(self) -> np.ndarray:
+        """(4, P, n + 1): the total work's antiderivative, then J, J′ and M padded by a zero."""
+        f = self.fields
+        total = self._icoef.sum(axis=0) if self._icoef.shape[0] else np.zeros(f.shape[1:-1] + (f.shape[-1] + 1,))
+        pad = np.concatenate((f, np.zeros(f.shape[:-1] + (1,))), axis=-1)
+        return np.concatenate((total[None], pad))
+
+    def energy(self, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(W, (3, m) J, J′, M, (3, m) their derivatives d/dθ) at travels ``theta`` (rad, in
+        [0, cycle)), W the total work of the loads and gravity from travel 0: one locate and
+        one basis for all (what the extremes' Newton steps call)."""
+        pn = self.panels
+        p, x = pn.locate(np.atleast_1d(theta))
+        c = self._energy_coef[:, p, :]
+        B, dB = legendre_basis(x, c.shape[-1], True)
+        v = np.einsum("qmn,mn->qm", c, B)
+        d = np.einsum("qmn,mn->qm", c[1:], dB) / pn.half[p]
+        return self.edge_works.sum(axis=0)[p] + v[0], v[1:], d
+
     def works(self, theta) -> np.ndarray:
         """(k, m) work of each moment from travel 0 to ``theta`` (0 ≤ θ ≤ cycle), J."""
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
-        out = self.panels.integrate_to(self.coef[2:], self.edge_works, np.minimum(theta, self.cycle))
+        out = self.panels.integrate_to(self.coef[2:], self.edge_works, np.minimum(theta, self.cycle),
+                                       icoef=self._icoef)
         at_end = theta >= self.cycle
         if np.any(at_end):
             out[:, at_end] = self.edge_works[:, -1:]
         return out
 
 
-def profile(red: Reducer, cycle: float = 2 * np.pi, panels: int = 128) -> Profile:
-    """Tabulate ``red`` over a cycle (2π or 4π) on about ``panels`` panels split at the loads'
-    breakpoints (one solve of P·16 positions)."""
+PANELS = 64
+"""Panels a cycle starts with (×16 exact solver positions): with the panels cut at every node
+of the loads, enough for round-off on every bundled and catalogue mechanism
+(benchmarks/results/dynamics.md)."""
+TOLERANCE = 1e-12
+"""Relative error estimate (`Profile.relative_error`) above which the panels are doubled."""
+MAX_PANELS = 1024
+
+
+def profile(red: Reducer, cycle: float = 2 * np.pi, panels: int | None = None) -> Profile:
+    """Tabulate ``red`` over a cycle (2π or 4π) on ``panels`` panels split at the loads'
+    breakpoints (one solve of P·16 positions); ``panels`` None: `PANELS`, doubled while the
+    estimated relative error exceeds `TOLERANCE` and halves at least (up to `MAX_PANELS`)."""
     b = red.breakpoints()
     if cycle > 2 * np.pi + 1e-9:
         b = np.concatenate([b + k * 2 * np.pi for k in range(int(round(cycle / (2 * np.pi))))])
-    pn = panels_over(cycle, b, panels)
-    r = red(pn.nodes.ravel())
-    return Profile(pn, red.labels, r)
+    n = PANELS if panels is None else panels
+    last = None
+    while True:
+        pn = panels_over(cycle, b, n)
+        prof = Profile(pn, red.labels, red(pn.nodes.ravel()))
+        if panels is not None or n >= MAX_PANELS or prof.relative_error <= TOLERANCE:
+            return prof
+        if last is not None and prof.relative_error > 0.5 * last.relative_error:
+            return last  # no better for more panels: the round-off of the loads themselves (a steep ramp)
+        last, n = prof, 2 * n

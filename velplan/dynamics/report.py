@@ -72,6 +72,7 @@ def to_dict(d: Dynamics, n: int = 12, drive=None) -> dict:
         if d.periodic is not None:
             doc["omega_start"] = s * d.periodic.omega_start
             doc["periodic_residual"] = d.periodic.residual
+    doc["error"] = {k: _num(v) for k, v in d.errors.items()}
     drive = d.drive if drive is None else drive
     if drive is not None:
         doc["drive"] = {k: (_num(v) if isinstance(v, float) else v) for k, v in drive.to_dict().items()}
@@ -97,6 +98,11 @@ def to_table(d: Dynamics, n: int = 12, drive=None) -> str:
         lines.append(f"  flywheel J_I, kg·m²: exact {fmt(f['exact'])}, Mertsalov {fmt(f['mertsalov'])} "
                      f"({f['mertsalov_difference_percent']:+.3g} %), Wittenbauer {fmt(f['wittenbauer'])} "
                      f"(drawn {fmt(f['wittenbauer_drawn'])})")
+    err = doc["error"]
+    names = (("driving_moment", "M_drive", "N·m"), ("flywheel_exact", "J_I", "kg·m²"), ("omega", "ω", "rad/s"),
+             ("period", "period", "s"), ("time", "time", "s"), ("travel", "travel", "rad"))
+    lines.append("  estimated error: " + ", ".join(f"{sym} ±{err[k]:.2g} {unit}" for k, sym, unit in names
+                                                    if err.get(k)))
     if "flywheel_dimensions" in doc:
         dm = doc["flywheel_dimensions"]
         lines.append(f"  flywheel {dm['shape']}: D = {dm['diameter'] * 1000:.0f} mm, b = {dm['width'] * 1000:.0f} mm, "

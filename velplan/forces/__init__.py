@@ -31,6 +31,7 @@ from velplan.forces.loads import (
     table_force,
 )
 from velplan.forces.parse import parse_loads
+from velplan.forces.triad import LeadForces, TriadForcePolygon, triad_polygon
 from velplan.forces.power import (
     kinetic_energy,
     kinetic_energy_rate,
@@ -41,9 +42,9 @@ from velplan.forces.power import (
 
 __all__ = [
     "Actions", "AppliedForce", "AppliedMoment", "ForceAnalysis", "ForcePolygon", "Inertia", "Kinetostatics",
-    "Lever", "Reaction", "analyse_forces", "constant_force", "constant_moment", "cutting_force",
+    "LeadForces", "Lever", "Reaction", "TriadForcePolygon", "analyse_forces", "constant_force", "constant_moment", "cutting_force",
     "estimated_inertia", "gravity_actions", "images_from_kinematics", "indicator_force", "inertia_actions",
     "inertias", "kinetic_energy", "kinetic_energy_rate", "kinetostatics", "lever_difference_percent",
     "load_actions", "mean_balancing_moment", "mechanism_actions", "parse_loads", "positions_from_kinematics",
-    "power_balancing_moment", "powers", "press_load", "static_moment", "table_force", "zhukovsky_lever",
+    "power_balancing_moment", "powers", "press_load", "static_moment", "table_force", "triad_polygon", "zhukovsky_lever",
 ]

@@ -312,13 +312,19 @@ class TableForce:
     ref_phi: float
     sense: float
     track: Track | None
+    nodes: tuple[float, ...] = ()
 
     def magnitude(self, kin: Kinematics) -> np.ndarray:
         """(n,) signed magnitude, N."""
         x, y = np.asarray(self.x), np.asarray(self.values)
         if self.over == "crank":
             turn = np.degrees(np.mod(self.sense * (kin.phi - self.ref_phi), TWO_PI))
-            return np.interp(turn, x, y, period=360.0)
+            # one period either side, sorted stably: an x given twice stays a jump in order
+            # (np.interp's own period= sorts without that guarantee)
+            xm = np.mod(x, 360.0)
+            order = np.argsort(xm, kind="stable")
+            xm, ym = xm[order], y[order]
+            return np.interp(turn, np.concatenate((xm - 360.0, xm, xm + 360.0)), np.tile(ym, 3))
         t = self.track
         d = (t.slide(kin) - t.s_start) * np.sign(t.s_end - t.s_start)
         mag = np.interp(d, x, y)
@@ -333,7 +339,9 @@ class TableForce:
         return Actions((AppliedForce(self.name, self.link, self.point, self.magnitude(kin) * e),))
 
     def breakpoints(self) -> tuple[float, ...]:
-        out = []
+        """Crank angles (rad) of every node of the table (a kink, or a jump at a repeated x)
+        and of the output's extremes."""
+        out = list(self.nodes)
         if self.over == "crank":
             out += [float(self.ref_phi + self.sense * math.radians(v)) for v in self.x]
         if self.track is not None:
@@ -361,20 +369,57 @@ def table_force(mech: Mechanism, x: Sequence[float], values: Sequence[float], *,
         raise MechanismError(f"{where}: stroke = {stroke!r} needs over = 'output'")
     link, point = _link_and_point(mech, name, point, link, track)
     guide = _guide_link(mech, link, where) if direction != "fixed" else None
+    nodes = ()
+    if over == "output":
+        nodes = _travel_nodes(track, xs, working=stroke != "return", back=stroke != "working", head="start")
     return TableForce(name, link, point, over, xs, ys, direction, math.radians(angle_deg), guide, stroke,
-                      reference_angle(mech), 1.0 if mech.crank.omega >= 0 else -1.0, track)
+                      reference_angle(mech), 1.0 if mech.crank.omega >= 0 else -1.0, track, nodes)
+
+
+def _travel_nodes(track: Track, travel: Sequence[float], *, working: bool, back: bool,
+                  head: str) -> tuple[float, ...]:
+    """Crank angles (rad, in [0, 2π)) where the output is at each ``travel`` (m from the extreme
+    ``head``, "start" or "end" of the working stroke) strictly inside the stroke, on the working
+    stroke and/or the return stroke: the nodes of a table over the output."""
+    H = track.H
+    d = np.unique(np.asarray(travel, dtype=float))
+    d = d[(d > 1e-12 * H) & (d < H * (1 - 1e-12))]
+    if d.size == 0:
+        return ()
+    s0, s1 = (track.s_start, track.s_end) if head == "start" else (track.s_end, track.s_start)
+    target = s0 + d * math.copysign(1.0, s1 - s0)
+    psi = []
+    if working:
+        psi.append(track.psi_where(target, 0.0, track.span))
+    if back:
+        psi.append(track.psi_where(target, track.span, TWO_PI))
+    return tuple(float(v) for v in np.mod(track.phi(np.concatenate(psi)), TWO_PI))
+
+
+RAMP = 1e-6
+"""A table step narrower than this fraction of the table's span is refused as a near-vertical ramp."""
 
 
 def _table(x, values, where: str, xname: str, yname: str) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Validated (x, values) of a piecewise-linear table. An x given twice is a jump (the value
+    before it, then the value after it); a step of x narrower than `RAMP` × the span (a
+    near-vertical ramp) is refused, so that no ramp is integrated as if it were smooth."""
     xs, ys = _numbers(x, where, xname), _numbers(values, where, yname)
     if len(xs) != len(ys):
         raise MechanismError(f"{where}: {xname} and {yname} must have the same length ({len(xs)} ≠ {len(ys)})")
     if len(xs) < 2:
         raise MechanismError(f"{where}: {xname} needs at least 2 values, not {len(xs)}")
-    bad = [i for i in range(1, len(xs)) if not xs[i] > xs[i - 1]]
-    if bad:
-        i = bad[0]
-        raise MechanismError(f"{where}: {xname} must be increasing; {xname}[{i}] = {xs[i]:g} ≤ {xs[i - 1]:g}")
+    span = xs[-1] - xs[0]
+    for i in range(1, len(xs)):
+        if xs[i] < xs[i - 1]:
+            raise MechanismError(f"{where}: {xname} must not decrease; {xname}[{i}] = {xs[i]:g} < {xs[i - 1]:g}")
+        if xs[i] == xs[i - 1] and (i == 1 or i == len(xs) - 1 or xs[i - 2] == xs[i]):
+            what = "repeated at an end of the table" if i in (1, len(xs) - 1) else "given a third time"
+            raise MechanismError(f"{where}: {xname}[{i}] = {xs[i]:g} is {what}; an x may be given twice, "
+                                 "inside the table, to write a jump")
+        if 0 < xs[i] - xs[i - 1] <= RAMP * span:
+            raise MechanismError(f"{where}: {xname}[{i}] = {xs[i]:.10g} is a near-vertical ramp from "
+                                 f"{xname}[{i - 1}] = {xs[i - 1]:.10g}; give the same x twice to write a jump")
     return xs, ys
 
 
@@ -603,6 +648,7 @@ class IndicatorForce:
     pressure_toward: tuple[float, ...]
     head: Literal["start", "end"]
     track: Track
+    nodes: tuple[float, ...] = ()
 
     @property
     def area(self) -> float:
@@ -626,7 +672,9 @@ class IndicatorForce:
         return Actions((AppliedForce(self.name, self.link, self.point, self.pressure(kin) * self.area * e),))
 
     def breakpoints(self) -> tuple[float, ...]:
-        return (self.track.start_phi, self.track.end_phi)
+        """The extremes and the crank angles where the piston passes every travel of the
+        diagram, on both strokes (kinks or jumps of the pressure)."""
+        return (self.track.start_phi, self.track.end_phi) + self.nodes
 
 
 def indicator_force(mech: Mechanism, bore: float, travel: Sequence[float], pressure_away: Sequence[float],
@@ -647,7 +695,8 @@ def indicator_force(mech: Mechanism, bore: float, travel: Sequence[float], press
         raise MechanismError(f"{where}: travel must start at ≥ 0 m from the head, not {tr[0]:g}")
     track = output_track(mech, where)
     link, point = _link_and_point(mech, name, point, link, track)
-    return IndicatorForce(name, link, point, bore, tr, pa, pt, head, track)
+    nodes = _travel_nodes(track, tr, working=True, back=True, head=head)
+    return IndicatorForce(name, link, point, bore, tr, pa, pt, head, track, nodes)
 
 
 # -- gravity ----------------------------------------------------------------------------------

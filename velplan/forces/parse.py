@@ -23,6 +23,9 @@ Format (declared beside the ``[link.N]`` masses; SI units; N, N·m, m, Pa, degre
                              # stroke, m; stroke = "working" | "return" | "both" limits it
     x = [0.0, 90.0, 180.0]
     values = [0.0, 800.0, 0.0]   # N
+                             # an x given twice is a jump: x = [0, 0.1, 0.1, 0.3] with
+                             # values = [0, 0, 1400, 1400] steps up at 0.1 (a ramp narrower
+                             # than 1e-6 of the table's span is refused: write it as a jump)
     direction = "guide"      # "guide" (+ along the guide), "against-motion", or give
                              # angle_deg = 270.0 for a fixed direction instead
 

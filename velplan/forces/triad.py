@@ -28,7 +28,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics
 from velplan.analysis.triad import special_pair
 from velplan.forces.common import cross, point
-from velplan.forces.kinetostatics import ForcePolygon, Reaction, reaction_label
+from velplan.forces.kinetostatics import ForcePolygon, Reaction
 from velplan.mechanism.model import Mechanism, Pair, Triad
 
 Known = Mapping[str, list]
@@ -205,7 +205,3 @@ def triad_polygon(mech: Mechanism, g: Triad, gp: list[Pair], reactions: Mapping[
                              special=s, leads=tuple(leads), normal=rn,
                              outer={gp[2 * i].name: outer[i] for i in range(3)}, inner=inner)
 
-
-def inner_label(g: Triad, i: int) -> str:
-    """Label of the reaction on lead ``i`` from the base link (``"R32"``)."""
-    return reaction_label(g.base, g.leads[i].link)

@@ -229,7 +229,7 @@ def _triad(t: dict, i: int) -> Triad:
     leads_t = t.get("leads")
     if not (isinstance(leads_t, list) and len(leads_t) == 3 and all(isinstance(x, dict) for x in leads_t)):
         raise MechanismError(f"group #{i + 1}: leads must be a list of three tables "
-                             "({link, joint, length} or {link, guide}), not {leads_t!r}")
+                             f"({{link, joint, length}} or {{link, guide}}), not {leads_t!r}")
     name = str(t.get("name", "-".join([base] + [str(x.get("link", "?")) for x in leads_t])))
     where = f"group {name!r}"
     _no_unknown(t, _GROUP_KEYS["TRIAD"] | {"kind", "name"}, where)

@@ -70,6 +70,11 @@ class Crank:
         """Speed in revolutions per minute (signed)."""
         return self.omega * 30.0 / math.pi
 
+    @property
+    def sense(self) -> float:
+        """The crank's turning sense: +1.0 counter-clockwise (ω ≥ 0), −1.0 clockwise."""
+        return 1.0 if self.omega >= 0 else -1.0
+
 
 @dataclass(frozen=True)
 class Guide:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, Guide, LinkPoint, Mechanism
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, Guide, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import coincident_points, material_points, schedule
 from velplan.plans.context import Figure
 from velplan.plans.steps import (
@@ -29,6 +29,7 @@ from velplan.plans.steps import (
     Step,
     Tangential,
 )
+from velplan.plans.triad import build_triad
 
 POLE = {"v": "p", "a": "π"}
 
@@ -278,7 +279,7 @@ def _labels(mech: Mechanism) -> dict[str, str]:
     from velplan.mechanism.structure import point_owners
 
     names = list(point_owners(mech))
-    lower = [n.lower() for n in names]
+    lower = [n.lower() for n in names] + list(POLE.values())  # a point P must not take the pole's p
     return {n: (n.lower() if lower.count(n.lower()) == 1 else n) for n in names}
 
 
@@ -286,7 +287,7 @@ def construct(mech: Mechanism, *, tangential: bool | None = None) -> tuple[tuple
     """Steps of the velocity plan then the acceleration plan of ``mech``, with the image map
     ({"v"|"a": {point: target}}) and the link figures ({"v"|"a": {link: Figure | None}})."""
     b = _Builder(mech, mech.crank.epsilon != 0 if tangential is None else tangential)
-    handlers = {RRR: b.rrr, RRP: b.rrp, RPR: b.rpr, PRP: b.prp, RPP: b.rpp}
+    handlers = {RRR: b.rrr, RRP: b.rrp, RPR: b.rpr, PRP: b.prp, RPP: b.rpp, Triad: lambda g: build_triad(b, g)}
     for item in schedule(mech):
         if isinstance(item, Crank):
             b.crank(item)

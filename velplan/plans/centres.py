@@ -163,8 +163,9 @@ def _drawn(u: complex, drafting: Drafting) -> complex:
     return complex(drafting.direction(np.array([u]))[0])
 
 
-def obvious(kin: Kinematics, i: int, drafting: Drafting = EXACT) -> list[tuple[tuple[str, str], str, object, str]]:
-    """The centres known at once at position ``i``: (pair, how, point or direction, joint).
+def obvious(kin: Kinematics, i: int, drafting: Drafting = EXACT) -> list[tuple[tuple[str, str], str, object, object]]:
+    """The centres known at once at position ``i``: (pair, how, point or direction, the joint;
+    for a slider (joint, slider, guide's link)).
 
     A revolute pair is the centre of its links; three or more links on one point (a compound
     hinge) have their centres there pairwise; a prismatic pair ``P:<slider>/<guide link>`` puts
@@ -543,7 +544,7 @@ def sentence(s: CentreStep, con: Construction, lang: str) -> str:
     if s.how in ("joint", "hinge"):
         text = ph(s.how, s.via[0], s.pair[0], s.pair[1], name)
     elif s.how == "slider":
-        deg = math.degrees(math.atan2(s.direction.imag, s.direction.real))
+        deg = round(math.degrees(math.atan2(s.direction.imag, s.direction.real)), 6) + 0.0  # no −0, no 1e-15
         text = ph("slider", T.num(deg, lang), *(s.via[1:] if len(s.via) == 3 else s.pair), name)
     elif s.how == "kennedy":
         k, m = s.via

@@ -240,7 +240,7 @@ def _column_causes(mech, phi, table, quantities, exact, tol, w1) -> dict[int, st
     """Columns with two or more outliers that all fit one other crank angle within tolerance."""
     out = {}
     fine = np.radians(np.arange(-45.0, 45.0001, 0.25))
-    sense = np.sign(mech.crank.omega) or 1.0
+    sense = mech.crank.sense
     for j in range(len(phi)):
         given = {nm: v[j] for nm, v in table.items() if v[j] is not None}
         bad = [nm for nm in given if abs(given[nm] - exact[nm][j]) > tol[nm][j]]
@@ -262,7 +262,7 @@ def _entry_cause(mech, phi, j, g, row, t, q, w1, dev_mm) -> str:
         k = min(others, key=lambda k: abs(g - row[k]))
         return f"equals the exact value at position {k + 1} ({np.degrees(phi[k]) % 360:.0f}°): entered in the wrong column?"
     fine = np.radians(np.arange(-45.0, 45.0001, 0.25))
-    sense = np.sign(mech.crank.omega) or 1.0
+    sense = mech.crank.sense
     near = np.abs(_analytic(q, solve(mech, phi[j] + sense * fine), w1) - g) <= t
     if near.any():
         d = fine[near][np.argmin(np.abs(fine[near]))]

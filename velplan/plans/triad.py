@@ -23,36 +23,71 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from velplan.analysis.triad import special_pair
-from velplan.mechanism.model import GROUND, Lead, Triad
+from velplan.mechanism.model import GROUND, Triad
 from velplan.plans import text as T
 from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Parallel, Perpendicular, Similar
+
+
+def _join(lang: str, *sentences: str | None) -> str:
+    """Sentences one after another (no space after a full stop in Chinese)."""
+    return ("" if lang == "zh" else " ").join(x for x in sentences if x is not None)
 
 
 # -- steps that say what they do in the triad ------------------------------------------------------
 
 
 @dataclass(frozen=True)
-class TriadLine(Line):
-    """A construction line of the triad, its sentence preceded by the equation it draws.
+class Said:
+    """What a triad step says before its own sentence: the vector equation it starts drawing.
 
     ``intro`` (special point, base link, lead i, lead j) names Assur's special point first;
-    ``lead`` is the lead (or the joint, with ``joint``) the equation belongs to."""
+    ``point`` is the point the equation is written for, on the line of ``lead`` (``joint``:
+    the point is the joint of the base link and that lead); ``direction`` is the direction of
+    the equation's unknown terms."""
 
-    equation: str = ""
-    base: str = ""
-    lead: str = ""
-    joint: str = ""
+    point: str
+    equation: str
+    base: str
+    lead: str
+    direction: Perpendicular | Parallel
+    joint: bool = False
     intro: tuple[str, str, str, str] | None = None
+    known: Parallel | None = None
+    """The known direction of the point's velocity, written where the equation has ``{}``."""
+    block: str = ""
+    """The joint of a block lead: its line is the guide's normal through that joint."""
+
+    def text(self, lang: str) -> str:
+        """The sentences said before the step's own (ending in a separator)."""
+        out = [T.phrase("triad_special", lang, *self.intro)] if self.intro else []
+        if self.joint:
+            eq = self.equation.replace("{}", self.known.text(lang)) if self.known else self.equation
+            out.append(T.phrase("triad_joint", lang, self.point, self.base, self.lead, eq))
+        else:
+            out.append(T.phrase("triad_block" if self.block else "triad_lead", lang, self.point, self.base, self.lead,
+                                self.equation, self.direction.text(lang), self.block))
+        return _join(lang, *out, "")
+
+
+@dataclass(frozen=True)
+class TriadLine(Line):
+    """A construction line of the triad, its sentence preceded by its equation (``said``)."""
+
+    said: Said | None = None
 
     def describe(self, ctx, vals, i, lang) -> str:
-        out = T.phrase("triad_special", lang, *self.intro) + " " if self.intro else ""
-        if self.joint:
-            out += T.phrase("triad_joint", lang, self.joint, self.base, self.lead, self.equation) + " "
-        elif self.equation:
-            special = self.equation.split(" ", 1)[0].split("_", 1)[1]
-            out += T.phrase("triad_lead", lang, special, self.base, self.lead, self.equation,
-                            self.direction.text(lang)) + " "
-        return out + super().describe(ctx, vals, i, lang)
+        return (self.said.text(lang) if self.said else "") + super().describe(ctx, vals, i, lang)
+
+
+@dataclass(frozen=True)
+class TriadLayOff(LayOff):
+    """A known vector of the triad's acceleration plan, its sentence preceded by the equation
+    it starts drawing (``said``)."""
+
+    said: Said | None = None
+
+    def describe(self, ctx, vals, i, lang) -> str:
+        return (self.said.text(lang) if self.said else "") + super().describe(ctx, vals, i, lang)
 
 
 @dataclass(frozen=True)
@@ -61,10 +96,14 @@ class SpecialIntersect(Intersect):
 
     special: str = ""
     base: str = ""
+    centre: bool = False
+    """Both lines pass through the pole of the velocity plan: V_S = 0, S is the base link's
+    instant centre of velocities."""
 
     def describe(self, ctx, vals, i, lang) -> str:
-        return super().describe(ctx, vals, i, lang) + " " + T.phrase("triad_image", lang, self.label, self.special,
-                                                                        self.base)
+        return _join(lang, super().describe(ctx, vals, i, lang),
+                     T.phrase("triad_image", lang, self.label, self.special, self.base),
+                     T.phrase("triad_centre", lang, self.special, self.base) if self.centre else None)
 
 
 # -- the construction ------------------------------------------------------------------------------
@@ -85,31 +124,57 @@ class TriadPlan:
         self.third = 3 - i - j
         self.S = g.special_name
         self.intro = (self.S, g.base, g.leads[i].link, g.leads[j].link)
+        self.guide_images: dict[tuple[str, int], str] = {}
 
     # -- helpers --------------------------------------------------------------------------------
 
     def _guide_point(self, sheet, k: int) -> str:
-        """Image of the guide link's point at block lead k's joint."""
-        lead, J = self.g.leads[k], self.g.joints[k]
-        return self.b.image_on(sheet, lead.guide.link, J, lead.coincident)
+        """Image of the guide link's point at block lead k's joint (placed once)."""
+        key = (sheet.kind, k)
+        if key not in self.guide_images:
+            lead, J = self.g.leads[k], self.g.joints[k]
+            self.guide_images[key] = self.b.image_on(sheet, lead.guide.link, J, lead.coincident)
+        return self.guide_images[key]
+
+    def _guide_points(self, sheet) -> None:
+        """The guide links' points at the blocks, placed before the triad's own construction."""
+        for k, lead in enumerate(self.g.leads):
+            if lead.slider:
+                self._guide_point(sheet, k)
 
     def _guide_name(self, k: int) -> str:
         lead = self.g.leads[k]
         return lead.coincident or f"{self.g.joints[k]}{lead.guide.link}"
 
-    def _parallel(self, lead: Lead) -> Parallel:
+    def _direction(self, k: int) -> Perpendicular | Parallel:
+        """Direction of the unknown terms along lead k: ⊥ the rod, or ∥ the guide."""
         from velplan.plans.build import _guide_text
 
-        return Parallel(lead.guide.link, lead.guide.angle, _guide_text(lead.guide, lead.guide.link))
+        lead, J = self.g.leads[k], self.g.joints[k]
+        if lead.slider:
+            return Parallel(lead.guide.link, lead.guide.angle, _guide_text(lead.guide, lead.guide.link))
+        return Perpendicular(J, lead.joint)
+
+    def _say(self, k: int, equation: str, *, intro: bool = False, joint: bool = False) -> Said:
+        g = self.g
+        known = self._direction(k) if joint and "{}" in equation else None
+        block = g.joints[k] if g.leads[k].slider and not joint else ""
+        return Said(g.joints[k] if joint else self.S, equation, g.base, g.leads[k].link,
+                    Perpendicular(g.joints[k], self.S) if joint else self._direction(k), joint,
+                    self.intro if intro else None, known, block)
 
     def _fixed(self, sheet, point: str) -> bool:
         return sheet.images.get(point) == sheet.pole
 
-    def _line(self, sheet, through: str, direction, component: str, **say) -> str:
+    def _line(self, sheet, through: str, direction, component: str, said: Said | None = None) -> str:
         b = self.b
         b.counters["line"] += 1
-        target = f"{sheet.kind}:ℓ{b.counters['line']}"
-        return b.add(sheet, TriadLine(target, through, direction, component, base=self.g.base, **say))
+        return b.add(sheet, TriadLine(f"{sheet.kind}:ℓ{b.counters['line']}", through, direction, component, said))
+
+    def _normal(self, origin: str, link: str, point: str, centre: str, said: Said | None = None) -> str:
+        b = self.b
+        n = b.aux("n")
+        return b.add(b.a, TriadLayOff(f"a:{n}", n, origin, Normal(link, point, centre, b.v.rotor[link]), said))
 
     # -- velocity plan -------------------------------------------------------------------------
 
@@ -117,47 +182,47 @@ class TriadPlan:
         """Line of V_S through the known image of lead k's outer joint (or guide point)."""
         b, g, S = self.b, self.g, self.S
         lead, J = g.leads[k], g.joints[k]
-        intro = self.intro if intro else None
         if lead.slider:
             through = self._guide_point(b.v, k)
-            gname = self._guide_name(k)
-            moving = lead.guide.link != GROUND
+            gname, moving = self._guide_name(k), lead.guide.link != GROUND
             eq = f"V_{S} = " + _sum(f"V_{gname}" if moving else None, f"V_{J}{gname}" if moving else f"V_{J}",
                                     f"V_{S}{J}")
-            return self._line(b.v, through, self._parallel(lead), f"V_{S}{gname}" if moving else f"V_{S}",
-                              equation=eq, lead=lead.link, intro=intro)
-        P = lead.joint
-        fixed = self._fixed(b.v, P)
-        eq = f"V_{S} = " + _sum(None if fixed else f"V_{P}", f"V_{J}{P}", f"V_{S}{J}")
-        return self._line(b.v, b.v.images[P], Perpendicular(J, P), f"V_{S}" if fixed else f"V_{S}{P}",
-                          equation=eq, lead=lead.link, intro=intro)
+            comp = f"V_{S}{gname}" if moving else f"V_{S}"
+        else:
+            P = lead.joint
+            fixed = self._fixed(b.v, P)
+            through = b.v.images[P]
+            eq = f"V_{S} = " + _sum(None if fixed else f"V_{P}", f"V_{J}{P}", f"V_{S}{J}")
+            comp = f"V_{S}" if fixed else f"V_{S}{P}"
+        return self._line(b.v, through, self._direction(k), comp, self._say(k, eq, intro=intro))
 
     def _third_lines_v(self, s_v: str) -> tuple[str, str]:
+        """V_J = V_S + V_JS (⊥ SJ) = the third lead's own equation, for its inner joint J."""
         b, g, S, k = self.b, self.g, self.S, self.third
         lead, J = g.leads[k], g.joints[k]
         if lead.slider:
             through = self._guide_point(b.v, k)
-            gname = self._guide_name(k)
-            moving = lead.guide.link != GROUND
+            gname, moving = self._guide_name(k), lead.guide.link != GROUND
             other = f"V_{gname} + V_{J}{gname}" if moving else None
-            direction, comp = self._parallel(lead), f"V_{J}{gname}" if moving else f"V_{J}"
+            comp = f"V_{J}{gname}" if moving else f"V_{J}"
         else:
             P = lead.joint
-            through, direction = b.v.images[P], Perpendicular(J, P)
-            fixed = self._fixed(b.v, P)
+            through, fixed = b.v.images[P], self._fixed(b.v, P)
             other = _sum(None if fixed else f"V_{P}", f"V_{J}{P}")
             comp = f"V_{J}" if fixed else f"V_{J}{P}"
-        eq = f"V_{J} = V_{S} + V_{J}{S}" + (f" = {other}" if other else "")
-        L1 = self._line(b.v, s_v, Perpendicular(J, S), f"V_{J}{S}", equation=eq, lead=lead.link, joint=J)
-        L2 = self._line(b.v, through, direction, comp)
-        return L1, L2
+        eq = f"V_{J} = V_{S} + V_{J}{S}" + (f" = {other}" if other else f", V_{J} {{}}")
+        L1 = self._line(b.v, s_v, Perpendicular(J, S), f"V_{J}{S}", self._say(k, eq, joint=True))
+        return L1, self._line(b.v, through, self._direction(k), comp)
 
     def velocity(self) -> None:
         b, g, S = self.b, self.g, self.S
         i, j = self.pair
         s_v = b.target(b.v, S)
+        self._guide_points(b.v)
         L1, L2 = self._lead_line_v(i, True), self._lead_line_v(j, False)
-        b.add(b.v, SpecialIntersect(s_v, s_v[2:], (L1, L2), special=S, base=g.base))
+        through = {st.target: getattr(st, "through", None) for st in b.steps["v"]}
+        centre = through[L1] == through[L2] == b.v.pole
+        b.add(b.v, SpecialIntersect(s_v, s_v[2:], (L1, L2), special=S, base=g.base, centre=centre))
         b.v.images[S] = s_v
         J = g.joints[self.third]
         j_v = b.target(b.v, J)
@@ -175,54 +240,49 @@ class TriadPlan:
 
     # -- acceleration plan ---------------------------------------------------------------------
 
-    def _normal(self, origin: str, link: str, point: str, centre: str) -> str:
-        b = self.b
-        n = b.aux("n")
-        return b.add(b.a, LayOff(f"a:{n}", n, origin, Normal(link, point, centre, b.v.rotor[link])))
-
     def _lead_line_a(self, k: int, intro: bool) -> str:
-        """Line of a_S: lead k's known acceleration terms laid off, then the unknown direction."""
+        """Line of a_S: lead k's known terms laid off in turn, then the unknown direction."""
         b, g, S = self.b, self.g, self.S
         lead, J = g.leads[k], g.joints[k]
-        intro = self.intro if intro else None
         if lead.slider:
             start = self._guide_point(b.a, k)
-            gname = self._guide_name(k)
-            frame = b.v.rotor.get(lead.guide.link) if lead.guide.link != GROUND else None
-            if frame is not None:
-                c = b.aux("k")
-                start = b.add(b.a, LayOff(f"a:{c}", c, start, Coriolis(frame, self._guide_point(b.v, k),
-                                                                        b.v.images[J], J)))
-            start = self._normal(start, g.base, S, J)
-            moving = lead.guide.link != GROUND
+            gname, moving = self._guide_name(k), lead.guide.link != GROUND
+            frame = b.v.rotor.get(lead.guide.link) if moving else None
             eq = f"a_{S} = " + _sum(f"a_{gname}" if moving else None, f"aᵏ_{J}" if frame is not None else None,
                                     f"aʳ_{J}", f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
-            return self._line(b.a, start, self._parallel(lead), f"aʳ_{S}", equation=eq, lead=lead.link,
-                              intro=intro)
-        P = lead.joint
-        fixed = self._fixed(b.a, P)
-        start = self._normal(b.a.images[P], lead.link, J, P)
-        start = self._normal(start, g.base, S, J)
-        eq = f"a_{S} = " + _sum(None if fixed else f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}", f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
-        return self._line(b.a, start, Perpendicular(J, P), f"aᵗ_{S}{P}", equation=eq, lead=lead.link, intro=intro)
+            said = self._say(k, eq, intro=intro)
+            if frame is not None:
+                c = b.aux("k")
+                cor = Coriolis(frame, self._guide_point(b.v, k), b.v.images[J], J)
+                start = b.add(b.a, TriadLayOff(f"a:{c}", c, start, cor, said))
+                said = None
+            start = self._normal(start, g.base, S, J, said)
+            comp = f"aʳ_{S}{J}"
+        else:
+            P = lead.joint
+            eq = f"a_{S} = " + _sum(None if self._fixed(b.a, P) else f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}",
+                                    f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
+            start = self._normal(b.a.images[P], lead.link, J, P, self._say(k, eq, intro=intro))
+            start = self._normal(start, g.base, S, J)
+            comp = f"aᵗ_{S}{P}"
+        return self._line(b.a, start, self._direction(k), comp)
 
     def _third_lines_a(self, s_a: str) -> tuple[str, str]:
+        """a_J = a_S + aⁿ_JS + aᵗ_JS (⊥ SJ) = the third lead's own equation."""
         b, g, S, k = self.b, self.g, self.S, self.third
         lead, J = g.leads[k], g.joints[k]
-        start = self._normal(s_a, g.base, J, S)
         if lead.slider:
-            gname = self._guide_name(k)
-            moving = lead.guide.link != GROUND
+            gname, moving = self._guide_name(k), lead.guide.link != GROUND
             other = _sum(f"a_{gname}" if moving else None, f"aᵏ_{J}" if moving else None, f"aʳ_{J}")
         else:
             P = lead.joint
             other = _sum(None if self._fixed(b.a, P) else f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}")
         eq = f"a_{J} = a_{S} + aⁿ_{J}{S} + aᵗ_{J}{S} = {other}"
-        L1 = self._line(b.a, start, Perpendicular(J, S), f"aᵗ_{J}{S}", equation=eq, lead=lead.link, joint=J)
+        start = self._normal(s_a, g.base, J, S, self._say(k, eq, joint=True))
+        L1 = self._line(b.a, start, Perpendicular(J, S), f"aᵗ_{J}{S}")
         if lead.slider:
-            cg_a = self._guide_point(b.a, k)
-            L2 = b.coriolis_line(lead.guide.link, cg_a, (self._guide_point(b.v, k), b.v.images[J]),
-                                 self._parallel(lead), f"aʳ_{J}", J)
+            L2 = b.coriolis_line(lead.guide.link, self._guide_point(b.a, k), (self._guide_point(b.v, k), b.v.images[J]),
+                                 self._direction(k), f"aʳ_{J}", J)
         else:
             L2 = b.normal_line(lead.link, J, lead.joint, b.a.images[lead.joint])
         return L1, L2
@@ -231,6 +291,7 @@ class TriadPlan:
         b, g, S = self.b, self.g, self.S
         i, j = self.pair
         s_a = b.target(b.a, S)
+        self._guide_points(b.a)
         M1, M2 = self._lead_line_a(i, True), self._lead_line_a(j, False)
         b.add(b.a, SpecialIntersect(s_a, s_a[2:], (M1, M2), special=S, base=g.base))
         b.a.images[S] = s_a

@@ -129,6 +129,7 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
                          "Середня кутова швидкість", "平均角速度"),
     "delta_required": _entry("δ required", "δ заданный", "δ заданий", "δ 许用值"),
     "delta_obtained": _entry("δ obtained", "δ полученный", "δ отриманий", "δ 实际值"),
+    "estimated_error": _entry("Error estimate", "Оценка погрешности", "Оцінка похибки", "误差估计"),
     "at_travel": _entry("at φ = {angle}", "при φ = {angle}", "при φ = {angle}", "φ = {angle} 处"),
     "method_exact": _entry("exact", "точно", "точно", "精确法"),
     "method_wittenbauer": _entry("Wittenbauer, computed", "Виттенбауэр, расчёт",

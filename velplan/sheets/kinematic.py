@@ -153,7 +153,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
         Number of positions of the scheme, the table and the diagrams (a study brings its own).
     plans : sequence of int, optional
         Positions (1-based) whose plans are drawn; two by default
-        (:func:`default_plan_positions`). The first one is drawn thick in the scheme.
+        (:func:`default_plan_positions`), or the first of them alone where the two do not
+        fit beside the scheme (a large scheme on A3). The first one is drawn thick in the
+        scheme.
     kind : {"velocity", "acceleration", "both"}
         Which plans.
     fmt : {"A1", "A2", "A3"}
@@ -236,8 +238,12 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     # failing that, the scheme that leaves the plans the longest vectors
     best, failure = None, None
     drawn: dict = {}  # (kind, number, μ) → (result, view): a plan's view does not depend on its cell
-    for mview in _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt,
-                                       extreme=study.other_extreme):
+    # the default positions' plans that fit no scheme: the first position's alone
+    attempts = [chosen] + ([chosen[:1]] if plans is None and len(chosen) > 1 else [])
+    for mview, attempt in ((m, a) for a in attempts for m in _mechanism_candidates(
+            mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt, extreme=study.other_extreme)):
+        if best is not None and attempt is not chosen:
+            break
         # the plans go to the right of the scheme, or below it across the sheet
         regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
                    (fx0, band_top + g, fx1, fy1 - mview.height_mm - g)]
@@ -246,13 +252,14 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
             if plan_region[2] - plan_region[0] < 40 or plan_region[3] - plan_region[1] < 40:
                 continue
             try:
-                plan_views, results, score, cells = _fit_plans(study, chosen, kinds, lang, sizes,
+                plan_views, results, score, cells = _fit_plans(study, attempt, kinds, lang, sizes,
                                                                plan_region, g, fmt=fmt, drawn=drawn)
             except ScaleError as exc:
                 failure = failure or exc
                 continue
             if best is None or score > best[0]:
                 best = (score, mview, plan_views, results, cells)
+                chosen = attempt
             good = good or score >= GOOD_PLAN_MM[fmt]
         if good:
             break

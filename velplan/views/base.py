@@ -282,13 +282,35 @@ def axis_numbers_clear(items: list, curves) -> list:
     return out
 
 
+def _farther(text, x0, y0, x1, y1, step, rings, placed):
+    """The first spot of rings `rings` + 1 … 2·`rings` around an upright `text` whose box
+    (offsets x0…x1, y0…y1 from the spot, mm) meets none of the `placed` boxes:
+    (0, spot, box), or (0, None, None)."""
+    import shapely
+
+    if not placed:
+        return 0, None, None
+    x, y = text.position
+    others = np.array(placed)
+    for ring in range(rings + 1, 2 * rings + 1):
+        for k in range(8):
+            sx = x + ring * step * math.cos(math.pi / 4 * k)
+            sy = y + ring * step * math.sin(math.pi / 4 * k)
+            box = shapely.box(sx + x0 - 0.4, sy + y0 - 0.4, sx + x1 + 0.4, sy + y1 + 0.4)
+            if not shapely.intersects(box, others).any():
+                return 0, (sx, sy), box
+    return 0, None, None
+
+
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
                  rings: int = 8) -> tuple:
     """Move labels, in order, clear of `obstacles` and of the labels placed before them.
 
     The same search as :func:`velplan.render.layout.nudge_labels` (rings of eight
     directions around the wanted spot), on one prepared union of the obstacles, so a view
-    with many lines places its letters quickly. A label with no free spot keeps its place.
+    with many lines places its letters quickly. A label with no free spot takes the spot clear
+    of the other labels that meets the fewest obstacles (the first of those), looking twice as
+    far out if it must, or keeps its place.
     """
     import shapely
 
@@ -326,12 +348,27 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
         else:
             boxes = np.array([padded(text if j == 0 else _moved(text, position=spot))
                               for j, spot in enumerate(spots)])
-        free = np.ones(len(spots), dtype=bool)
+        clear = np.ones(len(spots), dtype=bool)  # of the obstacles
+        crossings = np.zeros(len(spots), dtype=int)
         if field is not None:
-            free[np.unique(field.query(boxes, predicate="intersects")[0])] = False
+            hits = field.query(boxes, predicate="intersects")[0]
+            clear[np.unique(hits)] = False
+            crossings = np.bincount(hits, minlength=len(spots))
+        apart = np.ones(len(spots), dtype=bool)  # from the labels placed before
         if placed:
-            free &= ~shapely.intersects(boxes[:, None], np.array(placed)[None, :]).any(axis=1)
-        j = int(np.argmax(free)) if free.any() else 0
+            apart = ~shapely.intersects(boxes[:, None], np.array(placed)[None, :]).any(axis=1)
+        free = clear & apart
+        # no free spot: at least off the other labels (a line under a letter still reads)
+        j = int(np.argmax(free)) if free.any() else (
+            int(np.argmin(np.where(apart, crossings, np.iinfo(int).max))) if apart.any() else -1)
+        if j < 0 and text.rotation_deg != 0.0:
+            j = 0
+        if j < 0:  # crowded all round: off the other labels further out, else where it was
+            j, spot, box = _farther(text, x0, y0, x1, y1, step, rings, placed)
+            if spot is not None:
+                spots.append(spot)
+                boxes = np.append(boxes, box)
+                j = len(spots) - 1
         chosen = text if j == 0 else _moved(text, position=spots[j])
         placed.append(boxes[j])
         out.append(chosen)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Triad
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
 from velplan.views.base import View, digits_down, make_view, number, subscript, unit
@@ -16,6 +16,15 @@ from velplan.views.base import View, digits_down, make_view, number, subscript, 
 def _l(a: str, b: str) -> str:
     """The length symbol of a link between two points: ``l_O2A`` → ``lO₂A``."""
     return f"l{subscript(a)}{subscript(b)}"
+
+
+def _triad_lengths(g: Triad, lang: str) -> list[str]:
+    """The base link's sides (BC, CD, DB), then each rod lead (outer → inner joint)."""
+    m = unit("m", lang)
+    b, c, d = g.joints
+    out = [f"{_l(p, q)} = {number(x, lang)} {m}" for (p, q), x in zip(((b, c), (c, d), (d, b)), g.sides)]
+    return out + [f"{_l(ld.joint, j)} = {number(ld.length, lang)} {m}"
+                  for ld, j in zip(g.leads, g.joints) if not ld.slider]
 
 
 def data_lines(study, lang: str) -> list[str]:
@@ -38,6 +47,10 @@ def data_lines(study, lang: str) -> list[str]:
         if isinstance(g, PRP):
             offsets += [f"e{digits_down(k)} = {number(gd.offset, lang)} {m}" for k, gd in zip(g.links, g.guides)
                         if gd.offset]
+        if isinstance(g, Triad):
+            lengths += _triad_lengths(g, lang)
+            offsets += [f"e{digits_down(ld.link)} = {number(ld.guide.offset, lang)} {m}"
+                        for ld in g.leads if ld.slider and ld.guide.offset]
     ground = ", ".join(f"{subscript(n)} ({number(x, lang)}; {number(y, lang)})" for n, (x, y) in mech.ground)
     w1 = c.omega
     crank = f"ω{digits_down(c.link)} = {number(w1, lang)} {unit('rad/s', lang)} (n = {number(w1 * 30 / math.pi, lang)} "

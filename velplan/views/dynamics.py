@@ -290,9 +290,39 @@ def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = Dynam
     return make_view("flywheel", items, pad_mm=2.0, mu=scale, meta={"scale": scale})
 
 
-def results_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
-    """(quantity, value, unit) rows of the dynamics' results; ``w`` the drawn `Wittenbauer`
-    (or None)."""
+def bound(x: float, lang: str) -> str:
+    """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``, ``±2e-11``
+    (the sheets' fonts have no superscript minus)."""
+    if not (math.isfinite(x) and x > 0):
+        return "0" if x == 0 else "—"
+    k = math.floor(math.log10(x))
+    m = math.ceil(x / 10.0**k * (1 - 1e-12))
+    if m == 10:
+        m, k = 1, k + 1
+    if -3 <= k <= 3:
+        return "±" + number(m * 10.0**k, lang, 1)
+    return f"±{m}e{k}"
+
+
+def error_rows(d, lang: str) -> list[tuple[str, str, str]]:
+    """(quantity, bound, unit) rows of the estimated errors of the main results
+    (`velplan.dynamics.Dynamics.errors`)."""
+    e = d.errors
+    name = label("estimated_error", lang)
+    keys = (("driving_moment", "M" + label("symbol_drive", lang), "N·m"), ("flywheel_exact", "JI", "kg·m²"),
+            ("omega", "ω", "rad/s"), ("time", "t", "s"))
+    return [(f"{name}: {sym}", bound(e[k], lang), unit(u, lang)) for k, sym, u in keys
+            if k in e and e[k] and not (k == "driving_moment" and (d.run or d.periodic) is not None)]
+
+
+def results_rows(d, w, lang: str, errors: bool = True) -> list[tuple[str, str, str]]:
+    """(quantity, value, unit) rows of the dynamics' results, then (``errors``) the estimated
+    errors of the main ones; ``w`` the drawn `Wittenbauer` (or None)."""
+    rows = _result_rows(d, w, lang)
+    return rows + (error_rows(d, lang) if errors else [])
+
+
+def _result_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
     deg = unit("deg", lang)
     rads = unit("rad/s", lang)
     if d.run is not None:
@@ -351,5 +381,5 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: str, size_mm: fl
     return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm})
 
 
-__all__ = ["DynamicsSizes", "Series", "curve_panel", "flywheel_view", "nice_step", "results_rows",
-           "results_view", "wittenbauer_view"]
+__all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "nice_step",
+           "results_rows", "results_view", "wittenbauer_view"]

@@ -42,8 +42,9 @@ from velplan.forces.kinetostatics import reaction_label
 from velplan.mechanism.structure import pairs
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
-from velplan.views.mechanism import BLOCK_MM, _Geometry
+from velplan.views.mechanism import BLOCK_MM, _Geometry, plate_corners
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.shapes import text_extent
 from velplan.views.table import grid_table
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
@@ -386,6 +387,9 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
 
     # the links: lines, blocks, joints, the guides they ride on as axes
     segs = [s for s in geo.segments(i) if s.link in links]
+    for plate, corners in geo.plates(i):
+        if plate in links:
+            items += plate_corners(mm(corners), layer=body_layer)
     for s in segs:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
@@ -756,8 +760,13 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
     lab = f"l{subscript(mech.crank.pivot)}{subscript(mech.crank.tip)}"
     force_line = (f"{symbol_fb} = {_num(abs(fb), lang)} {newton(lang)}; "
                   f"{mb} = {symbol_fb}·{lab}")
-    items += _note_lines(items, [(force_line, sizes.label_mm), (balance, sizes.label_mm)],
-                         text_layer)
+    notes = [(force_line, sizes.label_mm), (balance, sizes.label_mm)]
+    x0, _, x1, _ = bounds_of(items)
+    if text_extent(balance, sizes.label_mm)[0] > max(x1 - x0, text_extent(force_line, sizes.label_mm)[0]):
+        # wider than the lever itself: the two methods on two lines
+        cut = balance.index(" / ") + 3
+        notes[1:] = [(balance[:cut].rstrip(), sizes.label_mm), (balance[cut:], sizes.label_mm)]
+    items += _note_lines(items, notes, text_layer)
     items += _title_lines(items, [
         (label("zhukovsky_lever", lang), sizes.title_mm),
         (scale_text("μv", res.scale, "(m/s)/mm", lang), sizes.label_mm),
@@ -867,8 +876,11 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
     if np.isfinite(mean):
         y = mean / mu_m
         items.append(Polyline([(0.0, y), (L, y)], layer, "axis"))
-        items.append(Text((L + 2.0, y + 1.0), f"{label('mean', lang)} {_num(mean, lang)} "
-                          f"{newton_metre(lang)}", text_layer, label_mm, "start", "baseline"))
+        # above a mean over the axis, below one under it (clear of the axis's φ)
+        at, v_anchor = ((y + 1.0, "baseline") if y >= 0 else
+                        (min(y - 1.0, -1.0 - label_mm - 1.0), "top"))
+        items.append(Text((L + 2.0, at), f"{label('mean', lang)} {_num(mean, lang)} "
+                          f"{newton_metre(lang)}", text_layer, label_mm, "start", v_anchor))
     y = top + 8.0 + 1.6 * label_mm
     items.append(Text((0.0, y + 1.8 * label_mm), label("balancing_moment_diagram", lang),
                       text_layer, title_mm))

@@ -25,7 +25,6 @@ from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, 
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
-from velplan.render.shapes import hatch_segments
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
@@ -419,6 +418,15 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                               layer="mechanism")
         items += support
         obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+    special_letters: list[Text] = []
+    if special:  # under the links and joints
+        for p in _special_construction(geo, t, mm, sizes.label_mm):
+            if isinstance(p, Text):
+                special_letters.append(p)
+            else:
+                items.append(p)
+                obstacles.append(shapely.box(*p.bounds).buffer(0.5) if isinstance(p, Circle)
+                                 else shapely.LineString(p.points).buffer(0.5))
     for _, corners in geo.plates(t):
         items += plate_corners(mm(corners))
     for s in thick_segments:
@@ -438,8 +446,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
 
     # labels: points of the thick position, position numbers, ω1, links
-    labels: list[Text] = []
-    labels += _point_labels(geo, t, mm, sizes.label_mm, thick_segments, blocks)
+    labels: list[Text] = list(special_letters)
+    labels += _point_labels(geo, t, mm, sizes.label_mm, thick_segments, blocks,
+                          {pt: side for pt, side in guide_sides.items() if pt in _lead_blocks(mech)})
     if not single:
         labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
     out = output_point(mech)
@@ -459,10 +468,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in guide_sides.items()]
     labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, thick_segments, blocks, centre,
                             away_from_guides)
-    if special:
-        construction = _special_construction(geo, t, mm, sizes.label_mm)
-        items += [p for p in construction if not isinstance(p, Text)]
-        labels += [p for p in construction if isinstance(p, Text)]
+
     items += place_labels(labels, obstacles, rings=8)
 
     if title:
@@ -543,7 +549,16 @@ def _ground_direction(geo: _Geometry, name: str) -> float:
     return float(90.0 * round(a / 90.0))  # supports stand square to the sheet
 
 
-def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks) -> list[Text]:
+def _lead_blocks(mech: Mechanism) -> set[str]:
+    """Inner joints of the triads' block leads."""
+    return {j for g in mech.groups if isinstance(g, Triad)
+            for ld, j in zip(g.leads, g.joints) if ld.slider}
+
+
+def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
+                  guide_sides=None) -> list[Text]:
+    """Letters of the points at position t, off the lines that meet at each (and off the
+    hatched side of the guide, for the points in `guide_sides`: point → its hatch normal)."""
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
@@ -563,6 +578,8 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks) -> list
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
+        if guide_sides and name in guide_sides:
+            away -= 3.0 * guide_sides[name]
         if np.hypot(*away) < 0.2:
             away = np.array([1.0, 1.0])
         away /= np.hypot(*away)
@@ -671,7 +688,8 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
     out = []
     done = set()
     for link_name, corners in geo.plates(t):
-        inside = _plate_number_at(mm(corners), size)
+        lettered = [mm(geo.p(t, lp.name)) for lp in mech.points if lp.link == link_name]
+        inside = _plate_number_at(mm(corners), size, lettered)
         if inside is not None:
             done.add(link_name)
             out.append(Text(inside, link_name, "labels", size, "middle", "middle"))
@@ -707,10 +725,10 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
 
 
 #: Reach of the hatching in each corner of a ternary link along its sides, mm.
-PLATE_CORNER_MM = 6.0
+PLATE_CORNER_MM = 7.0
 
 
-def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: float = 1.2,
+def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: float = 1.0,
                   layer: str = "mechanism") -> list[Primitive]:
     """The hatched corners of a ternary link (GOST 2.770: the rods of one rigid link, their
     joints hatched in the angle): thin strokes inside each corner of the triangle `corners`
@@ -723,29 +741,43 @@ def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: flo
         return out
     for k in range(3):
         v, u, w = corners[k], corners[k - 1], corners[(k + 1) % 3]
-        tip = [v, v + reach * (u - v) / np.hypot(*(u - v)), v + reach * (w - v) / np.hypot(*(w - v))]
-        for seg in hatch_segments(tip, spacing_mm, 45.0):
-            if math.dist(*seg) > 0.3:
-                out.append(Polyline(seg, layer, "thin"))
+        eu, ew = (u - v) / np.hypot(*(u - v)), (w - v) / np.hypot(*(w - v))
+        # strokes across the corner, square to its bisector, from the joint's circle out
+        half = 0.5 * math.acos(float(np.clip(eu @ ew, -1.0, 1.0)))
+        first = (JOINT_RADIUS_MM + 0.4) * math.cos(half)
+        last = reach * math.cos(half)
+        for d in np.arange(first, last + 1e-9, spacing_mm):
+            out.append(Polyline([v + eu * d / math.cos(half), v + ew * d / math.cos(half)],
+                                layer, "thin"))
     return out
 
 
-def _plate_number_at(corners, size: float):
-    """Where a ternary link's number goes: its triangle's incentre (mm), or None when the
-    inscribed circle cannot hold the number clear of the hatched corners."""
+def _plate_number_at(corners, size: float, points=()):
+    """Where a ternary link's number goes (mm): inside its triangle, at the incentre or on the
+    way from it to the middle of a side or to a corner, whichever lies farthest from the link's lettered
+    `points` (its centre of mass is often at the incentre); None when the inscribed circle
+    cannot hold the number clear of the hatched corners."""
     a, b, c = (float(np.hypot(*(corners[(k + 2) % 3] - corners[(k + 1) % 3]))) for k in range(3))
     perimeter = a + b + c
     if perimeter == 0:
         return None
-    area = 0.5 * abs(float(np.cross(corners[1] - corners[0], corners[2] - corners[0])))
-    if 2 * area / perimeter < 1.2 * size:
+    area = 0.5 * abs(float((corners[1] - corners[0])[0] * (corners[2] - corners[0])[1]
+                           - (corners[1] - corners[0])[1] * (corners[2] - corners[0])[0]))
+    radius = 2 * area / perimeter
+    if radius < 1.2 * size:
         return None
-    return (a * corners[0] + b * corners[1] + c * corners[2]) / perimeter
+    incentre = (a * corners[0] + b * corners[1] + c * corners[2]) / perimeter
+    spots = [incentre] + [incentre + 0.6 * (0.5 * (corners[k] + corners[k - 1]) - incentre)
+                          for k in range(3)] + [incentre + 0.4 * (c - incentre) for c in corners]
+    if not len(points):
+        return incentre
+    return max(spots, key=lambda q: min(float(np.hypot(*(q - p))) for p in points))
 
 
 def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primitive]:
     """Each triad's special point in position t: the two lead lines through it (dash-dotted,
-    from the outer joint or the inner joint on to the point and a little beyond), the point
+    from the outer joint, or the inner joint of a block, on to the point and a little past
+    it), the point
     and its letter; nothing when it lies over three scheme-widths away."""
     out: list[Primitive] = []
     span = max(np.ptp(_drawn_xy(geo.kin), axis=0).max(), 1e-9)
@@ -776,7 +808,8 @@ def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primi
                 direction = ends[1] - ends[0]
             u = direction / max(np.hypot(*direction), 1e-9)
             along = [float((e - ends[0]) @ u) for e in ends]
-            lo, hi = min(along) - 4.0, max(along) + 4.0
+            lo, hi = min(along), max(along)
+            lo, hi = (lo - 4.0, hi) if along[2] == lo else (lo, hi + 4.0)  # on past the point
             out.append(Polyline([ends[0] + u * lo, ends[0] + u * hi], "mechanism", "axis"))
         at = mm(k)
         out.append(Circle(at, 0.6, "mechanism", "thin", "solid"))

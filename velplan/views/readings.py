@@ -11,6 +11,7 @@ import numpy as np
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, number, subscript, unit
+from velplan.views.mechanism import special_points
 from velplan.views.table import grid_table
 
 PRECISION_MM = 0.5
@@ -18,11 +19,13 @@ PRECISION_MM = 0.5
 
 
 def readings(res, i: int, precision: float = PRECISION_MM) -> list[tuple[str, float, float]]:
-    """(point, read value, exact value) of every moving point of plan ``res`` at its position
+    """(point, read value, exact value) of every moving point of plan ``res`` (not a triad's
+    special point, a construction point) at its position
     index ``i``: |vector| read on the drawing at ``precision`` mm times μ, and the solver's."""
     kin = res.kin
     j = res.index[i]
     ground = dict(kin.mechanism.ground)
+    ground.update(dict.fromkeys(special_points(kin.mechanism)))  # construction points
     ref = kin.velocities if res.kind == "velocity" else kin.accelerations
     out = []
     for p, v in res.vectors.items():

@@ -71,7 +71,7 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     wx, wy = extent_m(mech, kin, kin)
     mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= 170.0), eskd_scales()[-1])
     mview = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin, fine=kin,
-                           sizes=MechanismSizes(3.5, 3.5, 2.5), single=True)
+                           sizes=MechanismSizes(3.5, 3.5, 2.5), single=True, special=True)
     figures: list[StepFigure] = []
     series = []
     for kd in kinds:

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from velplan.mechanism.model import GROUND, RPP, Mechanism
+from velplan.mechanism.model import GROUND, RPP, Mechanism, Triad
 from velplan.mechanism.structure import pairs
 from velplan.plans.engine import PlanResult
 from velplan.plans.table import TransferTable, transfer_table
@@ -29,7 +29,8 @@ _WIDE = 1.3
 
 def table_points(mech: Mechanism, names) -> list[str]:
     """Points worth a row: the moving joints and named points, not the centres of mass
-    (unless a joint is one) nor an RPP runner's construction origin."""
+    (unless a joint is one) nor a construction point (an RPP runner's origin, a triad's
+    special point)."""
     from velplan.mechanism.structure import coincident_points
 
     # the frame's points (a coincident point of a fixed guide among them) do not move
@@ -37,6 +38,7 @@ def table_points(mech: Mechanism, names) -> list[str]:
     joints = {p.point for p in pairs(mech)}
     centres = {m.centre for m in mech.masses}
     origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
+    origins |= {g.special_name for g in mech.groups if isinstance(g, Triad)}  # Assur's point
     out = []
     for p in names:
         if p in ground or p in origins:

@@ -1,0 +1,408 @@
+"""The design axis: one mechanism's geometry varied over V variants and solved at its crank
+angles in one call.
+
+Variants × angles are flattened into the solver's positions axis, and every varied number
+(a length, a pivot's coordinate, a guide's offset or angle, the crank's speed) becomes an
+array with one value per element: the closed forms of `velplan.analysis.groups` broadcast,
+so the numpy engine solves V·n elements exactly as it solves n angles of one mechanism.
+
+Parameters are named by the dotted keys of the mechanism file that `velplan batch` uses:
+
+==============================  =================================================
+key                             number (unit)
+==============================  =================================================
+``crank.length``                the crank's length (m); ``crank.rpm``, ``crank.omega``
+``ground.O2.0``, ``ground.O2.1``  x, y of a fixed point (m)
+``group.2-3.lengths.0``         an entry of a group's lengths (m)
+``group.5-6.length``            an RRP rod (m); ``group.3-4.offset`` an RPR bar's offset (m)
+``group.5-6.guide.offset``      a guide's offset (m); ``…guide.angle_deg`` its angle (deg)
+``group.N.guides.1.offset``     a PRP guide's offset or ``angle_deg``
+``group.N.slot_angle_deg``      an RPP slot's angle (deg)
+``point.B.along``               a point on a link (m); ``point.B.offset``
+==============================  =================================================
+
+A mechanism with a class III group (`Triad`) is solved by a loop over its variants (one
+`solve` each); every other mechanism in whole arrays.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, replace
+from typing import Mapping
+
+import numpy as np
+
+from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip
+from velplan.analysis.solver import BLOCK, Kinematics, _Outputs, _solve_items, group_lengths, solve
+from velplan.errors import MechanismError
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
+from velplan.mechanism.structure import schedule
+
+
+# ---- keys -----------------------------------------------------------------------------------
+
+
+def design_keys(mech: Mechanism, *, speed: bool = False) -> dict[str, float]:
+    """Every geometric key of ``mech`` with its nominal value (m or deg), in file order;
+    ``speed`` adds the crank's ``crank.omega`` (rad/s)."""
+    out = {}
+    for name, (x, y) in mech.ground:
+        out[f"ground.{name}.0"], out[f"ground.{name}.1"] = float(x), float(y)
+    out["crank.length"] = float(mech.crank.length)
+    if speed:
+        out["crank.omega"] = float(mech.crank.omega)
+    for g in mech.groups:
+        base = f"group.{g.name}"
+        if isinstance(g, RRR):
+            out.update({f"{base}.lengths.{j}": float(v) for j, v in enumerate(g.lengths)})
+        elif isinstance(g, RRP):
+            out[f"{base}.length"] = float(g.length)
+        elif isinstance(g, RPR):
+            out[f"{base}.offset"] = float(g.offset)
+        guides = {"guide": g.guide} if isinstance(g, (RRP, RPP)) else {}
+        if isinstance(g, PRP):
+            guides = {f"guides.{k}": gd for k, gd in enumerate(g.guides)}
+        for where, gd in guides.items():
+            out[f"{base}.{where}.offset"] = float(gd.offset)
+            out[f"{base}.{where}.angle_deg"] = math.degrees(gd.angle)
+        if isinstance(g, RPP):
+            out[f"{base}.slot_angle_deg"] = math.degrees(g.slot_angle)
+    for p in mech.points:
+        out[f"point.{p.name}.along"], out[f"point.{p.name}.offset"] = float(p.along), float(p.offset)
+    return out
+
+
+def nominal(mech: Mechanism, key: str) -> float:
+    """The value of ``key`` in ``mech`` (m, deg, rpm or rad/s)."""
+    if key == "crank.rpm":
+        return float(mech.crank.rpm)
+    keys = design_keys(mech, speed=True)
+    if key not in keys:
+        raise MechanismError(f"unknown design key {key!r}; known: {', '.join(keys)}, crank.rpm")
+    return keys[key]
+
+
+def _with(obj, **fields):
+    """A shallow copy of the frozen value ``obj`` with ``fields`` set (arrays allowed: the
+    copy is not validated)."""
+    new = copy.copy(obj)
+    for k, v in fields.items():
+        object.__setattr__(new, k, v)
+    return new
+
+
+def _set_guide(gd, field: str, value, key: str):
+    if field == "offset":
+        return _with(gd, offset=value)
+    if field == "angle_deg":
+        return _with(gd, angle=np.radians(value))
+    raise MechanismError(f"unknown design key {key!r}: a guide has offset and angle_deg")
+
+
+def _set_group(g, rest: list[str], value, key: str):
+    if isinstance(g, Triad):
+        raise MechanismError(f"design key {key!r}: group {g.name!r} is a class III group, not varied here")
+    if isinstance(g, RRR) and len(rest) == 2 and rest[0] == "lengths" and rest[1] in ("0", "1"):
+        lengths = list(g.lengths)
+        lengths[int(rest[1])] = value
+        return _with(g, lengths=tuple(lengths))
+    if rest == ["length"] and isinstance(g, RRP):
+        return _with(g, length=value)
+    if rest == ["offset"] and isinstance(g, RPR):
+        return _with(g, offset=value)
+    if rest == ["slot_angle_deg"] and isinstance(g, RPP):
+        return _with(g, slot_angle=np.radians(value))
+    if len(rest) == 2 and rest[0] == "guide" and isinstance(g, (RRP, RPP)):
+        return _with(g, guide=_set_guide(g.guide, rest[1], value, key))
+    if len(rest) == 3 and rest[0] == "guides" and rest[1] in ("0", "1") and isinstance(g, PRP):
+        guides = list(g.guides)
+        k = int(rest[1])
+        guides[k] = _set_guide(guides[k], rest[2], value, key)
+        return _with(g, guides=tuple(guides))
+    raise MechanismError(f"unknown design key {key!r}: group {g.name!r} ({g.kind}) has no {'.'.join(rest)!r}")
+
+
+def _set(mech: Mechanism, key: str, value) -> Mechanism:
+    """``mech`` with the number at ``key`` set to ``value`` (a float or an array), unchecked."""
+    parts = key.split(".")
+    head, rest = parts[0], parts[1:]
+    if head == "crank" and rest in (["length"], ["omega"], ["rpm"]):
+        field = "omega" if rest[0] == "rpm" else rest[0]
+        v = value * (math.pi / 30.0) if rest[0] == "rpm" else value
+        return _with(mech, crank=_with(mech.crank, **{field: v}))
+    if head == "ground" and len(rest) == 2 and rest[1] in ("0", "1"):
+        ground = dict(mech.ground)
+        if rest[0] not in ground:
+            raise MechanismError(f"unknown design key {key!r}: no ground point {rest[0]!r}; known: {', '.join(ground)}")
+        xy = list(ground[rest[0]])
+        xy[int(rest[1])] = value
+        return _with(mech, ground=tuple((n, tuple(xy) if n == rest[0] else p) for n, p in mech.ground))
+    if head == "group" and len(rest) >= 2:
+        names = [g.name for g in mech.groups]
+        if rest[0] not in names:
+            raise MechanismError(f"unknown design key {key!r}: no group {rest[0]!r}; known: {', '.join(names)}")
+        groups = tuple(_set_group(g, rest[1:], value, key) if g.name == rest[0] else g for g in mech.groups)
+        return _with(mech, groups=groups)
+    if head == "point" and len(rest) == 2 and rest[1] in ("along", "offset"):
+        names = [p.name for p in mech.points]
+        if rest[0] not in names:
+            raise MechanismError(f"unknown design key {key!r}: no point {rest[0]!r} on a link; known: {', '.join(names)}")
+        pts = tuple(_with(p, **{rest[1]: value}) if p.name == rest[0] else p for p in mech.points)
+        return _with(mech, points=pts)
+    raise MechanismError(f"unknown design key {key!r}: use crank.length, ground.P.0, group.N.length, "
+                         "group.N.lengths.0, group.N.guide.offset, point.P.along …")
+
+
+def _check(key: str, values: np.ndarray) -> None:
+    """Lengths must be > 0 and every number finite: one line naming the key, value, variant."""
+    bad = ~np.isfinite(values)
+    positive = key == "crank.length" or key.endswith((".length",)) or ".lengths." in key
+    if positive:
+        bad |= ~(values > 0)
+    if bad.any():
+        i = int(np.argmax(bad))
+        what = "must be a finite number > 0 m" if positive else "must be a finite number"
+        raise MechanismError(f"{key} {what}, not {values[i]:.6g} (variant {i + 1})")
+
+
+def variant(mech: Mechanism, values: Mapping[str, float]) -> Mechanism:
+    """``mech`` with the keys ``values`` set: one variant, checked like a loaded file."""
+    out = mech
+    for key, v in values.items():
+        _check(key, np.array([float(v)]))
+        out = _set(out, key, float(v))
+    # rebuild each value through its constructor, so that its own checks run
+    groups = tuple(replace(g) for g in out.groups)
+    return replace(out, crank=replace(out.crank), groups=groups, points=tuple(replace(p) for p in out.points),
+                   name=mech.name)
+
+
+# ---- solving --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DesignKinematics:
+    """Solutions of V variants at n crank angles each.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+        The nominal mechanism.
+    values : dict of str → ndarray, shape (V,)
+        The varied keys' values per variant (m, deg, rpm or rad/s).
+    phi : ndarray, shape (V, n)
+        Crank angles, rad.
+    flat : Kinematics
+        All elements in one solution, variant-major: element ``v·n + i`` is variant v at
+        angle i (its ``omega1`` an array when the crank's speed varies).
+    """
+
+    mechanism: Mechanism
+    values: dict
+    phi: np.ndarray
+    flat: Kinematics
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(V, n)."""
+        return self.phi.shape
+
+    def per_variant(self, arr: np.ndarray) -> np.ndarray:
+        """An array of ``flat`` (V·n, …) as (V, n, …)."""
+        return arr.reshape(self.shape + arr.shape[1:])
+
+    @property
+    def valid(self) -> np.ndarray:
+        """(V, n) assembled and not singular."""
+        return self.per_variant(self.flat.valid)
+
+    def variant(self, v: int) -> Kinematics:
+        """Variant ``v``'s solution alone (its positions axis of length n)."""
+        n = self.shape[1]
+        return self.flat.take(slice(v * n, (v + 1) * n))
+
+    def failures(self) -> list[str]:
+        """Per variant: "" when it is valid at every angle, else why not (the first group, in
+        solving order, that does not close or is singular, and the crank angle)."""
+        V, n = self.shape
+        cond = self.per_variant(self.flat.condition)  # (V, n, G)
+        names = list(self.flat.group_index)
+        valid = self.valid
+        out = [""] * V
+        for v in np.flatnonzero(~valid.all(axis=1)):
+            i = int(np.argmin(valid[v]))
+            deg = math.degrees(self.phi[v, i]) % 360.0
+            open_ = np.flatnonzero(~np.isfinite(cond[v, i]))
+            if open_.size:
+                out[v] = f"group {names[open_[0]]!r} does not close at φ = {deg:.6g}°"
+            else:
+                g = names[int(np.argmin(cond[v, i]))] if names else "?"
+                out[v] = f"group {g!r} at a toggle (singular) at φ = {deg:.6g}°"
+        return out
+
+
+def _as_values(values: Mapping[str, object]) -> tuple[dict[str, np.ndarray], int]:
+    arrs = {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in values.items()}
+    sizes = {a.shape[0] for a in arrs.values() if a.shape[0] != 1}
+    if len(sizes) > 1 or any(a.ndim != 1 for a in arrs.values()):
+        raise ValueError(f"design values must be 1-D arrays of one length, not {sorted(sizes)}")
+    V = sizes.pop() if sizes else 1
+    return {k: np.broadcast_to(a, (V,)).copy() for k, a in arrs.items()}, V
+
+
+def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: int = 2,
+                 engine: str = "numpy") -> DesignKinematics:
+    """Solve V variants of ``mech`` at crank angles ``phi`` in one call.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The nominal mechanism.
+    values : mapping of key → array_like, shape (V,) (or scalars)
+        Design keys (see the module docstring) and their values per variant.
+    phi : array_like, shape (n,) or (V, n)
+        Crank angles, rad: the same for every variant, or one row per variant.
+    order : {0, 1, 2}
+        Highest derivative kept, as in `solve`.
+    engine : {"numpy", "compiled"}
+        Whole arrays in blocks, or the compiled kernel (numba) with one parameter set per
+        variant, on every core; the same values to round-off.
+
+    Returns
+    -------
+    DesignKinematics
+        Positions where a variant does not assemble hold NaN and ``valid`` False there;
+        `DesignKinematics.failures` says why. The crank turns at ``crank.omega`` (or the
+        varied ``crank.rpm``/``crank.omega``).
+    """
+    vals, V = _as_values(values)
+    for key, arr in vals.items():
+        _check(key, arr)
+        _set(mech, key, arr)  # an unknown key fails here, before any work
+    phi = np.asarray(phi, dtype=float)
+    if phi.ndim not in (1, 2) or (phi.ndim == 2 and phi.shape[0] != V):
+        raise ValueError(f"phi must have shape (n,) or ({V}, n), not {phi.shape}")
+    phi2 = np.ascontiguousarray(np.broadcast_to(phi, (V, phi.shape[-1])))
+    if engine not in ("numpy", "compiled"):
+        raise ValueError(f"engine must be 'numpy' or 'compiled', not {engine!r}")
+    if any(isinstance(g, Triad) for g in mech.groups):
+        return _solve_loop(mech, vals, phi2, order)
+    if engine == "compiled":
+        return _solve_compiled(mech, vals, phi2, order)
+    n = phi2.shape[1]
+    flat_phi = phi2.reshape(-1)
+    E = V * n
+    speed = _speed(mech, vals)
+    w1 = np.repeat(speed, n) if speed.shape[0] > 1 else float(speed[0])
+    shift = np.empty((E, 2))
+    out = None
+    step = max(1, BLOCK // max(n, 1))
+    for a in range(0, V, step):
+        b = min(V, a + step)
+        per = {k: np.repeat(v[a:b], n) for k, v in vals.items()}
+        where = slice(a * n, b * n)
+        st, conditions, shift[where] = _solve_elements(mech, per, flat_phi[where], order)
+        if out is None:
+            out = _Outputs(st, conditions, E, order)
+        out.write(st, conditions, where)
+    kin = out.kinematics(mech, flat_phi, w1, float(mech.crank.epsilon) if order >= 2 else 0.0, st)
+    return DesignKinematics(mech, vals, phi2, replace(kin, positions=kin.positions + shift[:, None, :]))
+
+
+def _solve_compiled(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -> DesignKinematics:
+    """The compiled kernel over V variants: one program, a parameter set per variant."""
+    from velplan.analysis import compiled
+    from velplan.analysis.solver import _solve_block, length_scale
+
+    V, n = phi2.shape
+    el = mech
+    for key, arr in vals.items():
+        el = _set(el, key, arr)
+    ground = {name: np.broadcast_to(np.asarray(x, float), (V,)) + 1j * np.broadcast_to(np.asarray(y, float), (V,))
+              for name, (x, y) in el.ground}
+    pivot = ground[el.crank.pivot].copy()
+    local = _with(el, ground=tuple((name, ((p - pivot).real, (p - pivot).imag)) for name, p in ground.items()))
+    items = schedule(local)
+    st, conditions = _solve_block(mech, np.zeros(1), 1.0, 0.0, length_scale(mech), "nan", schedule(mech))
+    E = V * n
+    out = _Outputs(st, conditions, E, 2)
+    ops, par, gr = compiled.encode_design(local, V, out.names, out.links, out.slide_names, out.groups,
+                                          _scale(el, ground), items)
+    speed = np.broadcast_to(_speed(mech, vals), (V,)).astype(float)
+    eps = float(mech.crank.epsilon)
+    valid = np.empty(E, dtype=bool)
+    flat_phi = phi2.reshape(-1)
+    compiled.run(ops, par, gr, flat_phi, speed if order >= 1 else np.zeros(V),
+                 np.full(V, eps if order >= 2 else 0.0), n, out.z, out.rates, out.slides, out.condition, valid)
+    out.keep(order)
+    w1 = np.repeat(speed, n) if ("crank.omega" in vals or "crank.rpm" in vals) else float(speed[0])
+    kin = out.kinematics(mech, flat_phi, w1, eps if order >= 2 else 0.0, st, valid)
+    shift = np.repeat(np.column_stack([pivot.real, pivot.imag]), n, axis=0)
+    return DesignKinematics(mech, vals, phi2, replace(kin, positions=kin.positions + shift[:, None, :]))
+
+
+def _speed(mech: Mechanism, vals: dict) -> np.ndarray:
+    """The crank's ω1 per variant (rad/s): one value unless a key varies it."""
+    if "crank.omega" in vals:
+        return vals["crank.omega"]
+    if "crank.rpm" in vals:
+        return vals["crank.rpm"] * (math.pi / 30.0)
+    return np.array([float(mech.crank.omega)])
+
+
+def _solve_elements(mech: Mechanism, per: dict, phi: np.ndarray, order: int):
+    """One block of elements: the state, the groups' conditions and the pivot shift (E, 2)."""
+    el = mech
+    for key, arr in per.items():
+        el = _set(el, key, arr)
+    E = phi.shape[0]
+    ground = {name: np.broadcast_to(np.asarray(x, float), (E,)) + 1j * np.broadcast_to(np.asarray(y, float), (E,))
+              for name, (x, y) in el.ground}
+    pivot = ground[el.crank.pivot].copy()
+    scale = _scale(el, ground)
+    w = el.crank.omega * np.ones(E) if order >= 1 else np.zeros(E)
+    e = np.full(E, float(el.crank.epsilon)) if order >= 2 else np.zeros(E)
+    st = State(E)
+    zeros = np.zeros(E, dtype=complex)
+    for name, p in ground.items():
+        st.points[name] = Motion(p - pivot, zeros, zeros)  # solved about the crank's pivot
+    zr = np.zeros(E)
+    st.links[GROUND] = LinkMotion(el.ground[0][0], zr, zr, zr)
+    conditions: dict[str, np.ndarray] = {}
+    items = schedule(el)
+    crank = items[0]
+    st.points[crank.tip] = Motion(*crank_tip(st.points[crank.pivot].p, crank.length, phi, w, e))
+    st.links[crank.link] = LinkMotion(crank.pivot, phi.copy(), w, e)
+    with np.errstate(all="ignore"):
+        _solve_items(items[1:], st, phi, w, e, scale, conditions, "nan", el)
+    return st, conditions, np.column_stack([pivot.real, pivot.imag])
+
+
+def _scale(el: Mechanism, ground: dict) -> np.ndarray:
+    """`length_scale` per element: the largest length or ground span (m)."""
+    lengths = [np.asarray(el.crank.length, float)]
+    for g in el.groups:
+        lengths.extend(np.asarray(x, float) for x in group_lengths(g))
+    pts = np.array(list(ground.values()))  # (Pg, E)
+    span = np.maximum(np.ptp(pts.real, axis=0), np.ptp(pts.imag, axis=0)) if len(pts) > 1 else 0.0
+    return np.maximum(np.maximum.reduce(np.broadcast_arrays(*lengths)), span)
+
+
+def _solve_loop(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -> DesignKinematics:
+    """Variants one `solve` each (mechanisms with a class III group), stacked."""
+    V, n = phi2.shape
+    kins = [solve(variant(mech, {k: float(a[v]) for k, a in vals.items()}), phi2[v], order=order)
+            for v in range(V)]
+    first = kins[0]
+
+    def cat(name):
+        arrs = [getattr(k, name) for k in kins]
+        return None if arrs[0] is None else np.concatenate(arrs)
+
+    w1 = first.omega1 if all(k.omega1 == first.omega1 for k in kins) else np.repeat([k.omega1 for k in kins], n)
+    flat = replace(first, mechanism=mech, phi=phi2.reshape(-1), omega1=w1, epsilon1=0.0,
+                   **{f: cat(f) for f in ("positions", "velocities", "accelerations", "angles", "omegas",
+                                          "epsilons", "slides", "condition", "valid")})
+    return DesignKinematics(mech, vals, phi2, flat)

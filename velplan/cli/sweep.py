@@ -1,0 +1,100 @@
+"""``velplan sweep``: figures of merit over a parameter grid or a tolerance Monte Carlo."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from velplan.cli.common import add_mechanism, add_output, positive_int
+from velplan.errors import VelplanError
+
+MAX_VARIANTS = 10_000_000
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sweep", help="figures of merit (H, K, γ_min, peak v, a) over a design grid or tolerances")
+    add_mechanism(p)
+    p.add_argument("--vary", metavar="KEY=FROM:TO:N", action="append", default=[],
+                   help="a grid axis over a dotted key (crank.length=0.09:0.11:21, or KEY=A,B,C); repeat for more axes")
+    p.add_argument("--tolerance", metavar="T", help="Monte Carlo over every length and angle: ±T such as "
+                   "'0.1mm,0.05°' (KEY=0.02mm sets one key)")
+    p.add_argument("--samples", metavar="N", type=positive_int, default=10_000, help="Monte Carlo draws (default 10000)")
+    p.add_argument("--seed", metavar="S", default="0", help="Monte Carlo seed: a number or any text (default 0)")
+    p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
+                   help="deviations: normal with σ = T/3 (default) or uniform in ±T")
+    p.add_argument("--positions", metavar="N", type=positive_int, default=360,
+                   help="crank angles per variant (default 360)")
+    p.add_argument("--format", choices=("table", "json", "csv", "npz", "parquet"), default="table")
+    p.add_argument("--plots", metavar="DIR", help="write sweep-hist, sweep-sensitivity and sweep-scatter SVGs into DIR")
+    p.add_argument("--png", action="store_true", help="also PNGs of the plots")
+    p.add_argument("--engine", choices=("numpy", "compiled", "auto"), default="numpy",
+                   help="numpy (default), compiled (numba, all cores; the same figures to round-off) or auto "
+                        "(compiled when numba is installed and the kernel is loaded or there are 2e6 variant-angles)")
+    p.add_argument("--jobs", metavar="N", type=positive_int, default=1,
+                   help="worker processes (default 1; the results are the same)")
+    p.add_argument("--scheduler", metavar="ADDR", help="run the chunks on a Dask cluster (tcp://host:port)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_output(p)
+    p.set_defaults(run=run_sweep_cmd)
+
+
+def _values(args, mech):
+    from velplan.sweep import run
+
+    if bool(args.vary) == bool(args.tolerance):
+        raise VelplanError("give --vary KEY=FROM:TO:N (a grid) or --tolerance T (Monte Carlo), one of them")
+    if args.vary:
+        axes = dict(run.parse_vary(v) for v in args.vary)
+        if run.combos(axes) > MAX_VARIANTS:
+            raise VelplanError(f"--vary: {run.combos(axes)} variants is more than {MAX_VARIANTS}")
+        return "grid", run.grid(mech, axes), {"axes": {k: [float(x) for x in v] for k, v in axes.items()}}
+    length, angle, per = run.parse_tolerance(args.tolerance)
+    tol = run.tolerances(mech, length, angle, per)
+    values = run.monte_carlo(mech, tol, args.samples, args.seed, args.distribution)
+    meta = {"seed": args.seed, "samples": args.samples, "distribution": args.distribution,
+            "tolerance": {k: float(t) for k, t in tol.items()}}
+    return "monte-carlo", values, meta
+
+
+def run_sweep_cmd(args) -> int:
+    from velplan.batch import progress_bar
+    from velplan.cli.stream import open_output
+    from velplan.mechanism.loader import load
+    from velplan.sweep import report, run
+
+    if args.format in ("npz", "parquet") and not args.output:
+        raise VelplanError(f"--format {args.format} is binary: give -o FILE")
+    if args.format == "parquet":
+        try:
+            import pyarrow  # noqa: F401
+        except ImportError:
+            raise VelplanError("--format parquet needs pyarrow (pip install pyarrow); --format npz needs nothing") from None
+    if args.plots and not Path(args.plots).is_dir():
+        raise VelplanError(f"--plots: directory {args.plots} does not exist")
+    mech = load(args.mechanism)
+    mode, values, meta = _values(args, mech)
+    V = len(next(iter(values.values())))
+    show = None if args.quiet or V <= 1024 else progress_bar()
+    engine = args.engine
+    if engine == "auto":
+        from velplan.analysis.compiled import available, loaded
+        from velplan.analysis.solver import AUTO_COMPILED
+
+        engine = "compiled" if available() and (loaded() or V * args.positions >= AUTO_COMPILED) else "numpy"
+    res = run.run_sweep(mech, values, mode=mode, positions=args.positions, progress=show,
+                        scheduler=args.scheduler, jobs=args.jobs, engine=engine, meta=meta)
+    if args.format == "table":
+        with open_output(args.output) as out:
+            out.write(report.to_table(res))
+    elif args.format in ("json", "csv"):
+        with open_output(args.output) as out:
+            (report.write_json if args.format == "json" else report.write_csv)(res, out)
+    else:
+        with open_output(args.output, binary=True) as out:
+            report.write_binary(res, out, args.format)
+    if args.plots:
+        from velplan.sweep.plot import plot_all
+
+        files = plot_all(res, args.plots, png=args.png)
+        sys.stderr.write(f"plots: {', '.join(f.name for f in files)} in {args.plots}\n")
+    return 0

@@ -1,0 +1,64 @@
+"""The front of the note: title page, contents, input data, structural analysis."""
+
+from __future__ import annotations
+
+from velplan.mechanism.structure import analyse, pairs
+from velplan.note.model import Contents, Equation, Heading, PageBreak, Para, TitlePage
+from velplan.note.text import p
+from velplan.views.data import data_lines
+
+BLANK = "____________"
+
+
+def title_page(note, study, fields: dict | None = None) -> None:
+    """Title page with the ESKD fields (``organisation``, ``author``, ``group``, ``checker``,
+    ``date``; blank lines for what velplan does not know: it never reads the clock)."""
+    lang, mech = note.lang, study.mechanism
+    fields = dict(fields or {})
+    prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
+    suffix = " ПЗ" if lang in ("ru", "uk") else ""
+    note.add(TitlePage(
+        organisation=fields.get("organisation") or BLANK,
+        kind=p("note", lang), course=p("course", lang),
+        topic=p("topic", lang, mech.name_in(lang)),
+        designation=f"{prefix}.{mech.name}.00{suffix}",
+        fields=((p("student", lang), fields.get("author") or BLANK),
+                (p("group", lang), fields.get("group") or BLANK),
+                (p("supervisor", lang), fields.get("checker") or BLANK)),
+        place_year=fields.get("date") or BLANK))
+    note.add(PageBreak(), Contents(p("contents", lang)), PageBreak())
+
+
+def data_section(note, study) -> None:
+    """The input data as the sheet writes them, one line per paragraph."""
+    note.add(Heading(p("sec_data", note.lang), 1))
+    for line in data_lines(study, note.lang):
+        note.add(Para.of(line))
+
+
+def structure_section(note, study) -> None:
+    """Links, pairs, W by Chebyshev, the Assur groups (any class), the formula of structure."""
+    lang, mech = note.lang, study.mechanism
+    st = analyse(mech)
+    note.add(Heading(p("sec_structure", lang), 1))
+    note.add(Para.of(p("links_pairs", lang, st.n_links, st.p5, st.p4)))
+    note.add(Equation(rf"W = 3n - 2p_{{5}} - p_{{4}} = 3\cdot {st.n_links} - 2\cdot {st.p5} - {st.p4} = "
+                      rf"{st.mobility}"))
+    rows = [[pr.name.replace("P:", ""), p(f"pair_{pr.kind}", lang) if pr.kind in "RP" else pr.kind,
+             " – ".join(pr.links), pr.group] for pr in pairs(mech)]
+    note.table(p("pairs_title", lang), [p("pairs_head", lang), p("kind_head", lang), p("links_head", lang),
+                                       p("group_head", lang)], rows, key="pairs")
+    groups = [[name, kind, p("class_order", lang, cls, order), ", ".join(links)]
+              for name, kind, cls, order, links in st.groups]
+    note.table(p("groups_head", lang), [p("group_head", lang), p("kind_head", lang), p("class_head", lang),
+                                         p("links_head", lang)],
+               groups, key="groups")
+    note.add(Para.of(p("formula", lang)), Equation(_structure_tex(st, mech.crank.link)),
+             Para.of(p("mech_class", lang, st.mechanism_class)))
+
+
+def _structure_tex(st, crank: str) -> str:
+    roman = {1: "I", 2: "II", 3: "III", 4: "IV"}
+    parts = [rf"\mathrm{{I}}(0, {crank})"] + [rf"\mathrm{{{roman.get(c, str(c))}}}({', '.join(links)})"
+                                             for _, _, c, _, links in st.groups]
+    return r" \rightarrow ".join(parts)

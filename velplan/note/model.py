@@ -1,0 +1,124 @@
+"""The explanatory note as data: a flat list of blocks that every writer renders.
+
+Text is plain Unicode (the sheets' own strings); formulas are TeX (`Math` inline,
+`Equation` displayed), which pandoc turns into Word equations (OMML), MathML and Typst math.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Math:
+    """An inline formula, TeX."""
+
+    tex: str
+
+
+@dataclass(frozen=True)
+class Para:
+    """A paragraph: text pieces and inline formulas."""
+
+    parts: tuple
+
+    @classmethod
+    def of(cls, *parts) -> "Para":
+        return cls(tuple(parts))
+
+
+@dataclass(frozen=True)
+class Equation:
+    """A displayed formula, TeX."""
+
+    tex: str
+
+
+@dataclass(frozen=True)
+class Heading:
+    text: str
+    level: int = 1
+
+
+@dataclass(frozen=True)
+class Table:
+    """A table with its numbered caption; cells are plain text, as the sheets print them."""
+
+    caption: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    key: str = ""
+    """What the table holds, for readers of the data (``"velocities-4"``); not printed."""
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A numbered figure: a PNG of the sheets' drawings and its size on the page."""
+
+    caption: str
+    png: bytes = field(repr=False)
+    width_mm: float
+    name: str
+
+
+@dataclass(frozen=True)
+class TitlePage:
+    """The title page: the document's kind, the topic and the ESKD fields (label, value)."""
+
+    organisation: str
+    kind: str
+    course: str
+    topic: str
+    designation: str
+    fields: tuple[tuple[str, str], ...]
+    place_year: str
+
+
+@dataclass(frozen=True)
+class Contents:
+    title: str
+
+
+@dataclass(frozen=True)
+class PageBreak:
+    pass
+
+
+Block = Para | Equation | Heading | Table | Figure | TitlePage | Contents | PageBreak
+
+
+@dataclass
+class Note:
+    """The note: its language, title and blocks; `figure` and `table` number them."""
+
+    lang: str
+    title: str
+    blocks: list = field(default_factory=list)
+    figures: int = 0
+    tables: int = 0
+
+    def add(self, *blocks) -> None:
+        self.blocks.extend(blocks)
+
+    def figure(self, caption: str, png: bytes, width_mm: float) -> int:
+        """Add a figure with the next number; returns the number."""
+        from velplan.note.text import p
+
+        self.figures += 1
+        self.add(Figure(f"{p('figure', self.lang)} {self.figures} — {caption}", png, width_mm,
+                        f"figure-{self.figures}.png"))
+        return self.figures
+
+    def table(self, caption: str, header, rows, key: str = "") -> int:
+        """Add a table with the next number; returns the number."""
+        from velplan.note.text import p
+
+        self.tables += 1
+        self.add(Table(f"{p('table', self.lang)} {self.tables} — {caption}", tuple(header),
+                       tuple(tuple(r) for r in rows), key))
+        return self.tables
+
+    @property
+    def equations(self) -> int:
+        """Displayed equations in the note."""
+        return sum(isinstance(b, Equation) for b in self.blocks)

@@ -1,0 +1,233 @@
+"""Phrases of the explanatory note in en, ru, uk and zh (the step sentences, table cells and
+units come from the sheets themselves: `velplan.plans.text`, `velplan.render.i18n`)."""
+
+from __future__ import annotations
+
+from velplan.plans.text import check_lang
+
+LANG_INDEX = {"en": 0, "ru": 1, "uk": 2, "zh": 3}
+
+_P: dict[str, tuple[str, str, str, str]] = {
+    "note": ("Explanatory note", "Расчётно-пояснительная записка", "Розрахунково-пояснювальна записка",
+             "计算说明书"),
+    "course": ("to the course project in the theory of machines and mechanisms",
+               "к курсовому проекту по теории механизмов и машин",
+               "до курсового проєкту з теорії механізмів і машин", "机械原理课程设计"),
+    "topic": ("Analysis and synthesis of the mechanism of the {0}", "Исследование механизма: {0}",
+              "Дослідження механізму: {0}", "{0}机构的分析与综合"),
+    "organisation": ("Organisation", "Организация", "Організація", "单位"),
+    "department": ("Department", "Кафедра", "Кафедра", "教研室"),
+    "student": ("Student", "Выполнил студент", "Виконав студент", "学生"),
+    "group": ("Group", "Группа", "Група", "班级"),
+    "supervisor": ("Supervisor", "Руководитель", "Керівник", "指导教师"),
+    "designation": ("Designation", "Обозначение", "Позначення", "代号"),
+    "place_year": ("Place, year", "Город, год", "Місто, рік", "地点，年份"),
+    "contents": ("Contents", "Содержание", "Зміст", "目录"),
+    "figure": ("Figure", "Рисунок", "Рисунок", "图"),
+    "table": ("Table", "Таблица", "Таблиця", "表"),
+    "sec_data": ("Input data", "Исходные данные", "Вихідні дані", "原始数据"),
+    "sec_structure": ("Structural analysis", "Структурный анализ механизма", "Структурний аналіз механізму",
+                      "机构结构分析"),
+    "sec_positions": ("Positions and extreme positions", "Планы положений и крайние положения",
+                      "Плани положень і крайні положення", "机构位置与极限位置"),
+    "sec_velocity": ("Velocity plan, position {0}", "План скоростей, положение {0}",
+                     "План швидкостей, положення {0}", "速度图，位置 {0}"),
+    "sec_acceleration": ("Acceleration plan, position {0}", "План ускорений, положение {0}",
+                         "План прискорень, положення {0}", "加速度图，位置 {0}"),
+    "sec_kinematics": ("Kinematic analysis", "Кинематический анализ", "Кінематичний аналіз", "运动分析"),
+    "sec_analogues": ("Table of the velocity analogues", "Таблица аналогов скоростей",
+                      "Таблиця аналогів швидкостей", "速度类比量表"),
+    "sec_diagrams": ("Kinematic diagrams by the chord method", "Кинематические диаграммы, метод хорд",
+                     "Кінематичні діаграми, метод хорд", "运动线图（弦线法）"),
+    "sec_forces": ("Force analysis", "Силовой анализ", "Силовий аналіз", "力分析"),
+    "sec_kinetostatics": ("Kinetostatics, position {0}", "Кинетостатика, положение {0}",
+                          "Кінетостатика, положення {0}", "动态静力分析，位置 {0}"),
+    "sec_group": ("Group {0} ({1})", "Группа {0} ({1})", "Група {0} ({1})", "杆组 {0}（{1}）"),
+    "sec_crank": ("Initial link {0}", "Начальное звено {0}", "Початкова ланка {0}", "原动件 {0}"),
+    "sec_lever": ("Zhukovsky's lever, position {0}", "Рычаг Жуковского, положение {0}",
+                  "Важіль Жуковського, положення {0}", "茹科夫斯基杠杆，位置 {0}"),
+    "sec_moments": ("Balancing moment by three methods", "Уравновешивающий момент тремя методами",
+                    "Зрівноважувальний момент трьома методами", "三种方法求平衡力矩"),
+    "sec_dynamics": ("Machine dynamics and the flywheel", "Динамика машины и маховик",
+                     "Динаміка машини і маховик", "机器动力学与飞轮"),
+    "links_pairs": ("The mechanism has n = {0} moving links and p₅ = {1} lower pairs, p₄ = {2} higher pairs; "
+                    "its degree of freedom by Chebyshev's formula:",
+                    "Механизм имеет n = {0} подвижных звеньев, p₅ = {1} низших и p₄ = {2} высших пар; "
+                    "степень подвижности по формуле Чебышева:",
+                    "Механізм має n = {0} рухомих ланок, p₅ = {1} нижчих і p₄ = {2} вищих пар; "
+                    "ступінь вільності за формулою Чебишева:",
+                    "机构有 n = {0} 个活动构件，p₅ = {1} 个低副，p₄ = {2} 个高副；按切比雪夫公式，自由度为："),
+    "pairs_title": ("Kinematic pairs", "Кинематические пары", "Кінематичні пари", "运动副"),
+    "class_head": ("Class, order", "Класс, порядок", "Клас, порядок", "级别、阶数"),
+    "pairs_head": ("Pair", "Пара", "Пара", "运动副"),
+    "kind_head": ("Kind", "Вид", "Вид", "类型"),
+    "links_head": ("Links", "Звенья", "Ланки", "构件"),
+    "group_head": ("Group", "Группа", "Група", "杆组"),
+    "pair_R": ("revolute, class 5", "вращательная, 5 класса", "обертальна, 5 класу", "转动副，5级"),
+    "pair_P": ("prismatic, class 5", "поступательная, 5 класса", "поступальна, 5 класу", "移动副，5级"),
+    "groups_head": ("Assur groups", "Группы Ассура", "Групи Ассура", "阿苏尔杆组"),
+    "class_order": ("class {0}, order {1}", "{0} класса, {1} порядка", "{0} класу, {1} порядку", "{0} 级，{1} 阶"),
+    "formula": ("Formula of structure:", "Формула строения:", "Формула будови:", "结构式："),
+    "mech_class": ("The mechanism is of class {0}.", "Механизм {0} класса.", "Механізм {0} класу.",
+                   "该机构为 {0} 级机构。"),
+    "scale_l": ("The scheme is drawn at μl = {0} m/mm ({1}); {2} positions of the crank from the "
+                "extreme position, in the sense of ω{3}.",
+                "Схема построена в масштабе μl = {0} м/мм ({1}); {2} положений кривошипа от крайнего "
+                "положения в направлении ω{3}.",
+                "Схему побудовано в масштабі μl = {0} м/мм ({1}); {2} положень кривошипа від крайнього "
+                "положення в напрямі ω{3}.",
+                "机构简图比例 μl = {0} m/mm（{1}）；自极限位置起沿 ω{3} 方向取曲柄 {2} 个位置。"),
+    "crank_angles": ("Crank angles of the positions", "Углы поворота кривошипа", "Кути повороту кривошипа",
+                     "各位置曲柄转角"),
+    "phi": ("crank angle φ, °", "угол φ, °", "кут φ, °", "转角 φ，°"),
+    "stroke": ("The stroke, the angle between the extreme positions of the crank and the time-ratio "
+               "coefficient:", "Ход выходного звена, угол перекрытия и коэффициент изменения средней "
+               "скорости:", "Хід вихідної ланки, кут перекриття та коефіцієнт зміни середньої швидкості:",
+               "输出构件行程、极位夹角与行程速比系数："),
+    "scheme_fig": ("Scheme of the mechanism in its positions", "Схема механизма в положениях",
+                   "Схема механізму в положеннях", "机构位置简图"),
+    "plan_scale": ("The plan is drawn at the scale μ{0} = {1} {2} (the sheet's scale).",
+                   "План построен в масштабе μ{0} = {1} {2} (масштаб листа).",
+                   "План побудовано в масштабі μ{0} = {1} {2} (масштаб аркуша).",
+                   "按图纸比例 μ{0} = {1} {2} 作图。"),
+    "position_phi": ("Position {0}: crank angle φ = {1}°.", "Положение {0}: угол поворота кривошипа φ = {1}°.",
+                     "Положення {0}: кут повороту кривошипа φ = {1}°.", "位置 {0}：曲柄转角 φ = {1}°。"),
+    "step": ("Step {0}.", "Шаг {0}.", "Крок {0}.", "第 {0} 步。"),
+    "angular": ("Angular velocities of the links (counter-clockwise positive):",
+                "Угловые скорости звеньев (против часовой стрелки — положительные):",
+                "Кутові швидкості ланок (проти годинникової стрілки — додатні):", "各构件角速度（逆时针为正）："),
+    "angular_a": ("Angular accelerations of the links:", "Угловые ускорения звеньев:",
+                  "Кутові прискорення ланок:", "各构件角加速度："),
+    "ccw": ("counter-clockwise", "против часовой стрелки", "проти годинникової стрілки", "逆时针"),
+    "cw": ("clockwise", "по часовой стрелке", "за годинниковою стрілкою", "顺时针"),
+    "results_v": ("Velocities found (exact plan, four significant figures)",
+                  "Найденные скорости (точный план, четыре значащие цифры)",
+                  "Знайдені швидкості (точний план, чотири значущі цифри)", "所求速度（精确图，四位有效数字）"),
+    "results_a": ("Accelerations found (exact plan, four significant figures)",
+                  "Найденные ускорения (точный план, четыре значащие цифры)",
+                  "Знайдені прискорення (точний план, чотири значущі цифри)", "所求加速度（精确图，四位有效数字）"),
+    "quantity": ("Quantity", "Величина", "Величина", "量"),
+    "value": ("Value", "Значение", "Значення", "数值"),
+    "unit": ("Unit", "Ед. изм.", "Од. вим.", "单位"),
+    "readings": ("Values read off the drawn plans (as on the sheet)",
+                 "Значения, снятые с планов на листе", "Значення, зняті з планів на аркуші", "从图纸上量得的数值"),
+    "readings_text": ("A draughtsman reads each vector to 0.5 mm; the table on the sheet gives these "
+                      "readings beside the analytic values and their difference.",
+                      "Каждый вектор измеряется на чертеже с точностью 0,5 мм; таблица листа сравнивает "
+                      "эти значения с аналитическими.",
+                      "Кожен вектор вимірюється на кресленні з точністю 0,5 мм; таблиця аркуша порівнює "
+                      "ці значення з аналітичними.",
+                      "各矢量在图上按 0.5 mm 精度量取；图纸上的表格将其与解析值比较。"),
+    "read": ("read off the plan", "по плану", "за планом", "图上量得"),
+    "analytic": ("analytic", "аналитически", "аналітично", "解析"),
+    "plan_fig": ("{0}, position {1}", "{0}, положение {1}", "{0}, положення {1}", "{0}，位置 {1}"),
+    "analogues_text": ("The analogues V/ω₁ (m) of the points and ω/ω₁ of the links are read off the "
+                       "exact velocity plans of all positions (the table of the sheet).",
+                       "Аналоги скоростей V/ω₁ (м) точек и ω/ω₁ звеньев сняты с точных планов скоростей "
+                       "всех положений (таблица листа).",
+                       "Аналоги швидкостей V/ω₁ (м) точок і ω/ω₁ ланок знято з точних планів швидкостей "
+                       "усіх положень (таблиця аркуша).",
+                       "各点速度类比量 V/ω₁（m）及各构件 ω/ω₁ 取自全部位置的精确速度图（图纸上的表）。"),
+    "diagrams_text": ("The displacement diagram s(φ) of the output is plotted from the positions; "
+                      "the velocity analogue and acceleration analogue diagrams follow from it by "
+                      "graphical differentiation (the chord method): each chord of a curve is "
+                      "replaced by a ray from the pole, and the ordinate it cuts is the derivative "
+                      "at the middle of the interval. The analytic curves are drawn beside them.",
+                      "Диаграмма перемещений s(φ) выходного звена построена по планам положений; "
+                      "диаграммы аналогов скорости и ускорения получены графическим "
+                      "дифференцированием (методом хорд): каждой хорде кривой соответствует луч из "
+                      "полюса, отсекающий ординату производной в середине интервала. Рядом показаны "
+                      "аналитические кривые.",
+                      "Діаграму переміщень s(φ) вихідної ланки побудовано за планами положень; "
+                      "діаграми аналогів швидкості та прискорення отримано графічним "
+                      "диференціюванням (методом хорд): кожній хорді кривої відповідає промінь із "
+                      "полюса, що відтинає ординату похідної в середині інтервалу. Поруч показано "
+                      "аналітичні криві.",
+                      "输出构件位移线图 s(φ) 由位置图作出；速度类比量和加速度类比量线图用图解微分法"
+                      "（弦线法）求得：曲线的每条弦对应自极点引出的射线，其截取的纵坐标即区间中点的导数。"
+                      "旁边给出解析曲线。"),
+    "diagrams_fig": ("Kinematic diagrams of the output", "Кинематические диаграммы выходного звена",
+                     "Кінематичні діаграми вихідної ланки", "输出构件运动线图"),
+    "ks_intro": ("The groups are separated from the mechanism beginning with the one farthest from the "
+                 "initial link; the inertia forces Φ = −m·a_S and moments M_Φ = −J_S·ε are applied "
+                 "with the weights and the loads (d'Alembert's principle), and each group's force "
+                 "polygon is drawn.",
+                 "Группы отделяются от механизма, начиная с наиболее удалённой от начального звена; "
+                 "к звеньям прикладываются силы тяжести, внешние нагрузки, силы инерции Φ = −m·a_S и "
+                 "моменты сил инерции M_Φ = −J_S·ε (принцип Даламбера), для каждой группы строится "
+                 "план сил.",
+                 "Групи відокремлюються від механізму, починаючи з найвіддаленішої від початкової "
+                 "ланки; до ланок прикладаються сили тяжіння, зовнішні навантаження, сили інерції "
+                 "Φ = −m·a_S і моменти сил інерції M_Φ = −J_S·ε (принцип Даламбера), для кожної групи "
+                 "будується план сил.",
+                 "从离原动件最远的杆组开始依次拆分；在各构件上施加重力、外载荷、惯性力 Φ = −m·a_S 及惯性力矩 "
+                 "M_Φ = −J_S·ε（达朗贝尔原理），对每个杆组作力多边形。"),
+    "known_forces": ("Forces known on the group:", "Известные силы, действующие на группу:",
+                     "Відомі сили, що діють на групу:", "作用于杆组的已知力："),
+    "equilibrium": ("Equation of equilibrium (the force polygon closes):",
+                    "Уравнение равновесия (план сил замкнут):", "Рівняння рівноваги (план сил замкнений):",
+                    "平衡方程（力多边形封闭）："),
+    "polygon_scale": ("The polygon is drawn at μF = {0} N/mm; the reactions read off it:",
+                      "План сил построен в масштабе μF = {0} Н/мм; найденные реакции:",
+                      "План сил побудовано в масштабі μF = {0} Н/мм; знайдені реакції:",
+                      "力多边形比例 μF = {0} N/mm；所求约束反力："),
+    "group_fig": ("Group {0} and its force polygon", "Группа {0} и её план сил", "Група {0} та її план сил",
+                  "杆组 {0} 及其力多边形"),
+    "crank_fig": ("The initial link and its force polygon", "Начальное звено и его план сил",
+                  "Початкова ланка та її план сил", "原动件及其力多边形"),
+    "segment": ("segment", "отрезок", "відрізок", "线段"),
+    "lever_text": ("The velocity plan turned by 90° is a lever about the pole; the forces are applied at "
+                   "the images of their points, and the sum of their moments about the pole gives the "
+                   "balancing force at the image of the crank tip:",
+                   "Повёрнутый на 90° план скоростей рассматривается как рычаг с опорой в полюсе; силы "
+                   "прикладываются в одноимённых точках плана, и из суммы моментов относительно полюса "
+                   "находится уравновешивающая сила в точке кривошипа:",
+                   "Повернутий на 90° план швидкостей розглядається як важіль з опорою в полюсі; сили "
+                   "прикладаються в однойменних точках плану, і з суми моментів відносно полюса "
+                   "знаходиться зрівноважувальна сила в точці кривошипа:",
+                   "将速度图转过 90° 作为以极点为支点的杠杆；各力作用于其对应点的影像上，由对极点的力矩和"
+                   "求得作用于曲柄端点影像上的平衡力："),
+    "lever_fig": ("Zhukovsky's lever, position {0}", "Рычаг Жуковского, положение {0}",
+                  "Важіль Жуковського, положення {0}", "茹科夫斯基杠杆，位置 {0}"),
+    "moments_text": ("The balancing moment found by kinetostatics, by Zhukovsky's lever and by the "
+                     "power method M_b = −ΣP·V/ω₁ at every position (the table of the sheet):",
+                     "Уравновешивающий момент, найденный кинетостатикой, рычагом Жуковского и методом "
+                     "мощностей M_ур = −ΣP·V/ω₁, во всех положениях (таблица листа):",
+                     "Зрівноважувальний момент, знайдений кінетостатикою, важелем Жуковського та методом "
+                     "потужностей M_зр = −ΣP·V/ω₁, в усіх положеннях (таблиця аркуша):",
+                     "用动态静力法、茹科夫斯基杠杆法和功率法 M_b = −ΣP·V/ω₁ 求得的各位置平衡力矩（图纸上的表）："),
+    "mb_fig": ("Balancing moment over a turn", "Уравновешивающий момент за оборот",
+               "Зрівноважувальний момент за оберт", "一周内的平衡力矩"),
+    "dyn_intro": ("The links are replaced by a dynamic model on the crank: the reduced moment of inertia "
+                  "J_red = Σ(m·V_S² + J_S·ω²)/ω₁² and the reduced moment M_red = ΣP·V/ω₁ of the forces. "
+                  "The work of the driving and of the resisting moments over a cycle gives the change of "
+                  "kinetic energy, and the flywheel is sized for the coefficient of speed fluctuation δ.",
+                  "Механизм заменяется динамической моделью на кривошипе: приведённый момент инерции "
+                  "J_пр = Σ(m·V_S² + J_S·ω²)/ω₁² и приведённый момент сил M_пр = ΣP·V/ω₁. Работы "
+                  "движущих сил и сил сопротивления за цикл дают изменение кинетической энергии, по "
+                  "которому маховик подбирается для заданного коэффициента неравномерности δ.",
+                  "Механізм замінюється динамічною моделлю на кривошипі: зведений момент інерції "
+                  "J_зв = Σ(m·V_S² + J_S·ω²)/ω₁² і зведений момент сил M_зв = ΣP·V/ω₁. Роботи рушійних "
+                  "сил і сил опору за цикл дають зміну кінетичної енергії, за якою маховик добирається "
+                  "для заданого коефіцієнта нерівномірності δ.",
+                  "将机构替换为曲柄上的等效动力学模型：等效转动惯量 J_red = Σ(m·V_S² + J_S·ω²)/ω₁²，等效力矩 "
+                  "M_red = ΣP·V/ω₁。一个周期内驱动力矩与阻力矩之功给出动能变化，据此按速度波动系数 δ 设计飞轮。"),
+    "flywheel_formula": ("The flywheel's moment of inertia from the largest change of the energy of the "
+                         "links' masses ΔT:", "Момент инерции маховика по наибольшему изменению "
+                         "кинетической энергии ΔT:", "Момент інерції маховика за найбільшою зміною "
+                         "кінетичної енергії ΔT:", "由最大动能变化量 ΔT 求飞轮转动惯量："),
+    "dyn_results": ("Results of the dynamics (as on the sheet)", "Результаты динамического анализа (как на листе)",
+                    "Результати динамічного аналізу (як на аркуші)", "动力学分析结果（同图纸）"),
+    "dyn_fig": ("{0}", "{0}", "{0}", "{0}"),
+    "left_out": ("left out: {0}", "не включено: {0}", "не включено: {0}", "未包括：{0}"),
+}
+
+
+def p(key: str, lang: str, *args) -> str:
+    """The phrase ``key`` in ``lang``, formatted with ``args``."""
+    return _P[key][LANG_INDEX[check_lang(lang)]].format(*args)
+
+
+def direction(value: float, lang: str) -> str:
+    """The sense of a rotation: counter-clockwise for a positive value."""
+    return p("ccw" if value > 0 else "cw", lang)

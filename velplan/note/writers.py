@@ -1,0 +1,151 @@
+"""Writing the note: .docx (pandoc, formulas as Word equations), .pdf (pandoc → Typst, typeset
+by the Typst compiler with the bundled font), .html (pandoc, MathML, one self-contained file)
+and .md (figures in a folder beside it). Every file is written whole or not at all."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+from velplan.errors import VelplanError
+from velplan.io import write_atomic
+from velplan.note.markdown import to_markdown
+
+INSTALL = "pip install 'velplan[note]' (in a checkout: pip install '.[note]')"
+FORMATS = {".docx": "docx", ".pdf": "pdf", ".html": "html", ".htm": "html", ".md": "md"}
+FONT_DIR = Path(__file__).resolve().parent.parent / "fonts"
+
+TYPST_PREAMBLE = """#set document(title: [{title}])
+#set page(paper: "a4", margin: (left: 25mm, right: 15mm, top: 20mm, bottom: 20mm), numbering: "1")
+#set text(font: ("Velplan Sans",), size: 11pt, lang: "{lang}")
+#show math.equation: set text(font: ("New Computer Modern Math", "Velplan Sans"))
+#show math.equation.where(block: true): it => layout(size => {{
+  let w = measure(it).width
+  if w > size.width {{ scale(x: size.width / w * 100%, y: size.width / w * 100%, reflow: true, it) }} else {{ it }}
+}})
+#set heading(numbering: "1.1")
+#set par(justify: true)
+#show figure.caption: it => it.body
+#show figure.where(kind: table): set figure.caption(position: top)
+#show figure.where(kind: table): set align(left)
+#show figure: set block(breakable: false)
+#set table(stroke: 0.5pt)
+#show table: set text(size: 9pt)
+"""
+
+
+def _module(name: str):
+    try:
+        return importlib.import_module(name)
+    except ImportError as exc:
+        raise VelplanError(f"the note needs {name.split('.')[0]} ({exc}); install it with `{INSTALL}`") from None
+
+
+def note_format(path: str | os.PathLike) -> str:
+    """The format a file name asks for; a one-line error for another suffix."""
+    kind = FORMATS.get(Path(path).suffix.lower())
+    if kind is None:
+        raise VelplanError(f"cannot tell the note's format from {str(path)!r}: name it .docx, .pdf, .html or .md")
+    return kind
+
+
+def write_note(note, path: str | os.PathLike) -> Path:
+    """Write ``note`` to ``path`` in the format its suffix names (.docx, .pdf, .html, .md)."""
+    kind = note_format(path)
+    with tempfile.TemporaryDirectory(prefix="velplan-note-") as tmp:
+        tmp = Path(tmp)
+        images = {}
+        for block in note.blocks:
+            if hasattr(block, "png"):
+                (tmp / block.name).write_bytes(block.png)
+                images[block.name] = block.name
+        data = {"docx": _docx, "pdf": _pdf, "html": _html, "md": _md}[kind](note, tmp, images, Path(path))
+        return write_atomic(path, data)
+
+
+def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
+    pypandoc = _module("pypandoc")
+    out = tmp / f"out.{to}"
+    try:
+        pypandoc.convert_text(source, to, format="markdown", outputfile=str(out),
+                              extra_args=["--resource-path", str(tmp), *extra], cworkdir=str(tmp))
+    except (RuntimeError, OSError) as exc:
+        raise VelplanError(f"pandoc could not write the note ({to}): {str(exc).splitlines()[0]}") from None
+    return out.read_bytes()
+
+
+def _docx(note, tmp: Path, images, path: Path) -> bytes:
+    docx = _module("docx")
+    raw = _pandoc(to_markdown(note, "docx", images), "docx", tmp, ["--number-sections"])
+    (tmp / "raw.docx").write_bytes(raw)
+    doc = docx.Document(str(tmp / "raw.docx"))
+    mm = docx.shared.Mm
+    for section in doc.sections:  # A4 with the margins of a course note (GOST 2.105)
+        section.page_width, section.page_height = mm(210), mm(297)
+        section.left_margin, section.right_margin = mm(25), mm(15)
+        section.top_margin = section.bottom_margin = mm(20)
+    doc.core_properties.title = note.title
+    _update_fields_on_open(docx, doc.settings.element)
+    doc.save(str(tmp / "note.docx"))
+    return (tmp / "note.docx").read_bytes()
+
+
+_AFTER_UPDATE_FIELDS = ("hdrShapeDefaults", "footnotePr", "endnotePr", "compat", "docVars", "rsids", "mathPr",
+                        "attachedSchema", "themeFontLang", "clrSchemeMapping", "doNotIncludeSubdocsInStats",
+                        "doNotAutoCompressPictures", "forceUpgrade", "captions", "readModeInkLockDown",
+                        "smartTagType", "schemaLibrary", "shapeDefaults", "doNotEmbedSmartTags",
+                        "decimalSymbol", "listSeparator")
+
+
+def _update_fields_on_open(docx, settings) -> None:
+    """``<w:updateFields>`` in its place in the schema's order: Word fills the contents in."""
+    update = docx.oxml.OxmlElement("w:updateFields")
+    update.set(docx.oxml.ns.qn("w:val"), "true")
+    for child in settings:
+        if child.tag.rsplit("}", 1)[-1] in _AFTER_UPDATE_FIELDS:
+            child.addprevious(update)
+            return
+    settings.append(update)
+
+
+def _pdf(note, tmp: Path, images, path: Path) -> bytes:
+    body = _pandoc(to_markdown(note, "typst", images), "typst", tmp).decode("utf-8")
+    from velplan.note.markdown import typ_text
+
+    source = TYPST_PREAMBLE.format(title=typ_text(note.title), lang=note.lang) + body
+    (tmp / "note.typ").write_text(source, encoding="utf-8")
+    typst = _module("typst")
+    try:
+        return typst.compile(str(tmp / "note.typ"), root=str(tmp), font_paths=[str(FONT_DIR)],
+                             ignore_system_fonts=True)
+    except Exception as exc:  # typst raises its own error type with the diagnostics
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise VelplanError(f"typst could not typeset the note: {first}") from None
+
+
+def _html(note, tmp: Path, images, path: Path) -> bytes:
+    return _pandoc(to_markdown(note, "html", images), "html5", tmp,
+                   ["--standalone", "--embed-resources", "--mathml", "--number-sections",
+                    "--metadata", f"title={note.title}", "--metadata", f"lang={note.lang}"])
+
+
+def _md(note, tmp: Path, images, path: Path) -> bytes:
+    """The Markdown, its figures in ``NAME-figures/`` beside it (written first, then moved in)."""
+    folder = path.with_name(path.stem + "-figures")
+    rel = {k: f"{folder.name}/{v}" for k, v in images.items()}
+    text = to_markdown(note, "md", rel)
+    staged = Path(tempfile.mkdtemp(prefix=f".{folder.name}.", dir=path.parent if str(path.parent) else "."))
+    try:
+        for name in images.values():
+            shutil.copyfile(tmp / name, staged / name)
+        if folder.exists():
+            shutil.rmtree(folder)
+        os.chmod(staged, 0o755)  # mkdtemp makes it private
+        os.replace(staged, folder)
+    except OSError as exc:
+        shutil.rmtree(staged, ignore_errors=True)
+        raise VelplanError(f"cannot write {folder}: {exc.strerror or exc}") from None
+    return text.encode("utf-8")

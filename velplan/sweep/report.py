@@ -1,0 +1,135 @@
+"""A sweep as text: the summary table, JSON (columnar), CSV (a row per variant) and npz or
+Parquet (columnar binary). Floats are written with 17 significant digits (they read back
+bit for bit); NaN is ``null`` in JSON and an empty cell in CSV."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+
+import numpy as np
+
+from velplan.sweep.run import SweepResult, quantiles, sensitivities
+
+
+def _num(x) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _units(res: SweepResult) -> dict[str, str]:
+    angular = res.meta.get("output_kind") == "link"
+    return {"H": "rad" if angular else "m", "K": "", "theta_deg": "deg", "phi_start_deg": "deg",
+            "phi_end_deg": "deg", "gamma_min_deg": "deg", "gamma_phi_deg": "deg",
+            "v_max": "rad/s" if angular else "m/s", "a_max": "rad/s²" if angular else "m/s²"}
+
+
+def to_table(res: SweepResult) -> str:
+    """Quantiles of each figure over the variants that close, then each key's share of it."""
+    V, ok = len(res), int(res.ok.sum())
+    lines = [f"{res.mechanism}: {res.mode} sweep of {V} variant(s) over {', '.join(res.values) or 'nothing'}; "
+             f"{ok} close over the turn, {V - ok} do not"]
+    units = _units(res)
+    qs = quantiles(res)
+    cols = ("nominal", "mean", "std", "q0", "q0.05", "q0.5", "q0.95", "q1")
+    lines.append(f"{'figure':<16}{'unit':<8}" + "".join(f"{c:>14}" for c in cols))
+    for name, row in qs.items():
+        lines.append(f"{name:<16}{units.get(name, ''):<8}" + "".join(f"{row[c]:>14.7g}" for c in cols))
+    sens = sensitivities(res)
+    keys = list(res.values)
+    if keys and ok > len(keys) + 1:
+        lines += ["", "share of each figure's spread (linear fit over the variants; R² its fit):"]
+        width = max(len(k) for k in keys) + 2
+        figs = [f for f in sens if f in ("H", "K", "gamma_min_deg", "v_max", "a_max")]
+        lines.append(f"{'key':<{width}}" + "".join(f"{f:>14}" for f in figs))
+        for k in keys:
+            lines.append(f"{k:<{width}}" + "".join(f"{100 * sens[f][k]:>13.1f}%" for f in figs))
+        lines.append(f"{'R²':<{width}}" + "".join(f"{sens[f]['R2']:>14.4f}" for f in figs))
+    bad = [(i, f) for i, f in enumerate(res.failures) if f]
+    for i, f in bad[:5]:
+        lines.append(f"variant {i + 1}: {f}")
+    if len(bad) > 5:
+        lines.append(f"… and {len(bad) - 5} more variant(s) that do not close")
+    return "\n".join(lines) + "\n"
+
+
+def summary(res: SweepResult) -> dict:
+    """Everything but the variants: nominal, quantiles, sensitivities, meta."""
+    clean = lambda d: {k: (_num(v) if isinstance(v, float) else v) for k, v in d.items()}  # noqa: E731
+    return {"mechanism": res.mechanism, "mode": res.mode, "variants": len(res), "closing": int(res.ok.sum()),
+            "meta": res.meta, "keys": list(res.values), "units": _units(res),
+            "nominal": clean(res.nominal),
+            "quantiles": {k: clean(v) for k, v in quantiles(res).items()},
+            "sensitivities": {k: clean(v) for k, v in sensitivities(res).items()}}
+
+
+def write_json(res: SweepResult, out) -> None:
+    """The summary and the variants as columns, written piece by piece to ``out``."""
+    head = json.dumps(summary(res), ensure_ascii=False, allow_nan=False)
+    out.write(head[:-1] + ', "columns": {')
+    cols = list(_columns(res))
+    for n, (name, arr) in enumerate(cols):
+        out.write(("" if n == 0 else ", ") + json.dumps(name, ensure_ascii=False) + ": [")
+        for a in range(0, len(arr), 4096):
+            part = arr[a:a + 4096]
+            if part.dtype.kind == "f":
+                text = ", ".join("null" if not math.isfinite(x) else repr(float(x)) for x in part)
+            elif part.dtype.kind == "i":
+                text = ", ".join(str(int(x)) for x in part)
+            else:
+                text = ", ".join(json.dumps(str(x), ensure_ascii=False) for x in part)
+            out.write(("" if a == 0 else ", ") + text)
+        out.write("]")
+    out.write("}}\n")
+
+
+def _columns(res: SweepResult):
+    yield "variant", np.arange(1, len(res) + 1)
+    yield from res.values.items()
+    yield from res.figures.items()
+    yield "gamma_group", np.array(res.gamma_group, dtype=object)
+    yield "failure", np.array(res.failures, dtype=object)
+
+
+def write_csv(res: SweepResult, out) -> None:
+    """A header, then one row per variant: its number, keys, figures, γ_min's group, failure."""
+    import csv
+
+    cols = list(_columns(res))
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow([name for name, _ in cols])
+    for a in range(0, len(res), 4096):
+        rows = []
+        for i in range(a, min(a + 4096, len(res))):
+            row = []
+            for name, arr in cols:
+                x = arr[i]
+                if name == "variant":
+                    row.append(str(i + 1))
+                elif isinstance(x, (float, np.floating)):
+                    row.append(repr(float(x)) if math.isfinite(x) else "")
+                else:
+                    row.append(str(x))
+            rows.append(row)
+        w.writerows(rows)
+
+
+def write_binary(res: SweepResult, out, fmt: str) -> None:
+    """npz (numpy, always) or Parquet (needs pyarrow): one column per key and figure."""
+    cols = dict(_columns(res))
+    if fmt == "npz":
+        arrays = {k: (v.astype(str) if v.dtype == object else v) for k, v in cols.items()}
+        buf = io.BytesIO()
+        np.savez(buf, summary=np.array(json.dumps(summary(res), ensure_ascii=False)), **arrays)
+        out.write(buf.getvalue())
+        return
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.table({k: (v.astype(str).tolist() if v.dtype == object else v) for k, v in cols.items()})
+    table = table.replace_schema_metadata({"velplan": json.dumps(summary(res), ensure_ascii=False)})
+    buf = io.BytesIO()
+    pq.write_table(table, buf)
+    out.write(buf.getvalue())
+
