@@ -14,6 +14,15 @@ from velplan.errors import VelplanError
 
 COMMANDS = ("kinematics", "plan", "sheet", "forces", "dynamics", "batch", "html", "centres", "sweep", "note")
 """Modules of `velplan.cli` that register subcommands (a missing one is skipped)."""
+SUBCOMMANDS = {
+    "examples": "kinematics", "info": "kinematics", "analyze": "kinematics",
+    "plan": "plan", "compare": "plan", "check": "plan",
+    "sheet": "sheet", "diagrams": "sheet", "steps": "sheet",
+    "forces": "forces", "dynamics": "dynamics", "batch": "batch", "html": "html",
+    "centres": "centres", "sweep": "sweep", "note": "note",
+}
+"""Subcommand → the module that registers it: a command imports only its own module (a test
+checks this table against what the modules register)."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -22,14 +31,18 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The argument parser; with ``argv`` naming a known subcommand, only that subcommand's
+    module is imported (a cold `velplan sheet` does not import the note's or the sweep's)."""
     from velplan import __version__
 
     parser = _Parser(prog="velplan", description="Velocity and acceleration plans of planar linkages.")
     parser.add_argument("--version", action="version", version=f"velplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
-    for name in COMMANDS:
+    first = next((a for a in argv or () if not a.startswith("-")), None)
+    modules = (SUBCOMMANDS[first],) if first in SUBCOMMANDS else COMMANDS
+    for name in modules:
         try:
             module = import_module(f"velplan.cli.{name}")
         except ModuleNotFoundError as exc:
@@ -68,7 +81,8 @@ def _check_common(args) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit status."""
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(argv)
     args = parser.parse_args(argv)
     try:
         _check_common(args)

@@ -45,8 +45,8 @@ from velplan.study import Study
 #: Text heights and the conventional force-arrow length of the force views, per format.
 FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
     "A1": ForceSizes(5.0, 3.5, 16.0),
-    "A2": ForceSizes(3.5, 2.5, 13.0),
-    "A3": ForceSizes(3.5, 2.5, 10.0),
+    "A2": ForceSizes(3.5, 2.5, 13.0, wrap_balance=True),
+    "A3": ForceSizes(3.5, 2.5, 10.0, wrap_balance=True),
 })
 #: Smallest drawing (mm, its larger side) of a group, a polygon or the lever, per format.
 MIN_TARGET_MM: Mapping[str, float] = MappingProxyType({"A1": 40.0, "A2": 35.0, "A3": 30.0})
@@ -390,10 +390,13 @@ def _fit_rows(fa, chosen, lang, fsizes: ForceSizes, region, gap, *, fmt: str, mo
             if tall:
                 break
         if tall is not None:
-            nxt = smaller(entity_of(tall))
-            if nxt is None:
+            # the tallest drawing of the unit goes smaller; one at its least, the next tallest
+            unit = next(u for units in layout for u in units if tall in u)
+            shrink = [r for r in sorted(unit, key=lambda r: -build(r).height_mm)
+                      if smaller(entity_of(r)) is not None]
+            if not shrink:
                 raise fail(f"{build(tall).name} is {build(tall).height_mm:.0f} mm tall")
-            scale[entity_of(tall)] = nxt
+            scale[entity_of(shrink[0])] = smaller(entity_of(shrink[0]))
             continue
         widths = [sum(unit_size(u)[0] for u in units) + gap * (len(units) - 1)
                   for units in layout]

@@ -63,11 +63,13 @@ _SUFFIXES = "τn∥⊥"
 
 @dataclass(frozen=True)
 class ForceSizes:
-    """Text heights and the conventional length of a force arrow, mm."""
+    """Text heights and the conventional length of a force arrow, mm; ``wrap_balance``: write
+    the lever's balance on two lines where it is wider than the lever (small formats)."""
 
     title_mm: float = 5.0
     label_mm: float = 3.5
     arrow_mm: float = 16.0
+    wrap_balance: bool = False
 
 
 # -- names and small helpers -------------------------------------------------------------
@@ -762,7 +764,8 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
                   f"{mb} = {symbol_fb}·{lab}")
     notes = [(force_line, sizes.label_mm), (balance, sizes.label_mm)]
     x0, _, x1, _ = bounds_of(items)
-    if text_extent(balance, sizes.label_mm)[0] > max(x1 - x0, text_extent(force_line, sizes.label_mm)[0]):
+    if sizes.wrap_balance and text_extent(balance, sizes.label_mm)[0] > max(
+            x1 - x0, text_extent(force_line, sizes.label_mm)[0]):
         # wider than the lever itself: the two methods on two lines
         cut = balance.index(" / ") + 3
         notes[1:] = [(balance[:cut].rstrip(), sizes.label_mm), (balance[cut:], sizes.label_mm)]

@@ -418,15 +418,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                               layer="mechanism")
         items += support
         obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
-    special_letters: list[Text] = []
-    if special:  # under the links and joints
-        for p in _special_construction(geo, t, mm, sizes.label_mm):
-            if isinstance(p, Text):
-                special_letters.append(p)
-            else:
-                items.append(p)
-                obstacles.append(shapely.box(*p.bounds).buffer(0.5) if isinstance(p, Circle)
-                                 else shapely.LineString(p.points).buffer(0.5))
+    special_letters = _add_special(items, obstacles, geo, t, mm, sizes.label_mm) if special else []
     for _, corners in geo.plates(t):
         items += plate_corners(mm(corners))
     for s in thick_segments:
@@ -772,6 +764,20 @@ def _plate_number_at(corners, size: float, points=()):
     if not len(points):
         return incentre
     return max(spots, key=lambda q: min(float(np.hypot(*(q - p))) for p in points))
+
+
+def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size: float) -> list[Text]:
+    """Append the special points' construction to `items` (under the links and joints that
+    come after) and its lines to `obstacles`; returns the letters, to be placed."""
+    letters = []
+    for p in _special_construction(geo, t, mm, size):
+        if isinstance(p, Text):
+            letters.append(p)
+        else:
+            items.append(p)
+            obstacles.append(shapely.box(*p.bounds).buffer(0.5) if isinstance(p, Circle)
+                             else shapely.LineString(p.points).buffer(0.5))
+    return letters
 
 
 def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primitive]:
