@@ -1,7 +1,7 @@
 """Machine dynamics (issue 23): run time against error.
 
 * speed, warm, in process: the shaper's steady state with its flywheel by the three methods
-  (`analyse(shaper, delta=0.05)`), and a Kloss run of the slider-press, each the median of many
+  (`dynamics_analysis(shaper, delta=0.05)`), and a Kloss run of the slider-press, each the median of many
   calls (wall and CPU time);
 * the Kloss run against a bare DOP853 integration of the same reduction at the same tolerance
   (scipy's ``solve_ivp`` on the same J, J′, M in plain floats, one piece, no events, no dense
@@ -133,7 +133,7 @@ WORKER = r'''
 import json, math, statistics, sys, time
 import numpy as np
 import velplan
-from velplan.dynamics import analyse
+from velplan.dynamics import dynamics_analysis
 mode, arg = sys.argv[1], json.loads(sys.argv[2])
 
 
@@ -166,9 +166,9 @@ if mode == "speed":
     shaper = velplan.load("shaper")
     loads = parse_loads(shaper)
     slider = velplan.load(arg["slider"])
-    print(json.dumps({"steady": timed(lambda: analyse(shaper, delta=0.05), 31),
-                      "steady_study": timed(lambda: analyse(shaper, loads, delta=0.05), 31),
-                      "kloss": timed(lambda: analyse(slider), 11)}))
+    print(json.dumps({"steady": timed(lambda: dynamics_analysis(shaper, delta=0.05), 31),
+                      "steady_study": timed(lambda: dynamics_analysis(shaper, loads, delta=0.05), 31),
+                      "kloss": timed(lambda: dynamics_analysis(slider), 11)}))
 elif mode == "values":
     out = {}
     for name, path in arg["cases"].items():
@@ -176,8 +176,8 @@ elif mode == "values":
         rows = {}
         for p in arg["panels"]:
             kw = {} if p is None else {"panels": p}  # None: the package's default
-            t = timed(lambda: analyse(m, **kw), 3)[1]
-            rows[p] = {"cpu": t, **values(analyse(m, **kw))}
+            t = timed(lambda: dynamics_analysis(m, **kw), 3)[1]
+            rows[p] = {"cpu": t, **values(dynamics_analysis(m, **kw))}
         out[name] = rows
     print(json.dumps(out))
 '''
@@ -197,12 +197,12 @@ def reference(paths: dict[str, Path]) -> dict[str, dict]:
     import math
 
     import velplan
-    from velplan.dynamics import analyse
+    from velplan.dynamics import dynamics_analysis
     from velplan.dynamics.run import simulate
 
     out = {}
     for name, path in paths.items():
-        d = analyse(velplan.load(str(path)), panels=2048)
+        d = dynamics_analysis(velplan.load(str(path)), panels=2048)
         v = {"driving moment": d.driving}
         if d.flywheel is not None:
             v.update({"J_I exact": d.flywheel.exact, "J_I Mertsalov": d.flywheel.mertsalov})
@@ -226,10 +226,10 @@ def kloss_against_dop853(path: Path, pairs: int = 11) -> tuple[float, float, flo
     from scipy.integrate import solve_ivp
 
     import velplan
-    from velplan.dynamics import analyse
+    from velplan.dynamics import dynamics_analysis
     from velplan.dynamics.run import RTOL, _Series, simulate
 
-    d = analyse(velplan.load(str(path)))
+    d = dynamics_analysis(velplan.load(str(path)))
     prof, inertia, mom, w0, travel = d.profile, d.inertia, d.motor.scalar(), d.run.omega_start, d.run.travel
     calls = [0, 0]
 
@@ -280,10 +280,10 @@ def rtol_table(path: Path, ref: dict) -> list[str]:
     import time
 
     import velplan
-    from velplan.dynamics import analyse
+    from velplan.dynamics import dynamics_analysis
     from velplan.dynamics.run import simulate
 
-    d = analyse(velplan.load(str(path)))
+    d = dynamics_analysis(velplan.load(str(path)))
     lines = ["| rtol | run time, s | relative error | estimated error | CPU, ms |", "|---:|---:|---:|---:|---:|"]
     for rtol in RTOLS:
         ts, r = [], None
@@ -328,7 +328,7 @@ def main() -> None:
              "## Speed, warm, in process (median)", "",
              "| case | wall, ms | CPU, ms |" + (" before: wall, ms | before: CPU, ms |" if before else ""),
              "|---|---:|---:|" + ("---:|---:|" if before else "")]
-    for key, label in (("steady", "shaper: steady state + flywheel by 3 methods (δ = 0.05), `analyse(mech)`"),
+    for key, label in (("steady", "shaper: steady state + flywheel by 3 methods (δ = 0.05), `dynamics_analysis(mech)`"),
                        ("steady_study", "the same with its loads parsed once (as `Study.dynamics` calls it)"),
                        ("kloss", "slider-press: Kloss run, one turn (whole `analyse`)")):
         row = f"| {label} | {1e3 * now[key][0]:.1f} | {1e3 * now[key][1]:.1f} |"

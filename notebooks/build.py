@@ -101,7 +101,7 @@ NB01 = [
     one driving link, the crank, is enough.
     """),
     code("""
-    s = velplan.analyse(mech)
+    s = velplan.structure(mech)
     print(f"n = {s.n_links}")
     print(f"p5 = {s.p5}")
     print(f"p4 = {s.p4}")
@@ -419,7 +419,7 @@ NB02 = [
     lengths = [0.25, 0.20]
     branch = 1
     """
-    four = velplan.loads(TOML)
+    four = velplan.parse(TOML)
     degrees = np.arange(0.0, 360.0, 1.0)
     sweep = Plan.of(four).evaluate(velplan.solve(four, np.radians(degrees)), kind="velocity",
                                    scale_v=MU_V)
@@ -631,7 +631,7 @@ NB03 = [
     1. Draw the acceleration plan at position 9 (the return stroke). Which components grow?
     2. At which crank angles is aᵏ zero? Explain both kinds with the velocity plan.
     3. Give the crank an angular acceleration (`epsilon = 5.0` in a copy of `shaper.toml`,
-       loaded with `velplan.loads`) and find the new step in the plan.
+       loaded with `velplan.parse`) and find the new step in the plan.
     4. Halve μa. Which lengths on the plan change, which values do not?
     5. Compute the inertia force of the ram, −m·a_F, at position 3 (m = 52 kg).
     """),
@@ -682,7 +682,7 @@ length = 0.35            # l_EF
 branch = 1               # F to the right
 guide = { link = "0", through = "D", angle_deg = 0.0, offset = 0.0 }
 """
-mech = velplan.loads(TOML)
+mech = velplan.parse(TOML)
 print(mech.title)
 '''
 
@@ -696,7 +696,7 @@ NB04 = [
     **What you will learn**
 
     * how to write a mechanism from scratch — a crank-rocker four-bar with an extra RRP group
-      (a rod from a point of the rocker to a slider) — and load it with `velplan.loads`;
+      (a rod from a point of the rocker to a slider) — and load it with `velplan.parse`;
     * how to check its structure (W = 3n − 2p5 − p4), its stroke and its time-ratio coefficient;
     * how to get its velocity plan and readouts;
     * what velplan says when the geometry cannot close, or the file has a mistake: one line
@@ -723,7 +723,7 @@ NB04 = [
     """),
     code(TOML_04, "mechanism"),
     code("""
-    s = velplan.analyse(mech)
+    s = velplan.structure(mech)
     stroke = velplan.stroke(mech)
     theta = np.degrees(stroke.theta)
     print(f"n = {s.n_links}")
@@ -777,7 +777,7 @@ NB04 = [
     }
     for what, text in broken.items():
         try:
-            velplan.Study(velplan.loads(text))
+            velplan.Study(velplan.parse(text))
         except velplan.VelplanError as exc:
             print(f"{what}:")
             print(f"error: {exc}")
@@ -928,7 +928,7 @@ NB05 = [
         "[dynamics.motor]", 'kind = "kloss"', "critical_torque = 40.0", "synchronous_rpm = 1500.0",
         "critical_rpm = 1200.0", "ratio = 17.6",
         "[dynamics.run]", f"omega = {0.1 * study.mechanism.crank.omega:.6f}", "travel_deg = 1080.0"])
-    run = velplan.Study(velplan.loads(base + "\\n" + extra, name="shaper-start")).dynamics
+    run = velplan.Study(velplan.parse(base + "\\n" + extra, name="shaper-start")).dynamics
     r = run.curves(2000)
     plt.figure(figsize=(8, 3))
     plt.plot(r["t"], np.abs(r["omega"]))
@@ -1145,7 +1145,7 @@ NB07 = [
     as every Assur group. The mechanism's class is the highest class of its groups.
     """),
     code("""
-    s = velplan.analyse(mech)
+    s = velplan.structure(mech)
     print(f"n = {s.n_links}")
     print(f"p5 = {s.p5}")
     print(f"W = {s.mobility}")

@@ -34,8 +34,10 @@ def _crank(r: float, omega: float) -> dict:
 
 
 @st.composite
-def mechanisms(draw, kind: str | None = None, scale=None, omega=None):
-    """A random mechanism of group ``kind`` (any kind when None)."""
+def mechanisms(draw, kind: str | None = None, scale=None, omega=None, probes: bool = False):
+    """A random mechanism of group ``kind`` (any kind when None); ``probes``: with two more
+    points on every moving link, ``Q<link>`` on its reference line and ``R<link>`` off it (never
+    at one place), so that every link has a figure to compare."""
     kind = kind or draw(st.sampled_from(KINDS))
     L = draw(scale) if scale is not None else draw(st.floats(0.05, 5.0))
     w = draw(omega) if omega is not None else draw(st.floats(-50.0, 50.0).filter(lambda x: abs(x) > 0.1))
@@ -103,4 +105,10 @@ def mechanisms(draw, kind: str | None = None, scale=None, omega=None):
                                         "offset": r * draw(st.floats(-2, 2))}})
     else:
         raise ValueError(kind)
+    if probes:
+        links = ["1"] + [k for g in data["group"] for k in g["links"]]
+        for k in links:
+            data["point"] += [{"name": f"Q{k}", "link": k, "along": r * draw(st.floats(0.5, 2.0))},
+                              {"name": f"R{k}", "link": k, "along": r * draw(st.floats(-1.0, 1.0)),
+                               "offset": r * draw(st.floats(0.5, 1.0))}]
     return from_dict(data, name=f"random-{kind}")

@@ -24,7 +24,7 @@ def _shaper(crank=0.1605, rod=0.2074, ram=52.0, fc=1400.0):
                      ("mass = 52.0", f"mass = {ram}"), ("force = 1400.0", f"force = {fc}")):
         assert text.count(old) == 1
         text = text.replace(old, new)
-    return velplan.loads(text, name="shaper-edited")
+    return velplan.parse(text, name="shaper-edited")
 
 
 @pytest.fixture(scope="module")

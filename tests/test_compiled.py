@@ -60,7 +60,7 @@ def test_random_mechanisms_agree(mech, phi):
 
 def test_positions_that_do_not_close_are_masked_alike():
     # the crank-rocker of the error tests with a coupler too short: B has no position over part of the turn
-    mech = velplan.loads(four_bar(coupler=0.12))
+    mech = velplan.parse(four_bar(coupler=0.12))
     phi = np.linspace(0, 2 * math.pi, 721)
     a = velplan.solve(mech, phi, engine="compiled")
     b = velplan.solve(mech, phi, engine="numpy")

@@ -16,7 +16,7 @@ def _block(after: str, lang: str = "toml") -> str:
 
 
 def test_the_complete_example_file_works():
-    mech = velplan.loads(_block("## A complete file"), name="my-slider")
+    mech = velplan.parse(_block("## A complete file"), name="my-slider")
     study = velplan.Study(mech)
     # an offset crank-slider: the stroke exceeds 2·r a little and K is above 1
     assert 2 * 0.08 < study.stroke.H < 2 * 0.08 * 1.01 and study.stroke.K > 1.0

@@ -50,7 +50,7 @@ point = "B"
 length = {big!r}
 guide = {{ link = "0", through = "O", angle_deg = 0.0, offset = {0.3 * r!r} }}
 """
-    return velplan.loads(head + group)
+    return velplan.parse(head + group)
 
 
 @settings(max_examples=25, deadline=None, derandomize=True)

@@ -42,23 +42,23 @@ def four_bar(crank=0.10, joint="D", coupler=0.25):
 ])
 def test_bad_lengths(value, message):
     with pytest.raises(MechanismError, match=f"^{message}$"):
-        velplan.loads(four_bar(crank=value))
+        velplan.parse(four_bar(crank=value))
 
 
 def test_zero_link_length_in_a_group():
     with pytest.raises(MechanismError, match=r"^group '2-3' length of link 2 must be > 0 m, not 0.0$"):
-        velplan.loads(four_bar(coupler="0.0"))
+        velplan.parse(four_bar(coupler="0.0"))
 
 
 def test_unknown_point_lists_the_known_ones():
     with pytest.raises(MechanismError, match=r"^group '2-3' uses point 'X', which is not solved before it; "
                                              r"known points: A, D, O$"):
-        velplan.loads(four_bar(joint="X"))
+        velplan.parse(four_bar(joint="X"))
 
 
 def test_group_that_cannot_be_assembled_names_the_ranges():
     text = four_bar(crank=0.2)
-    mech = velplan.loads(text)  # loading checks the structure; the study checks the assembly
+    mech = velplan.parse(text)  # loading checks the structure; the study checks the assembly
     with pytest.raises(AssemblyError) as info:
         velplan.Study(mech)
     msg = str(info.value)
@@ -71,7 +71,7 @@ def test_group_that_cannot_be_assembled_names_the_ranges():
 
 
 def test_strict_path_raises_with_group_point_and_angle():
-    mech = velplan.loads(four_bar(crank=0.2))
+    mech = velplan.parse(four_bar(crank=0.2))
     with pytest.raises(AssemblyError, match=r"^group '2-3' \(RRR\) cannot be assembled: point 'B' has no position at crank angle 180°$"):
         velplan.solve(mech, np.radians([0.0, 180.0]), on_failure="raise")
     kin = velplan.solve(mech, np.radians([0.0, 180.0]))
@@ -82,13 +82,13 @@ def test_strict_path_raises_with_group_point_and_angle():
 def test_duplicate_names():
     text = four_bar() + '[[point]]\nname = "A"\nlink = "2"\nalong = 0.1\n'
     with pytest.raises(MechanismError, match=r"^duplicate name 'A': used for the crank tip and for point on link 2$"):
-        velplan.loads(text)
+        velplan.parse(text)
 
 
 def test_unknown_link_of_a_point():
     text = four_bar() + '[[point]]\nname = "E"\nlink = "9"\nalong = 0.1\n'
     with pytest.raises(MechanismError, match=r"^point 'E' is on unknown link '9'; known links: 1, 2, 3$"):
-        velplan.loads(text)
+        velplan.parse(text)
 
 
 def test_point_on_an_unknown_link_used_by_a_group():
@@ -106,23 +106,23 @@ length = 0.3
 guide = { link = "0", through = "O", angle_deg = 0.0, offset = 0.0 }
 """
     with pytest.raises(MechanismError, match=r"^point 'E' is on unknown link '9'; known links: 1, 2, 3, 4, 5$"):
-        velplan.loads(text)
+        velplan.parse(text)
     later = text.replace('link = "9"', 'link = "5"')
     with pytest.raises(MechanismError, match=r"^group '4-5' uses point 'E' of link '5', which is solved after the group; "
                                              r"reorder the groups$"):
-        velplan.loads(later)
+        velplan.parse(later)
 
 
 def test_malformed_toml():
     with pytest.raises(MechanismError, match=r"^malformed TOML in mechanism: "):
-        velplan.loads("[ground\nO = 1")
+        velplan.parse("[ground\nO = 1")
 
 
 def test_unknown_key_and_kind():
     with pytest.raises(MechanismError, match=r"^\[crank\]: unknown key 'lenght'; allowed: "):
-        velplan.loads(four_bar().replace("length =", "lenght ="))
+        velplan.parse(four_bar().replace("length =", "lenght ="))
     with pytest.raises(MechanismError, match=r"^group #1: unknown kind 'RRX'; known kinds: RRR, RRP, RPR, PRP, RPP, triad$"):
-        velplan.loads(four_bar().replace('"RRR"', '"RRX"'))
+        velplan.parse(four_bar().replace('"RRR"', '"RRX"'))
 
 
 def test_unknown_example_or_file():

@@ -211,7 +211,7 @@ def test_assembly_limits_are_exact(gap, centre):
     from velplan.analysis.assembly import limits
     from velplan.errors import AssemblyError
 
-    mech = velplan.loads(_jamming_four_bar(gap, centre))
+    mech = velplan.parse(_jamming_four_bar(gap, centre))
     ((lo, hi),) = limits(mech)["2-3"]
     assert lo == pytest.approx(centre - gap / 2, abs=1e-6) and hi == pytest.approx(centre + gap / 2, abs=1e-6)
     with pytest.raises(AssemblyError, match="cannot be assembled for crank angles"):

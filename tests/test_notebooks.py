@@ -285,7 +285,7 @@ def expected_02() -> Expected:
         "first flagged angle": Near(flagged[0], 0.05),
         "last flagged angle": Near(flagged[-1], 0.05),
     })
-    four = velplan.loads(_toml_of(NOTEBOOKS / f"{STEMS[1]}.ipynb"))
+    four = velplan.parse(_toml_of(NOTEBOOKS / f"{STEMS[1]}.ipynb"))
     for d in (90.0, 180.0):
         at = velplan.solve(four, [math.radians(d)])
         vB = _speed(at, "B", 0)
@@ -395,7 +395,7 @@ def _toml_of(path: Path) -> str:
 
 def expected_04() -> Expected:
     """The user's four-bar with a slider (its TOML read from the notebook), position 2."""
-    mech = velplan.loads(_toml_of(NOTEBOOKS / f"{STEMS[3]}.ipynb"))
+    mech = velplan.parse(_toml_of(NOTEBOOKS / f"{STEMS[3]}.ipynb"))
     kin = velplan.solve(mech, velplan.positions(mech, 12))
     i = 1
     # the stroke and the time-ratio from a fine sweep of the slider's travel

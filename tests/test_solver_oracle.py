@@ -96,7 +96,7 @@ def test_press_rocker_extremes_at_0_and_180_degrees():
 
 
 def test_seed_002_mobility():
-    st = velplan.analyse(velplan.load("shaper"))
+    st = velplan.structure(velplan.load("shaper"))
     assert (st.n_links, st.p5, st.mobility) == (5, 7, 1)
     assert st.formula() == "W = 3·5 − 2·7 − 0 = 1"
     assert [g[1] for g in st.groups] == ["RPR", "RRP"]

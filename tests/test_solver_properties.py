@@ -144,7 +144,7 @@ def test_angles_are_wrapped_into_the_half_open_interval():
     turns = (t - w) / (2 * np.pi)
     assert np.abs(turns - np.round(turns)).max() < 1e-14
     # a rod pointing exactly along −x reads +π, not −π (found by hypothesis on the compiled engine)
-    mech = velplan.loads("""
+    mech = velplan.parse("""
         [ground]
         O = [0.0, 0.0]
         [crank]

@@ -200,7 +200,7 @@ def test_candidates_are_every_real_assembly(name, phi_deg):
 
 def long_crank_rocker():
     """triad-rocker with a 0.25 m crank: the triad cannot follow the crank over a whole turn."""
-    return velplan.loads(ROCKER.replace("length = 0.078", "length = 0.25"))
+    return velplan.parse(ROCKER.replace("length = 0.078", "length = 0.25"))
 
 
 def test_limits_of_a_triad_that_cannot_turn_fully():
@@ -234,7 +234,7 @@ singular position (found by bisection on `limits`): the mechanism still turns fu
 
 def test_near_singular_position_is_masked_with_a_reason(tmp_path):
     text = ROCKER.replace("length = 0.078", f"length = {NEAR_SINGULAR}")
-    mech = velplan.loads(text)
+    mech = velplan.parse(text)
     check_full_rotation(mech)
     cond = lambda deg: float(velplan.solve(mech, [math.radians(deg)], order=0).condition[0, 0])  # noqa: E731
     worst = float(minimize_scalar(cond, bounds=(185.0, 187.5), method="bounded", options={"xatol": 1e-10}).x)
@@ -306,7 +306,7 @@ def test_loader_errors(old, new, message):
         text = text.replace("D = [0.373, 0.124]", "A = [0.373, 0.124]")
         message = "duplicate name 'A': used for the crank tip and for a point of group '3-2-4-5'"
     with pytest.raises(MechanismError) as err:
-        velplan.loads(text)
+        velplan.parse(text)
     assert str(err.value) == message
 
 
@@ -317,7 +317,7 @@ def test_all_three_leads_blocks_is_refused():
                             f'{{ link = "{link}", guide = {{ link = "0", through = "{joint}" }} }}')
     with pytest.raises(MechanismError, match=r"^group '3-2-4-5': at least one lead must be a rod "
                                              r"\(all three are blocks on guides\)$"):
-        velplan.loads(text)
+        velplan.parse(text)
 
 
 def test_cli_loader_error_is_one_line_exit_2(tmp_path, capsys):
@@ -369,7 +369,7 @@ def _doc_block(after: str) -> str:
 
 
 def test_the_complete_class_three_file_of_the_docs_works():
-    mech = velplan.loads(_doc_block("A complete class III file"), name="my-triad-press")
+    mech = velplan.parse(_doc_block("A complete class III file"), name="my-triad-press")
     study = velplan.Study(mech)  # turns fully
     g = mech.groups[0]
     assert g.kind == "triad" and g.pair == (0, 2) and triad.special_pair(mech, g) == (0, 2)
@@ -387,7 +387,7 @@ def test_the_group_example_of_the_docs_is_a_triad_with_every_key():
     text = _doc_block("## Class III groups: the triad")
     head = ROCKER.split("[[group]]")[0].replace('E = [0.574, 0.011]', 'E = [0.576, 0.373]').replace(
         "length = 0.078", "length = 0.061")
-    mech = velplan.loads(head + text)
+    mech = velplan.parse(head + text)
     g = mech.groups[0]
     for key in ("base", "joints", "sides", "side", "leads", "assembly", "special", "pair"):
         assert f"\n{key} = " in text

@@ -1,7 +1,7 @@
 """velplan: velocity and acceleration plans of planar linkages by graphical construction,
 checked against an analytic solver.
 
-The friendly layer::
+The product at the front door: a study of a mechanism, its sheets, its page and its note::
 
     >>> import velplan
     >>> study = velplan.Study("shaper")              # 12 positions at the file's ω1
@@ -9,7 +9,19 @@ The friendly layer::
     (12, 2)
     >>> study.plan("acceleration").epsilons["3"].shape
     (12,)
+    >>> velplan.structure(study.mechanism).mobility
+    1
+    >>> velplan.sheet(study, kind="forces", fmt="A1").write("shaper-forces.svg")  # doctest: +SKIP
+    >>> velplan.Page(study, lang="ru").save("shaper.html")                           # doctest: +SKIP
+    >>> velplan.explanatory_note(study, lang="ru").save("note.docx")                 # doctest: +SKIP
+
+Everything beyond the computing core (the study, the sheets, the page, the note) is imported
+on first use, so ``import velplan`` stays light.
 """
+
+from __future__ import annotations
+
+import warnings
 
 from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
 from velplan.analysis.solver import Kinematics, solve, transfer_functions
@@ -21,23 +33,71 @@ from velplan.errors import (
     TableError,
     VelplanError,
 )
-from velplan.mechanism.loader import example_names, load, loads
+from velplan.mechanism.loader import example_names, load, parse
 from velplan.mechanism.model import Mechanism
-from velplan.mechanism.structure import analyse
+from velplan.mechanism.structure import structure
+from velplan.options import LANGUAGES, Language, PlanKind, SheetKind
 
 __all__ = [
-    "AssemblyError", "Kinematics", "Mechanism", "MechanismError", "ScaleError",
-    "SingularPositionError", "Study", "TableError", "VelplanError", "analyse", "example_names",
-    "extremes", "load", "loads", "positions", "reference_angle", "solve", "stroke",
-    "transfer_functions",
+    "AssemblyError", "Kinematics", "LANGUAGES", "Language", "Mechanism", "MechanismError", "Page",
+    "PlanKind", "ScaleError", "SheetKind", "SingularPositionError", "Study", "TableError",
+    "VelplanError", "example_names", "explanatory_note", "extremes", "load", "parse", "positions",
+    "reference_angle", "sheet", "solve", "stroke", "structure", "transfer_functions",
 ]
 __version__ = "0.1.0"
 
+#: Names imported on first use: name → (module, attribute).
+_LAZY = {
+    "Study": ("velplan.study", "Study"),
+    "Page": ("velplan.html.page", "Page"),
+    "explanatory_note": ("velplan.note.build", "build_note"),
+}
+#: Former names, kept for one release: old → new (each use warns).
+_DEPRECATED = {"analyse": "structure", "loads": "parse"}
+
+
+def sheet(study, kind: SheetKind = "both", **options):
+    """The sheet of ``study`` (a `Study`, a `Mechanism`, an example name or a TOML path), as
+    ``velplan sheet --kind`` draws it: the kinematic sheet (``"velocity"``, ``"acceleration"``
+    or ``"both"`` plans), the force sheet (``"forces"``) or the dynamics sheet (``"dynamics"``).
+
+    ``options`` go to the sheet's builder (``fmt``, ``lang``, ``plans``, ``n``, …: see
+    `velplan.sheets.kinematic.build_sheet`, `velplan.sheets.forces.build_force_sheet`,
+    `velplan.sheets.dynamics.build_dynamics_sheet`). The sheet's ``.svg()`` is its text and
+    ``.write(path, png=…, pdf=…)`` writes it.
+    """
+    from velplan.options import KINEMATIC_SHEET_KINDS
+
+    if kind in KINEMATIC_SHEET_KINDS:
+        from velplan.sheets.kinematic import build_sheet
+
+        return build_sheet(study, kind=kind, **options)
+    if kind == "forces":
+        from velplan.sheets.forces import build_force_sheet
+
+        return build_force_sheet(study, **options)
+    if kind == "dynamics":
+        from velplan.sheets.dynamics import build_dynamics_sheet
+
+        return build_dynamics_sheet(study, **options)
+    known = KINEMATIC_SHEET_KINDS + ("forces", "dynamics")
+    raise VelplanError(f"unknown sheet kind {kind!r}; known kinds: {', '.join(known)}")
+
 
 def __getattr__(name: str):
-    # the study pulls in the plans and the chord method: imported on first use only
-    if name == "Study":
-        from velplan.study import Study
+    if name in _LAZY:
+        import importlib
 
-        return Study
+        module, attr = _LAZY[name]
+        value = getattr(importlib.import_module(module), attr)
+        globals()[name] = value
+        return value
+    if name in _DEPRECATED:
+        new = _DEPRECATED[name]
+        warnings.warn(f"velplan.{name} is deprecated; use velplan.{new}", DeprecationWarning, stacklevel=2)
+        return globals()[new]
     raise AttributeError(f"module 'velplan' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

@@ -560,15 +560,13 @@ def _answers(v: Variant, study) -> dict:
     table = study.table
     mech = study.mechanism
     st = study.stroke
-    special = {f"V_{g.special_name}" for g in mech.groups if g.kind == "triad"}  # construction points
     out: dict[str, Any] = {
         "variant": v.name,
         "base": v.base,
         "overrides": v.overrides,
         "positions": int(study.n),
         "phi_deg": [round(float(math.degrees(p) % 360), 9) for p in study.phi],
-        "V": {k[2:]: _clean(vals) for k, vals in table.rows.items()
-              if k.startswith("V_") and k not in special},
+        "V": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("V_")},
         "omega": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("w_")},
     }
     if st is not None:

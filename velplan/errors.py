@@ -55,3 +55,30 @@ class ScaleError(VelplanError, ValueError):
 
 class TableError(VelplanError, ValueError):
     """A table of measured values (CSV) is malformed or names unknown quantities."""
+
+
+def deprecated(func, old: str, new: str | None = None):
+    """``func`` under its former name ``old``: each call warns (`DeprecationWarning` naming the
+    new name, by default ``func``'s) and then calls it. Renamed things keep such an alias for
+    one release.
+
+    >>> import warnings
+    >>> def twice(x): return 2 * x
+    >>> double = deprecated(twice, "double")
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     double(2), str(w[0].message)
+    (4, 'double is deprecated; use twice')
+    """
+    import functools
+    import warnings
+
+    new = new or (f"{func.__module__}.{func.__qualname__}" if "." in old else func.__qualname__)
+
+    @functools.wraps(func)
+    def alias(*args, **kwargs):
+        warnings.warn(f"{old} is deprecated; use {new}", DeprecationWarning, stacklevel=2)
+        return func(*args, **kwargs)
+
+    alias.__doc__ = f"Deprecated alias of `{new}` (removed in the next release)."
+    return alias

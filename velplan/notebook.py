@@ -28,14 +28,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterator, Literal, Sequence
 
-import numpy as np
 
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
+from velplan.options import Language
 from velplan.study import Study
 
-Lang = Literal["en", "ru", "uk", "zh"]
 
 #: Largest drawing of the scheme a notebook shows, mm (the scale is the largest ESKD scale
 #: that keeps the scheme within it).
@@ -61,7 +60,7 @@ class SvgDrawing:
     scene: Any = field(default=None, repr=False, compare=False)
 
     @classmethod
-    def from_scene(cls, scene, *, lang: Lang = "en") -> "SvgDrawing":
+    def from_scene(cls, scene, *, lang: Language = "en") -> "SvgDrawing":
         """Draw a `Scene` with the default sheet style of `lang`."""
         from velplan.render.style import SheetStyle
         from velplan.render.svg import to_svg
@@ -125,7 +124,7 @@ def _study(mech: Study | Mechanism | str, n: int = 12) -> Study:
 
 
 def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None, i: int = 0, *,
-                   lang: Lang = "en", single: bool = False,
+                   lang: Language = "en", single: bool = False,
                    mu_l: float | None = None) -> SvgDrawing:
     """The kinematic scheme: position `i` thick, the others thin.
 
@@ -206,7 +205,7 @@ def _partial_plans(res, i: int, lang: str, number: int | None,
     return out
 
 
-def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Lang = "en",
+def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Language = "en",
               number: int | None = None) -> SvgDrawing:
     """The velocity or acceleration plan of `res` at its position index `i`.
 
@@ -233,7 +232,7 @@ def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Lang = "en",
     return _partial_plans(res, i, lang, number, [upto])[0][1]
 
 
-def draw_steps(res, i: int = 0, *, lang: Lang = "en",
+def draw_steps(res, i: int = 0, *, lang: Language = "en",
                number: int | None = None) -> Iterator[tuple[str, SvgDrawing]]:
     """The construction of the plan step by step: (sentence, drawing so far) per step.
 
@@ -248,7 +247,7 @@ def draw_steps(res, i: int = 0, *, lang: Lang = "en",
     return iter(_partial_plans(res, i, lang, number, range(1, total + 1)))
 
 
-def draw_diagrams(mech: Study | Mechanism | str, n: int = 12, *, lang: Lang = "en",
+def draw_diagrams(mech: Study | Mechanism | str, n: int = 12, *, lang: Language = "en",
                   arrangement: Literal["row", "column"] = "row") -> SvgDrawing:
     """Displacement, velocity and acceleration diagrams of the output (chord method beside
     the analytic curves), over `n` positions (a study brings its own)."""
@@ -276,7 +275,7 @@ def draw_dynamics_sheet(mech: Study | Mechanism | str, **options) -> SvgDrawing:
     return SvgDrawing(sheet.svg(), sheet.scene)
 
 
-def draw_dynamics(mech: Study | Mechanism | str, view: str = "wittenbauer", *, lang: Lang = "en",
+def draw_dynamics(mech: Study | Mechanism | str, view: str = "wittenbauer", *, lang: Language = "en",
                   fmt: str = "A1") -> SvgDrawing:
     """One view of the dynamics sheet on its own: ``"moments"``, ``"works"``, ``"inertia"``,
     ``"omega"``, ``"wittenbauer"``, ``"flywheel"`` or ``"results"``."""
@@ -289,7 +288,7 @@ def draw_dynamics(mech: Study | Mechanism | str, view: str = "wittenbauer", *, l
 
 
 def side_by_side(*drawings: SvgDrawing, gap_mm: float = GAP_MM,
-                 lang: Lang = "en") -> SvgDrawing:
+                 lang: Language = "en") -> SvgDrawing:
     """Drawings (each with its scene) in one row, bottoms aligned, `gap_mm` apart."""
     from velplan.render.scene import Scene
     from velplan.views.base import shift
@@ -316,7 +315,7 @@ def _widgets():
 
 def crank_slider(mech: Study | Mechanism | str, callback: Callable[[Kinematics], Any] | None = None, *,
                  n: int = 12, fallback: int = 4, interactive: bool | None = None,
-                 lang: Lang = "en"):
+                 lang: Language = "en"):
     """A slider over the crank angle that redraws ``callback(kin)`` as it moves.
 
     Parameters

@@ -23,7 +23,6 @@ Results are computed on first use and cached:
 
 from __future__ import annotations
 
-import math
 from functools import cached_property
 from pathlib import Path
 from typing import Literal
@@ -31,17 +30,17 @@ from typing import Literal
 import numpy as np
 
 from velplan.analysis.chord import Diagrams, kinematic_diagrams
-from velplan.analysis.extremes import Extreme, Stroke, extremes, stroke
+from velplan.analysis.extremes import Extreme, Stroke, extremes, positions, reference_angle, stroke
 from velplan.analysis.solver import Kinematics, group_point, solve
 from velplan.errors import AssemblyError, MechanismError, VelplanError
 from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
+from velplan.options import PlanKind as Kind
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.engine import Plan, PlanResult
 from velplan.plans.table import TransferTable, transfer_table
 
 Motion = Literal["constant", "dynamic"]
-Kind = Literal["velocity", "acceleration"]
 
 TURN_STEPS = 720
 """Steps of the fine turn (a multiple of 240 and 360: the scheme's trajectories take every
@@ -120,18 +119,16 @@ class Study:
 
     @cached_property
     def reference(self) -> float:
-        """Crank angle of position 1, rad."""
-        mech = self.mechanism
-        if mech.reference_deg is not None:
-            return math.radians(mech.reference_deg)
-        return 0.0 if self.stroke is None else self.stroke.start.phi
+        """Crank angle of position 1, rad (`velplan.analysis.extremes.reference_angle`)."""
+        return reference_angle(self.mechanism)
 
     @cached_property
     def phi(self) -> np.ndarray:
-        """(n,) crank angles of the positions, rad."""
+        """(n,) crank angles of the positions, rad: the angles given, else the n standard
+        positions (`velplan.analysis.extremes.positions`)."""
         if self._angles is not None:
             return self._angles
-        return self.reference + self.sense * np.arange(self.n) * (2 * np.pi / self.n)
+        return positions(self.mechanism, self.n)
 
     def require_assembled(self, positions=None) -> None:
         """Raise `AssemblyError` naming the group, its point and the crank angle at the first of
@@ -239,7 +236,8 @@ class Study:
 
     @cached_property
     def table(self) -> TransferTable:
-        """Transfer functions V/ω1 and ω/ω1 read off the exact velocity plans."""
+        """Transfer functions V/ω1 and ω/ω1 read off the exact velocity plans: the one table of
+        the study, whose rows the sheet, the answer key of a batch and the note print."""
         return transfer_table(self.plan("velocity"))
 
     @cached_property
@@ -294,6 +292,6 @@ class Study:
     @cached_property
     def dynamics(self):
         """The machine dynamics of the ``[dynamics]`` section (`velplan.dynamics`)."""
-        from velplan.dynamics import analyse
+        from velplan.dynamics import dynamics_analysis
 
-        return analyse(self.mechanism, loads=self.loads, delta=self.delta)
+        return dynamics_analysis(self.mechanism, loads=self.loads, delta=self.delta)

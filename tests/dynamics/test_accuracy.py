@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.dynamics import analyse
+from velplan.dynamics import dynamics_analysis
 from velplan.dynamics.panels import panels_over
 from velplan.dynamics.reduction import Profile, profile
 from velplan.dynamics.run import simulate
@@ -124,7 +124,7 @@ ERROR_OF = {"omega_max": "omega", "omega_min": "omega"}
 @pytest.mark.parametrize("which", ["stepped_shaper", "table_press"])
 def test_defaults_agree_with_a_refined_reference_and_the_table_area(which, request):
     mech = request.getfixturevalue(which)
-    d, ref = analyse(mech), analyse(mech, panels=2048)
+    d, ref = dynamics_analysis(mech), dynamics_analysis(mech, panels=2048)
     got, want = _results(d), _results(ref)
     assert set(got) >= {"flywheel_exact", "omega_max", "period"}
     for k in got:
@@ -139,18 +139,18 @@ def test_defaults_agree_with_a_refined_reference_and_the_table_area(which, reque
 
 
 def test_run_time_agrees_with_a_tight_reference_and_its_estimate_bounds_it(table_press_run):
-    d = analyse(table_press_run)
+    d = dynamics_analysis(table_press_run)
     r = d.run
     prof = profile(d.reducer, 2 * math.pi, 2048)
     ref = simulate(prof, d.inertia, d.motor.moment, r.omega_start, travel=r.travel, rtol=1e-13)
     assert abs(r.time - ref.time) <= 1e-9 * ref.time
     assert abs(r.time - ref.time) <= d.errors["time"]
     assert abs(r.omega_end - ref.omega_end) <= min(1e-9 * ref.omega_end, d.errors["omega"])
-    assert abs(d.driving - analyse(d.mechanism, panels=2048).driving) <= 1e-9 * d.driving
+    assert abs(d.driving - dynamics_analysis(d.mechanism, panels=2048).driving) <= 1e-9 * d.driving
 
 
 def test_every_table_node_is_a_panel_edge_and_jumps_stay_jumps(stepped_shaper):
-    d = analyse(stepped_shaper)
+    d = dynamics_analysis(stepped_shaper)
     ld = d.reducer.loads[0]
     tr = ld.track
     # the nodes: where the ram passes each x inside the stroke on the working stroke only
@@ -173,7 +173,7 @@ def test_every_table_node_is_a_panel_edge_and_jumps_stay_jumps(stepped_shaper):
 def test_the_estimate_flags_panels_that_straddle_a_node(stepped_shaper):
     """Without the cuts, a 16-node rule integrates across the steps: the true error is large
     and the estimate (the series' last terms) still bounds it."""
-    d = analyse(stepped_shaper)
+    d = dynamics_analysis(stepped_shaper)
     pn = panels_over(2 * math.pi, [], 128)
     uncut = Profile(pn, d.reducer.labels, d.reducer(pn.nodes.ravel()))
     W = sum(d.profile.cycle_work().values())
@@ -193,7 +193,7 @@ def test_lagrange_and_energy_at_every_reported_position(name):
     mech = velplan.load(name)
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
-        d = analyse(mech, delta=None if name in catalogue_names() else 0.05)
+        d = dynamics_analysis(mech, delta=None if name in catalogue_names() else 0.05)
         tb = d.table(12)
     s = d.sense
     w, J, dJ, M = tb["omega"], tb["J_total"], tb["J_red_prime"], tb["M_sum"]
@@ -206,7 +206,7 @@ def test_lagrange_and_energy_at_every_reported_position(name):
 
 
 def test_drive_reuses_the_reduction_and_does_not_import_analysis():
-    d = analyse(velplan.load("stamping-press"))
+    d = dynamics_analysis(velplan.load("stamping-press"))
     from velplan.dynamics.drive import select_drive
 
     dv = select_drive(d)
@@ -219,7 +219,7 @@ def test_drive_reuses_the_reduction_and_does_not_import_analysis():
 def test_error_fields_in_json_and_table():
     from velplan.dynamics.report import to_dict, to_table
 
-    d = analyse(velplan.load("shaper"), delta=0.05)
+    d = dynamics_analysis(velplan.load("shaper"), delta=0.05)
     doc = to_dict(d)
     assert set(doc["error"]) >= {"driving_moment", "flywheel_exact", "flywheel_mertsalov",
                                  "flywheel_wittenbauer", "omega", "delta", "period"}
@@ -267,7 +267,7 @@ def test_no_runtime_warning_from_the_right_hand_side(table_press_run, rtol):
     """Runs at a loose and a tight tolerance, and one where the crank stops, warn of nothing."""
     from velplan.errors import VelplanError
 
-    d = analyse(table_press_run)
+    d = dynamics_analysis(table_press_run)
     r = simulate(d.profile, d.inertia, d.motor.moment, 8.0, travel=4 * math.pi, rtol=rtol)
     assert abs(r.time - d.run.time) <= max(100 * rtol, 1e-9) * r.time * 2
     with pytest.raises(VelplanError, match="the crank stops"):
@@ -277,9 +277,9 @@ def test_no_runtime_warning_from_the_right_hand_side(table_press_run, rtol):
 def test_panels_are_doubled_only_while_that_halves_the_estimate(monkeypatch, stepped_shaper):
     from velplan.dynamics import reduction
 
-    d = analyse(stepped_shaper)
+    d = dynamics_analysis(stepped_shaper)
     assert d.profile.relative_error <= reduction.TOLERANCE and d.profile.panels.count < 2 * reduction.PANELS
     monkeypatch.setattr(reduction, "TOLERANCE", 0.0)  # unreachable: the estimate is at round-off already
-    again = analyse(stepped_shaper)
+    again = dynamics_analysis(stepped_shaper)
     assert again.profile.panels.count < 4 * reduction.PANELS  # one doubling tried, the coarser kept
     assert abs(again.flywheel.exact - d.flywheel.exact) <= 1e-12 * d.flywheel.exact

@@ -9,7 +9,7 @@ import pytest
 
 import velplan
 from velplan.cli import main
-from velplan.dynamics import analyse, parse_dynamics
+from velplan.dynamics import dynamics_analysis, parse_dynamics
 from velplan.errors import MechanismError
 
 from .conftest import DATA

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.dynamics import analyse
+from velplan.dynamics import dynamics_analysis
 from velplan.dynamics.motor import Motor, kloss, kloss_from_rating
 from velplan.dynamics.run import simulate
 from velplan.dynamics.spec import MotorSpec
@@ -50,7 +50,7 @@ def test_kloss_zero_at_synchronism_and_critical_at_critical_slip():
 
 def test_run_from_the_steady_state_returns_to_it_after_a_cycle():
     # the steady ω(φ) of the energy equation is a solution of the time ODE too
-    d = analyse(velplan.load("shaper"), delta=0.05)
+    d = dynamics_analysis(velplan.load("shaper"), delta=0.05)
     st = d.steady
     run = simulate(d.profile, d.inertia, lambda w: d.driving, st.omega(0.0), travel=2 * math.pi)
     assert abs(run.omega_end - st.omega(0.0)) <= 1e-9 * st.omega(0.0)
@@ -61,13 +61,13 @@ def test_run_from_the_steady_state_returns_to_it_after_a_cycle():
 
 
 def test_press_run_with_kloss_and_periodic_regime(with_dynamics):
-    d = analyse(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0) + RUN)))
+    d = dynamics_analysis(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0) + RUN)))
     assert d.run.travel == pytest.approx(2 * math.pi, abs=1e-12)
     assert 4.0 < d.run.omega_min < 6.3 and d.run.time > 0.9
-    p = analyse(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0)))).periodic
+    p = dynamics_analysis(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0)))).periodic
     assert p.residual < 1e-8
     # a run started at the periodic speed stays periodic
-    dd = analyse(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0))))
+    dd = dynamics_analysis(velplan.load(with_dynamics("slider-press", KLOSS.format(J=40.0, MK=120.0))))
     run = simulate(dd.profile, dd.inertia, dd.motor.moment, p.omega_start, travel=2 * math.pi)
     assert abs(run.omega_end - p.omega_start) < 1e-8 * p.omega_start
     assert abs(run.time - p.period) < 1e-8
@@ -76,13 +76,13 @@ def test_press_run_with_kloss_and_periodic_regime(with_dynamics):
 def test_too_weak_motor_stops_the_crank(with_dynamics):
     path = with_dynamics("slider-press", KLOSS.format(J=0.5, MK=10.0) + RUN)
     with pytest.raises(VelplanError, match=r"the crank stops after a travel of .* at t = "):
-        analyse(velplan.load(path))
+        dynamics_analysis(velplan.load(path))
 
 
 def test_run_that_never_reaches_its_travel(with_dynamics):
     text = KLOSS.format(J=40.0, MK=120.0) + RUN.replace("travel_deg = 360.0", "travel_deg = 3600.0\ntime_limit = 0.5")
     with pytest.raises(VelplanError, match=r"turned only .* of travel_deg = 3600° within time_limit = 0.5 s"):
-        analyse(velplan.load(with_dynamics("slider-press", text)))
+        dynamics_analysis(velplan.load(with_dynamics("slider-press", text)))
 
 
 def test_time_limited_run_with_constant_torque(with_dynamics):
@@ -100,6 +100,6 @@ ratio = 24.0
 omega = 6.0
 time = 0.5
 """
-    d = analyse(velplan.load(with_dynamics("slider-press", text)))
+    d = dynamics_analysis(velplan.load(with_dynamics("slider-press", text)))
     assert d.run.time == pytest.approx(0.5, abs=1e-12)
     assert d.run.travel > 2.5

@@ -9,7 +9,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import velplan
-from velplan.dynamics import analyse
+from velplan.dynamics import dynamics_analysis
 from velplan.dynamics.flywheel import dimensions, exact_inertia, mertsalov_inertia, size_flywheel, wittenbauer
 from velplan.dynamics.spec import FlywheelSpec
 from velplan.dynamics.steady import EnergyCurve, steady_state
@@ -17,7 +17,7 @@ from velplan.dynamics.steady import EnergyCurve, steady_state
 
 @pytest.fixture(scope="module")
 def shaper():
-    return analyse(velplan.load("shaper"), delta=0.05)
+    return dynamics_analysis(velplan.load("shaper"), delta=0.05)
 
 
 def test_energy_equation_agrees_with_lagrange_integrated_to_1e9(shaper):
@@ -147,7 +147,7 @@ ratio = 1.8333
 shape = "rim"
 density = 7200.0
 """)
-    d = analyse(velplan.load(path))
+    d = dynamics_analysis(velplan.load(path))
     f = d.flywheel
     assert abs(d.declared - 0.2 * (960 / 80) ** 2) < 1e-12
     assert abs(f.added - (f.exact - d.declared)) < 1e-12 * f.exact
@@ -159,8 +159,8 @@ density = 7200.0
 def test_a_4pi_cycle_of_loads_that_repeat_every_turn_is_two_equal_turns(with_dynamics):
     """cycle_turns = 2 (a four-stroke engine's 4π) on loads that repeat every turn: the same
     driving moment, δ and flywheel as the 2π cycle, and ω(φ) repeats after one turn."""
-    one = analyse(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\n")))
-    two = analyse(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\ncycle_turns = 2\n")))
+    one = dynamics_analysis(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\n")))
+    two = dynamics_analysis(velplan.load(with_dynamics("shaper", "[dynamics]\ndelta = 0.05\ncycle_turns = 2\n")))
     assert two.spec.cycle == pytest.approx(4 * math.pi)
     assert two.driving == pytest.approx(one.driving, rel=1e-12)
     assert two.flywheel.exact == pytest.approx(one.flywheel.exact, rel=1e-9)

@@ -52,9 +52,9 @@ def example_text(name: str) -> str:
 def four_bar_with_prp():
     """The bundled four-bar plus a PRP group: a block 4 sliding along the rocker 3 and a
     slider 5 on the frame line y = 0.1 m, joined at C; masses, a force and a moment."""
-    return velplan.loads(example_text("four-bar") + YOKE_EXTRA, name="four-bar-prp")
+    return velplan.parse(example_text("four-bar") + YOKE_EXTRA, name="four-bar-prp")
 
 
 def with_loads(name: str, extra: str):
     """A bundled example with extra TOML appended (loads, masses)."""
-    return velplan.loads(example_text(name) + "\n" + extra, name=name)
+    return velplan.parse(example_text(name) + "\n" + extra, name=name)

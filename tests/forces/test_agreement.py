@@ -26,7 +26,7 @@ def test_every_example_with_masses_is_checked():
 @pytest.mark.parametrize("name, mech", MECHS, ids=[n for n, _ in MECHS])
 def test_three_balancing_moments_agree(name, mech):
     phi = np.linspace(0.0, 2 * np.pi, 1440, endpoint=False) + 0.001
-    res = vf.analyse_forces(mech, phi)
+    res = vf.force_analysis_at(mech, phi)
     bm = res.balancing_moments
     ref = bm["kinetostatics"]
     assert np.isfinite(ref).all()
@@ -44,7 +44,7 @@ def test_three_balancing_moments_agree(name, mech):
 def test_reactions_balance_every_link(name, mech):
     """Σ F = 0 on every moving link with the reactions, the actions and M_b."""
     phi = np.linspace(0.2, 2 * np.pi, 36, endpoint=False)
-    res = vf.analyse_forces(mech, phi)
+    res = vf.force_analysis_at(mech, phi)
     ks, acts = res.kinetostatics, res.actions
     scale = max(float(np.max(np.abs(r.force))) for r in ks.reactions.values())
     for link in mech.links:

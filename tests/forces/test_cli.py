@@ -26,7 +26,7 @@ def test_json_schema(capsys):
     assert [p["position"] for p in doc["positions"]] == [1, 2, 3, 4, 5, 6]
     mech = velplan.load("shaper")
     phi = velplan.positions(mech, 6)
-    res = vf.analyse_forces(mech, phi)
+    res = vf.force_analysis_at(mech, phi)
     pair_names = [p.name for p in velplan.mechanism.structure.pairs(mech)]
     for i, p in enumerate(doc["positions"]):
         assert set(p) >= {"phi_deg", "balancing_moment", "reactions"}

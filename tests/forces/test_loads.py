@@ -13,7 +13,7 @@ from tests.forces.mechs import example_text
 
 
 def _with_load(mech: str, body: str):
-    return velplan.loads(example_text(mech) + "\n[[load]]\n" + body + "\n", name=mech)
+    return velplan.parse(example_text(mech) + "\n[[load]]\n" + body + "\n", name=mech)
 
 
 def test_constant_force_and_moment():
@@ -26,7 +26,7 @@ def test_constant_force_and_moment():
     np.testing.assert_array_equal(acts.forces[0].vector, [10 - 20j, 10 - 20j])
     np.testing.assert_array_equal(acts.moments[0].moment, [-4.0, -4.0])
     # M_b of a lone moment on the rocker: M_b·ω1 = −M·ω3
-    res = vf.analyse_forces(m, kin.phi)
+    res = vf.force_analysis_at(m, kin.phi)
     np.testing.assert_allclose(res.kinetostatics.balancing_moment,
                                -(dot(10 - 20j, as_complex(kin.velocity("B"))) - 4.0 * kin.omega("3")) / kin.omega1,
                                rtol=1e-12)
@@ -182,7 +182,7 @@ def test_load_that_is_not_a_table():
 
 
 def test_centre_of_mass_must_be_a_point_of_its_link():
-    m = velplan.loads(example_text("four-bar") + '\n[link.3]\nmass = 1.0\ncentre = "S2"\n', name="four-bar")
+    m = velplan.parse(example_text("four-bar") + '\n[link.3]\nmass = 1.0\ncentre = "S2"\n', name="four-bar")
     kin = velplan.solve(m, [0.0])
     with pytest.raises(velplan.MechanismError,
                        match=r"^\[link\.3\] centre: point 'S2' is not a point of link '3'; points of link 3: S3, B, D$"):

@@ -57,7 +57,7 @@ def test_static_moment_is_the_power_method_without_inertia(press):
     acts = vf.gravity_actions(mech, kin) + q.actions(kin)
     st = vf.static_moment(kin, acts)
     np.testing.assert_allclose(st.moment, vf.power_balancing_moment(kin, acts), rtol=1e-12, atol=1e-12)
-    res = vf.analyse_forces(mech, kin.phi, loads=[q], inertia=False)
+    res = vf.force_analysis_at(mech, kin.phi, loads=[q], inertia=False)
     np.testing.assert_allclose(st.moment, res.kinetostatics.balancing_moment, rtol=1e-9, atol=1e-12)
     with pytest.raises(velplan.MechanismError, match="^the static moment takes gravity and loads only, not inertia forces$"):
         vf.static_moment(kin, vf.inertia_actions(mech, kin))
@@ -132,7 +132,7 @@ def test_series_as_the_load(parabola):
     text = "\n".join(["[[load]]", 'kind = "press"', "p_max = 40000.0", "b1 = 0.02", "b2 = 0.005", "harmonics = 5"])
     from tests.forces.mechs import example_text
 
-    m2 = velplan.loads(example_text("slider-press").split("[[load]]")[0] + text)
+    m2 = velplan.parse(example_text("slider-press").split("[[load]]")[0] + text)
     (s,) = vf.parse_loads(m2)
     assert s.harmonics == 5 and s.name == "#1"
     kin = velplan.solve(m2, np.linspace(0, 6, 7))

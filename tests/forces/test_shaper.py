@@ -67,7 +67,7 @@ def test_mean_balancing_moment_is_the_cutting_work_over_two_pi(shaper):
 def test_the_energy_form_of_seed_002(shaper):
     """M_b·ω1 = dT/dt + Fc·|V_F| − P_gravity, the Matlab program's formula plus gravity."""
     phi = velplan.positions(shaper, 36)
-    res = vf.analyse_forces(shaper, phi)
+    res = vf.force_analysis_at(shaper, phi)
     kin = res.kinematics
     (fc,) = vf.parse_loads(shaper)
     cut = np.where(fc.active(kin), 1400.0 * np.abs(as_complex(kin.velocity("F"))), 0.0)

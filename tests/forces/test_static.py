@@ -103,7 +103,7 @@ def test_force_polygons_close_on_the_exact_reactions():
     from tests.forces.mechs import four_bar_with_prp
 
     for mech in (velplan.load("shaper"), velplan.load("press"), velplan.load("slider-press"), four_bar_with_prp()):
-        res = vf.analyse_forces(mech, np.linspace(0.1, 2 * np.pi, 24, endpoint=False))
+        res = vf.force_analysis_at(mech, np.linspace(0.1, 2 * np.pi, 24, endpoint=False))
         ks = res.kinetostatics
         scale = max(float(np.nanmax(np.abs(r.force))) for r in ks.reactions.values())
         for g in mech.groups:
@@ -126,9 +126,9 @@ def test_positions_that_do_not_assemble_are_nan_not_errors():
 
     text = example_text("four-bar").replace("length = 0.10", "length = 0.20") + (
         '\n[link.2]\nmass = 2.0\ncentre = "S2"\n[[load]]\nkind = "moment"\nlink = "3"\nmoment = 5.0\n')
-    mech = velplan.loads(text)
+    mech = velplan.parse(text)
     phi = np.linspace(0, 2 * np.pi, 36, endpoint=False)
-    res = vf.analyse_forces(mech, phi)
+    res = vf.force_analysis_at(mech, phi)
     bad = ~res.kinematics.valid
     assert bad.any() and (~bad).any()
     for m in res.balancing_moments.values():

@@ -18,7 +18,7 @@ from velplan.forces.kinetostatics import kinetostatics
 from velplan.forces.lever import lever_balancing_moment
 from velplan.forces.power import power_balancing_moment
 from velplan.forces.inertia import inertia_of
-from velplan.mechanism.loader import loads as load_text
+from velplan.mechanism.loader import parse as load_text
 from velplan.mechanism.model import Triad
 from velplan.mechanism.structure import pairs
 

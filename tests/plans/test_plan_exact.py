@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import velplan
@@ -81,14 +81,15 @@ def test_exact_plan_equals_analytic_on_random_mechanisms(mech, phi):
 
 
 @SETTINGS
-@given(mechanisms(), st.floats(0, 2 * math.pi))
+@given(mechanisms(probes=True), st.floats(0, 2 * math.pi))
 def test_relative_velocities_perpendicular_and_images_similar_turned_90(mech, phi):
+    """Drawn only where the property applies (assembled, well-conditioned), with two probe
+    points on every link: every draw compares at least one figure per link."""
     kin = velplan.solve(mech, [phi])
-    if not kin.valid[0]:
-        return
+    assume(kin.valid[0])
     res = Plan.of(mech).evaluate(kin, kind="velocity")
-    if res.flagged[0]:
-        return
+    assume(not res.flagged[0])
+    checked = set()
     for link, points in fixed_points(mech).items():
         pts = [p for p in points if p in res.vectors]
         w = res.omegas[link][0]
@@ -104,18 +105,19 @@ def test_relative_velocities_perpendicular_and_images_similar_turned_90(mech, ph
                 # ab ⊥ AB, and ab = AB turned by +90° (ω > 0) or −90° (ω < 0), scaled by |ω|/μv
                 assert abs((R.conjugate() * img).real) <= 1e-9 * abs(R) * (abs(img) + scale + 1e-300)
                 assert abs(img - 1j * w * R / res.scale) <= 1e-9 * (scale + 1e-300)
+                checked.add(link)
+    assert checked == set(mech.links)
 
 
 @SETTINGS
-@given(mechanisms(), st.floats(0, 2 * math.pi))
+@given(mechanisms(probes=True), st.floats(0, 2 * math.pi))
 def test_acceleration_images_similar_and_normal_components_point_to_the_centre(mech, phi):
     kin = velplan.solve(mech, [phi])
-    if not kin.valid[0]:
-        return
+    assume(kin.valid[0])
     res = Plan.of(mech).evaluate(kin, kind="acceleration")
-    if res.flagged[0]:
-        return
+    assume(not res.flagged[0])
     # similarity: a rigid link's acceleration image is the link times (iε − ω²)/μa
+    checked = set()
     for link, points in fixed_points(mech).items():
         pts = [p for p in points if p in res.vectors]
         w, e = kin.omega(link)[0], kin.epsilon(link)[0]
@@ -127,6 +129,8 @@ def test_acceleration_images_similar_and_normal_components_point_to_the_centre(m
                 img = complex(*(res.image(b)[0] - res.image(a)[0]))
                 expect = (1j * e - w * w) * R / res.scale
                 assert abs(img - expect) <= 1e-9 * (abs(expect) + abs(R) * w * w / res.scale + 1e-300)
+                checked.add(link)
+    assert checked == set(mech.links)
     # normal components: laid off from the centre's image towards the centre, length ω²·l/μa
     for step in res.steps:
         vec = getattr(step, "vector", None)

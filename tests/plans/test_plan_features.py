@@ -103,7 +103,7 @@ def test_monte_carlo_drafting_is_reproducible_and_spreads():
 
 def _toggle_slider():
     """Offset crank-slider with l = r + e: at φ = 90° the rod stands ⊥ the guide (a toggle)."""
-    return velplan.loads("""
+    return velplan.parse("""
 [ground]
 O = [0.0, 0.0]
 [crank]

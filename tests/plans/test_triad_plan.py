@@ -58,7 +58,7 @@ BLOCK_MOVING = ('{ link = "5", guide = { link = "1", through = "A", angle_deg = 
 
 
 def _triad(lead5: str = ROD5, pair=None, E="0.574, 0.011", F="0.131, -0.035"):
-    return velplan.loads(_HEAD.format(E=E, F=F, lead5=lead5, pair=f"pair = {list(pair)}" if pair else ""))
+    return velplan.parse(_HEAD.format(E=E, F=F, lead5=lead5, pair=f"pair = {list(pair)}" if pair else ""))
 
 
 TWELVE = np.linspace(0.0, 2 * np.pi, 13)[:-1]

@@ -99,11 +99,11 @@ def test_sheet_carries_input_data_and_the_other_extreme():
     assert "Input data and results" in text
     assert f"H = {st.H:.4g} m; θ = {math.degrees(st.theta):.4g}°; K = {st.K:.4g}" in text
     assert "lO₂A = 0.1605 m" in text and "Fc = 1400 N" in text
-    # the end of the working stroke is not one of the 12 positions: drawn dashed, marked 1′
+    # the end of the working stroke is not one of the 12 positions: drawn bold, marked 1′
     assert study.other_extreme is not None
-    dashed = [p for p in sheet.views["mechanism"].view.primitives
-              if getattr(p, "line", None) == "hidden" and p.layer == "positions"]
-    assert dashed and "1′" in text
+    bold = [p for p in sheet.views["mechanism"].view.primitives
+            if getattr(p, "line", None) == "thick" and p.layer == "positions"]
+    assert bold and "1′" in text
     end = study.other_extreme.position("F")[0]
     assert abs(end[0] - study.mechanism.ground[0][1][0]) >= 0  # solved at the extreme
     v = velplan.solve(study.mechanism, [st.end.phi]).velocity("F")[0]

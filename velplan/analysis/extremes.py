@@ -7,8 +7,8 @@ derivative (the acceleration analogue at ε1 = 0), safeguarded by bisection.
 
 from __future__ import annotations
 
+import functools
 import math
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -156,24 +156,15 @@ def output_quantity(mech: Mechanism, kin: Kinematics | None = None) -> tuple[str
     )
 
 
-_STROKES: dict[int, tuple] = {}
-"""Memo of `stroke` by mechanism (an immutable value): the extremes are found once per
-mechanism however many results need them (the study's positions, the loads' strokes)."""
-
-
+@functools.lru_cache(maxsize=256)
 def stroke(mech: Mechanism) -> Stroke | None:
     """Stroke H, extremes and K of the mechanism's output (None without an output).
 
-    The slow stroke (the crank turns through π + θ) is taken as the working stroke.
+    The slow stroke (the crank turns through π + θ) is taken as the working stroke. Cached
+    by the mechanism (a hashable value): the extremes are found once however many results
+    need them (the study's positions, the loads' strokes).
     """
-    hit = _STROKES.get(id(mech))
-    if hit is not None and hit[0]() is mech:
-        return hit[1]
-    out = _stroke(mech)
-    key = id(mech)
-    _STROKES[key] = (weakref.ref(mech), out)
-    weakref.finalize(mech, _STROKES.pop, key, None)
-    return out
+    return _stroke(mech)
 
 
 def _stroke(mech: Mechanism) -> Stroke | None:

@@ -16,6 +16,7 @@ from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_p
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import guides_of, joints_in, points_out, schedule
+from velplan.options import PlanKind
 
 
 @dataclass(frozen=True)
@@ -217,7 +218,7 @@ class Kinematics:
         with np.errstate(divide="ignore"):
             return 64 * eps * (spread * (1.0 + np.sum(c ** -float(power), axis=1)) + far)
 
-    def largest(self, quantity: Literal["velocity", "acceleration"], idx=slice(None)) -> float:
+    def largest(self, quantity: PlanKind, idx=slice(None)) -> float:
         """The largest |V| (m/s) or |a| (m/s²) of any point at positions ``idx`` (indices or a
         slice; all by default, computed once), positions not assembled left out."""
         key = f"_largest_{quantity}"

@@ -16,7 +16,7 @@ from pathlib import Path
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
 from velplan.mechanism.loader import catalogue_names
-from velplan.mechanism.structure import analyse
+from velplan.mechanism.structure import structure
 from velplan.plans.text import LANGS
 from velplan.study import Study
 
@@ -47,7 +47,7 @@ def write_gallery(outdir: str | Path, *, names=None, png: bool = False, lang: st
             h = f"{math.degrees(st.H):.2f}°" if st.quantity.startswith("link") else f"{st.H * 1000:.1f} mm"
             k = f"{st.K:.3f}"
         sheet = " · ".join(f"[{f.suffix[1:]}]({f.name})" for f in files)
-        rows.append(f"| `{name}` | {mech.title} | crank + {kinds} (W = {analyse(mech).mobility}) "
+        rows.append(f"| `{name}` | {mech.title} | crank + {kinds} (W = {structure(mech).mobility}) "
                     f"| {h} | {k} | {sheet} |")
         if progress:
             progress(i + 1, len(names), name)

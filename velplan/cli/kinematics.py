@@ -12,7 +12,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
-from velplan.mechanism.structure import analyse
+from velplan.mechanism.structure import structure
 from velplan.study import Study
 
 
@@ -63,7 +63,7 @@ def run_examples(args) -> int:
 def run_info(args) -> int:
     study = Study(args.mechanism)
     mech = study.mechanism
-    st = analyse(mech)
+    st = structure(mech)
     out = [f"{mech.name}: {mech.title}".rstrip(": "), ""]
     c = mech.crank
     out.append(f"crank {c.link}: {c.pivot}{c.tip} = {c.length:g} m, ω1 = {c.omega:+.6g} rad/s ({c.rpm:+.4g} rpm)")
@@ -146,18 +146,7 @@ def to_json(kin: Kinematics) -> str:
 
 
 def _rows(kin: Kinematics) -> tuple[list[str], list[list[float]]]:
-    head = ["position", "phi_deg"]
-    cols = [np.arange(1, len(kin) + 1), kin.phi_deg]
-    for k, j in kin.point_index.items():
-        for q, arr in (("x", kin.positions[:, j, 0]), ("y", kin.positions[:, j, 1]),
-                       ("vx", kin.velocities[:, j, 0]), ("vy", kin.velocities[:, j, 1]),
-                       ("ax", kin.accelerations[:, j, 0]), ("ay", kin.accelerations[:, j, 1])):
-            head.append(f"{k}.{q}")
-            cols.append(arr)
-    for k, j in kin.link_index.items():
-        for q, arr in (("angle", kin.angles[:, j]), ("omega", kin.omegas[:, j]), ("epsilon", kin.epsilons[:, j])):
-            head.append(f"{k}.{q}")
-            cols.append(arr)
+    head, cols = _columns(kin)
     return head, [list(r) for r in np.column_stack(cols)]
 
 

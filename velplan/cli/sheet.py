@@ -46,6 +46,9 @@ def register(sub) -> None:
                         "always (an error if they do not fit), never")
     p.add_argument("--no-table", action="store_true",
                    help="leave out the table of transfer functions")
+    p.add_argument("--scale-per-plan", action="store_true",
+                   help="fit each plan at its own μ (default: one μv for all the velocity "
+                        "plans of the sheet and one μa for the acceleration plans)")
     p.add_argument("--centres", metavar="K,…",
                    help="mark the instant centres (found by Kennedy lines) of these positions on the scheme")
     p.add_argument("--delta", metavar="δ", type=float,
@@ -170,7 +173,7 @@ def run_sheet(args) -> int:
     sheet = build_sheet(study, plans=plans, kind=args.kind, fmt=args.format,
                         lang=args.lang, frame_style=args.frame, info=info,
                         diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
-                        table=not args.no_table,
+                        table=not args.no_table, scale_per_plan=args.scale_per_plan,
                         centres=parse_plans(args.centres, study.n) if args.centres else ())
     output = args.output or f"{mech.name}-sheet.svg"
     _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))

@@ -17,7 +17,7 @@ from velplan.dynamics.reduction import Profile, Reducer, profile, reducer
 from velplan.dynamics.run import Periodic, Run, periodic, simulate
 from velplan.dynamics.spec import DynamicsSpec, parse_dynamics
 from velplan.dynamics.steady import EnergyCurve, SteadyState, curve_of, steady_state
-from velplan.errors import VelplanError
+from velplan.errors import VelplanError, deprecated
 from velplan.mechanism.model import Mechanism
 
 PANELS = None
@@ -27,7 +27,7 @@ round-off (`velplan.dynamics.reduction.profile`)."""
 
 @dataclass(frozen=True, eq=False)
 class Dynamics:
-    """The dynamics of a mechanism (see `analyse`).
+    """The dynamics of a mechanism (see `dynamics_analysis`).
 
     Attributes
     ----------
@@ -210,7 +210,7 @@ class Dynamics:
         return np.asarray(self.motor.moment(w), dtype=float)
 
 
-def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpec | None = None,
+def dynamics_analysis(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpec | None = None,
             delta: float | None = None, panels: int | None = PANELS) -> Dynamics:
     """The dynamics of ``mech`` from its ``[dynamics]`` section (or ``spec``).
 
@@ -239,9 +239,12 @@ def analyse(mech: Mechanism, loads: Sequence | None = None, *, spec: DynamicsSpe
     return assemble(mech, spec, red, profile(red, spec.cycle, panels))
 
 
+analyse = deprecated(dynamics_analysis, "velplan.dynamics.analyse")
+
+
 def assemble(mech: Mechanism, spec: DynamicsSpec, red: Reducer, prof: Profile) -> Dynamics:
     """The dynamics of ``mech`` by ``spec`` on a reduction already tabulated (``prof`` over
-    ``spec.cycle``): what `analyse` and `Dynamics.with_spec` share."""
+    ``spec.cycle``): what `dynamics_analysis` and `Dynamics.with_spec` share."""
     constants = []
     if red.crank_inertia > 0:
         constants.append((f"crank {mech.crank.link}", red.crank_inertia))

@@ -12,7 +12,7 @@ from typing import Sequence
 
 import numpy as np
 
-from velplan.dynamics.analysis import Dynamics, analyse
+from velplan.dynamics.analysis import Dynamics, dynamics_analysis
 from velplan.dynamics.spec import ConstantInertia, parse_dynamics
 from velplan.errors import VelplanError
 from velplan.forces.loads import PressLoad
@@ -66,7 +66,7 @@ def compare_harmonics(mech: Mechanism, loads: Sequence, ns: Sequence[int], *, de
     if bad or not ns:
         raise VelplanError(f"--harmonics: give whole numbers ≥ 1, not {bad[0] if bad else 'nothing'!r}")
     spec = parse_dynamics(mech)
-    ref = analyse(mech, _with(loads, None), spec=spec, delta=delta)
+    ref = dynamics_analysis(mech, _with(loads, None), spec=spec, delta=delta)
     same = spec
     if ref.flywheel is not None:  # every N turns the exact load's flywheel, not its own
         added = ref.inertia - ref.declared
@@ -75,7 +75,7 @@ def compare_harmonics(mech: Mechanism, loads: Sequence, ns: Sequence[int], *, de
     end = ref.run.travel if ref.run is not None else ref.profile.cycle
     rows = []
     for n in ns:
-        d = analyse(mech, _with(loads, n), spec=same)
+        d = dynamics_analysis(mech, _with(loads, n), spec=same)
         stop = min(end, d.run.travel) if d.run is not None else end
         theta = np.linspace(0.0, stop, samples + 1)
         t0, w0, _ = ref.speed_at_travel(theta)

@@ -165,8 +165,7 @@ def reducer(mech: Mechanism, loads: Sequence | None = None) -> Reducer:
         from velplan.forces.parse import parse_loads
 
         loads = parse_loads(mech)
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    return Reducer(mech, tuple(loads), sense, reference_angle(mech))
+    return Reducer(mech, tuple(loads), mech.crank.sense, reference_angle(mech))
 
 
 @dataclass(frozen=True, eq=False)

@@ -6,6 +6,7 @@ Every error is a one-line `MechanismError` naming the table, the key and the val
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
@@ -135,7 +136,7 @@ class DynamicsSpec:
 
 
 def _keys(table: dict, allowed: tuple[str, ...], where: str) -> None:
-    if not isinstance(table, dict):
+    if not isinstance(table, Mapping):
         raise MechanismError(f"{where} must be a table, not {table!r}")
     for k in table:
         if k not in allowed:
@@ -180,7 +181,7 @@ def _ratio(table: dict, where: str, crank_rpm: float, *, required: bool, default
 
 def _list(table: dict, key: str, where: str) -> tuple[float, ...]:
     v = table.get(key)
-    if not isinstance(v, list) or len(v) < 2:
+    if not isinstance(v, (list, tuple)) or len(v) < 2:
         raise MechanismError(f"{where} {key} must be a list of at least 2 numbers, not {v!r}")
     out = []
     for i, x in enumerate(v):
@@ -209,9 +210,9 @@ def parse_dynamics(mech: Mechanism, table: dict | None = None) -> DynamicsSpec:
     crank_rpm = mech.crank.rpm
     inertias = []
     raw = table.get("inertia", [])
-    if isinstance(raw, dict):
+    if isinstance(raw, Mapping):
         raw = [raw]
-    if not isinstance(raw, list):
+    if not isinstance(raw, (list, tuple)):
         raise MechanismError(f"[[dynamics.inertia]] must be a list of tables, not {raw!r}")
     for i, t in enumerate(raw, 1):
         w = f"[[dynamics.inertia]] #{i}"
@@ -290,8 +291,7 @@ def parse_run(t: dict, mech: Mechanism) -> RunSpec:
     if "omega" not in t:
         raise MechanismError(f"{w}: missing omega (crank speed at position 1, rad/s)")
     omega = _number(t, "omega", w)
-    sense = 1.0 if mech.crank.omega >= 0 else -1.0
-    if omega * sense < 0:
+    if omega * mech.crank.sense < 0:
         raise MechanismError(f"{w} omega = {omega:g} turns the crank against the sense of [crank] "
                              f"(omega {mech.crank.omega:+g} rad/s); give it the same sign")
     travel = _number(t, "travel_deg", w, positive=True)

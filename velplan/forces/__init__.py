@@ -4,7 +4,7 @@ balancing moment that agree to round-off in exact mode.
 
     >>> import velplan, velplan.forces as vf
     >>> mech = velplan.load("shaper")
-    >>> res = vf.analyse_forces(mech, velplan.positions(mech, 12))
+    >>> res = vf.force_analysis_at(mech, velplan.positions(mech, 12))
     >>> res.max_relative_difference() < 1e-9
     True
 """
@@ -13,6 +13,8 @@ from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
 from velplan.forces.agreement import (
     ForceAnalysis,
     analyse_forces,
+    force_analysis,
+    force_analysis_at,
     lever_difference_percent,
     mean_balancing_moment,
     mechanism_actions,
@@ -42,8 +44,8 @@ from velplan.forces.power import (
 
 __all__ = [
     "Actions", "AppliedForce", "AppliedMoment", "ForceAnalysis", "ForcePolygon", "Inertia", "Kinetostatics",
-    "LeadForces", "Lever", "Reaction", "TriadForcePolygon", "analyse_forces", "constant_force", "constant_moment", "cutting_force",
-    "estimated_inertia", "gravity_actions", "images_from_kinematics", "indicator_force", "inertia_actions",
+    "LeadForces", "Lever", "Reaction", "TriadForcePolygon", "constant_force", "constant_moment", "cutting_force",
+    "estimated_inertia", "force_analysis", "force_analysis_at", "gravity_actions", "images_from_kinematics", "indicator_force", "inertia_actions",
     "inertias", "kinetic_energy", "kinetic_energy_rate", "kinetostatics", "lever_difference_percent",
     "load_actions", "mean_balancing_moment", "mechanism_actions", "parse_loads", "positions_from_kinematics",
     "power_balancing_moment", "powers", "press_load", "static_moment", "table_force", "triad_polygon", "zhukovsky_lever",

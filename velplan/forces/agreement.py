@@ -17,6 +17,7 @@ from velplan.forces.lever import Lever, images_from_plan, positions_from_kinemat
 from velplan.forces.loads import gravity_actions, load_actions
 from velplan.forces.parse import parse_loads
 from velplan.forces.power import power_balancing_moment
+from velplan.errors import deprecated
 from velplan.mechanism.model import Mechanism
 
 Method = Literal["kinetostatics", "lever", "power"]
@@ -73,7 +74,7 @@ class ForceAnalysis:
         return float(max(np.nanmax(np.abs(m - ref)) for m in (self.lever.balancing_moment, self.power)) / scale)
 
 
-def analyse_forces(mech: Mechanism, phi, *, loads: Sequence | None = None, gravity: bool = True,
+def force_analysis_at(mech: Mechanism, phi, *, loads: Sequence | None = None, gravity: bool = True,
                    inertia: bool = True, k: float = DEFAULT_K, mu_v: float | None = None,
                    drafting=None) -> ForceAnalysis:
     """Kinetostatics, lever and power method at crank angles ``phi`` (rad).
@@ -118,6 +119,9 @@ def force_analysis(kin: Kinematics, plan, loads: Sequence, *, gravity: bool = Tr
         images = {name: z * (plan.scale / mu) for name, z in images.items()}
     lv = zhukovsky_lever(mech, positions_from_kinematics(kin, None), images, mu, acts)
     return ForceAnalysis(kin, acts, ks, lv, power_balancing_moment(kin, acts), plan)
+
+
+analyse_forces = deprecated(force_analysis_at, "velplan.forces.analyse_forces")
 
 
 def lever_difference_percent(lever, kinetostatics) -> np.ndarray:
@@ -173,5 +177,5 @@ def mean_balancing_moment(mech: Mechanism, *, loads: Sequence | None = None, n: 
     else:
         breaks = [b for ld in loads for b in ld.breakpoints()]
         phi, w = _nodes(breaks, n)
-    res = analyse_forces(mech, phi, loads=loads, gravity=gravity, inertia=inertia, k=k)
+    res = force_analysis_at(mech, phi, loads=loads, gravity=gravity, inertia=inertia, k=k)
     return float(np.sum(res.balancing_moments[method] * w) / (2 * np.pi))

@@ -176,7 +176,7 @@ def output_track(mech: Mechanism, where: str = "load") -> Track:
                              f"mechanism {mech.name!r} has {what}")
     pt, link, pair = found
     st = stroke(mech)  # the output slider's stroke: its extremes' values are the slide s there
-    return Track(pt, link, pair, 1.0 if mech.crank.omega >= 0 else -1.0, st.start.phi, st.end.phi,
+    return Track(pt, link, pair, mech.crank.sense, st.start.phi, st.end.phi,
                  float(st.start.value), float(st.end.value), float(math.pi + st.theta), mech)
 
 
@@ -373,7 +373,7 @@ def table_force(mech: Mechanism, x: Sequence[float], values: Sequence[float], *,
     if over == "output":
         nodes = _travel_nodes(track, xs, working=stroke != "return", back=stroke != "working", head="start")
     return TableForce(name, link, point, over, xs, ys, direction, math.radians(angle_deg), guide, stroke,
-                      reference_angle(mech), 1.0 if mech.crank.omega >= 0 else -1.0, track, nodes)
+                      reference_angle(mech), mech.crank.sense, track, nodes)
 
 
 def _travel_nodes(track: Track, travel: Sequence[float], *, working: bool, back: bool,

@@ -59,6 +59,7 @@ raises `MechanismError` with a one-line message naming the load and the value.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 from velplan.errors import MechanismError
@@ -91,7 +92,7 @@ def parse_loads(mech: Mechanism) -> tuple:
 
 def parse_load(mech: Mechanism, t: Any, i: int = 0):
     """One ``[[load]]`` table (number ``i`` from 0) → a load value."""
-    if not isinstance(t, dict):
+    if not isinstance(t, Mapping):
         raise MechanismError(f"load #{i + 1} must be a table, not {t!r}")
     kind = t.get("kind")
     name = str(t.get("name", f"#{i + 1}"))

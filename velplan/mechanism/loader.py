@@ -12,7 +12,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from velplan.errors import MechanismError
+from velplan.errors import MechanismError, deprecated
 from velplan.mechanism.model import (
     GROUND,
     PRP,
@@ -31,6 +31,7 @@ from velplan.mechanism.model import (
     Triad,
 )
 from velplan.mechanism.structure import point_owners, schedule
+from velplan.options import LANGUAGES
 
 _TOP_KEYS = {
     "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
@@ -77,16 +78,33 @@ def load(source: str | Path) -> Mechanism:
             f"unknown mechanism {str(source)!r}: not a bundled example ({', '.join(example_names())}) "
             "nor a catalogue name (velplan examples --all) and no such file"
         )
-    return loads(text, name=name)
+    return parse(text, name=name)
 
 
-def loads(text: str, *, name: str = "mechanism") -> Mechanism:
-    """Parse and validate a mechanism from TOML text (see `load`)."""
+def parse(text: str, *, name: str = "mechanism") -> Mechanism:
+    """Parse and validate a mechanism from TOML text (see `load`).
+
+    >>> mech = parse('''
+    ... [ground]
+    ... O = [0.0, 0.0]
+    ... [crank]
+    ... link = "1"
+    ... pivot = "O"
+    ... tip = "A"
+    ... length = 0.1
+    ... rpm = 60
+    ... ''', name="crank")
+    >>> mech.crank.length, mech.crank.sense
+    (0.1, 1.0)
+    """
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise MechanismError(f"malformed TOML in {name}: {exc}") from None
     return from_dict(data, name=name)
+
+
+loads = deprecated(parse, "velplan.mechanism.loader.loads")
 
 
 def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
@@ -435,7 +453,7 @@ def _opt_name(t: dict, key: str) -> str | None:
     return None if v in (None, "") else str(v)
 
 
-SHEET_LANGUAGES = ("en", "ru", "uk", "zh")
+SHEET_LANGUAGES = LANGUAGES
 """Languages a ``[names]`` table may give (those of the sheets)."""
 SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100}
 """Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""

@@ -31,8 +31,9 @@ The model knows nothing of solving or drawing (see `velplan.analysis` and `velpl
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Literal, Union
+from typing import Any, Iterator, Literal, Union
 
 GROUND = "0"
 """Name of the frame (the fixed link)."""
@@ -73,7 +74,19 @@ class Crank:
     @property
     def sense(self) -> float:
         """The crank's turning sense: +1.0 counter-clockwise (ω ≥ 0), −1.0 clockwise."""
-        return 1.0 if self.omega >= 0 else -1.0
+        return turning_sense(self.omega)
+
+
+def turning_sense(omega):
+    """+1.0 for ω ≥ 0 (counter-clockwise), −1.0 for ω < 0; elementwise for an array of ω.
+    The one definition of the turning sense (`Crank.sense` reads it).
+
+    >>> turning_sense(-2.0), turning_sense(0.0)
+    (-1.0, 1.0)
+    """
+    if hasattr(omega, "shape") and getattr(omega, "ndim", 0):
+        return (omega >= 0) * 2.0 - 1.0
+    return 1.0 if omega >= 0 else -1.0
 
 
 @dataclass(frozen=True)
@@ -254,6 +267,63 @@ class Triad:
 Group = Union[RRR, RRP, RPR, PRP, RPP, Triad]
 
 
+class Table(Mapping):
+    """A TOML table frozen: an immutable, hashable mapping whose tables are `Table` and whose
+    arrays are tuples (`freeze`). The model keeps the ``[[load]]`` and ``[dynamics]`` tables
+    so, for the layers above to interpret; its repr is the file's (dicts and lists).
+
+    >>> t = freeze({"kind": "force", "x": [0.0, 1.0]})
+    >>> t["x"], hash(t) == hash(freeze({"x": [0.0, 1.0], "kind": "force"})), t
+    ((0.0, 1.0), True, {'kind': 'force', 'x': [0.0, 1.0]})
+    """
+
+    __slots__ = ("_items", "_hash")
+
+    def __init__(self, items: Mapping[str, Any] = ()):
+        self._items = {str(k): freeze(v) for k, v in dict(items).items()}
+        self._hash = None
+
+    def __getitem__(self, key: str) -> Any:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __hash__(self) -> int:
+        if self._hash is None:
+            self._hash = hash(frozenset(self._items.items()))
+        return self._hash
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Mapping) and dict(self._items) == dict(other)
+
+    def __repr__(self) -> str:
+        return repr(thaw(self))
+
+
+def freeze(value: Any) -> Any:
+    """``value`` with every dict made a `Table` and every list a tuple (recursively)."""
+    if isinstance(value, Table):
+        return value
+    if isinstance(value, Mapping):
+        return Table(value)
+    if isinstance(value, (list, tuple)):
+        return tuple(freeze(v) for v in value)
+    return value
+
+
+def thaw(value: Any) -> Any:
+    """The plain dicts and lists of a frozen value (the inverse of `freeze`)."""
+    if isinstance(value, Mapping):
+        return {k: thaw(v) for k, v in value.items()}
+    if isinstance(value, tuple):
+        return [thaw(v) for v in value]
+    return value
+
+
 @dataclass(frozen=True)
 class LinkPoint:
     """A named point fixed to a link: ``along`` m along the link's reference direction from
@@ -318,10 +388,14 @@ class Mechanism:
     reference_deg : float or None
         Crank angle (deg) of position 1; ``None`` = the start of the slow (working) stroke of
         the output, or 0 without an output.
-    loads : tuple of dict
-        Raw load declarations, interpreted by the force analysis.
-    dynamics : dict or None
-        The raw ``[dynamics]`` section, interpreted by `velplan.dynamics`.
+    loads : tuple of Table
+        The ``[[load]]`` tables as the file gives them (frozen), interpreted by the force
+        analysis (`velplan.forces.parse_loads`).
+    dynamics : Table or None
+        The ``[dynamics]`` section (frozen), interpreted by `velplan.dynamics.parse_dynamics`.
+
+    A mechanism is an immutable value: equal files give equal, hashable mechanisms, so results
+    of a mechanism can be cached by it (`velplan.analysis.extremes.stroke`).
     names : tuple of (str, str)
         The mechanism's name in the sheets' languages (``[names]``: ``ru = "Строгальный
         станок"``), for the title block; a sheet in another language writes ``name``.
@@ -339,8 +413,14 @@ class Mechanism:
     description: str = ""
     gravity: float = 9.81
     loads: tuple = ()
-    dynamics: dict | None = field(default=None, compare=False)
+    dynamics: Table | None = None
     names: tuple[tuple[str, str], ...] = ()
+
+    def __post_init__(self):
+        # loads and dynamics arrive as parsed TOML (dicts, lists): kept frozen, so hashable
+        object.__setattr__(self, "loads", tuple(freeze(ld) for ld in self.loads))
+        if self.dynamics is not None:
+            object.__setattr__(self, "dynamics", freeze(self.dynamics))
 
     def name_in(self, lang: str) -> str:
         """The mechanism's name in ``lang`` (``[names]``), else its ``name``."""

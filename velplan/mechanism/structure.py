@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Union
 
-from velplan.errors import MechanismError
+from velplan.errors import MechanismError, deprecated
 from velplan.mechanism.model import (
     GROUND,
     PRP,
@@ -334,12 +334,20 @@ class Structure:
         return f"W = 3·{self.n_links} − 2·{self.p5} − {self.p4} = {self.mobility}"
 
 
-def analyse(mech: Mechanism) -> Structure:
+def structure(mech: Mechanism) -> Structure:
     """Structural analysis of ``mech``: link and pair counts and the Assur groups with their class
-    and order (dyads: class II, order 2; triads: class III, order 3)."""
+    and order (dyads: class II, order 2; triads: class III, order 3).
+
+    >>> import velplan
+    >>> structure(velplan.load("shaper")).formula()
+    'W = 3·5 − 2·7 − 0 = 1'
+    """
     ps = pairs(mech)
     groups = tuple((g.name, g.kind, *group_class(g), g.links) for g in mech.groups)
     return Structure(n_links=len(mech.links), p5=len(ps), p4=0, groups=groups)
+
+
+analyse = deprecated(structure, "velplan.mechanism.structure.analyse")
 
 
 def _names(names) -> str:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from velplan.mechanism.structure import analyse, pairs
+from velplan.mechanism.structure import structure, pairs
 from velplan.note.model import Contents, Equation, Heading, PageBreak, Para, TitlePage
 from velplan.note.text import p
 from velplan.views.data import data_lines
@@ -39,7 +39,7 @@ def data_section(note, study) -> None:
 def structure_section(note, study) -> None:
     """Links, pairs, W by Chebyshev, the Assur groups (any class), the formula of structure."""
     lang, mech = note.lang, study.mechanism
-    st = analyse(mech)
+    st = structure(mech)
     note.add(Heading(p("sec_structure", lang), 1))
     note.add(Para.of(p("links_pairs", lang, st.n_links, st.p5, st.p4)))
     note.add(Equation(rf"W = 3n - 2p_{{5}} - p_{{4}} = 3\cdot {st.n_links} - 2\cdot {st.p5} - {st.p4} = "

@@ -100,6 +100,13 @@ class Note:
     def add(self, *blocks) -> None:
         self.blocks.extend(blocks)
 
+    def save(self, path):
+        """Write the note to ``path`` in the format its suffix names (.docx, .pdf, .html, .md;
+        `velplan.note.write_note`)."""
+        from velplan.note.writers import write_note
+
+        return write_note(self, path)
+
     def figure(self, caption: str, png: bytes, width_mm: float) -> int:
         """Add a figure with the next number; returns the number."""
         from velplan.note.text import p

@@ -20,8 +20,8 @@ from velplan.plans.context import Context, Figure, Lazy
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.scale import check_drawable, check_scale, standard_scale
 from velplan.plans.steps import Intersect, Step
+from velplan.options import PlanKind as Kind
 
-Kind = Literal["velocity", "acceleration"]
 TARGET_MM = {"velocity": 100.0, "acceleration": 120.0}
 """Default length (mm) of the longest vector when the scale is chosen automatically."""
 FLAG_BELOW = 0.1

@@ -1,5 +1,6 @@
 """The table of transfer functions (velocity analogues) V/ω1 (m) and ω/ω1 over the positions,
-laid out as course works tabulate them (seed 000, table 2)."""
+laid out as course works tabulate them (seed 000, table 2). One table of a study: the sheet, the
+answer key of a batch and the note print the same rows (`table_points`)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.mechanism.model import GROUND, RPP, Mechanism, Triad
+from velplan.mechanism.structure import coincident_points, pairs
 from velplan.plans.engine import PlanResult
 
 
@@ -43,21 +46,32 @@ class TransferTable:
         return "\n".join(out) + "\n"
 
 
+def table_points(mech: Mechanism, names) -> list[str]:
+    """Of ``names``, the points worth a row, in order: the moving joints and named points, not
+    the frame's points (a coincident point of a fixed guide among them), the centres of mass
+    (unless a joint is one) nor a construction point (an RPP runner's origin, a triad's special
+    point)."""
+    ground = set(mech.ground_points) | {n for n, link in coincident_points(mech).items() if link == GROUND}
+    joints = {p.point for p in pairs(mech)}
+    centres = {m.centre for m in mech.masses}
+    origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
+    origins |= {g.special_name for g in mech.groups if isinstance(g, Triad)}  # Assur's point
+    return [p for p in names
+            if p not in ground and p not in origins and not ((p in centres or p.startswith("S")) and p not in joints)]
+
+
 def transfer_table(res: PlanResult, *, points: list[str] | None = None) -> TransferTable:
     """Transfer functions read off a velocity plan ``res`` (all its positions).
 
-    Points default to every named moving point but the centres of mass named S… (the usual
-    letter) and the runners' auxiliary origins K; links to every link that turns.
+    Points default to `table_points` of the solved points (the rows every table of a study
+    prints); links to every link that turns.
     """
     if res.kind != "velocity":
         raise ValueError("transfer functions are read off a velocity plan")
     mech, kin = res.plan.mechanism, res.kin
     w1 = np.abs(kin.crank_rate("omega", res.index))
-    ground = dict(mech.ground)
     if points is None:
-        centres = {m.centre for m in mech.masses if m.centre.startswith("S")}
-        origins = {g.origin_name for g in mech.groups if g.kind == "RPP"}
-        points = [p for p in res.vectors if p not in ground and p not in centres | origins]
+        points = table_points(mech, list(kin.point_index))
     rows = {f"V_{p}": np.hypot(*res.vector(p).T) / w1 for p in points}
     for link, fig in res.plan.figures["v"].items():
         if link not in (mech.crank.link, "0") and fig is not None and link in res.omegas:

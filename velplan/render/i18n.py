@@ -14,14 +14,11 @@ Examples
 from __future__ import annotations
 
 from types import MappingProxyType
-from typing import Literal, Mapping
+from typing import Mapping
 
 from velplan.errors import VelplanError
+from velplan.options import LANGUAGES
 
-Language = Literal["en", "ru", "uk", "zh"]
-
-#: Languages a sheet can be labelled in, in a stable order (used in error messages).
-LANGUAGES: tuple[str, ...] = ("en", "ru", "uk", "zh")
 
 
 def _entry(en: str, ru: str, uk: str, zh: str) -> Mapping[str, str]:

@@ -15,7 +15,7 @@ from typing import Literal, Mapping
 
 from velplan.errors import VelplanError
 from velplan.render.fonts import BUNDLED_FAMILY
-from velplan.render.i18n import LANGUAGES, Language
+from velplan.options import LANGUAGES, Language
 
 LineType = Literal["thick", "thin", "construction", "axis", "hidden"]
 

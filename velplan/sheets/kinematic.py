@@ -12,14 +12,13 @@ raises :class:`~velplan.errors.ScaleError` with a one-line message.
 Examples
 --------
 >>> sheet = build_sheet("crank-slider", fmt="A3", lang="en")
->>> sheet.scales["mu_l"], sorted(sheet.views)[:2]
-(0.001, ['diagrams', 'mechanism'])
+>>> sheet.scales["mu_l"], {"mechanism", "diagrams", "table"} <= set(sheet.views)
+(0.002, True)
 """
 
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
@@ -142,7 +141,8 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                 kind: Kind = "both", fmt: Format = "A1", lang: str = "ru",
                 frame_style: str | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
-                style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = ()) -> Sheet:
+                style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
+                scale_per_plan: bool = False) -> Sheet:
     """Compose the kinematic-analysis sheet of `mech`.
 
     Parameters
@@ -168,8 +168,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
         Title block fields; the scale field is filled with the scheme's scale when empty.
     diagrams : bool or None
         Draw the kinematic diagrams (True: or raise ScaleError), leave them out (False),
-        or draw them when they fit and the mechanism names an output (None, the default:
-        an A3 sheet has no room for them beside the table).
+        or draw them when they fit and the mechanism names an output (None, the default):
+        beside the table, or else in the largest free corner left by the scheme and the
+        plans, in a row or a column.
     table : bool
         Draw the table of transfer functions.
     data : bool
@@ -179,6 +180,10 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     centres : sequence of int
         Positions (1-based) whose instant centres found by Kennedy lines are marked on the
         scheme, where they fall on it (`velplan.views.centres.centre_marks`).
+    scale_per_plan : bool
+        Fit each plan to its cell at its own μ; by default all velocity plans of the sheet
+        share one μv and all acceleration plans one μa (the largest of their fits), so that
+        they compare by eye.
 
     Raises
     ------
@@ -240,8 +245,10 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     drawn: dict = {}  # (kind, number, μ) → (result, view): a plan's view does not depend on its cell
     # the default positions' plans that fit no scheme: the first position's alone
     attempts = [chosen] + ([chosen[:1]] if plans is None and len(chosen) > 1 else [])
+    bold = _extreme_positions(study)
     for mview, attempt in ((m, a) for a in attempts for m in _mechanism_candidates(
-            mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt, extreme=study.other_extreme)):
+            mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt, extreme=study.other_extreme,
+            bold=bold)):
         if best is not None and attempt is not chosen:
             break
         # the plans go to the right of the scheme, or below it across the sheet
@@ -266,9 +273,16 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     if best is None:
         raise failure
     _, mview, plan_views, results, cells = best
+    if not scale_per_plan:
+        plan_views, results = _one_scale_per_kind(plan_views, results, cells, lang, sizes, drawn)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
+    if "diagrams" not in views and diagrams is not False and mech.output is not None:
+        placed = _diagrams_in_free_corner(study, lang, sizes, views, (fx0, fy0, fx1, fy1),
+                                          (tx0, ty0, tx1, ty1), g, fmt)
+        if placed is not None:
+            views["diagrams"] = placed
     if data:
         from velplan.views.data import data_view
         from velplan.views.readings import readings_view
@@ -349,7 +363,8 @@ def _fit_table(study: Study, lang, sizes: Sizes, *, max_width: float, fmt: str) 
                      f"{max_width:.0f} mm free); use fewer --positions or a larger --format")
 
 
-def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View:
+def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str,
+                  arrangement: str = "row") -> View:
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     d = study.diagrams
@@ -357,7 +372,7 @@ def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View
 
     def build(length, height):
         return diagram_view(d, length_mm=length, height_mm=height, lang=lang, omega=study.mechanism.crank.omega,
-                            arrangement="row", sizes=sizes.diagram)
+                            arrangement=arrangement, sizes=sizes.diagram)
 
     # the longest φ axis (μφ a round number of degrees per mm) that fits with the lowest
     # diagrams, then the highest diagrams that fit with it
@@ -404,8 +419,72 @@ def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str) -> View
     return best[1]
 
 
+def _extreme_positions(study: Study) -> tuple[int, ...]:
+    """Positions (1-based) among the study's n that are extreme positions of the output."""
+    st = study.stroke
+    if st is None:
+        return ()
+    out = []
+    for phi in (st.start.phi, st.end.phi):
+        gap = np.abs((study.phi - phi + np.pi) % (2 * np.pi) - np.pi)
+        if gap.min() < np.radians(0.5):
+            out.append(int(np.argmin(gap)) + 1)
+    return tuple(dict.fromkeys(out))
+
+
+def _one_scale_per_kind(plan_views, results, cells, lang, sizes: Sizes, drawn: dict):
+    """The plans redrawn so that each kind has one μ, the largest of their fits (every plan
+    then fits its cell), each centred in its cell again."""
+    common: dict[str, float] = {}
+    for res in results.values():
+        common[res.kind] = max(common.get(res.kind, 0.0), res.scale)
+    views, out = {}, {}
+    for name, res in results.items():
+        mu = common[res.kind]
+        number = int(name.rsplit("-", 1)[1])
+        if res.scale != mu:
+            key = (res.kind, number, mu)
+            if key not in drawn:
+                at = res.at_scale(mu)
+                drawn[key] = at, plan_view(at, number - 1, number=number, lang=lang,
+                                           sizes=sizes.plan)
+            res, view = drawn[key]
+            x0, y0, x1, y1 = cells[name]
+            views[name] = view.at(x0 + (x1 - x0 - view.width_mm) / 2,
+                                  y0 + (y1 - y0 - view.height_mm) / 2)
+        else:
+            views[name] = plan_views[name]
+        out[name] = res
+    return views, out
+
+
+def _diagrams_in_free_corner(study: Study, lang, sizes: Sizes, views, area, title_block, gap,
+                             fmt):
+    """The kinematic diagrams in the largest free rectangle at the lower left corner of the
+    drawing area, in a row, a grid or a column; None where they fit nowhere."""
+    fx0, fy0, fx1, _ = area
+    boxes = [v.bounds for v in views.values()] + [title_block]
+    best = None
+    for right in sorted({b[0] for b in boxes if b[0] > fx0 + 60.0} | {fx1 + gap}):
+        x1 = right - gap
+        below = [b[1] for b in boxes if b[0] < x1 and b[2] > fx0]
+        y1 = min(below, default=area[3] + gap) - gap
+        if x1 - fx0 < MIN_DIAGRAM_MM or y1 - fy0 < 30.0:
+            continue
+        for arrangement in ("row", "grid", "column"):
+            try:
+                view = _fit_diagrams(study, lang, sizes, (fx0, fy0, x1, y1), fmt=fmt,
+                                     arrangement=arrangement)
+            except ScaleError:
+                continue
+            score = view.width_mm * view.height_mm
+            if best is None or score > best[0]:
+                best = (score, view.at(fx0, fy0))
+    return None if best is None else best[1]
+
+
 def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region, *, extreme=None,
-                          fmt: str, count: int = 3):
+                          fmt: str, count: int = 3, bold=()):
     """Up to `count` schemes at successive ESKD scales, the largest that fits first."""
     x0, y0, x1, y1 = region
     w, h = 0.62 * (x1 - x0), y1 - y0
@@ -417,7 +496,8 @@ def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region,
         if mech.crank.length / mu < MIN_CRANK_MM:
             break
         view = mechanism_view(mech, mu_l=mu, n=n, thick=thick, lang=lang,
-                              sizes=sizes.mechanism, kin=kin, fine=fine, extreme=extreme)
+                              sizes=sizes.mechanism, kin=kin, fine=fine, extreme=extreme,
+                              bold=bold)
         if fits(view, w, h):
             yield view
             found += 1

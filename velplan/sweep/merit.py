@@ -14,7 +14,7 @@ import numpy as np
 
 from velplan.analysis.design import DesignKinematics, solve_design
 from velplan.analysis.extremes import output_quantity
-from velplan.mechanism.model import RPR, Mechanism
+from velplan.mechanism.model import RPR, Mechanism, turning_sense
 
 FIGURES = {
     "H": "stroke of the output (m; rad for a rocker)",
@@ -144,9 +144,9 @@ def _strokes(mech: Mechanism, dk: DesignKinematics, q, engine: str) -> tuple[dic
                       dk.phi[rows, np.nanargmin(np.where(np.isnan(f), np.inf, f), axis=1)]], axis=1)
     x, val = _newton(mech, dk.values, start, kind, i, 2 * np.pi / n, engine)
     hi, lo = x[:, 0], x[:, 1]
-    sense = np.sign(mech.crank.omega) or 1.0
+    sense = mech.crank.sense
     if "crank.omega" in dk.values or "crank.rpm" in dk.values:
-        sense = np.where(dk.flat.omega1[::n] >= 0, 1.0, -1.0)
+        sense = turning_sense(dk.flat.omega1[::n])
     span = (sense * (hi - lo)) % (2 * np.pi)
     theta = np.abs(span - np.pi)
     slow_lo = span > np.pi

@@ -24,7 +24,7 @@ from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, number, scale_text, unit
 
-Arrangement = Literal["row", "column"]
+Arrangement = Literal["row", "column", "grid"]
 
 #: Pole distances a draughtsman picks from, mm.
 POLE_DISTANCES_MM: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0)
@@ -251,8 +251,9 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
         Length of the φ axis for one crank turn, mm (μφ = 2π / length).
     height_mm : float
         Largest ordinate of each diagram, mm (the scales are chosen to keep within it).
-    arrangement : {"row", "column"}
-        Diagrams side by side, or one above the other (φ axes aligned).
+    arrangement : {"row", "column", "grid"}
+        Diagrams side by side, one above the other (φ axes aligned), or s and v side by
+        side with a under s.
     omega : float
         The crank's constant speed, rad/s: the velocity and acceleration diagrams are then
         read in time (V in m/s, a in m/s², with the time scale μt = μφ/ω); 0 draws the
@@ -260,13 +261,20 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     """
     sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
     tops = _tops(d, sc)
-    common = max(tops) if arrangement == "row" else None
+    common = max(tops) if arrangement != "column" else None
     plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common, omega=omega)
              for k in "sva"]
     from velplan.views.base import bounds_of, shift
 
     items: list[Primitive] = []
     cursor = 0.0
+    if arrangement == "grid":
+        (ax0, ay0, ax1, _), (bx0, by0, _, _), (cx0, _, _, cy1) = (bounds_of(p) for p in plots)
+        items += [shift(q, -ax0, 0.0) for q in plots[0]]
+        items += [shift(q, ax1 - ax0 + gap_mm - bx0, 0.0) for q in plots[1]]
+        below = min(ay0, by0) - gap_mm - cy1
+        items += [shift(q, -cx0, below) for q in plots[2]]
+        plots = []
     for p in plots:
         x0, y0, x1, y1 = bounds_of(p)
         if arrangement == "row":

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 import shapely
@@ -340,7 +341,8 @@ class MechanismSizes:
 def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
                    thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
-                   extreme: Kinematics | None = None, special: bool = False) -> View:
+                   extreme: Kinematics | None = None, special: bool = False,
+                   bold: Sequence[int] = ()) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
     Parameters
@@ -361,8 +363,10 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         Draw the thick position alone: no other positions, trajectories or numbers (the
         step-by-step figures).
     extreme : Kinematics, optional
-        The other extreme position of the output (one position), drawn dashed and marked
+        The other extreme position of the output (one position), drawn bold and marked
         ``1′`` at the output point (`velplan.study.Study.other_extreme`).
+    bold : sequence of int
+        Positions (1-based) drawn bold rather than thin: the extreme ones among the n.
     special : bool
         Draw each triad's Assur special point in the thick position: the lines of the two
         leads that cross there (thin, dash-dotted) and the point, lettered (the figures of a
@@ -393,14 +397,18 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     for i in range(len(kin)):
         if i == t or not kin.valid[i] or single:
             continue
+        weight = "thick" if i + 1 in bold else "thin"
         for s in geo.segments(i):
             items += link(mm(s.a), mm(s.b), trim_a_mm=0.0, trim_b_mm=0.0, layer="positions",
-                          line="thin")
+                          line=weight)
+            if weight == "thick":  # letters keep off the bold lines too
+                obstacles.append(shapely.LineString([mm(s.a), mm(s.b)]).buffer(0.6))
 
     if extreme is not None and not single and extreme.valid[0]:
         other = _Geometry(mech, extreme)
         for sg in other.segments(0):
-            items.append(Polyline([mm(sg.a), mm(sg.b)], "positions", "hidden"))
+            items.append(Polyline([mm(sg.a), mm(sg.b)], "positions", "thick"))
+            obstacles.append(shapely.LineString([mm(sg.a), mm(sg.b)]).buffer(0.6))
 
     # the thick position: guides, pivots, links, blocks, joints
     centre = mm(_centroid(kin))
@@ -599,27 +607,21 @@ def _crank_numbers(mech: Mechanism, kin: Kinematics, mm, size: float) -> list[Te
 
 def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool,
                     centre, guide_side=None) -> list[Text]:
-    """Numbers of the positions of the output point; close ones share one label."""
+    """Numbers of the positions of the output point, one label each, beside its point and off
+    the path; where points crowd (an extreme position), a number that would touch one already
+    written steps further out along the path's normal, so none overlaps another."""
+    from velplan.render.layout import label_box
+
     xy = mm(kin.position(point))
     n = len(xy)
-    clusters: list[list[int]] = []
-    order = list(range(n))
-    for i in order:
-        for c in clusters:
-            if np.hypot(*(xy[i] - xy[c[0]])) < 2.2 * size:
-                c.append(i)
-                break
-        else:
-            clusters.append([i])
-    out = []
-    for c in clusters:
-        p = xy[c].mean(axis=0)
-        i = c[0]
+    _, _, vt = np.linalg.svd(xy - xy.mean(axis=0))
+    out: list[Text] = []
+    boxes: list = []
+    for i in range(n):
+        p = xy[i]
         tangent = xy[(i + 1) % n] - xy[(i - 1) % n]
-        if np.hypot(*tangent) < 1e-6 * max(np.ptp(xy, axis=0).max(), 1e-9):
-            # an extreme position: its neighbours coincide; take the path's main direction
-            _, _, vt = np.linalg.svd(xy - xy.mean(axis=0))
-            tangent = vt[0]
+        if np.hypot(*tangent) < 0.2 * size:
+            tangent = vt[0]  # an extreme position: its neighbours nearly coincide
         normal = np.array([-tangent[1], tangent[0]]) / np.hypot(*tangent)
         if guide_side is not None:
             if float(guide_side @ normal) < 0:
@@ -630,8 +632,14 @@ def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool
         gap = (BLOCK_MM[1] / 2 + _HATCH_MM + 1.0) if on_track else 2.0
         if anchor == "middle":
             gap += 0.6 * size  # half the text's height, above or below the path
-        text = ",".join(str(k + 1) for k in sorted(c))
-        out.append(Text(p + normal * gap, text, "labels", size, anchor, "middle"))
+        for row in range(4 * n):
+            text = Text(p + normal * (gap + 0.5 * size * row), str(i + 1), "labels", size,
+                        anchor, "middle")
+            box = label_box(text).buffer(0.3 * size)
+            if not any(box.intersects(b) for b in boxes):
+                break
+        boxes.append(box)
+        out.append(text)
     return out
 
 
@@ -665,7 +673,7 @@ def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> li
         g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
         if g > gap + 1e-9:
             best, gap = cand, g
-    sweep = 70.0 if c.omega >= 0 else -70.0
+    sweep = 70.0 * c.sense
     start = best - sweep / 2
     arrow = rotation_arrow(pivot, radius, start, sweep, layer="mechanism")
     mid = math.radians(best)

@@ -12,10 +12,9 @@ import math
 
 import numpy as np
 
-from velplan.mechanism.model import GROUND, RPP, Mechanism, Triad
-from velplan.mechanism.structure import pairs
+from velplan.mechanism.model import Mechanism
 from velplan.plans.engine import PlanResult
-from velplan.plans.table import TransferTable, transfer_table
+from velplan.plans.table import TransferTable, table_points, transfer_table
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
@@ -27,26 +26,6 @@ _PAD = 1.0  # cell padding each side, mm
 _WIDE = 1.3
 
 
-def table_points(mech: Mechanism, names) -> list[str]:
-    """Points worth a row: the moving joints and named points, not the centres of mass
-    (unless a joint is one) nor a construction point (an RPP runner's origin, a triad's
-    special point)."""
-    from velplan.mechanism.structure import coincident_points
-
-    # the frame's points (a coincident point of a fixed guide among them) do not move
-    ground = set(mech.ground_points) | {n for n, link in coincident_points(mech).items() if link == GROUND}
-    joints = {p.point for p in pairs(mech)}
-    centres = {m.centre for m in mech.masses}
-    origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
-    origins |= {g.special_name for g in mech.groups if isinstance(g, Triad)}  # Assur's point
-    out = []
-    for p in names:
-        if p in ground or p in origins:
-            continue
-        if (p in centres or p.startswith("S")) and p not in joints:
-            continue
-        out.append(p)
-    return out
 
 
 def sheet_table(res: PlanResult) -> TransferTable:
