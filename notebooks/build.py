@@ -1238,7 +1238,7 @@ NB07 = [
         print(f"ω{link} by centres = {by_centres.omegas[link]:+.6f} rad/s")
     """, "readout"),
     md("""
-    ## Try it yourself
+    ## Exercises
 
     1. `velplan steps triad-press --position 3 -o steps/` writes each step as a figure;
        `velplan steps triad-press --kind centres -o centres/` the Kennedy construction.
