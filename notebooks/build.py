@@ -1123,7 +1123,7 @@ NB07 = [
 
     import velplan
     from velplan.analysis.centres import instant_centres
-    from velplan.analysis.triad import special_pair
+    from velplan.analysis.solver import special_pair
     from velplan.notebook import draw_mechanism, draw_plan, draw_steps
     from velplan.plans import Plan
     from velplan.plans.centres import construct_centres, velocities_by_centres

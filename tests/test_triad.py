@@ -21,6 +21,7 @@ import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 import velplan
+import velplan.analysis.solver
 from velplan.analysis import triad
 from velplan.analysis.assembly import check_full_rotation, limits
 from velplan.cli import main
@@ -107,7 +108,7 @@ def test_special_point_lies_on_both_chosen_lead_lines(name):
     for g in (g for g in mech.groups if g.kind == "triad"):
         size = max(max(g.sides), max(lead.length for lead in g.leads))
         K = kin.positions[:, kin.point_index[g.special_name]] @ np.array([1, 1j])
-        for i in triad.special_pair(mech, g):
+        for i in velplan.analysis.solver.special_pair(mech, g):
             lead = g.leads[i]
             J = kin.positions[:, kin.point_index[g.joints[i]]] @ np.array([1, 1j])
             if lead.slider:
@@ -183,8 +184,8 @@ def test_candidates_are_every_real_assembly(name, phi_deg):
     g = next(g for g in mech.groups if g.kind == "triad")
     phi = math.radians(phi_deg)
     up = triad.upstream(mech, g)
-    x, th, ok = triad._Closure(g, triad.leads_at(up, g, np.array([phi]))).candidates()
-    ref = triad._Closure(g, triad.leads_at(up, g, np.array([phi]))).ref
+    x, th, ok = triad._Closure(g, triad.leads_at(up, g, np.array([phi]), velplan.solve)).candidates()
+    ref = triad._Closure(g, triad.leads_at(up, g, np.array([phi]), velplan.solve)).ref
     loc = local_joints(g)
     theirs = _distinct([(x[0, k] - loc[ref] * cmath.exp(1j * th[0, k]), th[0, k]) for k in np.flatnonzero(ok[0])])
     ours = _distinct(scan_assemblies(g, _known(mech, g, phi)))
@@ -372,7 +373,7 @@ def test_the_complete_class_three_file_of_the_docs_works():
     mech = velplan.parse(_doc_block("A complete class III file"), name="my-triad-press")
     study = velplan.Study(mech)  # turns fully
     g = mech.groups[0]
-    assert g.kind == "triad" and g.pair == (0, 2) and triad.special_pair(mech, g) == (0, 2)
+    assert g.kind == "triad" and g.pair == (0, 2) and velplan.analysis.solver.special_pair(mech, g) == (0, 2)
     assert "mechanism of class 3" in run_cli("info", "triad-press")
     # the same machine as the catalogue's triad-press, with the special point on leads 1 and 3
     ref = velplan.Study("triad-press")

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.analysis.triad import special_pair
+from velplan.analysis.solver import special_pair
 from velplan.mechanism.loader import catalogue_names
 from velplan.mechanism.model import GROUND, RRR, Triad
 

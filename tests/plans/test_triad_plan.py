@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.analysis.triad import special_pair
+from velplan.analysis.solver import special_pair
 from velplan.cli import main
 from velplan.errors import SingularPositionError
 from velplan.mechanism.model import GROUND

@@ -467,7 +467,7 @@ def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech) ->
             if isinstance(item, Triad):
                 from velplan.analysis import triad
 
-                trk = triad.track(triad.upstream(mech, item), item)
+                trk = triad.track(triad.upstream(mech, item), item, solve)
                 res = triad.solve_triad(item, st, phi, trk, scale)
             else:
                 res = solve_group(item, st, scale)
@@ -482,6 +482,19 @@ def _solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> 
     st.points[c.tip] = Motion(*crank_tip(st.points[c.pivot].p, c.length, phi, w1, e1))
     n = phi.shape[0]
     st.links[c.link] = LinkMotion(c.pivot, phi.copy(), np.full(n, w1), np.full(n, e1))
+
+
+def special_pair(mech: Mechanism, g: Triad) -> tuple[int, int]:
+    """The two leads (indices 0…2) of the triad ``g`` of ``mech`` whose lines give Assur's
+    special point: the file's ``pair``, else the pair whose lines cross at the largest smallest
+    angle over the tracked branch."""
+    if g.pair is not None:
+        return g.pair
+    from velplan.analysis import triad
+
+    local, _ = _about_pivot(mech)
+    here = local.groups[mech.groups.index(g)]
+    return triad.track(triad.upstream(local, here), here, solve).pair
 
 
 def group_point(g: Group) -> str:

@@ -310,11 +310,10 @@ def upstream(mech: Mechanism, g: Triad) -> Mechanism:
                      groups=groups, points=points)
 
 
-def leads_at(up: Mechanism, g: Triad, phi: np.ndarray) -> list[Lead3]:
-    """The leads' known motions at crank angles ``phi`` (unit crank speed), by the solver on
-    ``up``, the mechanism cut before ``g`` (`upstream`)."""
-    from velplan.analysis.solver import solve
-
+def leads_at(up: Mechanism, g: Triad, phi: np.ndarray, solve) -> list[Lead3]:
+    """The leads' known motions at crank angles ``phi`` (unit crank speed), by ``solve`` (the
+    solver's `velplan.solve`, passed in: this module sits below it) on ``up``, the mechanism
+    cut before ``g`` (`upstream`)."""
     names = [lead.guide.through if lead.slider else lead.joint for lead in g.leads]
     kin = solve(up, phi, order=2)
     zc = lambda arr, name: arr[:, kin.point_index[name]] @ np.array([1, 1j])  # noqa: E731
@@ -331,22 +330,22 @@ def leads_at(up: Mechanism, g: Triad, phi: np.ndarray) -> list[Lead3]:
     return out
 
 
-def _roots_at(mech, g, phi):
-    cl = _Closure(g, leads_at(mech, g, np.atleast_1d(phi)))
+def _roots_at(mech, g, phi, solve):
+    cl = _Closure(g, leads_at(mech, g, np.atleast_1d(phi), solve))
     x, th, ok = cl.candidates()
     local = g.local()
     return x, th, ok, cl, local
 
 
 @lru_cache(maxsize=64)
-def track(mech: Mechanism, g: Triad) -> Track:
+def track(mech: Mechanism, g: Triad, solve) -> Track:
     """The branch of ``g`` picked by its ``assembly``, followed over the crank's turn (cached
-    per geometry; ``mech`` may hold only what comes before ``g``)."""
+    per geometry; ``mech`` holds what comes before ``g``, `upstream`, solved by ``solve``)."""
     size = _size(g)
     phi0 = g.assembly_deg
-    x0, th0, ok0, cl, local = _roots_at(mech, g, np.array([phi0]))
+    x0, th0, ok0, cl, local = _roots_at(mech, g, np.array([phi0]), solve)
     if not ok0.any():
-        return Track(phi0, np.empty(0), np.empty(0, complex), np.empty(0), False, _pair(g, None), size)
+        return Track(phi0, np.empty(0), np.empty(0, complex), np.empty(0), False, _pair(g, None, solve), size)
     # the root nearest to the joints as drawn
     cost = np.zeros(x0.shape[1])
     ref = cl.ref
@@ -356,7 +355,7 @@ def track(mech: Mechanism, g: Triad) -> Track:
         cost = cost + np.abs(pos - complex(px, py)) ** 2
     k = int(np.nanargmin(np.where(ok0[0], cost, np.inf)))
     start = (x0[0, k], th0[0, k])
-    fwd = _walk(mech, g, phi0, start, +1, size)
+    fwd = _walk(mech, g, phi0, start, +1, size, solve)
     full = fwd[-1][0] >= 2 * np.pi - EDGE_TOL
     if full:
         if _distance(fwd[-1][1], fwd[-1][2], start[0], start[1], size) > 1e-6:
@@ -365,20 +364,20 @@ def track(mech: Mechanism, g: Triad) -> Track:
                 "another assembly; the mechanism does not repeat its motion each turn")
         nodes = fwd
     else:
-        bwd = _walk(mech, g, phi0, start, -1, size)
+        bwd = _walk(mech, g, phi0, start, -1, size, solve)
         nodes = [(-t, x, th) for t, x, th in reversed(bwd[1:])] + fwd
     t = np.array([n[0] for n in nodes])
     x = np.array([n[1] for n in nodes])
     th = np.array([n[2] for n in nodes])
-    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t)), size)
+    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size)
 
 
-def _walk(mech, g, phi0, start, sense, size):
+def _walk(mech, g, phi0, start, sense, size, solve):
     """Nodes (t ≥ 0, x, θ) of the branch from ``start`` in the crank's ``sense`` (±1) up to a
     full turn or to the limit where the branch ends."""
     steps = int(round(2 * np.pi / TRACK_STEP))
     t_grid = np.arange(steps + 1) * (2 * np.pi / steps)
-    xs, ths, oks, _, _ = _roots_at(mech, g, phi0 + sense * t_grid)
+    xs, ths, oks, _, _ = _roots_at(mech, g, phi0 + sense * t_grid, solve)
     nodes = [(0.0, start[0], start[1])]
     prev = None
     for k in range(1, steps + 1):
@@ -386,7 +385,7 @@ def _walk(mech, g, phi0, start, sense, size):
         pred = _predict(cur, prev, t_grid[k])
         pick = _pick(xs[k], ths[k], pred, size)
         if pick is None:
-            sub = _refine(mech, g, phi0, sense, cur, prev, t_grid[k], size)
+            sub = _refine(mech, g, phi0, sense, cur, prev, t_grid[k], size, solve)
             if sub is None or sub[-1][0] < t_grid[k]:
                 return nodes + (sub or [])
             nodes += sub[:-1]
@@ -419,7 +418,7 @@ def _pick(xs, ths, pred, size):
     return xs[order[0]], ths[order[0]]
 
 
-def _refine(mech, g, phi0, sense, cur, prev, t_end, size):
+def _refine(mech, g, phi0, sense, cur, prev, t_end, size, solve):
     """Nodes from ``cur`` towards ``t_end`` in halved steps; ends at the branch's limit (found
     by bisection) when no step, however short, continues it."""
     nodes = []
@@ -427,11 +426,11 @@ def _refine(mech, g, phi0, sense, cur, prev, t_end, size):
     halvings = 1
     while cur[0] < t_end - EDGE_TOL:
         t = min(cur[0] + step, t_end)
-        xs, ths, _, _, _ = _roots_at(mech, g, np.array([phi0 + sense * t]))
+        xs, ths, _, _, _ = _roots_at(mech, g, np.array([phi0 + sense * t]), solve)
         pick = _pick(xs[0], ths[0], _predict(cur, prev, t), size)
         if pick is None:
             if halvings >= MAX_HALVINGS:
-                return nodes + [_limit(mech, g, phi0, sense, cur, t, size)]
+                return nodes + [_limit(mech, g, phi0, sense, cur, t, size, solve)]
             step /= 2
             halvings += 1
             continue
@@ -440,12 +439,12 @@ def _refine(mech, g, phi0, sense, cur, prev, t_end, size):
     return nodes
 
 
-def _limit(mech, g, phi0, sense, cur, t_out, size):
+def _limit(mech, g, phi0, sense, cur, t_out, size, solve):
     """The last node of a branch that ends between ``cur`` (closes) and ``t_out`` (does not)."""
     lo, hi, best = cur[0], t_out, cur
     while hi - lo > EDGE_TOL:
         mid = 0.5 * (lo + hi)
-        xs, ths, ok, _, _ = _roots_at(mech, g, np.array([phi0 + sense * mid]))
+        xs, ths, ok, _, _ = _roots_at(mech, g, np.array([phi0 + sense * mid]), solve)
         d = _distance(xs[0], ths[0], best[1], best[2], size)
         j = int(np.argmin(d))
         if d[j] <= FAR:
@@ -455,7 +454,7 @@ def _limit(mech, g, phi0, sense, cur, t_out, size):
     return best
 
 
-def _pair(g: Triad, sampled) -> tuple[int, int]:
+def _pair(g: Triad, sampled, solve) -> tuple[int, int]:
     """The leads whose lines give the special point: the file's, else the pair whose lines
     cross at the largest smallest angle over the tracked branch."""
     if g.pair is not None:
@@ -463,7 +462,7 @@ def _pair(g: Triad, sampled) -> tuple[int, int]:
     if sampled is None:
         return (0, 1)
     mech, x, th, t = sampled
-    leads = leads_at(mech, g, g.assembly_deg + t)
+    leads = leads_at(mech, g, g.assembly_deg + t, solve)
     cl = _Closure(g, leads)
     joints = [x + r for r in cl.offsets(th)]
     dirs = [_lead_direction(lead, j) for lead, j in zip(leads, joints)]
@@ -482,16 +481,6 @@ def _lead_direction(lead: Lead3, joint):
     if lead.rod:
         return joint - lead.p
     return 1j * lead.line()[0]
-
-
-def special_pair(mech: Mechanism, g: Triad) -> tuple[int, int]:
-    """The two leads (indices 0…2) whose lines give the special point of ``g`` in ``mech``."""
-    from velplan.analysis.solver import _about_pivot
-
-    if g.pair is not None:
-        return g.pair
-    local, _ = _about_pivot(mech)
-    return track(upstream(local, local.groups[mech.groups.index(g)]), local.groups[mech.groups.index(g)]).pair
 
 
 # ---- the solution at the requested angles -------------------------------------------------

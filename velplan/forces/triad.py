@@ -26,9 +26,9 @@ from typing import Mapping
 import numpy as np
 
 from velplan.analysis.solver import Kinematics
-from velplan.analysis.triad import special_pair
+from velplan.analysis.solver import special_pair
 from velplan.forces.common import cross, point
-from velplan.forces.kinetostatics import ForcePolygon, Reaction
+from velplan.forces.reactions import ForcePolygon, Reaction
 from velplan.mechanism.model import Mechanism, Pair, Triad
 
 Known = Mapping[str, list]

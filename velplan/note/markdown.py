@@ -8,7 +8,7 @@ import re
 from html import escape as html_escape
 from xml.sax.saxutils import escape as xml_escape
 
-from velplan.note.model import Contents, Equation, Figure, Heading, Math, Note, PageBreak, Para, Table, TitlePage
+from velplan.note.blocks import Contents, Equation, Figure, Heading, Math, PageBreak, Para, Table, TitlePage
 
 _MD_SPECIAL = re.compile(r"([\\*_$\[\]<>#^~|`@])")
 _TYP_SPECIAL = re.compile(r"([\\#\[\]*_$<>@~`'\"/=+-])")
@@ -24,7 +24,7 @@ def typ_text(s: str) -> str:
     return _TYP_SPECIAL.sub(r"\\\1", s)
 
 
-def to_markdown(note: Note, target: str, images: dict[str, str]) -> str:
+def to_markdown(note, target: str, images: dict[str, str]) -> str:
     """The whole note; ``images`` maps a figure's name to the path the output refers to."""
     out = []
     for block in note.blocks:
@@ -32,7 +32,7 @@ def to_markdown(note: Note, target: str, images: dict[str, str]) -> str:
     return "\n\n".join(x for x in out if x) + "\n"
 
 
-def _block(b, note: Note, target: str, images: dict[str, str]) -> str:
+def _block(b, note, target: str, images: dict[str, str]) -> str:
     if isinstance(b, Heading):
         return "#" * b.level + " " + md_text(b.text)
     if isinstance(b, Para):
@@ -99,7 +99,7 @@ def _title(b: TitlePage, target: str) -> str:
         + "\n\n" + "\\\n".join(md_text(x) for x in people) + "\n\n" + md_text(b.place_year)
 
 
-def _contents(b: Contents, note: Note, target: str) -> str:
+def _contents(b: Contents, note, target: str) -> str:
     if target == "docx":
         field = ('<w:p><w:r><w:fldChar w:fldCharType="begin" w:dirty="true"/></w:r><w:r><w:instrText '
                  'xml:space="preserve">TOC \\o "1-2" \\h \\z \\u</w:instrText></w:r><w:r><w:fldChar '

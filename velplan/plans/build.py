@@ -9,10 +9,9 @@ from which any other point of the link is placed by similarity and its ω (ε) r
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, Guide, LinkPoint, Mechanism, Triad
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import coincident_points, material_points, schedule
 from velplan.plans.context import Figure
 from velplan.plans.steps import (
@@ -28,6 +27,7 @@ from velplan.plans.steps import (
     Similar,
     Step,
     Tangential,
+    guide_text,
 )
 from velplan.plans.triad import build_triad
 
@@ -169,7 +169,7 @@ class _Builder:
     def rrp(self, g: RRP) -> None:
         A, C, k = g.joint, g.point, g.guide.link
         rod, slider = g.links
-        along = _guide_text(g.guide, k)
+        along = guide_text(g.guide, k)
         cg_v = self.image_on(self.v, k, C, g.coincident)
         c_v, c_a = self.target(self.v, C), self.target(self.a, C)
         L1 = self.line(self.v, self.v.images[A], Perpendicular(C, A), f"V_{C}{A}")
@@ -214,14 +214,14 @@ class _Builder:
         for guide, name in zip(g.guides, g.coincident):
             iv = self.image_on(self.v, guide.link, C, name)
             imgs_v.append(iv)
-            lines.append(self.line(self.v, iv, Parallel(guide.link, guide.angle, _guide_text(guide, guide.link)),
+            lines.append(self.line(self.v, iv, Parallel(guide.link, guide.angle, guide_text(guide, guide.link)),
                                    _rel("V", C, iv, self.v.pole)))
         self.add(self.v, Intersect(c_v, c_v[2:], tuple(lines)))
         self.v.images[C] = c_v
         lines = []
         for guide, name, iv in zip(g.guides, g.coincident, imgs_v):
             ia = self.image_on(self.a, guide.link, C, name)
-            direction = Parallel(guide.link, guide.angle, _guide_text(guide, guide.link))
+            direction = Parallel(guide.link, guide.angle, guide_text(guide, guide.link))
             lines.append(self.coriolis_line(guide.link, ia, (iv, c_v), direction, f"aʳ_{C}", C))
         self.add(self.a, Intersect(c_a, c_a[2:], tuple(lines)))
         self.a.images[C] = c_a
@@ -236,7 +236,7 @@ class _Builder:
         name = g.coincident or f"{B}{runner}"
         b4_v, b4_a = self.target(self.v, name), self.target(self.a, name)
         slot = Parallel(runner, g.slot_angle, "slot")
-        guide = Parallel(k, g.guide.angle, _guide_text(g.guide, k))
+        guide = Parallel(k, g.guide.angle, guide_text(g.guide, k))
         bk_v = self.image_on(self.v, k, B, None)
         L1 = self.line(self.v, self.v.images[B], slot, f"V_{name}{B}")
         L2 = self.line(self.v, bk_v, guide, _rel("V", name, bk_v, self.v.pole))
@@ -262,16 +262,6 @@ class _Builder:
 def _rel(prefix: str, point: str, through: str, pole: str, other: str | None = None) -> str:
     """Name of the velocity component a line carries: absolute from the pole, else relative."""
     return f"{prefix}_{point}" if through == pole else f"{prefix}_{point}{other or ''}".rstrip("_")
-
-
-def _guide_text(guide: Guide, link: str) -> str:
-    if link == GROUND:
-        deg = math.degrees(guide.angle) % 180
-        if abs(deg) < 1e-9 or abs(deg - 180) < 1e-9:
-            return "x–x"
-        if abs(deg - 90) < 1e-9:
-            return "y–y"
-    return f"guide:{link}"
 
 
 def _labels(mech: Mechanism) -> dict[str, str]:

@@ -7,12 +7,14 @@ of positions. Plan coordinates are complex numbers in mm with the pole at 0.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
 
 from velplan.analysis.groups import cis
-from velplan.mechanism.model import GROUND
+from velplan.mechanism.model import GROUND, Guide
 from velplan.plans.context import Context, Figure
 from velplan.plans import text as T
 
@@ -331,3 +333,14 @@ class Similar:
 
 
 Step = Pole | LayOff | Line | Intersect | Similar
+
+
+def guide_text(guide: Guide, link: str) -> str:
+    """How a plan names the direction of ``guide`` (on ``link``): x–x, y–y or guide:<link>."""
+    if link == GROUND:
+        deg = math.degrees(guide.angle) % 180
+        if abs(deg) < 1e-9 or abs(deg - 180) < 1e-9:
+            return "x–x"
+        if abs(deg - 90) < 1e-9:
+            return "y–y"
+    return f"guide:{link}"

@@ -22,10 +22,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from velplan.analysis.triad import special_pair
+from velplan.analysis.solver import special_pair
 from velplan.mechanism.model import GROUND, Triad
 from velplan.plans import text as T
-from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Parallel, Perpendicular, Similar
+from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Parallel, Perpendicular, Similar, guide_text
 
 
 def _join(lang: str, *sentences: str | None) -> str:
@@ -148,11 +148,10 @@ class TriadPlan:
 
     def _direction(self, k: int) -> Perpendicular | Parallel:
         """Direction of the unknown terms along lead k: ⊥ the rod, or ∥ the guide."""
-        from velplan.plans.build import _guide_text
 
         lead, J = self.g.leads[k], self.g.joints[k]
         if lead.slider:
-            return Parallel(lead.guide.link, lead.guide.angle, _guide_text(lead.guide, lead.guide.link))
+            return Parallel(lead.guide.link, lead.guide.angle, guide_text(lead.guide, lead.guide.link))
         return Perpendicular(J, lead.joint)
 
     def _say(self, k: int, equation: str, *, intro: bool = False, joint: bool = False) -> Said:

@@ -12,15 +12,15 @@ from __future__ import annotations
 from velplan.errors import VelplanError
 
 
-def map_chunks(scheduler, mech, parts: list[dict], positions: int, progress=None, engine: str = "numpy") -> list:
-    """Run ``chunk_figures`` on every part on ``scheduler`` (a ``dask.distributed.Client``
-    or a scheduler address such as ``tcp://10.0.0.5:8786``); the results in order."""
+def map_chunks(scheduler, task, mech, parts: list[dict], positions: int, progress=None,
+               engine: str = "numpy") -> list:
+    """Run ``task(mech, part, positions, engine)`` (the sweep's ``chunk_figures``) on every part
+    on ``scheduler`` (a ``dask.distributed.Client`` or a scheduler address such as
+    ``tcp://10.0.0.5:8786``); the results in order."""
     try:
         from dask.distributed import Client, as_completed
     except ImportError:
         raise VelplanError("--scheduler needs dask.distributed (pip install 'velplan[dask]')") from None
-    from velplan.sweep.run import chunk_figures
-
     own = not isinstance(scheduler, Client)
     if own:
         try:
@@ -32,7 +32,7 @@ def map_chunks(scheduler, mech, parts: list[dict], positions: int, progress=None
     try:
         shared = client.scatter(mech, broadcast=True)
         n = len(parts)
-        futures = client.map(chunk_figures, [shared] * n, parts, [positions] * n, [engine] * n, pure=False)
+        futures = client.map(task, [shared] * n, parts, [positions] * n, [engine] * n, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}
         results: list = [None] * len(parts)
         for done, fut in enumerate(as_completed(futures), start=1):

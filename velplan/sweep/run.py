@@ -200,7 +200,7 @@ def run_sweep(mech: Mechanism, values: Mapping[str, np.ndarray], *, mode: str = 
     if scheduler is not None:
         from velplan.sweep.cluster import map_chunks
 
-        results = map_chunks(scheduler, mech, parts, positions, progress, engine)
+        results = map_chunks(scheduler, chunk_figures, mech, parts, positions, progress, engine)
     else:
         results = _map_local(mech, parts, positions, jobs, progress, engine)
     figs = {k: np.concatenate([r[0][k] for r in results]) for k in results[0][0]}
