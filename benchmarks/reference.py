@@ -54,7 +54,7 @@ def ref_angles(n: int = N_REF) -> np.ndarray:
 
 
 def _e(theta):
-    return mp.expj(theta)
+    return mp.mpc(mp.cos(theta), mp.sin(theta))  # expj raises on an mpf in some mpmath releases
 
 
 def _cross(a, b):

@@ -26,6 +26,11 @@ ANGLES = np.radians(np.arange(12) * 30.0 + 7.0)
 TOL = 1e-12
 
 
+def _cis(t):
+    """e^{i·t} for a real t (mpmath's expj raises ComplexResult on an mpf in some releases)."""
+    return mp.mpc(mp.cos(t), mp.sin(t))
+
+
 def triad_mechanisms() -> list[str]:
     """Catalogue names whose mechanism holds a ``kind = "triad"`` group."""
     return [n for n in catalogue_names() if any(g.kind == "triad" for g in velplan.load(n).groups)]
@@ -90,7 +95,7 @@ class Reference:
 
     def _crank(self, phi):
         c = self.mech.crank
-        w, e, r = mp.mpf(c.omega), mp.mpf(c.epsilon), c.length * mp.expj(phi)
+        w, e, r = mp.mpf(c.omega), mp.mpf(c.epsilon), c.length * _cis(phi)
         self.P[c.tip] = (self.P[c.pivot][0] + r, 1j * w * r, (1j * e - w * w) * r)
         self.L[c.link] = (phi, w, e)
         self.origin[c.link] = c.pivot
@@ -101,7 +106,7 @@ class Reference:
                 continue
             o = self.P[self.origin[p.link]]
             th, w, e = self.L[p.link]
-            x = o[0] + mp.mpc(p.along, p.offset) * mp.expj(th)
+            x = o[0] + mp.mpc(p.along, p.offset) * _cis(th)
             self.P[p.name] = (x, *carried(o, th, w, e, x))
             done.add(p.name)
 
@@ -135,7 +140,7 @@ class Reference:
             if lead.slider:
                 gd = lead.guide
                 assert gd.link == GROUND, "the oracle knows blocks on frame guides only"
-                u = mp.expj(mp.mpf(gd.angle))
+                u = _cis(mp.mpf(gd.angle))
                 rows.append(("block", u, self.P[gd.through][0] + 1j * u * gd.offset))
             else:
                 rows.append(("rod", self.P[lead.joint], mp.mpf(lead.length)))
@@ -143,7 +148,7 @@ class Reference:
         def f(x, y, th):
             out = []
             for (kind, a, b), r in zip(rows, local):
-                j = mp.mpc(x, y) + r * mp.expj(th)
+                j = mp.mpc(x, y) + r * _cis(th)
                 out.append(abs(j - a[0]) ** 2 - b ** 2 if kind == "rod" else cross(a, j - b))
             return out
 
@@ -151,7 +156,7 @@ class Reference:
         th0 = self.start.angles[self.i, self.start.link_index[g.base]]
         x, y, th = mp.findroot(f, (b0.real, b0.imag, mp.mpf(th0)), tol=mp.mpf(10) ** (8 - DPS))
         X = mp.mpc(x, y)
-        js = [X + r * mp.expj(th) for r in local]
+        js = [X + r * _cis(th) for r in local]
         # first derivatives: unknowns (Vx, Vy, ω); J' = V + iω(J − X)
         m = mp.matrix(3, 3)
         rhs_v = mp.matrix(3, 1)
