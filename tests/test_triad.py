@@ -393,3 +393,24 @@ def test_the_group_example_of_the_docs_is_a_triad_with_every_key():
     for key in ("base", "joints", "sides", "side", "leads", "assembly", "special", "pair"):
         assert f"\n{key} = " in text
     assert g.special_name == "K3" and g.pair == (0, 2) and g.leads[2].slider
+
+
+def test_an_assembly_far_from_every_root_is_refused_not_replaced(tmp_path, capsys):
+    """With a 0.26 m crank the drawn branch exists only from −149.9° to 162.1°: at 180° the
+    joints as drawn are 0.47 m from the nearest assembly (another branch), which is refused."""
+    text = ROCKER.replace("length = 0.078", "length = 0.26").replace("phi_deg = 90", "phi_deg = 180")
+    mech = velplan.parse(text)
+    with pytest.raises(MechanismError, match=r"^group '3-2-4-5' \(triad\): at its assembly angle 180° no "
+                                             r"assembly lies near the joints given; the nearest is 0\.4\d+ m"):
+        velplan.solve(mech, [0.0])
+    path = tmp_path / "far.toml"
+    path.write_text(text, encoding="utf-8")
+    assert main(["analyze", str(path), "--angles", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no assembly lies near the joints given" in err
+
+
+def test_a_rod_lead_takes_no_coincident_point():
+    text = ROCKER.replace('joint = "F", length = 0.290 }', 'joint = "F", length = 0.290, coincident = "X" }')
+    with pytest.raises(MechanismError, match=r"^group '3-2-4-5' lead 3: coincident names a guide's point"):
+        velplan.parse(text)

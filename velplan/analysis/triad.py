@@ -44,6 +44,9 @@ MAX_HALVINGS = 14
 """Halvings of a tracking step before the branch is taken to end there (0.5°/2¹⁴ ≈ 3e-5°)."""
 EDGE_TOL = 1e-12
 """Accuracy of an assembly limit of the tracked branch, rad."""
+ASSEMBLY_FAR = 1 / 3
+"""Largest RMS distance (over the group's size) between the joints given in ``assembly`` and
+the assembly they pick."""
 FAR = 0.25
 """Largest distance (configuration units: lengths / the group's size + radians) between the
 tracked branch and a root still taken as its continuation."""
@@ -342,18 +345,23 @@ def track(mech: Mechanism, g: Triad, solve) -> Track:
     """The branch of ``g`` picked by its ``assembly``, followed over the crank's turn (cached
     per geometry; ``mech`` holds what comes before ``g``, `upstream`, solved by ``solve``)."""
     size = _size(g)
-    phi0 = g.assembly_deg
+    phi0 = g.assembly_phi
     x0, th0, ok0, cl, local = _roots_at(mech, g, np.array([phi0]), solve)
+    where = f"group {g.name!r} (triad): at its assembly angle {math.degrees(phi0):g}°"
     if not ok0.any():
-        return Track(phi0, np.empty(0), np.empty(0, complex), np.empty(0), False, _pair(g, None, solve), size)
-    # the root nearest to the joints as drawn
+        raise MechanismError(f"{where} the group cannot be assembled; give the angle of a position as drawn")
+    # the root nearest to the joints as drawn, and no farther than a third of the group's size
     cost = np.zeros(x0.shape[1])
     ref = cl.ref
     for name, (px, py) in g.assembly:
         j = g.joints.index(name)
         pos = x0[0] + (local[j] - local[ref]) * np.exp(1j * th0[0])
         cost = cost + np.abs(pos - complex(px, py)) ** 2
-    k = int(np.nanargmin(np.where(ok0[0], cost, np.inf)))
+    cost = np.sqrt(np.where(ok0[0], cost, np.inf) / len(g.assembly))
+    k = int(np.argmin(cost))
+    if not cost[k] <= ASSEMBLY_FAR * size:
+        raise MechanismError(f"{where} no assembly lies near the joints given; the nearest is {cost[k]:.3g} m "
+                             f"from them (the group is {size:.3g} m across): check assembly")
     start = (x0[0, k], th0[0, k])
     fwd = _walk(mech, g, phi0, start, +1, size, solve)
     full = fwd[-1][0] >= 2 * np.pi - EDGE_TOL
@@ -462,7 +470,7 @@ def _pair(g: Triad, sampled, solve) -> tuple[int, int]:
     if sampled is None:
         return (0, 1)
     mech, x, th, t = sampled
-    leads = leads_at(mech, g, g.assembly_deg + t, solve)
+    leads = leads_at(mech, g, g.assembly_phi + t, solve)
     cl = _Closure(g, leads)
     joints = [x + r for r in cl.offsets(th)]
     dirs = [_lead_direction(lead, j) for lead, j in zip(leads, joints)]

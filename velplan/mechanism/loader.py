@@ -286,6 +286,8 @@ def _lead(t: dict, k: int, where: str) -> Lead:
         if "joint" in t or "length" in t:
             raise MechanismError(f"{where}: a lead is a rod (joint, length) or a block on a guide, not both")
         return Lead(link, guide=_guide(t["guide"], where), coincident=_opt_name(t, "coincident"))
+    if "coincident" in t:
+        raise MechanismError(f"{where}: coincident names a guide's point at a block; a rod lead has none")
     return Lead(link, _name(t, "joint", where), _length(t, "length", where))
 
 

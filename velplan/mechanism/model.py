@@ -228,7 +228,7 @@ class Triad:
 
     ``sides = (l_BC, l_CD, l_DB)`` in m; ``side = +1`` puts D to the left of B → C. The base
     link's frame starts at B along B → C. ``assembly`` gives approximate positions (m) of one
-    or more inner joints at the crank angle ``assembly_deg``: the branch nearest to them is
+    or more inner joints at the crank angle ``assembly_phi`` (rad): the branch nearest to them is
     followed continuously over the turn. ``special`` names Assur's special point (the crossing
     of the lines of the two leads ``pair``, a point of the base link; ``None``: the pair whose
     lines cross at the largest angle over the turn).
@@ -240,7 +240,7 @@ class Triad:
     sides: tuple[float, float, float]
     leads: tuple[Lead, Lead, Lead]
     assembly: tuple[tuple[str, tuple[float, float]], ...]
-    assembly_deg: float = 0.0
+    assembly_phi: float = 0.0
     side: int = 1
     special: str | None = None
     pair: tuple[int, int] | None = None

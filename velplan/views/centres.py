@@ -80,7 +80,7 @@ def _markers(con: Construction, to_mm, box, size: float, lang: str) -> tuple[lis
         if s.how == "unreached":
             notes.append(f"{name}: {_t('unreached', lang)}")
         elif s.infinite:
-            deg = math.degrees(math.atan2(s.direction.imag, s.direction.real))
+            deg = round(math.degrees(math.atan2(s.direction.imag, s.direction.real)), 6) + 0.0  # no 1e-15°
             notes.append(f"{name}: {_t('infinity', lang, number(deg, lang, 4))}")
         elif box.contains(shapely.Point(*to_mm(s.point))):
             at = to_mm(s.point)

@@ -41,7 +41,7 @@ def readings(res, i: int, precision: float = PRECISION_MM) -> list[tuple[str, fl
 def readings_view(plans: dict, *, lang: str = "ru", size_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The table for ``plans`` (view name → (PlanResult, index)): a row per point, for each
     plan (velocity plans first) the value read off it and its difference from the analytic
-    value in per cent."""
+    value in per cent ("—" where the vector is shorter than two drafting steps, 1 mm)."""
     order = sorted(plans.items(), key=lambda kv: (kv[1][0].kind != "velocity", int(kv[1][0].index[kv[1][1]])))
     head = [label("position_short", lang)]
     units = [label("quantity", lang)]
@@ -53,7 +53,8 @@ def readings_view(plans: dict, *, lang: str = "ru", size_mm: float = 2.5, title_
         units += [f"{sym}, {u}", "δ, %"]
         for p, read, exact in readings(res, i):
             row = rows.setdefault(subscript(p), [""] * (2 * len(order)))
-            err = 100.0 * (read - exact) / exact if exact > 1e-12 * max(read, 1.0) else float("nan")
+            # a per cent of a vector shorter than two drafting steps says nothing: "—"
+            err = 100.0 * (read - exact) / exact if exact / res.scale >= 2 * PRECISION_MM else float("nan")
             row[2 * k:2 * k + 2] = [fixed(read, lang, 3), fixed(err, lang, 1) if np.isfinite(err) else "—"]
     grid = [head, units] + [[q] + vals for q, vals in rows.items()]
     items, total_w, total_h = grid_table(grid, size_mm)
