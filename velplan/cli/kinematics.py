@@ -117,7 +117,7 @@ def _num(x: float) -> float | None:
 def to_json(kin: Kinematics) -> str:
     """The analysis as JSON in SI units with radians (NaN → null where not assembled)."""
     doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "epsilon1": kin.epsilon1, "positions": []}
-    singular = kin.singular
+    singular, least = kin.singular, kin.min_condition()
     for i in range(len(kin)):
         ok = bool(kin.valid[i])
         rate = (lambda x: _num(x)) if ok else (lambda x: None)  # masked: never a wrong number
@@ -139,7 +139,7 @@ def to_json(kin: Kinematics) -> str:
         entry = {"position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": ok,
                  "points": pts, "links": links, "slides": slides, "condition": cond}
         if not ok:
-            entry["reason"] = (f"singular: a group at a toggle (condition {kin.min_condition()[i]:.2g}), "
+            entry["reason"] = (f"singular: a group at a toggle (condition {least[i]:.2g}), "
                                "velocities undetermined" if singular[i] else "not assembled")
         doc["positions"].append(entry)
     return json.dumps(doc, indent=1, ensure_ascii=False)
