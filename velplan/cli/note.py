@@ -40,10 +40,11 @@ def register(sub) -> None:
 def run_note(args) -> int:
     from velplan.cli.sheet import parse_plans
     from velplan.note import build_note, note_format, write_note
+    from velplan.note.writers import require
     from velplan.study import Study
 
     out = Path(args.output) if args.output else Path(f"{Path(str(args.mechanism)).stem}-note.docx")
-    note_format(out)
+    require(note_format(out))
     if out.is_dir():
         raise VelplanError(f"cannot write {out}: it is a directory")
     if not out.parent.is_dir():

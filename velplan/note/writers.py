@@ -44,6 +44,18 @@ def _module(name: str):
         raise VelplanError(f"the note needs {name.split('.')[0]} ({exc}); install it with `{INSTALL}`") from None
 
 
+NEEDS = {"docx": ("cairosvg", "pypandoc", "docx"), "pdf": ("cairosvg", "typst"),
+         "html": ("cairosvg", "pypandoc"), "md": ("cairosvg",)}
+"""The modules each format needs (cairosvg draws the figures), checked before a note is built."""
+
+
+def require(kind: str) -> None:
+    """A one-line error naming the note's extra when a module the format ``kind`` needs is
+    missing (checked before minutes of building, not after)."""
+    for name in NEEDS.get(kind, ()):
+        _module(name)
+
+
 def note_format(path: str | os.PathLike) -> str:
     """The format a file name asks for; a one-line error for another suffix."""
     kind = FORMATS.get(Path(path).suffix.lower())
