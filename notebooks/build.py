@@ -80,16 +80,14 @@ NB01 = [
 
     import velplan
     from velplan.notebook import crank_slider, draw_mechanism, draw_plan, draw_steps
-    from velplan.plans import Plan
     from velplan.plans.table import transfer_table
 
-    mech = velplan.load("press")
     N = 12          # crank positions, 30° apart, from the reference position
-    POSITION = 3    # the position whose plan we build (1-based, as on the sheet)
+    POSITION = 3    # the position whose plan we build (numbered from 1, as on the sheet)
     MU_V = 0.0007   # velocity scale μv, (m/s)/mm, as in seed 000
-    i = POSITION - 1
-
-    kin = velplan.solve(mech, velplan.positions(mech, N))
+    study = velplan.Study("press", n=N)
+    mech, kin = study.mechanism, study.kinematics
+    i = POSITION - 1  # its row in the arrays of kin
     print(mech.title)
     print(f"position {POSITION}: crank angle {kin.phi_deg[i] % 360:.1f}°")
     """),
@@ -114,7 +112,7 @@ NB01 = [
     and at the punch mark the positions, counted from position 1 in the sense of ω1.
     """),
     code("""
-    draw_mechanism(mech, kin, i)
+    draw_mechanism(study, position=POSITION)
     """),
     md("""
     Turn the crank: with `ipywidgets` installed this is a slider over the crank angle; without
@@ -134,9 +132,9 @@ NB01 = [
     μv = 0.0007 (m/s)/mm it is pa = 0.05 / 0.0007 = 71.4 mm long.
     """),
     code("""
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[i], scale_v=MU_V)
-    russian = res.describe(0, "ru")
-    for k, ((sentence, drawing), ru) in enumerate(zip(draw_steps(res, 0), russian), start=1):
+    res = study.plan("velocity", positions=[POSITION], scale_v=MU_V)
+    russian = res.describe(lang="ru")
+    for k, ((sentence, drawing), ru) in enumerate(zip(draw_steps(res), russian), start=1):
         print(f"Step {k}. {sentence}")
         print(f"        {ru}")
         display(drawing)
@@ -280,13 +278,13 @@ NB02 = [
     from velplan.plans import EXACT, Drafting, Plan, relative_error
     from velplan.plans.check import check_table
 
-    mech = velplan.load("shaper")
-    plan = Plan.of(mech)
     N = 12
     POSITION = 3
     MU_V = 0.02     # (m/s)/mm
-    i = POSITION - 1
-    kin = velplan.solve(mech, velplan.positions(mech, N))
+    study = velplan.Study("shaper", n=N)
+    mech, kin = study.mechanism, study.kinematics
+    plan = Plan.of(mech)
+    i = POSITION - 1  # its row in the arrays of kin
     print(mech.title)
     print(f"position {POSITION}: crank angle {kin.phi_deg[i] % 360:.1f}°")
     print(f"ω2 = {mech.crank.omega:.4f} rad/s (80 rpm)")
@@ -299,9 +297,9 @@ NB02 = [
     `length_mm` and every direction drawn to `angle_deg`, as on paper.
     """),
     code("""
-    exact = plan.evaluate(kin, kind="velocity", positions=[i], scale_v=MU_V, drafting=EXACT)
-    drawn = plan.evaluate(kin, kind="velocity", positions=[i], scale_v=MU_V,
-                          drafting=Drafting(length_mm=0.5, angle_deg=0.5))
+    exact = study.plan("velocity", positions=[POSITION], scale_v=MU_V, drafting=EXACT)
+    drawn = study.plan("velocity", positions=[POSITION], scale_v=MU_V,
+                       drafting=Drafting(length_mm=0.5, angle_deg=0.5))
     print("left: exact; right: drafted to 0.5 mm and 0.5° (alike to the eye)")
     side_by_side(draw_plan(exact), draw_plan(drawn))
     """),
@@ -518,14 +516,14 @@ NB03 = [
     from velplan.notebook import draw_plan, draw_steps
     from velplan.plans import Plan
 
-    mech = velplan.load("shaper")
-    plan = Plan.of(mech)
     N = 12
     POSITION = 3
     MU_V = 0.02     # (m/s)/mm
     MU_A = 0.1      # (m/s²)/mm
-    i = POSITION - 1
-    kin = velplan.solve(mech, velplan.positions(mech, N))
+    study = velplan.Study("shaper", n=N)
+    mech, kin = study.mechanism, study.kinematics
+    plan = Plan.of(mech)
+    i = POSITION - 1  # its row in the arrays of kin
     print(f"position {POSITION}: crank angle {kin.phi_deg[i] % 360:.1f}°")
     """),
     md("""
@@ -535,7 +533,7 @@ NB03 = [
     relative to the block; both come from the velocity plan (V_A4A is the segment a a4).
     """),
     code("""
-    vel = plan.evaluate(kin, kind="velocity", positions=[i], scale_v=MU_V)
+    vel = study.plan("velocity", positions=[POSITION], scale_v=MU_V)
     display(draw_plan(vel))
     omega4 = float(vel.omegas["4"][0])
     segment, v_rel = vel.components["V_A4A"]
@@ -553,8 +551,8 @@ NB03 = [
     bar). Then b by similarity and the ram F like a crank-slider.
     """),
     code("""
-    acc = plan.evaluate(kin, kind="acceleration", positions=[i], scale_v=MU_V, scale_a=MU_A)
-    for k, (sentence, drawing) in enumerate(draw_steps(acc, 0), start=1):
+    acc = study.plan("acceleration", positions=[POSITION], scale_v=MU_V, scale_a=MU_A)
+    for k, (sentence, drawing) in enumerate(draw_steps(acc), start=1):
         print(f"Step {k}. {sentence}")
         display(drawing)
     """),
@@ -711,7 +709,6 @@ NB04 = [
 
     import velplan
     from velplan.notebook import SvgDrawing, draw_mechanism, draw_plan
-    from velplan.plans import Plan
     from velplan.sheets.kinematic import build_sheet
     """),
     md("""
@@ -735,17 +732,16 @@ NB04 = [
     """, "readout"),
     code("""
     N = 12
-    kin = velplan.solve(mech, velplan.positions(mech, N))
-    draw_mechanism(mech, kin, 1)
+    study = velplan.Study(mech, n=N)
+    draw_mechanism(study, position=2)
     """),
     md("""
     ## Its velocity plan at position 2
     """),
     code("""
     POSITION = 2
-    i = POSITION - 1
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[i])
-    for sentence in res.describe(0, "en"):
+    res = study.plan("velocity", positions=[POSITION])
+    for sentence in res.describe(lang="en"):
         print(sentence)
     draw_plan(res)
     """),
@@ -794,7 +790,7 @@ NB04 = [
     code("""
     sheet = build_sheet(mech, fmt="A3", lang="en")
     with tempfile.TemporaryDirectory() as tmp:
-        written = sheet.write(Path(tmp) / "lever-press.svg")
+        written = sheet.save(Path(tmp) / "lever-press.svg")
         print("written:", ", ".join(p.name for p in written))
         drawing = SvgDrawing.from_file(written[0])
     print(f"plans drawn = {len(sheet.plans)}")
@@ -1125,14 +1121,13 @@ NB07 = [
     from velplan.analysis.centres import instant_centres
     from velplan.analysis.solver import special_pair
     from velplan.notebook import draw_mechanism, draw_plan, draw_steps
-    from velplan.plans import Plan
     from velplan.plans.centres import construct_centres, velocities_by_centres
 
-    mech = velplan.load("triad-press")
     N = 12          # crank positions, 30° apart, from the reference position
-    POSITION = 3    # the position whose plans we build (1-based, as on the sheet)
-    i = POSITION - 1
-    kin = velplan.solve(mech, velplan.positions(mech, N))
+    POSITION = 3    # the position whose plans we build (numbered from 1, as on the sheet)
+    study = velplan.Study("triad-press", n=N)
+    mech, kin = study.mechanism, study.kinematics
+    i = POSITION - 1  # its row in the arrays of kin
     print(mech.title)
     print(f"position {POSITION}: crank angle {kin.phi_deg[i] % 360:.1f}°")
     """),
@@ -1158,7 +1153,7 @@ NB07 = [
     a, b = special_pair(mech, triad)
     print(f"special point {triad.special_name}: the crossing of the lines of leads "
           f"{triad.leads[a].link} and {triad.leads[b].link}")
-    draw_mechanism(mech, kin, i)
+    draw_mechanism(study, position=POSITION)
     """),
     md("""
     ## The velocity plan through the special point
@@ -1170,9 +1165,9 @@ NB07 = [
     intersection: s. Then C: V_C = V_S + (⊥ SC) = V_E + (⊥ EC), and b, d by similarity.
     """),
     code("""
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[i])
-    russian = res.describe(0, "ru")
-    for k, ((sentence, drawing), ru) in enumerate(zip(draw_steps(res, 0), russian), start=1):
+    res = study.plan("velocity", positions=[POSITION])
+    russian = res.describe(lang="ru")
+    for k, ((sentence, drawing), ru) in enumerate(zip(draw_steps(res), russian), start=1):
         print(f"Step {k}. {sentence}")
         print(f"        {ru}")
         display(drawing)
@@ -1202,8 +1197,8 @@ NB07 = [
     a_S = aⁿ_SD + (∥ guide). Then C as for the velocities, with its normal components.
     """),
     code("""
-    acc = Plan.of(mech).evaluate(kin, kind="acceleration", positions=[i], velocity=res)
-    for sentence in acc.describe(0, "en"):
+    acc = study.plan("acceleration", positions=[POSITION])
+    for sentence in acc.describe(lang="en"):
         print(sentence)
     draw_plan(acc)
     """),
@@ -1222,7 +1217,7 @@ NB07 = [
     V_M = ω_i·|M P0i| for a point M of link i, and ω_j = ω_i·|P0i Pij| / |P0j Pij|.
     """),
     code("""
-    con = construct_centres(kin, i)
+    con = construct_centres(kin, POSITION)
     for line in con.describe("en"):
         print(line)
     """),

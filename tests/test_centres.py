@@ -112,7 +112,7 @@ def test_the_construction_reaches_every_centre_or_says_why(name):
         c = instant_centres(kin)
         L = length_scale(kin.mechanism)
         for i in range(len(kin)):
-            con = construct_centres(kin, i)
+            con = construct_centres(kin, i + 1)
             assert len(con.steps) == len(c.pairs)
             assert [len(s.found) + len(s.remaining) for s in con.steps] == [len(c.pairs)] * len(c.pairs)
             for k, (a, b) in enumerate(c.pairs):
@@ -132,12 +132,12 @@ def test_the_construction_reaches_every_centre_or_says_why(name):
                     assert abs(s.point - p) <= 1e-8 * L * (1 + abs(p) / L) ** 2, (i, a, b)
             assert len(con.describe("zh")) == len(con.steps)
         if kin is solved(name):  # away from the extreme positions nothing is singular
-            assert all(not construct_centres(kin, i).unreached for i in range(len(kin)))
+            assert all(not construct_centres(kin, i + 1).unreached for i in range(len(kin)))
 
 
 def test_unreached_centres_are_stated():
     kin = standard("press")  # position 1: the rocker and the punch at rest, crank and rod in line
-    con = construct_centres(kin, 0)
+    con = construct_centres(kin, 1)
     assert {s.pair for s in con.unreached} == {("1", "3"), ("5", "4")}
     assert all("Kennedy" in sentence(s, con, "en") and "Кеннеди" in sentence(s, con, "ru")
                for s in con.unreached)
@@ -150,7 +150,7 @@ def test_velocities_by_centres_match_the_analytic_ones(name):
     for kin in (solved(name), standard(name)):
         L = length_scale(kin.mechanism)
         for i in range(len(kin)):
-            by = velocities_by_centres(construct_centres(kin, i))
+            by = velocities_by_centres(construct_centres(kin, i + 1))
             vs = _scale(kin, i, False)
             for p, v in by.velocities.items():
                 assert abs(v - _z(kin.velocity(p)[i])) <= 1e-9 * vs, (i, p)
@@ -165,7 +165,7 @@ def test_drafted_centres_and_velocities_are_within_the_precision(name):
     L = length_scale(kin.mechanism)
     d = Drafting(0.5, 0.5)
     for i in range(len(kin)):
-        con = construct_centres(kin, i, drafting=d)
+        con = construct_centres(kin, i + 1, drafting=d)
         assert con.mu_l > 0
         for s in con.steps:
             if s.how != "kennedy" or s.infinite or s.bound_m > 0.2 * L:

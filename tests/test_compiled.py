@@ -45,7 +45,7 @@ def assert_same(a, b, mech, tol=1e-12):
 @pytest.mark.parametrize("name", velplan.example_names())
 def test_examples_agree_over_several_turns(name):
     mech = velplan.load(name)
-    phi = np.linspace(-7.0, 7.0, 4001)
+    phi = np.linspace(-7.0, 7.0, 2 * compiled.SERIAL + 1)  # shared among threads
     a = velplan.solve(mech, phi, engine="compiled", epsilon1=0.3)
     b = velplan.solve(mech, phi, engine="numpy", epsilon1=0.3)
     assert a.valid.any()
@@ -113,3 +113,72 @@ def test_cli_engines_print_the_same_table(capsys):
         digits = len(x.group(1) or "")
         exponent = int(x.group(0).split("e")[1]) if "e" in x.group(0) else 0
         assert abs(float(x.group(0)) - float(y.group(0))) <= 1.01 * 10.0 ** (exponent - digits), (x, y)
+
+
+def assert_close(x, y, what, tol=1e-13):
+    """Arrays equal to ``tol`` of their largest value (NaN where the other is NaN)."""
+    np.testing.assert_allclose(x, y, rtol=0, atol=tol * np.nanmax(np.abs(y), initial=1.0), err_msg=what)
+
+
+@pytest.mark.parametrize("name, points", [("shaper", None), ("shaper", ["B"]), ("press", None), ("press", ["A"])])
+@pytest.mark.parametrize("order", [0, 1, 2])
+def test_points_and_order_subsets_are_slices_of_the_full_result(name, points, order):
+    # points= and order= reach the kernel: it writes only the points of the groups they need and
+    # no derivative above the order; what it writes equals the full result's slice, and the
+    # numpy engine's result with the same arguments
+    mech = velplan.load(name)
+    phi = np.linspace(-4.0, 4.0, 301)
+    full = velplan.solve(mech, phi, engine="compiled")
+    part = velplan.solve(mech, phi, engine="compiled", points=points, order=order)
+    assert part.order == order
+    assert (part.velocities is None) == (order < 1) and (part.epsilons is None) == (order < 2)
+    if points is not None:
+        assert set(points) <= set(part.point_index) < set(full.point_index)
+    for fields, index, full_index in (
+            (("positions", "velocities", "accelerations"), part.point_index, full.point_index),
+            (("angles", "omegas", "epsilons"), part.link_index, full.link_index)):
+        rows = [full_index[k] for k in index]
+        for field in fields[:order + 1]:
+            assert_close(getattr(part, field), getattr(full, field)[:, rows], field)
+    slides = full.slides[:, [full.slide_index[k] for k in part.slide_index], :order + 1]
+    assert_close(part.slides, slides, "slides")
+    assert_close(part.condition, full.condition[:, [full.group_index[k] for k in part.group_index]], "condition")
+    # with velocities solved, a position is refused where they are singular, as in the full result
+    np.testing.assert_array_equal(part.valid, full.valid if order else np.isfinite(part.positions).all(axis=(1, 2)))
+    ref = velplan.solve(mech, phi, points=points, order=order)
+    np.testing.assert_array_equal(part.valid, ref.valid)
+    for field in ("positions", "velocities", "accelerations")[:order + 1]:
+        assert_close(getattr(part, field)[part.valid], getattr(ref, field)[ref.valid], field, tol=1e-12)
+
+
+def test_a_class_iii_group_falls_back_unless_points_stop_before_it():
+    mech = velplan.load("triad-rocker")
+    phi = np.radians(np.arange(0.0, 360.0, 30.0))
+    with pytest.warns(UserWarning, match=r"class III groups \(group '3-2-4-5'\); solving with the numpy engine"):
+        kin = velplan.solve(mech, phi, engine="compiled")
+    np.testing.assert_array_equal(kin.positions, velplan.solve(mech, phi).positions)
+    crank_tip = mech.crank.tip  # solved before the triad: the compiled engine runs, without a warning
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        part = velplan.solve(mech, phi, engine="compiled", points=[crank_tip])
+    assert crank_tip in part.point_index and len(part.group_index) == 0
+    np.testing.assert_allclose(part.position(crank_tip), kin.position(crank_tip), rtol=0, atol=1e-15)
+
+
+def test_a_fresh_process_loads_the_cached_kernel_without_numbas_compiler():
+    # the first call here compiles or loads the kernel (and fills the disk cache); a new process
+    # then loads its machine code without initialising numba's compiler (and its numpy library)
+    import subprocess
+    import sys
+
+    mech = velplan.load("four-bar")
+    velplan.solve(mech, np.zeros(1), engine="compiled")
+    code = ("import sys, numpy as np, velplan\n"
+            "kin = velplan.solve(velplan.load('four-bar'), np.array([0.5]), engine='compiled')\n"
+            "print(kin.valid.all(), 'numba.np.arraymath' in sys.modules, float(kin.positions[0, 3, 1]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    assert out[:2] == ["True", "False"]
+    y_b = velplan.solve(mech, np.array([0.5])).positions[0, 3, 1]
+    assert abs(float(out[2]) - y_b) <= 1e-14

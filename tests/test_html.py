@@ -79,7 +79,7 @@ def test_step_sentences_in_russian_are_those_of_the_worked_solution(shaper_ru):
     for plan, kind in zip(data["plans"], ("velocity", "acceleration")):
         res = study.plan(kind)
         for i in (0, 4, 9):
-            expected = [readable(s) for s in res.describe(i, "ru")]
+            expected = [readable(s) for s in res.describe(i + 1, "ru")]
             got = [fill(plan["tpl"][j][row[0]], row[1:]) for j, row in enumerate(plan["sentences"][i])]
             assert got == expected
     first = fill(data["plans"][0]["tpl"][1][data["plans"][0]["sentences"][4][1][0]], data["plans"][0]["sentences"][4][1][1:])

@@ -94,11 +94,11 @@ def test_the_page_plays_and_builds_the_plans_step_by_step(browser, tmp_path):
     d.find_element("id", "first").click()
     assert _steps_shown(d, "v") == [1] and _steps_shown(d, "a") == []
     res = study.plan("velocity")
-    total = len(res.describe(k - 1, "ru"))
+    total = len(res.describe(k, "ru"))
     for step in range(2, 5):
         d.find_element("id", "next").click()
         assert _steps_shown(d, "v") == list(range(1, step + 1))
-    sentence = readable(res.describe(k - 1, "ru")[3])
+    sentence = readable(res.describe(k, "ru")[3])
     assert _text(d, "caption") == f"Шаг 4/{total}. {sentence}"
     assert _text(d, "step-readout") == f"План скоростей · Шаг 4/{total}"
     assert d.execute_script("return document.querySelectorAll('#plan-v .now').length") >= 1
@@ -131,7 +131,7 @@ def test_the_page_plays_and_builds_the_plans_step_by_step(browser, tmp_path):
     assert int(d.execute_script("return document.getElementById('pos').value")) != k
     assert _text(d, "play").endswith("Пуск")
     d.find_element("id", "all").click()
-    assert len(_steps_shown(d, "a")) == len(study.plan("acceleration").describe(0, "ru"))
+    assert len(_steps_shown(d, "a")) == len(study.plan("acceleration").describe(1, "ru"))
     assert time.perf_counter() - started < 20
 
 

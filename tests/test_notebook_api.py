@@ -15,25 +15,20 @@ from velplan.errors import VelplanError
 from velplan.notebook import (
     SvgDrawing, crank_slider, draw_diagrams, draw_mechanism, draw_plan, draw_sheet, draw_steps,
     side_by_side)
-from velplan.plans import Plan
 from velplan.views.plan import plan_view
 from velplan.render.scene import Arrow, Circle, Polyline, Text
 
 
 @pytest.fixture(scope="module")
 def press():
-    mech = velplan.load("press")
-    kin = velplan.solve(mech, velplan.positions(mech, 12))
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[2], scale_v=0.0007)
-    return mech, kin, res
+    study = velplan.Study("press")
+    res = study.plan("velocity", positions=[3], scale_v=0.0007)    # position 3 alone
+    return study.mechanism, study.kinematics, res
 
 
 @pytest.fixture(scope="module")
 def shaper_acc():
-    mech = velplan.load("shaper")
-    kin = velplan.solve(mech, velplan.positions(mech, 12))
-    return Plan.of(mech).evaluate(kin, kind="acceleration", positions=[2], scale_v=0.02,
-                                  scale_a=0.1)
+    return velplan.Study("shaper").plan("acceleration", positions=[3], scale_v=0.02, scale_a=0.1)
 
 
 def _arrows(d: SvgDrawing) -> list[Arrow]:
@@ -76,22 +71,25 @@ def test_svg_drawing_errors(tmp_path, press):
 
 def test_draw_mechanism(press):
     mech, kin, _ = press
-    d = draw_mechanism(mech, kin, 2)
+    d = draw_mechanism(mech, kin, position=3)
     layers = d.scene.layers
     assert {"mechanism", "positions", "labels"} <= set(layers)
     texts = [t.text for t in d.scene.of_kind(Text)]
     assert any("μl = 0.005 m/mm" in t for t in texts)   # English, decimal point
-    alone = draw_mechanism(mech, kin, 2, single=True)
+    alone = draw_mechanism(mech, kin, position=3, single=True)
     assert "positions" not in alone.scene.layers and "trajectory" not in alone.scene.layers
     assert any(t.text == "Position 3" for t in alone.scene.of_kind(Text))
     default = draw_mechanism(mech)                       # 12 positions, position 1 thick
-    assert default.scene.layers == draw_mechanism(mech, kin, 0).scene.layers
+    assert default.scene.layers == draw_mechanism(mech, kin, position=1).scene.layers
 
 
 def test_draw_mechanism_errors(press):
     mech, kin, _ = press
-    with pytest.raises(VelplanError, match=r"position index 12 is outside 0…11"):
-        draw_mechanism(mech, kin, 12)
+    for bad in (0, 13):
+        with pytest.raises(VelplanError, match=rf"^position {bad} is outside 1…12 "):
+            draw_mechanism(mech, kin, position=bad)
+    with pytest.raises(TypeError):       # a former index, passed positionally, is refused
+        draw_mechanism(mech, kin, 2)
 
 
 # -- the plan and its steps ---------------------------------------------------------------------
@@ -99,7 +97,8 @@ def test_draw_mechanism_errors(press):
 def test_draw_plan_is_the_plan_view(press):
     res = press[2]
     d = draw_plan(res)
-    view = plan_view(res, 0, number=3, lang="en")
+    view = plan_view(res, 3, lang="en")
+    assert d.scene.primitives == draw_plan(res, position=3).scene.primitives
     assert d.scene.primitives == view.primitives
     assert d.size_mm == (view.width_mm, view.height_mm)
     assert any(t.text == "Velocity plan (pos. 3)" for t in d.scene.of_kind(Text))
@@ -124,15 +123,17 @@ def test_draw_plan_upto_draws_the_first_steps(press):
         draw_plan(res, upto=16)
     with pytest.raises(VelplanError, match=r"upto=0"):
         draw_plan(res, upto=0)
-    with pytest.raises(VelplanError, match=r"position index 1 is outside 0…0"):
-        draw_plan(res, 1)
+    with pytest.raises(VelplanError, match=r"^position 2 is not in this plan \(its positions: 3\)$"):
+        draw_plan(res, position=2)
+    with pytest.raises(VelplanError, match=r"^position 0 is outside 1…12 "):
+        draw_plan(res, position=0)
 
 
 def test_draw_steps_pairs_each_sentence_with_its_drawing(press):
     res = press[2]
-    steps = list(draw_steps(res, 0))
-    assert [s for s, _ in steps] == res.describe(0, "en")
-    assert [s for s, _ in draw_steps(res, 0, lang="ru")] == res.describe(0, "ru")
+    steps = list(draw_steps(res, position=3))
+    assert [s for s, _ in steps] == res.describe(lang="en")
+    assert [s for s, _ in draw_steps(res, lang="ru")] == res.describe(lang="ru")
     # step 5, "The two lines meet at c": the vectors ac and pc are new (thick) and end at c
     sentence, d = steps[4]
     assert sentence.startswith("The two lines meet at c")
@@ -166,7 +167,7 @@ def test_coriolis_step_is_drawn_along_v_rel_turned(shaper_acc):
 # -- side by side, the slider ------------------------------------------------------------------
 
 def test_side_by_side(press):
-    a, b = draw_plan(press[2]), draw_mechanism(press[0], press[1], 2, single=True)
+    a, b = draw_plan(press[2]), draw_mechanism(press[0], press[1], position=3, single=True)
     row = side_by_side(a, b, gap_mm=5.0)
     assert row.size_mm == (a.size_mm[0] + 5.0 + b.size_mm[0], max(a.size_mm[1], b.size_mm[1]))
     assert len(row.scene) == len(a.scene) + len(b.scene)
@@ -185,7 +186,7 @@ def test_crank_slider_static_fallback(press):
 
     def callback(kin):
         seen.append(float(kin.phi[0]))
-        return draw_mechanism(mech, kin, 0, single=True)
+        return draw_mechanism(mech, kin, single=True)
 
     crank_slider(mech, callback, interactive=False, n=12, fallback=3)
     phi = velplan.positions(mech, 12)

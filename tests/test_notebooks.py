@@ -642,12 +642,8 @@ def test_every_construction_step_is_drawn_with_its_sentences(executed):
     nb = executed[0][STEMS[0]]
     cell = next(c for c in nb.cells if "draw_steps(" in c.source)
     text = _stdout(cell)
-    mech = velplan.load("press")
-    kin = velplan.solve(mech, velplan.positions(mech, 12))
-    from velplan.plans import Plan
-
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[2], scale_v=0.0007)
-    english, russian = res.describe(0, "en"), res.describe(0, "ru")
+    res = velplan.Study("press").plan("velocity", positions=[3], scale_v=0.0007)   # position 3
+    english, russian = res.describe(lang="en"), res.describe(lang="ru")
     assert _svg_outputs(cell) == len(english) == 15
     for k, (en, ru) in enumerate(zip(english, russian), start=1):
         assert f"Step {k}. {en}\n        {ru}\n" in text

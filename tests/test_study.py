@@ -215,7 +215,7 @@ def test_an_exact_plan_at_another_scale_is_the_plan_constructed_at_it(name):
                 assert np.allclose(moved.values[t][0], z[0], rtol=0, atol=1e-12 * size, equal_nan=True)
             else:
                 assert np.allclose(moved.values[t], z, rtol=0, atol=1e-12 * size, equal_nan=True)
-        assert moved.describe(2, "ru") == fresh.describe(2, "ru")
+        assert moved.describe(3, "ru") == fresh.describe(3, "ru")
         for label, length in fresh.segments.items():
             assert np.allclose(moved.segments[label], length, rtol=1e-12, atol=1e-12 * size, equal_nan=True)
 

@@ -11,20 +11,18 @@ The product at the front door: a study of a mechanism, its sheets, its page and 
     (12,)
     >>> velplan.structure(study.mechanism).mobility
     1
-    >>> velplan.sheet(study, kind="forces", fmt="A1").write("shaper-forces.svg")  # doctest: +SKIP
+    >>> velplan.sheet(study, kind="forces", fmt="A1").save("shaper-forces.svg")  # doctest: +SKIP
     >>> velplan.Page(study, lang="ru").save("shaper.html")                           # doctest: +SKIP
     >>> velplan.explanatory_note(study, lang="ru").save("note.docx")                 # doctest: +SKIP
 
-Everything beyond the computing core (the study, the sheets, the page, the note) is imported
-on first use, so ``import velplan`` stays light.
+Every name but the errors and the option types is imported on first use, so ``import velplan``
+stays light.
 """
 
 from __future__ import annotations
 
 import warnings
 
-from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
-from velplan.analysis.solver import Kinematics, solve, transfer_functions
 from velplan.errors import (
     AssemblyError,
     MechanismError,
@@ -33,9 +31,6 @@ from velplan.errors import (
     TableError,
     VelplanError,
 )
-from velplan.mechanism.loader import example_names, load, parse
-from velplan.mechanism.model import Mechanism
-from velplan.mechanism.structure import structure
 from velplan.options import LANGUAGES, Language, PlanKind, SheetKind
 
 __all__ = [
@@ -46,8 +41,15 @@ __all__ = [
 ]
 __version__ = "0.1.0"
 
-#: Names imported on first use: name → (module, attribute).
+#: Names imported on first use: name → (module, attribute). Even the computing core waits, so
+#: a command that never solves (``velplan --help``, ``velplan examples``) imports no numpy.
 _LAZY = {
+    **{name: ("velplan.analysis.extremes", name)
+       for name in ("extremes", "positions", "reference_angle", "stroke")},
+    **{name: ("velplan.analysis.solver", name) for name in ("Kinematics", "solve", "transfer_functions")},
+    **{name: ("velplan.mechanism.loader", name) for name in ("example_names", "load", "parse")},
+    "Mechanism": ("velplan.mechanism.model", "Mechanism"),
+    "structure": ("velplan.mechanism.structure", "structure"),
     "Study": ("velplan.study", "Study"),
     "Page": ("velplan.html.page", "Page"),
     "explanatory_note": ("velplan.note.build", "build_note"),
@@ -64,7 +66,7 @@ def sheet(study, kind: SheetKind = "both", **options):
     ``options`` go to the sheet's builder (``fmt``, ``lang``, ``plans``, ``n``, …: see
     `velplan.sheets.kinematic.build_sheet`, `velplan.sheets.forces.build_force_sheet`,
     `velplan.sheets.dynamics.build_dynamics_sheet`). The sheet's ``.svg()`` is its text and
-    ``.write(path, png=…, pdf=…)`` writes it.
+    ``.save(path, png=…, pdf=…)`` saves it.
     """
     from velplan.options import KINEMATIC_SHEET_KINDS
 
@@ -95,7 +97,7 @@ def __getattr__(name: str):
     if name in _DEPRECATED:
         new = _DEPRECATED[name]
         warnings.warn(f"velplan.{name} is deprecated; use velplan.{new}", DeprecationWarning, stacklevel=2)
-        return globals()[new]
+        return __getattr__(new)
     raise AttributeError(f"module 'velplan' has no attribute {name!r}")
 
 

@@ -537,7 +537,7 @@ def study_variant(v: Variant, opts: Options) -> dict | Failure:
             from velplan.sheets.kinematic import build_sheet
 
             sheet = build_sheet(study, fmt=opts.fmt, lang=opts.lang)
-            files = sheet.write(Path(opts.outdir) / f"{_safe(v.name)}.svg", png=opts.png)
+            files = sheet.save(Path(opts.outdir) / f"{_safe(v.name)}.svg", png=opts.png)
             answers["files"] = [f.name for f in files]
         if opts.note:
             from velplan.note import build_note, write_note

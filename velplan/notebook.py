@@ -12,10 +12,10 @@ Examples
 >>> from velplan.notebook import draw_plan, draw_steps
 >>> study = velplan.Study("press")
 >>> res = study.plan("velocity", scale_v=0.0007)
->>> drawing = draw_plan(res, 2, upto=2)         # position 3: the pole and the vector pa
+>>> drawing = draw_plan(res, position=3, upto=2)   # position 3: the pole and the vector pa
 >>> drawing.svg.startswith("<?xml")
 True
->>> sentence, picture = next(iter(draw_steps(res, 2)))
+>>> sentence, picture = next(iter(draw_steps(res, position=3)))
 >>> sentence
 'Choose the pole p; the images of the fixed points O1, O2 are at the pole.'
 """
@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any, Callable, Iterator, Literal, Sequence
 
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
@@ -123,10 +124,10 @@ def _study(mech: Study | Mechanism | str, n: int = 12) -> Study:
     return mech if isinstance(mech, Study) else Study(mech, n=n)
 
 
-def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None, i: int = 0, *,
+def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None, *, position: int = 1,
                    lang: Language = "en", single: bool = False,
                    mu_l: float | None = None) -> SvgDrawing:
-    """The kinematic scheme: position `i` thick, the others thin.
+    """The kinematic scheme: position number `position` thick, the others thin.
 
     Parameters
     ----------
@@ -134,11 +135,11 @@ def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None,
         The study (its positions and turn), or a mechanism studied at 12 positions.
     kin : Kinematics, optional
         Other positions to draw (the study's kinematics by default).
-    i : int
-        Index into `kin` of the position drawn thick (0 is position 1).
+    position : int
+        Number (1…n of `kin`) of the position drawn thick; 1 is the reference position.
     lang : {"en", "ru", "uk", "zh"}
     single : bool
-        Draw position `i` alone (no other positions, trajectories or numbers).
+        Draw that position alone (no other positions, trajectories or numbers).
     mu_l : float, optional
         Scale, m/mm; by default the largest ESKD scale that keeps the scheme within
         `SCHEME_MM`.
@@ -146,7 +147,7 @@ def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None,
     Raises
     ------
     VelplanError
-        If `i` is out of range or the mechanism cannot be assembled there.
+        If `position` is outside 1…n or the mechanism cannot be assembled there.
     """
     from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
     from velplan.views.base import eskd_scales
@@ -155,8 +156,7 @@ def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None,
     mech = study.mechanism
     kin = study.kinematics if kin is None else kin
     n = len(kin)
-    if not 0 <= i < n:
-        raise VelplanError(f"position index {i} is outside 0…{n - 1}")
+    i = position_index(position, n)
     if not kin.valid[i]:
         raise VelplanError(f"{mech.name} cannot be assembled at crank angle "
                            f"{math.degrees(kin.phi[i]):.6g}°")
@@ -165,22 +165,20 @@ def draw_mechanism(mech: Study | Mechanism | str, kin: Kinematics | None = None,
         wx, wy = extent_m(mech, kin, fine)
         mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM),
                     eskd_scales()[-1])
-    view = mechanism_view(mech, mu_l=mu_l, n=n, thick=i + 1, lang=lang, kin=kin, fine=fine,
+    view = mechanism_view(mech, mu_l=mu_l, n=n, thick=position, lang=lang, kin=kin, fine=fine,
                           sizes=MechanismSizes(4.0, 3.5, 2.5), single=single)
     return _drawing(view, lang)
 
 
-def _number(res, i: int) -> int:
-    return int(res.index[i]) + 1
+def _position(res, position: int | None) -> int:
+    """The position number drawn: `position`, by default the first the result was evaluated
+    at (checked against the result)."""
+    position = position_number(res.index[0]) if position is None else position
+    res.index_of(position)
+    return position
 
 
-def _check_index(res, i: int) -> None:
-    if not 0 <= i < len(res.index):
-        raise VelplanError(f"position index {i} is outside 0…{len(res.index) - 1} of this plan")
-
-
-def _partial_plans(res, i: int, lang: str, number: int | None,
-                   upto: Sequence[int]) -> list[tuple[str, SvgDrawing]]:
+def _partial_plans(res, position: int, lang: str, upto: Sequence[int]) -> list[tuple[str, SvgDrawing]]:
     """(sentence of step k, the plan as far as step k) for k in `upto` (1-based).
 
     Every partial plan has the full plan's box and pole, so the figures can be flipped
@@ -190,61 +188,53 @@ def _partial_plans(res, i: int, lang: str, number: int | None,
     from velplan.render.scene import Scene
     from velplan.views.steps import partial_plan
 
-    _check_index(res, i)
-    number = _number(res, i) if number is None else number
-    full = plan_view(res, i, number=number, lang=lang)
-    drawings = plan_steps(res, i, number=number, lang=lang)
+    full = plan_view(res, position, lang=lang)
+    drawings = plan_steps(res, position, lang=lang)
     total = len(drawings)
     out = []
     for k in upto:
         if not 1 <= k <= total:
             raise VelplanError(f"upto={k}: this plan has steps 1…{total}")
-        items = partial_plan(res, i, k, full=full, drawings=drawings, number=number, lang=lang)
+        items = partial_plan(res, position, k, full=full, drawings=drawings, lang=lang)
         scene = Scene(tuple(items), full.width_mm, full.height_mm)
         out.append((drawings[k - 1].sentence, SvgDrawing.from_scene(scene, lang=lang)))
     return out
 
 
-def draw_plan(res, i: int = 0, *, upto: int | None = None, lang: Language = "en",
-              number: int | None = None) -> SvgDrawing:
-    """The velocity or acceleration plan of `res` at its position index `i`.
+def draw_plan(res, *, position: int | None = None, upto: int | None = None,
+              lang: Language = "en") -> SvgDrawing:
+    """The velocity or acceleration plan of `res` at position number `position`.
 
     Parameters
     ----------
     res : PlanResult
         From ``study.plan(kind)`` (a `velplan.Study`); drawn at its own scale.
-    i : int
-        Index into the result's positions (0 for a plan evaluated at one position).
+    position : int, optional
+        Position number (1…n of the result's kinematics) to draw, one the result was
+        evaluated at; by default its first (the only one of a plan at one position).
     upto : int, optional
         Draw only the first `upto` construction steps (1-based; the last of them thick),
         in the full plan's frame; the whole plan by default.
     lang : {"en", "ru", "uk", "zh"}
-    number : int, optional
-        Position number written in the title; by default the index into the kinematics + 1.
     """
+    position = _position(res, position)
     if upto is None:
         from velplan.views.plan import plan_view
 
-        _check_index(res, i)
-        view = plan_view(res, i, number=_number(res, i) if number is None else number,
-                         lang=lang)
-        return _drawing(view, lang)
-    return _partial_plans(res, i, lang, number, [upto])[0][1]
+        return _drawing(plan_view(res, position, lang=lang), lang)
+    return _partial_plans(res, position, lang, [upto])[0][1]
 
 
-def draw_steps(res, i: int = 0, *, lang: Language = "en",
-               number: int | None = None) -> Iterator[tuple[str, SvgDrawing]]:
-    """The construction of the plan step by step: (sentence, drawing so far) per step.
-
-    The sentences are those of ``res.describe(i, lang)``; drawing k shows steps 1…k with
-    step k thick.
-    """
+def draw_steps(res, *, position: int | None = None,
+               lang: Language = "en") -> Iterator[tuple[str, SvgDrawing]]:
+    """The construction of the plan at position number `position` (as for `draw_plan`) step
+    by step: (sentence, drawing so far) per step; drawing k shows steps 1…k with step k
+    thick."""
     from velplan.views.plan import plan_steps
 
-    _check_index(res, i)
-    total = len(plan_steps(res, i, number=_number(res, i) if number is None else number,
-                           lang=lang))
-    return iter(_partial_plans(res, i, lang, number, range(1, total + 1)))
+    position = _position(res, position)
+    total = len(plan_steps(res, position, lang=lang))
+    return iter(_partial_plans(res, position, lang, range(1, total + 1)))
 
 
 def draw_diagrams(mech: Study | Mechanism | str, n: int = 12, *, lang: Language = "en",
@@ -349,8 +339,8 @@ def crank_slider(mech: Study | Mechanism | str, callback: Callable[[Kinematics],
 
     def at(offset_deg: float):
         if callback is None:  # the scheme in that position, numbered as on the sheet
-            return draw_mechanism(study, None, int(round(offset_deg / step)) % n, lang=lang,
-                                  single=True)
+            return draw_mechanism(study, position=position_number(int(round(offset_deg / step)) % n),
+                                  lang=lang, single=True)
         angle = study.phi[0] + study.sense * math.radians(offset_deg)
         return callback(Study(study.mechanism, angles=[angle], check_assembly=False).kinematics)
 

@@ -31,6 +31,7 @@ import numpy as np
 
 from velplan.analysis.chord import Diagrams, kinematic_diagrams
 from velplan.analysis.extremes import Extreme, Stroke, extremes, positions, reference_angle, stroke
+from velplan.analysis.numbering import position_indices
 from velplan.analysis.solver import Kinematics, group_point, solve
 from velplan.errors import AssemblyError, MechanismError, VelplanError
 from velplan.mechanism.loader import load
@@ -130,13 +131,18 @@ class Study:
             return self._angles
         return positions(self.mechanism, self.n)
 
+    def _indices(self, positions) -> list[int]:
+        """Array indices (0…n−1) of the position numbers ``positions`` (1…n; one or several);
+        `VelplanError` naming a number outside 1…n."""
+        return position_indices(positions, self.n).tolist()
+
     def require_assembled(self, positions=None) -> None:
         """Raise `AssemblyError` naming the group, its point and the crank angle at the first of
-        ``positions`` (indices; all by default) where the mechanism is not assembled or is
-        singular."""
+        ``positions`` (position numbers 1…n; all by default) where the mechanism is not
+        assembled or is singular."""
         kin = self.kinematics
-        idx = np.arange(len(kin)) if positions is None else np.atleast_1d(positions)
-        bad = [int(i) for i in idx if not kin.valid[i]]
+        bad = [i for i in (range(len(kin)) if positions is None else self._indices(positions))
+               if not kin.valid[i]]
         if not bad:
             return
         i = bad[0]
@@ -205,8 +211,8 @@ class Study:
     def plan(self, kind: Kind = "velocity", *, drafting: Drafting = EXACT, scale_v: float | None = None,
              scale_a: float | None = None, positions=None, only=None,
              on_failure: Literal["nan", "raise"] = "nan") -> PlanResult:
-        """The ``kind`` plan at every position (or at ``positions``, indices), drawn exactly or at
-        ``drafting`` precision; an acceleration plan is drawn on the velocity plan.
+        """The ``kind`` plan at every position (or at ``positions``, position numbers 1…n), drawn
+        exactly or at ``drafting`` precision; an acceleration plan is drawn on the velocity plan.
 
         An exact plan is constructed once and drawn at any scale μv, μa on request (its images
         scale with μ; nothing is constructed again); a drafted one is constructed at its scale,
@@ -223,7 +229,7 @@ class Study:
                 res = self._plans[(kind,)] = self.construction.evaluate(
                     self.kinematics, kind=kind, velocity=velocity)
             return res if scale is None else res.at_scale(scale)
-        pos = None if positions is None else tuple(int(i) for i in np.atleast_1d(positions))
+        pos = None if positions is None else tuple(self._indices(positions))
         key = (kind, drafting, scale_v, scale_a, pos, None if only is None else tuple(only), on_failure)
         res = self._plans.get(key)
         if res is None:
@@ -286,6 +292,48 @@ class Study:
             plan = self.construction.evaluate(kin, kind="velocity")
             res = self._forces[key] = force_analysis(kin, plan, self.loads, gravity=gravity, inertia=inertia)
         return res
+
+    def forces_in_chunks(self, positions, chunk: int, *, drafting: Drafting = EXACT, mu_v: float | None = None,
+                         gravity: bool = True, inertia: bool = True):
+        """`forces` at the position numbers ``positions`` (1…n), ``chunk`` positions analysed at
+        a time (bounded memory): (first, analysis, lever − kinetostatics in %) per chunk, ``first``
+        counting in ``positions``. The plan's scale μv and the largest |M_b| that the per-cent
+        difference is judged against are those of all positions, so the numbers are those of
+        `forces` (to round-off)."""
+        from velplan.analysis.chunks import chunked_kinematics
+        from velplan.forces.agreement import force_analysis, lever_difference_percent
+
+        index = position_indices(positions, self.n)
+        (w, e), scale_v, peak = self.crank_motion, None if drafting.exact else mu_v, None
+        if len(index) < self.n or self.n > chunk:
+            scale_v, peak = self._force_extent(chunk, scale_v, gravity=gravity, inertia=inertia)
+        pick = lambda x: x[index] if isinstance(x, np.ndarray) else x  # noqa: E731
+        for a, kin in chunked_kinematics(self.mechanism, self.phi[index], omega1=pick(w), epsilon1=pick(e),
+                                         engine=self.engine, chunk=chunk):
+            plan = self.construction.evaluate(kin, kind="velocity", drafting=drafting, scale_v=scale_v)
+            res = force_analysis(kin, plan, self.loads, gravity=gravity, inertia=inertia, mu_v=mu_v)
+            lever, ks = res.lever.balancing_moment, res.kinetostatics.balancing_moment
+            if peak is None:
+                yield a, res, lever_difference_percent(lever, ks)
+            else:  # judged against the largest |M_b| of all positions, appended as one more
+                yield a, res, lever_difference_percent(np.append(lever, 0.0), np.append(ks, peak))[:-1]
+
+    def _force_extent(self, chunk: int, scale_v: float | None, *, gravity: bool, inertia: bool):
+        """(μv, (m/s)/mm: ``scale_v`` or the standard scale of all positions; the largest |M_b|
+        by kinetostatics, N·m), ``chunk`` positions at a time."""
+        from velplan.analysis.chunks import chunked_kinematics
+        from velplan.forces.agreement import mechanism_actions
+        from velplan.forces.kinetostatics import kinetostatics
+        from velplan.plans.engine import auto_scale
+
+        (w, e), mech = self.crank_motion, self.mechanism
+        scales, peak = [], 0.0
+        for _, kin in chunked_kinematics(mech, self.phi, omega1=w, epsilon1=e, engine=self.engine, chunk=chunk):
+            if scale_v is None:  # the standard scale grows with the largest |V|: the largest chunk's
+                scales.append(auto_scale(kin, slice(None), "velocity"))
+            acts = mechanism_actions(mech, kin, self.loads, gravity=gravity, inertia=inertia)
+            peak = max(peak, float(np.nanmax(np.abs(kinetostatics(mech, kin, acts).balancing_moment), initial=0.0)))
+        return (max(scales) if scale_v is None else scale_v), peak
 
     # -- dynamics ----------------------------------------------------------------------------
 

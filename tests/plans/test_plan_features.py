@@ -62,7 +62,7 @@ def test_seed_000_scale_gives_pa_71_4_mm():
     kin = velplan.solve(mech, [0.0])
     res = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=0.0007)
     assert res.segments["pa"][0] == pytest.approx(0.05 / 0.0007)
-    assert "pa = 71.4 mm ⊥ O1A in the sense of ω1 (V_A = 0.05 m/s)" in res.describe(0, "en")[1]
+    assert "pa = 71.4 mm ⊥ O1A in the sense of ω1 (V_A = 0.05 m/s)" in res.describe(lang="en")[1]
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, float("nan"), float("inf")])
@@ -152,14 +152,14 @@ def test_sentences_in_every_language():
     mech = velplan.load("shaper")
     kin = velplan.solve(mech, [1.0])
     res = Plan.of(mech).evaluate(kin, kind="acceleration", scale_v=0.02, scale_a=0.2)
-    en, ru, uk, zh = (res.describe(0, lang) for lang in ("en", "ru", "uk", "zh"))
+    en, ru, uk, zh = (res.describe(lang=lang) for lang in ("en", "ru", "uk", "zh"))
     assert len(en) == len(ru) == len(uk) == len(zh) == 14
     assert en[2].startswith("From a lay off ak1 = ") and "aᵏ_A4A" in en[2]
     assert ru[2].startswith("Из точки a откладываем отрезок ak1 = ") and "," in ru[2]
     assert uk[0].startswith("Обираємо полюс π")
     assert zh[0].startswith("选取极点 π")
     with pytest.raises(VelplanError, match=r"^unknown language 'de'; known languages: en, ru, uk, zh$"):
-        res.describe(0, "de")
+        res.describe(lang="de")
 
 
 def test_transfer_table_layout_matches_seed_000():

@@ -177,7 +177,7 @@ def test_the_velocity_plan_starts_with_the_special_point():
 def test_sentences_in_four_languages_name_the_special_point(kind):
     mech, kin, plan = _velocity()
     res = plan.evaluate(kin, kind=kind)
-    en, ru, uk, zh = (res.describe(0, lang) for lang in ("en", "ru", "uk", "zh"))
+    en, ru, uk, zh = (res.describe(lang=lang) for lang in ("en", "ru", "uk", "zh"))
     assert len(en) == len(ru) == len(uk) == len(zh) == len([s for s in res.steps if s.target.startswith(kind[0])])
     for words in zip(en, ru, uk, zh):
         assert len(set(words)) == 4 and all(words)

@@ -3,7 +3,7 @@ import shapely
 
 from velplan.errors import ScaleError
 from velplan.render.layout import (
-    fit_text, label_box, nudge_labels, overlapping_labels, place_views)
+    fit_text, label_box, overlapping_labels, place_views)
 from velplan.render.scene import Circle, Scene, Text
 from velplan.sheets.frame import free_area
 
@@ -27,22 +27,6 @@ def test_overlap_layer_filter():
     a, b = Text((0, 0), "AAA", "labels"), Text((1, 0), "BBB", "title")
     assert overlapping_labels(Scene((a, b)), layers=["labels"]) == []
     assert overlapping_labels(Scene((a, b))) == [(a, b)]
-
-
-def test_nudge_moves_later_label_off_earlier_one():
-    a = Text((100, 100), "a", "labels", 3.5)
-    b = Text((100.5, 100.5), "b", "labels", 3.5)
-    placed = nudge_labels([a, b])
-    assert placed[0] == a
-    assert placed[1] != b
-    assert label_box(placed[0]).intersection(label_box(placed[1])).area == pytest.approx(0.0)
-    assert overlapping_labels(Scene(placed)) == []
-
-
-def test_nudge_avoids_obstacles():
-    t = Text((0, 0), "A", "labels", 3.5)
-    moved, = nudge_labels([t], [shapely.box(-1, -1, 3, 4)])
-    assert not label_box(moved).intersects(shapely.box(-1, -1, 3, 4).buffer(-1e-6))
 
 
 def test_views_fill_the_l_shaped_area_without_overlap():

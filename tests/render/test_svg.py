@@ -94,3 +94,24 @@ def test_white_fill_and_plan_colour():
     assert joint.get("fill") == "white"
     head = root.find(f"{SVG}g[@id='layer-plan-v-1']/{SVG}polygon")
     assert head.get("fill") == "blue"
+
+
+def test_text_and_attributes_are_escaped_and_read_back():
+    """Markup characters in a label survive a round trip through an XML parser, in the text and
+    in the aria-label an index brings; characters XML forbids become U+FFFD."""
+    label = 'R₁ <a & "b"> \x01'
+    svg = to_svg(Scene((Text((10, 10), label, "labels"), Text((10, 20), "", "labels")), 100, 50))
+    root = ET.fromstring(svg.encode("utf-8"))
+    plain, empty = root.iter(f"{SVG}text")
+    assert plain.get("aria-label") == label.replace("\x01", "\ufffd")
+    index, rest = plain.findall(f"{SVG}tspan")
+    assert (plain.text, index.text, rest.text) == ("R", "1", ' <a & "b"> \ufffd')
+    assert float(index.get("dy")) == pytest.approx(0.25 * 3.5)  # down to the subscript, and back
+    assert float(rest.get("dy")) == pytest.approx(-0.25 * 3.5)
+    assert empty.text is None and not list(empty)
+    assert svg.startswith('<?xml version="1.0" encoding="utf-8" ?>\n<svg ') and svg.endswith("</svg>\n")
+
+
+def test_empty_scene_is_a_document_with_only_defs():
+    root = ET.fromstring(to_svg(Scene((), 10, 10)).encode("utf-8"))
+    assert [child.tag for child in root] == [f"{SVG}defs"]

@@ -45,7 +45,7 @@ def test_same_input_same_bytes(sheets):
 
 
 def test_svg_converts_to_png(sheets, tmp_path):
-    written = sheets["four-bar"].write(tmp_path / "four-bar.svg", png=True, dpi=20)
+    written = sheets["four-bar"].save(tmp_path / "four-bar.svg", png=True, dpi=20)
     assert [p.name for p in written] == ["four-bar.svg", "four-bar.png"]
     assert (tmp_path / "four-bar.png").read_bytes()[:4] == b"\x89PNG"
 
@@ -60,12 +60,16 @@ def test_scale_error_is_one_line_and_says_what_to_do():
                     r"\(\d+ × \d+ mm free\); use fewer --plans or a larger --format$", message)
 
 
-def test_diagrams_demanded_on_a3_raise_scale_error_else_are_left_out():
-    with pytest.raises(ScaleError, match=r"^the kinematic diagrams do not fit A3 "):
-        build_sheet("crank-slider", fmt="A3", diagrams=True)
+def test_diagrams_demanded_go_where_they_fit_else_raise_scale_error():
     sheet = build_sheet("crank-slider", fmt="A3", lang="en")
     # left of the band, the diagrams find the free corner under the scheme
     assert "diagrams" in sheet.views and sheet.frame_style == "iso"
+    demanded = build_sheet("crank-slider", fmt="A3", lang="en", diagrams=True)
+    assert demanded.svg() == sheet.svg()  # demanding them draws what "auto" draws
+    assert "diagrams" not in build_sheet("slider-press", fmt="A3").views
+    with pytest.raises(ScaleError, match=r"^the kinematic diagrams do not fit A3 beside the table "
+                                         r"nor in a free corner .*; use a larger --format$"):
+        build_sheet("slider-press", fmt="A3", diagrams=True)
 
 
 @pytest.mark.parametrize("options, message", [

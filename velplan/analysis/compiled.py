@@ -1,36 +1,48 @@
 """The optional compiled engine: the closed forms of `velplan.analysis.groups`, run position by
-position by numba (``pip install velplan[fast]``), in parallel, in one pass over the outputs.
+position by numba (``pip install velplan[fast]``), on several threads, in one pass over the outputs.
 
 The mechanism is encoded as a small program — one row per crank, group and link point, each
-an opcode, register slots and real parameters — and a single kernel interprets that program
-at every crank angle. The kernel is compiled once per machine (≈ 20 s) and cached on disk by
-numba; a new process loads it in well under a second. The kernel calls the very functions the numpy
-engine calls on whole arrays (`groups.rrr`, `groups.rrp`, …), compiled for scalars, so the two
-engines share every formula; only the bookkeeping differs.
+an opcode, register slots and real parameters — and a kernel interprets that program at every
+crank angle. Each kind of row (crank, link point, RRR, RRP, RPR, PRP, RPP) has its own small
+function, compiled and cached on disk by numba on its own; the interpreter links them (all
+compiled in ≈ 10 s, once per machine). A new process loads the interpreter's machine code
+without numba's start-up of its whole compiler (`_load_cached`: ≈ 0.05 s, against ≈ 0.4 s for
+numba's own loading). The row functions call the very functions the numpy engine calls on whole
+arrays (`groups.rrr`, `groups.rrp`, …), compiled for scalars, so the two engines share every
+formula; only the bookkeeping differs. Derivatives above the ``order`` asked for are neither
+allocated nor written.
 """
 
 from __future__ import annotations
 
 import hashlib
 import importlib.util
-import inspect
+import os
 import types
+from dataclasses import dataclass
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
 from velplan.analysis import groups as G
+from velplan.analysis import solver
 from velplan.errors import VelplanError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import schedule
 
 
 CRANK, POINT, OP_RRR, OP_RRP, OP_RPR, OP_PRP, OP_RPP = range(7)
+KINDS = ("crank", "point", "rrr", "rrp", "rpr", "prp", "rpp")
+"""The opcodes' names, in opcode order: the row function of kind ``x`` is ``_x_rows``."""
 NI, NF = 13, 4
 """Integer slots and real parameters per program row (unused ones are −1 / 0)."""
 CHUNK = 256
 """Crank angles one thread solves at a time (its slices of the outputs stay in the CPU's caches)."""
-CORES = ("cross", "solve2", "cis", "wrap_angle", "carry", "crank_tip", "link_point", "guide_line", "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
+CORES = ("cross", "solve2", "cis", "direction", "wrap_angle", "carry", "crank_tip", "link_point", "guide_line",
+         "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
+ROUND_OFF = 64 * float(np.finfo(float).eps)
+"""The factor of `solver.velocity_bound`: 64·ε."""
 
 
 @lru_cache(maxsize=1)
@@ -130,167 +142,308 @@ def _program(mech, points, links, slides, groups, length_scale, items) -> tuple[
     return ops, pars
 
 
-def _kernel(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid):  # noqa: C901 - one switch
-    """Interpret the program at every angle of ``phi``; write Z (3, P, n) positions, velocities,
-    accelerations; R (3, L, n) angles, ω, ε; S (S, 3, n) slides; C (G, n) conditions (NaN where
-    a group does not close) and ``valid`` (n,).
+# ---- the kernel ------------------------------------------------------------------------------
+# Each kind of program row has its own function over the angles i0 … i0+m−1 of a chunk, all with
+# the same arguments: the row's slots ``o`` and reals ``f``; the chunk (i0, m); the angles, the
+# crank's ω and ε; the chunk's registers — points p, v, a (P, m) complex, links θ, ω, ε (L, m)
+# (the frame, link L, reads as ``zero``) —, the slides S (S, k, n), the conditions cn (G, m)
+# (NaN where a group does not close); and k, the derivatives kept (order + 1): above it the
+# registers alias lower ones, so nothing above order k − 1 is written (positions never depend
+# on velocities, nor velocities on accelerations). Their free names (put, rrr, crank_rows, …)
+# are the compiled functions of `_env` and `kernel`.
+
+
+def _put(p, v, a, x, t, k, c, cv, ca):
+    """Point x at angle t of the chunk: its position, and its velocity and acceleration if kept."""
+    p[x, t] = c
+    if k > 1:
+        v[x, t] = cv
+    if k > 2:
+        a[x, t] = ca
+
+
+def _turn(th, om, ep, x, t, k, theta, w, e):
+    """Link x at angle t of the chunk: its angle (rad), and ω, ε if kept."""
+    th[x, t] = theta
+    if k > 1:
+        om[x, t] = w
+    if k > 2:
+        ep[x, t] = e
+
+
+def _glide(S, x, i, k, s, sd, sdd):
+    """Slide x at angle i: s (m), and ṡ, s̈ if kept."""
+    S[x, 0, i] = s
+    if k > 1:
+        S[x, 1, i] = sd
+    if k > 2:
+        S[x, 2, i] = sdd
+
+
+def _link(th, om, ep, lk, zero):
+    """The chunk's rows θ, ω, ε of link lk; the frame (lk = L) reads as zeros."""
+    if lk < th.shape[0]:
+        return th[lk], om[lk], ep[lk]
+    return zero, zero, zero
+
+
+def _crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """The crank: its tip, and its link at the angle φ, ω1, ε1."""
+    q, x, lk = o[1], o[2], o[3]
+    for t in range(m):
+        c, cv, ca = crank_tip(p[q, t], f[0], phi[i0 + t], w1, e1)
+        put(p, v, a, x, t, k, c, cv, ca)
+        turn(th, om, ep, lk, t, k, phi[i0 + t], w1, e1)
+
+
+def _point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """A point of a link, ``f[0]`` along its reference direction from its origin and ``f[1]`` to its left."""
+    lk, q, x = o[1], o[2], o[3]
+    lt, lw, le = link(th, om, ep, lk, zero)
+    for t in range(m):
+        c, cv, ca = link_point(p[q, t], v[q, t], a[q, t], lt[t], lw[t], le[t], f[0], f[1])
+        put(p, v, a, x, t, k, c, cv, ca)
+
+
+def _rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """An RRR group on the joints o[1], o[2]: its middle joint and its two links."""
+    A, D, x, l1, l2, g = o[1], o[2], o[3], o[4], o[5], o[6]
+    for t in range(m):
+        c, cv, ca, t1, w_1, e_1, t2, w_2, e_2, cond, closed = rrr(
+            p[A, t], v[A, t], a[A, t], p[D, t], v[D, t], a[D, t], f[0], f[1], f[2])
+        put(p, v, a, x, t, k, c, cv, ca)
+        turn(th, om, ep, l1, t, k, t1, w_1, e_1)
+        turn(th, om, ep, l2, t, k, t2, w_2, e_2)
+        cn[g, t] = cond if closed else np.nan
+
+
+def _rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """An RRP group: the slider on a guide of link o[3], the rod, the slide."""
+    A, Q, gl, x, xc, rod, sld, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9]
+    gt, gw, ge = link(th, om, ep, gl, zero)
+    for t in range(m):
+        c, cv, ca, gv, ga, tr, wr, er, s, sd, sdd, cond, closed = rrp(
+            p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t], f[0], f[1], f[2], f[3])
+        put(p, v, a, x, t, k, c, cv, ca)
+        if xc >= 0:
+            put(p, v, a, xc, t, k, c, gv, ga)
+        turn(th, om, ep, rod, t, k, tr, wr, er)
+        turn(th, om, ep, sld, t, k, gt[t] + f[0], gw[t], ge[t])
+        glide(S, s_, i0 + t, k, s, sd, sdd)
+        cn[g, t] = cond if closed else np.nan
+
+
+def _rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """An RPR group: the block on the bar through the pivot o[2], turning with it; the slide."""
+    A, Q, xc, blk, bar, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
+    for t in range(m):
+        tt, w, e, s, sd, sdd, bv, ba, cond, closed = rpr(
+            p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], f[0], f[1], f[2])
+        if xc >= 0:
+            put(p, v, a, xc, t, k, p[A, t], bv, ba)
+        turn(th, om, ep, blk, t, k, tt, w, e)
+        turn(th, om, ep, bar, t, k, tt, w, e)
+        glide(S, s_, i0 + t, k, s, sd, sdd)
+        cn[g, t] = cond if closed else np.nan
+
+
+def _prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """A PRP group: the joint on two guides (of links o[2], o[4]), both slides."""
+    Q1, g1, Q2, g2, x, xc1, xc2 = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
+    m1, m2, s1_, s2_, g = o[8], o[9], o[10], o[11], o[12]
+    t1, w_1, e_1 = link(th, om, ep, g1, zero)
+    t2, w_2, e_2 = link(th, om, ep, g2, zero)
+    for t in range(m):
+        c, cv, ca, c1v, c1a, c2v, c2a, s1, sd1, sdd1, s2, sd2, sdd2, cond, closed = prp(
+            p[Q1, t], v[Q1, t], a[Q1, t], t1[t], w_1[t], e_1[t], f[0], f[1],
+            p[Q2, t], v[Q2, t], a[Q2, t], t2[t], w_2[t], e_2[t], f[2], f[3])
+        put(p, v, a, x, t, k, c, cv, ca)
+        if xc1 >= 0:
+            put(p, v, a, xc1, t, k, c, c1v, c1a)
+        if xc2 >= 0:
+            put(p, v, a, xc2, t, k, c, c2v, c2a)
+        turn(th, om, ep, m1, t, k, t1[t] + f[0], w_1[t], e_1[t])
+        turn(th, om, ep, m2, t, k, t2[t] + f[2], w_2[t], e_2[t])
+        glide(S, s1_, i0 + t, k, s1, sd1, sdd1)
+        glide(S, s2_, i0 + t, k, s2, sd2, sdd2)
+        cn[g, t] = cond if closed else np.nan
+
+
+def _rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+    """An RPP group: the block in the runner's slot, the runner on a guide of link o[3]; both slides."""
+    B, Q, gl, xc, xk, blk, run, sb_, sr_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]
+    gt, gw, ge = link(th, om, ep, gl, zero)
+    sine = abs(np.sin(f[2]))
+    for t in range(m):
+        k_, kv, ka, bv, ba, s, sd, sdd, u, ud, udd, closed = rpp(
+            p[B, t], v[B, t], a[B, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t], f[0], f[1], f[2])
+        if xc >= 0:
+            put(p, v, a, xc, t, k, p[B, t], bv, ba)
+        put(p, v, a, xk, t, k, k_, kv, ka)
+        theta = gt[t] + f[0]
+        turn(th, om, ep, blk, t, k, theta + f[2], gw[t], ge[t])
+        turn(th, om, ep, run, t, k, theta, gw[t], ge[t])
+        glide(S, sb_, i0 + t, k, u, ud, udd)
+        glide(S, sr_, i0 + t, k, s, sd, sdd)
+        cn[g, t] = sine if closed else np.nan
+
+
+def _mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit):
+    """valid[i0 + t]: every kept output finite, every group closed and, velocities kept, their
+    relative round-off (`solver.velocity_bound`) within ``limit``; the angles wrapped into (−π, π]."""
+    for t in range(m):
+        ok = True
+        for j in range(p.shape[0]):
+            ok = ok and np.isfinite(p[j, t]) and (k < 2 or np.isfinite(v[j, t])) and (k < 3 or np.isfinite(a[j, t]))
+        for j in range(th.shape[0]):
+            th[j, t] = wrap_angle(th[j, t])
+            ok = ok and (k < 2 or np.isfinite(om[j, t])) and (k < 3 or np.isfinite(ep[j, t]))
+        s = 0.0
+        for j in range(cn.shape[0]):
+            ok = ok and cn[j, t] > 0
+            s += abs(cn[j, t]) ** -2.0
+        valid[i0 + t] = ok and (k < 2 or ROUND_OFF * (1.0 + s) <= limit)
+
+
+def _chunks(u0, u1, ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, zero, limit):
+    """Interpret the program over the chunks u0 … u1 − 1 of the angles ``phi``; write Z (k, P, n)
+    positions, velocities, accelerations; R (k, L, n) angles, ω, ε; S (S, k, n) slides; C (G, n)
+    conditions and ``valid`` (n,) (`_mark`); k = Z.shape[0] is the order + 1.
 
     The angles are V variants × ``nper`` angles (variant-major); variant v has the parameters
-    ``par[v]`` (m, NF), ground points ``ground[v]`` and crank rates ``w1s[v]``, ``e1s[v]``.
-    Each thread takes a chunk of one variant's angles and runs the program over it one row at
-    a time; the chunk's slices of the outputs are its registers (the frame, link L, reads as
-    zeros).
+    ``par[v]`` (m, NF), ground points ``ground[v]`` and crank rates ``w1s[v]``, ``e1s[v]``. A
+    chunk is up to `CHUNK` angles of one variant; its slices of the outputs are its registers.
     """
-    nP, nL, nS, nG = Z.shape[1], R.shape[1], S.shape[0], C.shape[0]
+    k = Z.shape[0]
     per = (nper + CHUNK - 1) // CHUNK  # chunks per variant
-    for unit in prange(par.shape[0] * per):
+    for unit in range(u0, u1):
         vi = unit // per
         i0 = vi * nper + (unit - vi * per) * CHUNK
-        i1 = min(vi * nper + nper, i0 + CHUNK)
-        m = i1 - i0
+        m = min(vi * nper + nper, i0 + CHUNK) - i0
         w1, e1 = w1s[vi], e1s[vi]
-        zero = np.zeros(m)
-        p, v, a = Z[0, :, i0:i1], Z[1, :, i0:i1], Z[2, :, i0:i1]
-        th, om, ep = R[0, :, i0:i1], R[1, :, i0:i1], R[2, :, i0:i1]
-        cn = C[:, i0:i1]
+        p, v, a = Z[0, :, i0:i0 + m], Z[min(1, k - 1), :, i0:i0 + m], Z[k - 1, :, i0:i0 + m]
+        th, om, ep = R[0, :, i0:i0 + m], R[min(1, k - 1), :, i0:i0 + m], R[k - 1, :, i0:i0 + m]
+        cn = C[:, i0:i0 + m]
         for j in range(ground.shape[1]):
             for t in range(m):
-                p[j, t], v[j, t], a[j, t] = ground[vi, j], 0.0, 0.0
-        for k in range(ops.shape[0]):
-            o = ops[k]
-            f = par[vi, k]
+                put(p, v, a, j, t, k, ground[vi, j], 0j, 0j)
+        for r in range(ops.shape[0]):
+            o, f = ops[r], par[vi, r]
             op = o[0]
             if op == CRANK:
-                q, x, lk = o[1], o[2], o[3]
-                for t in range(m):
-                    p[x, t], v[x, t], a[x, t] = crank_tip(p[q, t], f[0], phi[i0 + t], w1, e1)
-                    th[lk, t], om[lk, t], ep[lk, t] = phi[i0 + t], w1, e1
+                crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
             elif op == POINT:
-                lk, q, x = o[1], o[2], o[3]
-                lt, lw, le = (th[lk], om[lk], ep[lk]) if lk < nL else (zero, zero, zero)
-                for t in range(m):
-                    p[x, t], v[x, t], a[x, t] = link_point(p[q, t], v[q, t], a[q, t], lt[t], lw[t], le[t], f[0], f[1])
+                point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
             elif op == OP_RRR:
-                A, D, x, l1, l2, g = o[1], o[2], o[3], o[4], o[5], o[6]
-                for t in range(m):
-                    c, cv, ca, t1, w_1, e_1, t2, w_2, e_2, cond, closed = rrr(
-                        p[A, t], v[A, t], a[A, t], p[D, t], v[D, t], a[D, t], f[0], f[1], f[2])
-                    p[x, t], v[x, t], a[x, t] = c, cv, ca
-                    th[l1, t], om[l1, t], ep[l1, t] = t1, w_1, e_1
-                    th[l2, t], om[l2, t], ep[l2, t] = t2, w_2, e_2
-                    cn[g, t] = cond if closed else np.nan
+                rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
             elif op == OP_RRP:
-                A, Q, gl, x, xc, rod, sld, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9]
-                gt, gw, ge = (th[gl], om[gl], ep[gl]) if gl < nL else (zero, zero, zero)
-                for t in range(m):
-                    c, cv, ca, gv, ga, tr, wr, er, s, sd, sdd, cond, closed = rrp(
-                        p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t],
-                        f[0], f[1], f[2], f[3])
-                    p[x, t], v[x, t], a[x, t] = c, cv, ca
-                    if xc >= 0:
-                        p[xc, t], v[xc, t], a[xc, t] = c, gv, ga
-                    th[rod, t], om[rod, t], ep[rod, t] = tr, wr, er
-                    th[sld, t], om[sld, t], ep[sld, t] = gt[t] + f[0], gw[t], ge[t]
-                    S[s_, 0, i0 + t], S[s_, 1, i0 + t], S[s_, 2, i0 + t] = s, sd, sdd
-                    cn[g, t] = cond if closed else np.nan
+                rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
             elif op == OP_RPR:
-                A, Q, xc, blk, bar, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
-                for t in range(m):
-                    tt, w, e, s, sd, sdd, bv, ba, cond, closed = rpr(
-                        p[A, t], v[A, t], a[A, t], p[Q, t], v[Q, t], a[Q, t], f[0], f[1], f[2])
-                    if xc >= 0:
-                        p[xc, t], v[xc, t], a[xc, t] = p[A, t], bv, ba
-                    th[blk, t], om[blk, t], ep[blk, t] = tt, w, e
-                    th[bar, t], om[bar, t], ep[bar, t] = tt, w, e
-                    S[s_, 0, i0 + t], S[s_, 1, i0 + t], S[s_, 2, i0 + t] = s, sd, sdd
-                    cn[g, t] = cond if closed else np.nan
+                rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
             elif op == OP_PRP:
-                Q1, g1, Q2, g2, x, xc1, xc2 = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
-                m1, m2, s1_, s2_, g = o[8], o[9], o[10], o[11], o[12]
-                t1, w_1, e_1 = (th[g1], om[g1], ep[g1]) if g1 < nL else (zero, zero, zero)
-                t2, w_2, e_2 = (th[g2], om[g2], ep[g2]) if g2 < nL else (zero, zero, zero)
-                for t in range(m):
-                    c, cv, ca, c1v, c1a, c2v, c2a, s1, sd1, sdd1, s2, sd2, sdd2, cond, closed = prp(
-                        p[Q1, t], v[Q1, t], a[Q1, t], t1[t], w_1[t], e_1[t], f[0], f[1],
-                        p[Q2, t], v[Q2, t], a[Q2, t], t2[t], w_2[t], e_2[t], f[2], f[3])
-                    p[x, t], v[x, t], a[x, t] = c, cv, ca
-                    if xc1 >= 0:
-                        p[xc1, t], v[xc1, t], a[xc1, t] = c, c1v, c1a
-                    if xc2 >= 0:
-                        p[xc2, t], v[xc2, t], a[xc2, t] = c, c2v, c2a
-                    th[m1, t], om[m1, t], ep[m1, t] = t1[t] + f[0], w_1[t], e_1[t]
-                    th[m2, t], om[m2, t], ep[m2, t] = t2[t] + f[2], w_2[t], e_2[t]
-                    S[s1_, 0, i0 + t], S[s1_, 1, i0 + t], S[s1_, 2, i0 + t] = s1, sd1, sdd1
-                    S[s2_, 0, i0 + t], S[s2_, 1, i0 + t], S[s2_, 2, i0 + t] = s2, sd2, sdd2
-                    cn[g, t] = cond if closed else np.nan
-            else:  # OP_RPP
-                B, Q, gl, xc, xk, blk, run, sb_, sr_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]
-                gt, gw, ge = (th[gl], om[gl], ep[gl]) if gl < nL else (zero, zero, zero)
-                sine = abs(np.sin(f[2]))
-                for t in range(m):
-                    k_, kv, ka, bv, ba, s, sd, sdd, u, ud, udd, closed = rpp(
-                        p[B, t], v[B, t], a[B, t], p[Q, t], v[Q, t], a[Q, t], gt[t], gw[t], ge[t],
-                        f[0], f[1], f[2])
-                    if xc >= 0:
-                        p[xc, t], v[xc, t], a[xc, t] = p[B, t], bv, ba
-                    p[xk, t], v[xk, t], a[xk, t] = k_, kv, ka
-                    theta = gt[t] + f[0]
-                    th[blk, t], om[blk, t], ep[blk, t] = theta + f[2], gw[t], ge[t]
-                    th[run, t], om[run, t], ep[run, t] = theta, gw[t], ge[t]
-                    S[sb_, 0, i0 + t], S[sb_, 1, i0 + t], S[sb_, 2, i0 + t] = u, ud, udd
-                    S[sr_, 0, i0 + t], S[sr_, 1, i0 + t], S[sr_, 2, i0 + t] = s, sd, sdd
-                    cn[g, t] = sine if closed else np.nan
-        for t in range(m):
-            ok = True
-            for j in range(nP):
-                ok = ok and np.isfinite(p[j, t]) and np.isfinite(v[j, t]) and np.isfinite(a[j, t])
-            for j in range(nL):
-                th[j, t] = wrap_angle(th[j, t])
-                ok = ok and np.isfinite(om[j, t]) and np.isfinite(ep[j, t])
-            for j in range(nG):
-                ok = ok and cn[j, t] > 0
-            valid[i0 + t] = ok
+                prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+            else:
+                rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+        mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit)
 
+
+# ---- compiling, loading and calling ----------------------------------------------------------
 
 SERIAL = 4096
-"""Up to this many angles a call runs on the calling thread alone: waking the other threads
-costs more than they save (milliseconds on a busy machine)."""
+"""Up to this many angles a call runs on the calling thread alone: waking other threads costs
+more than they save (milliseconds on a busy machine)."""
+ZERO = np.zeros(CHUNK)
+"""The frame's angle, ω and ε over a chunk (read only)."""
 
-_PREPARED: dict = {}
-"""Programs by mechanism content (`prepared`), the latest few."""
+
+def _jit(f, env: dict, qualname: str, **kw):
+    """``f``'s code compiled by numba with ``env`` as its globals (its names resolved to compiled
+    functions); cached on disk under ``qualname`` when ``cache=True``."""
+    import numba
+
+    g = types.FunctionType(f.__code__, env, f.__name__)
+    g.__qualname__ = qualname
+    return numba.njit(error_model="numpy", **kw)(g)
 
 
-def prepared(mech: Mechanism, items: tuple, length_scale: float, layout) -> tuple:
-    """(state, conditions, ops, params (1, m, NF), ground (1, Pg)) of ``mech``: ``layout()``
-    (the numpy engine on one angle: the outputs' names and order) and `encode`, memoised by
-    the mechanism's numbers and names, so that a repeated call costs only its kernel."""
-    key = (mech.ground, mech.crank, mech.groups, mech.points, items, length_scale)
-    hit = _PREPARED.get(key)
-    if hit is None:
-        st, conditions = layout()
-        names, links = list(st.points), [k for k in st.links if k != GROUND]
-        ops, par, ground = encode(mech, names, links, list(st.slides), list(conditions), length_scale, items)
-        hit = (st, conditions, ops, par[None], ground[None])
-        if len(_PREPARED) >= 32:
-            _PREPARED.pop(next(iter(_PREPARED)))
-        _PREPARED[key] = hit
-    return hit
+@lru_cache(maxsize=1)
+def _env() -> dict:
+    """Globals of the row functions: the closed forms and the register helpers, compiled."""
+    if not available():
+        raise VelplanError("the compiled engine needs numba: pip install numba (in a checkout: pip install '.[fast]')")
+    env = {"__name__": __name__, "np": np, "CHUNK": CHUNK, "ROUND_OFF": ROUND_OFF, "CRANK": CRANK, "POINT": POINT,
+           "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP}
+    for name in CORES:
+        env[name] = _jit(getattr(G, name), env, name)
+    for f in (_put, _turn, _glide, _link, _mark):
+        env[f.__name__[1:]] = _jit(f, env, f.__name__)
+    return env
+
+
+@lru_cache(maxsize=None)
+def _rows(op: int):
+    """The row function of opcode ``op``, compiled once per machine and cached on its own."""
+    f = globals()[f"_{KINDS[op]}_rows"]
+    return _jit(f, _env(), f"{f.__name__}_{fingerprint()}", cache=True, nogil=True)
+
+
+@lru_cache(maxsize=1)
+def kernel():
+    """`_chunks` compiled: the interpreter, cached on disk, linking the row functions (`_rows`)."""
+    env = dict(_env())
+    for op, kind in enumerate(KINDS):
+        env[f"{kind}_rows"] = _rows(op)
+    return _jit(_chunks, env, f"_chunks_{fingerprint()}", cache=True, nogil=True)
+
+
+@lru_cache(maxsize=1)
+def _pool(pid: int):
+    """Threads of the process ``pid`` (a forked child makes its own) that run shares of a call's
+    chunks beside the calling thread (the kernel releases the GIL): as many as numba may use,
+    less one."""
+    import numba
+    from concurrent.futures import ThreadPoolExecutor
+
+    return ThreadPoolExecutor(max(1, numba.config.NUMBA_NUM_THREADS - 1), thread_name_prefix="velplan-kernel")
+
+
+def _load_cached(kernel, args: tuple) -> None:
+    """Load ``kernel``'s machine code for ``args`` from numba's disk cache without first
+    initialising numba's whole compiler (its registries of every numpy function, ≈ 0.3 s, which
+    a compiled kernel does not use); on any failure (another numba, no cache yet) the kernel's
+    own call compiles or loads it the usual way."""
+    try:
+        from numba.core.runtime import rtsys
+
+        rtsys.initialize(kernel.targetctx)  # the allocator the machine code links to
+        sig = tuple(kernel.typeof_pyval(x) for x in args)
+        done = kernel._cache._load_overload(sig, kernel.targetctx)
+        if done is not None:
+            kernel.add_overload(done)
+    except Exception:  # noqa: BLE001 - numba's private interface: fall back to its public one
+        return
 
 
 def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid) -> None:
-    """Call the kernel (`_kernel`'s arguments): on one thread up to `SERIAL` angles."""
-    k = kernel()
-    if phi.shape[0] > SERIAL:
-        k(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid)
-        return
+    """Run the program (`_chunks`' arguments from ``ops`` on) over every angle: on the calling
+    thread up to `SERIAL` angles, else in ``numba.get_num_threads()`` equal shares of the chunks,
+    one on the calling thread and the others on `_pool`'s."""
     import numba
 
-    before = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        k(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid)
-    finally:
-        numba.set_num_threads(before)
+    k = kernel()
+    units = par.shape[0] * ((nper + CHUNK - 1) // CHUNK)
+    args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, solver.SINGULAR_BOUND)
+    if not k.overloads:
+        _load_cached(k, (0, units, *args))
+    if phi.shape[0] <= SERIAL:
+        k(0, units, *args)
+        return
+    threads = min(numba.get_num_threads(), units)
+    bounds = [units * i // threads for i in range(threads + 1)]
+    shares = [_pool(os.getpid()).submit(k, a, b, *args) for a, b in zip(bounds[1:-1], bounds[2:])]
+    k(bounds[0], bounds[1], *args)
+    for share in shares:
+        share.result()
 
 
 def loaded() -> bool:
@@ -299,31 +452,84 @@ def loaded() -> bool:
 
 
 @lru_cache(maxsize=1)
-def kernel():
-    """The compiled kernel: loaded from numba's disk cache, or compiled on its first call."""
-    if not available():
-        raise VelplanError("the compiled engine needs numba: pip install numba (in a checkout: pip install '.[fast]')")
-    import numba
-    env = {"__name__": __name__, "np": np, "prange": numba.prange, "CHUNK": CHUNK, "CRANK": CRANK, "POINT": POINT,
-           "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP}
-
-    def jit(f, qualname=None, **kw):  # the same code object, its globals resolved to compiled functions
-        g = types.FunctionType(f.__code__, env, f.__name__)
-        g.__qualname__ = qualname or f.__qualname__
-        return numba.njit(error_model="numpy", **kw)(g)
-
-    for name in CORES:
-        env[name] = jit(getattr(G, name))
-    # compiled once per machine: numba caches the kernel on disk under a name that changes
-    # whenever the source of the kernel or of any closed form (or numba) changes
-    return jit(_kernel, f"_kernel_{fingerprint()}", parallel=True, nogil=True, cache=True)
-
-
 def fingerprint() -> str:
-    """A digest of the source the kernel is compiled from, and of the numba version."""
+    """A digest of the source the kernels are compiled from (this module and the closed forms)
+    and of the numba version: it names their cache files, so that a change makes new ones."""
     from numba import __version__
 
     h = hashlib.sha256(__version__.encode())
-    for f in [_kernel, *(getattr(G, name) for name in CORES)]:
-        h.update(inspect.getsource(f).encode())
+    for module in (__file__, G.__file__):
+        h.update(Path(module).read_bytes())
     return h.hexdigest()[:16]
+
+
+# ---- solving one mechanism -------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Layout:
+    """What every call of `solve` on one mechanism (and one ``points=``) reuses: the schedule,
+    the outputs' names and order, and the program."""
+
+    items: tuple
+    triad: str | None
+    ops: np.ndarray
+    par: np.ndarray
+    ground: np.ndarray
+    names: dict
+    sizes: tuple[int, int, int, int]
+    """Points, links, slides, groups."""
+
+
+_LAYOUTS: dict = {}
+"""Layouts by mechanism content and ``points`` (`layout`), the latest few."""
+
+
+def layout(mech: Mechanism, points) -> Layout:
+    """The `Layout` of ``mech`` solving ``points`` (None: all), memoised by the mechanism's numbers
+    and names; ``triad`` names its first class III group, which the kernel does not cover."""
+    key = (mech.ground, mech.crank, mech.groups, mech.points, None if points is None else tuple(points))
+    hit = _LAYOUTS.get(key)
+    if hit is None:
+        hit = _layout(mech, key[-1])
+        if len(_LAYOUTS) >= 32:
+            _LAYOUTS.pop(next(iter(_LAYOUTS)))
+        _LAYOUTS[key] = hit
+    return hit
+
+
+def _layout(mech: Mechanism, points) -> Layout:
+    items = schedule(mech) if points is None else solver.needed_items(mech, points)
+    triad = next((g.name for g in items if isinstance(g, Triad)), None)
+    if triad is not None:
+        return Layout(items, triad, None, None, None, {}, (0, 0, 0, 0))
+    scale = solver.length_scale(mech)
+    # the numpy engine on one angle fixes the outputs' names, order and link origins
+    st, conditions = solver._solve_block(mech, np.zeros(1), 1.0, 0.0, scale, "nan", items)
+    pts, links, slides = list(st.points), [k for k in st.links if k != GROUND], list(st.slides)
+    ops, par, ground = encode(mech, pts, links, slides, list(conditions), scale, items)
+    names = {"point_index": {k: i for i, k in enumerate(pts)}, "link_index": {k: i for i, k in enumerate(links)},
+             "link_origins": {k: st.links[k].origin for k in links},
+             "slide_index": {k: i for i, k in enumerate(slides)},
+             "group_index": {k: i for i, k in enumerate(conditions)}}
+    sizes = (len(pts), len(links), len(slides), len(conditions))
+    return Layout(items, None, ops, par[None], ground[None], names, sizes)
+
+
+def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int) -> solver.Kinematics:
+    """`solver.solve` of ``mech`` (its `Layout` ``lay``) at the angles ``phi`` (rad) and one crank
+    speed ``w1`` (rad/s) and acceleration ``e1`` (rad/s²), derivatives up to ``order``: the
+    outputs are allocated for that order only, and the kernel writes nothing above it."""
+    n, k = phi.shape[0], order + 1
+    P, L, S, G_ = lay.sizes
+    z, rates, slides = np.empty((k, P, n), dtype=complex), np.empty((k, L, n)), np.empty((S, k, n))
+    condition, valid = np.empty((G_, n)), np.empty(n, dtype=bool)
+    run(lay.ops, lay.par, lay.ground, np.ascontiguousarray(phi), np.array([float(w1)]), np.array([float(e1)]), n,
+        z, rates, slides, condition, valid)
+    xy = z.view(float).reshape(k, P, n, 2).transpose(0, 2, 1, 3)
+    rates = rates.transpose(0, 2, 1)
+    return solver.Kinematics(
+        mechanism=mech, phi=phi, omega1=w1, epsilon1=e1, positions=xy[0], velocities=xy[1] if k > 1 else None,
+        accelerations=xy[2] if k > 2 else None, angles=rates[0], omegas=rates[1] if k > 1 else None,
+        epsilons=rates[2] if k > 2 else None, slides=slides.transpose(2, 0, 1), condition=condition.T, valid=valid,
+        order=order, **lay.names)

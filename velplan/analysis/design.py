@@ -21,8 +21,11 @@ key                             number (unit)
 ``point.B.along``               a point on a link (m); ``point.B.offset``
 ==============================  =================================================
 
-A mechanism with a class III group (`Triad`) is solved by a loop over its variants (one
-`solve` each); every other mechanism in whole arrays.
+A class III group (`Triad`) is solved in the same arrays: its branch is followed over the turn
+in every variant together (`velplan.analysis.triad.tracks`: one batch of roots, the steps in
+all variants at once; a variant whose branch needs shorter steps is tracked alone), and each
+element takes the root nearest its own variant's branch. The compiled kernel does not cover
+class III groups: such a mechanism is solved by the numpy engine.
 """
 
 from __future__ import annotations
@@ -30,12 +33,15 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
 
+from velplan.analysis import triad
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip
-from velplan.analysis.solver import BLOCK, Kinematics, _Outputs, _solve_items, group_lengths, solve
+from velplan.analysis.solver import (BLOCK, Kinematics, _about_pivot, _Outputs, _solve_items, group_lengths,
+                                     solve)
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
 from velplan.mechanism.structure import schedule
@@ -287,9 +293,8 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
     phi2 = np.ascontiguousarray(np.broadcast_to(phi, (V, phi.shape[-1])))
     if engine not in ("numpy", "compiled"):
         raise ValueError(f"engine must be 'numpy' or 'compiled', not {engine!r}")
-    if any(isinstance(g, Triad) for g in mech.groups):
-        return _solve_loop(mech, vals, phi2, order)
-    if engine == "compiled":
+    tracks = _triad_tracks(mech, vals, V)
+    if engine == "compiled" and not tracks:
         return _solve_compiled(mech, vals, phi2, order)
     n = phi2.shape[1]
     flat_phi = phi2.reshape(-1)
@@ -303,7 +308,8 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
         b = min(V, a + step)
         per = {k: np.repeat(v[a:b], n) for k, v in vals.items()}
         where = slice(a * n, b * n)
-        st, conditions, shift[where] = _solve_elements(mech, per, flat_phi[where], order)
+        block = {name: triad.Tracks(tuple(t[a:b]), n) for name, t in tracks.items()}
+        st, conditions, shift[where] = _solve_elements(mech, per, flat_phi[where], order, block)
         if out is None:
             out = _Outputs(st, conditions, E, order)
         out.write(st, conditions, where)
@@ -327,16 +333,14 @@ def _solve_compiled(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -
     items = schedule(local)
     st, conditions = _solve_block(mech, np.zeros(1), 1.0, 0.0, length_scale(mech), "nan", schedule(mech))
     E = V * n
-    out = _Outputs(st, conditions, E, 2)
+    out = _Outputs(st, conditions, E, order)  # the kernel writes no derivative above ``order``
     ops, par, gr = compiled.encode_design(local, V, out.names, out.links, out.slide_names, out.groups,
                                           _scale(el, ground), items)
     speed = np.broadcast_to(_speed(mech, vals), (V,)).astype(float)
     eps = float(mech.crank.epsilon)
     valid = np.empty(E, dtype=bool)
     flat_phi = phi2.reshape(-1)
-    compiled.run(ops, par, gr, flat_phi, speed if order >= 1 else np.zeros(V),
-                 np.full(V, eps if order >= 2 else 0.0), n, out.z, out.rates, out.slides, out.condition, valid)
-    out.keep(order)
+    compiled.run(ops, par, gr, flat_phi, speed, np.full(V, eps), n, out.z, out.rates, out.slides, out.condition, valid)
     w1 = np.repeat(speed, n) if ("crank.omega" in vals or "crank.rpm" in vals) else float(speed[0])
     kin = out.kinematics(mech, flat_phi, w1, eps if order >= 2 else 0.0, st, valid)
     shift = np.repeat(np.column_stack([pivot.real, pivot.imag]), n, axis=0)
@@ -352,8 +356,9 @@ def _speed(mech: Mechanism, vals: dict) -> np.ndarray:
     return np.array([float(mech.crank.omega)])
 
 
-def _solve_elements(mech: Mechanism, per: dict, phi: np.ndarray, order: int):
-    """One block of elements: the state, the groups' conditions and the pivot shift (E, 2)."""
+def _solve_elements(mech: Mechanism, per: dict, phi: np.ndarray, order: int, tracks: dict):
+    """One block of elements: the state, the groups' conditions and the pivot shift (E, 2);
+    ``tracks`` the block's branches of each class III group (`velplan.analysis.triad.Tracks`)."""
     el = mech
     for key, arr in per.items():
         el = _set(el, key, arr)
@@ -376,7 +381,7 @@ def _solve_elements(mech: Mechanism, per: dict, phi: np.ndarray, order: int):
     st.points[crank.tip] = Motion(*crank_tip(st.points[crank.pivot].p, crank.length, phi, w, e))
     st.links[crank.link] = LinkMotion(crank.pivot, phi.copy(), w, e)
     with np.errstate(all="ignore"):
-        _solve_items(items[1:], st, phi, w, e, scale, conditions, "nan", el)
+        _solve_items(items[1:], st, phi, w, e, scale, conditions, "nan", el, tracks)
     return st, conditions, np.column_stack([pivot.real, pivot.imag])
 
 
@@ -390,19 +395,24 @@ def _scale(el: Mechanism, ground: dict) -> np.ndarray:
     return np.maximum(np.maximum.reduce(np.broadcast_arrays(*lengths)), span)
 
 
-def _solve_loop(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -> DesignKinematics:
-    """Variants one `solve` each (mechanisms with a class III group), stacked."""
-    V, n = phi2.shape
-    kins = [solve(variant(mech, {k: float(a[v]) for k, a in vals.items()}), phi2[v], order=order)
-            for v in range(V)]
-    first = kins[0]
+def _triad_tracks(mech: Mechanism, vals: dict, V: int) -> dict[str, list]:
+    """Group name → the branch (`velplan.analysis.triad.Track`, None where it cannot be
+    assembled) of each variant, of every class III group of ``mech``, solved about the pivot
+    (memoised: a sweep solves the same variants at several sets of angles)."""
+    if not any(isinstance(g, Triad) for g in mech.groups):
+        return {}
+    geometry = tuple((k, a.tobytes()) for k, a in vals.items() if k not in ("crank.omega", "crank.rpm"))
+    return _tracks_of(mech, geometry, V)
 
-    def cat(name):
-        arrs = [getattr(k, name) for k in kins]
-        return None if arrs[0] is None else np.concatenate(arrs)
 
-    w1 = first.omega1 if all(k.omega1 == first.omega1 for k in kins) else np.repeat([k.omega1 for k in kins], n)
-    flat = replace(first, mechanism=mech, phi=phi2.reshape(-1), omega1=w1, epsilon1=0.0,
-                   **{f: cat(f) for f in ("positions", "velocities", "accelerations", "angles", "omegas",
-                                          "epsilons", "slides", "condition", "valid")})
-    return DesignKinematics(mech, vals, phi2, flat)
+@lru_cache(maxsize=4)
+def _tracks_of(mech: Mechanism, geometry: tuple, V: int) -> dict[str, list]:
+    """`_triad_tracks` of the V variants whose varied keys' values are ``geometry`` (key, bytes)."""
+    vals = {k: np.broadcast_to(np.frombuffer(b), (V,)) for k, b in geometry}
+    local = [_about_pivot(variant(mech, {k: float(a[v]) for k, a in vals.items()}))[0] for v in range(V)]
+    out = {}
+    for i, g in enumerate(mech.groups):
+        if isinstance(g, Triad):
+            here = [m.groups[i] for m in local]
+            out[g.name] = triad.tracks([triad.upstream(m, h) for m, h in zip(local, here)], here, solve)
+    return out

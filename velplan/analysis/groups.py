@@ -76,6 +76,12 @@ def cis(t):
     return np.cos(t) + 1j * np.sin(t)
 
 
+def direction(z):
+    """The direction of the complex-encoded vector ``z`` (rad, in (−π, π]): `numpy.angle`'s own
+    formula, written out so that numba compiles it without its numpy-function library."""
+    return np.arctan2(z.imag, z.real)
+
+
 def wrap_angle(t):
     """``t`` (rad) brought into (−π, π]: unchanged, bit for bit, when it is there already (−π
     itself becomes π)."""
@@ -131,7 +137,7 @@ def rrr(Ap, Av, Aa, Dp, Dv, Da, l1, l2, branch):
     v = Av + 1j * w1 * r1
     acc = Aa + (1j * e1 - w1 * w1) * r1
     cond = np.abs(cross(r1, r2)) / (l1 * l2)
-    return c, v, acc, np.angle(r1), w1, e1, np.angle(r2), w2, e2, cond, closed
+    return c, v, acc, direction(r1), w1, e1, direction(r2), w2, e2, cond, closed
 
 
 def rrp(Ap, Av, Aa, Gp, Gv, Ga, gtheta, gw, ge, angle, offset, length, branch):
@@ -147,7 +153,7 @@ def rrp(Ap, Av, Aa, Gp, Gv, Ga, gtheta, gw, ge, angle, offset, length, branch):
     sd, wr = solve2(u, -1j * r, Av - gv)
     coriolis = 2j * gw * sd * u
     sdd, er = solve2(u, -1j * r, Aa - wr * wr * r - ga - coriolis)
-    return (c, gv + sd * u, ga + coriolis + sdd * u, gv, ga, np.angle(r), wr, er, s, sd, sdd,
+    return (c, gv + sd * u, ga + coriolis + sdd * u, gv, ga, direction(r), wr, er, s, sd, sdd,
             np.abs(h) / length, closed)
 
 
@@ -158,7 +164,7 @@ def rpr(Ap, Av, Aa, Op, Ov, Oa, offset, branch, scale):
     dist = np.abs(r)
     s, closed = sqrt_clamped(dist * dist - offset * offset, 1e-14 * (dist * dist + scale * scale))
     s = branch * s
-    theta = np.angle(r) - np.angle(s + 1j * offset)
+    theta = direction(r) - direction(s + 1j * offset)
     u = cis(theta)
     w, sd = solve2(1j * r, u, Av - Ov)
     e, sdd = solve2(1j * r, u, Aa - Oa + w * w * r - 2j * w * sd * u)

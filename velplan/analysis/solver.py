@@ -284,7 +284,8 @@ def solve(
     engine : {"numpy", "compiled", "auto"}
         ``"numpy"``: whole arrays, in cache-sized blocks. ``"compiled"``: the same closed forms
         run per position by numba on every core (``pip install velplan[fast]``; the first call
-        on a machine compiles for ≈ 20 s, later processes load it in ≈ 0.6 s). ``"auto"``:
+        on a machine compiles for ≈ 20 s, later processes load it in ≈ 0.1 s after numba's own
+        import); ``points=`` and ``order=`` reach its kernel, which writes nothing else. ``"auto"``:
         compiled when numba is installed and either the kernel is loaded already or there are
         at least `AUTO_COMPILED` angles. Both give the same values to round-off.
 
@@ -321,21 +322,15 @@ def solve(
 
 def _solve_scalar_rate(mech, phi, w1, e1, points, order, on_failure, engine) -> Kinematics:
     """`solve` at one crank speed and acceleration."""
-    scale = length_scale(mech)
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
-    items = schedule(mech) if points is None else needed_items(mech, points)
-    triads = [g.name for g in items if isinstance(g, Triad)]
-    if triads and engine in ("compiled", "auto"):
-        if engine == "compiled":
-            import warnings
-
-            warnings.warn(f"engine='compiled' does not cover class III groups (group {triads[0]!r}); "
-                          "solving with the numpy engine", stacklevel=3)
-        engine = "numpy"
     if engine == "compiled" or (engine == "auto" and _compiled().available()
                                 and (_compiled().loaded() or phi.shape[0] >= AUTO_COMPILED)):
-        return _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order)
+        kin = _solve_compiled(mech, phi, w1, e1, points, order, on_failure, engine)
+        if kin is not None:
+            return kin
+    scale = length_scale(mech)
+    items = schedule(mech) if points is None else needed_items(mech, points)
     w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
     out: _Outputs | None = None
     # cache-sized blocks written into preallocated outputs: 2.5× faster at 10⁶ positions
@@ -414,30 +409,30 @@ def _needs(item) -> tuple[set[str], set[str]]:
 BLOCK = 16384
 """Crank angles solved at a time (the arrays of a block stay in the CPU's caches)."""
 AUTO_COMPILED = 2_000_000
-"""From this many angles ``engine="auto"`` loads the compiled engine (≈ 0.6 s from numba's disk
-cache, ≈ 20 s the first time on a machine; it saves ≈ 0.4 µs per angle); once loaded in a
-process, "auto" always uses it."""
+"""From this many angles ``engine="auto"`` loads the compiled engine (≈ 0.5 s: numba's import and
+the kernel from its disk cache; ≈ 20 s the first time on a machine; it saves ≈ 0.4 µs per angle);
+once loaded in a process, "auto" always uses it."""
 
 
-def _solve_compiled(mech, phi, w1, e1, scale, on_failure, items, order) -> Kinematics:
-    # the numpy engine on one angle fixes the output layout (names, order, link origins); the
-    # kernel computes every derivative, the outputs keep those asked for
-    n = phi.shape[0]
+def _solve_compiled(mech, phi, w1, e1, points, order, on_failure, engine) -> Kinematics | None:
+    """The compiled engine's solution, or None where it does not apply: a class III group (with a
+    warning when ``engine="compiled"`` was asked for), solved by the numpy engine instead."""
     compiled = _compiled()
-    st, conditions, ops, par, ground = compiled.prepared(
-        mech, items, scale, lambda: _solve_block(mech, np.zeros(1), w1, e1, scale, "nan", items))
-    out = _Outputs(st, conditions, n, 2)
-    valid = np.empty(n, dtype=bool)
-    compiled.run(ops, par, ground, np.ascontiguousarray(phi), np.array([float(w1)]), np.array([float(e1)]), n,
-                 out.z, out.rates, out.slides, out.condition, valid)
-    if on_failure == "raise" and not valid.all():
-        for item in items:  # the first group, in solving order, that fails to close
+    lay = compiled.layout(mech, points)
+    if lay.triad is not None:
+        if engine == "compiled":
+            import warnings
+
+            warnings.warn(f"engine='compiled' does not cover class III groups (group {lay.triad!r}); "
+                          "solving with the numpy engine", stacklevel=4)
+        return None
+    kin = compiled.solve(lay, mech, phi, w1, e1, order)
+    if on_failure == "raise" and not kin.valid.all():
+        for item in lay.items:  # the first group, in solving order, that fails to close
             if not isinstance(item, (Crank, LinkPoint)):
-                row = out.condition[out.groups.index(item.name)]
-                if np.isnan(row).any():
-                    _check(item, ~np.isnan(row), phi, on_failure)
-    out.keep(order)
-    return out.kinematics(mech, phi, w1, e1, st, valid)
+                closed = ~np.isnan(kin.condition[:, kin.group_index[item.name]])
+                _check(item, closed, phi, on_failure)
+    return kin
 
 
 def _solve_block(mech, phi, w1, e1, scale, on_failure, items) -> tuple[State, dict[str, np.ndarray]]:
@@ -454,7 +449,7 @@ def _solve_block(mech, phi, w1, e1, scale, on_failure, items) -> tuple[State, di
     return st, conditions
 
 
-def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech) -> None:
+def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tracks=None) -> None:
     for item in items:
         if isinstance(item, Crank):
             _solve_crank(item, st, phi, w1, e1)
@@ -467,7 +462,7 @@ def _solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech) ->
             if isinstance(item, Triad):
                 from velplan.analysis import triad
 
-                trk = triad.track(triad.upstream(mech, item), item, solve)
+                trk = tracks[item.name] if tracks else triad.track(triad.upstream(mech, item), item, solve)
                 res = triad.solve_triad(item, st, phi, trk, scale)
             else:
                 res = solve_group(item, st, scale)
@@ -574,8 +569,11 @@ class _Outputs:
         self.rates = np.empty((k, L, n))  # angles, ω, ε
         self.slides = np.empty((S, k, n))
         self.condition = np.empty((G, n))
+        self.valid = np.empty(n, dtype=bool)
 
     def write(self, st: State, conditions: dict, where: slice) -> None:
+        """Copy a block's motions to the positions ``where``, then mark them (`_mark`) while
+        they are still in the CPU's caches."""
         k = self.order + 1
         for j, name in enumerate(self.names):
             m = st.points[name]
@@ -591,6 +589,21 @@ class _Outputs:
                 self.slides[j, d, where] = arr.real
         for j, name in enumerate(self.groups):
             self.condition[j, where] = conditions[name]
+        self._mark(where)
+
+    def _mark(self, where: slice) -> None:
+        """Valid positions among ``where`` (every output finite, every group closed and its
+        velocities within `SINGULAR_BOUND`), and their angles wrapped into (−π, π]."""
+        z, rates, condition = self.z[:, :, where], self.rates[:, :, where], self.condition[:, where]
+        with np.errstate(invalid="ignore"):
+            valid = np.isfinite(z.sum(axis=(0, 1))) & np.isfinite(rates[1:].sum(axis=(0, 1)))
+            valid &= (np.isfinite(condition) & (condition > 0)).all(axis=0)
+        if self.order >= 1 and condition.size and not np.fmin.reduce(condition, axis=None) >= WELL_CONDITIONED:
+            valid &= velocity_bound(condition) <= SINGULAR_BOUND
+        self.valid[where] = valid
+        for row in rates[0]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others
+            if ((row > np.pi) | (row <= -np.pi)).any():
+                row[:] = wrap_angle(row)
 
     def keep(self, order: int) -> None:
         """Drop the derivatives above ``order`` (views: nothing is copied)."""
@@ -598,19 +611,14 @@ class _Outputs:
         self.z, self.rates, self.slides = self.z[:order + 1], self.rates[:order + 1], self.slides[:, :order + 1]
 
     def kinematics(self, mech, phi, w1, e1, st: State, valid: np.ndarray | None = None) -> Kinematics:
-        """The results as `Kinematics`; ``valid`` is computed here unless given, and the angles
-        that leave (−π, π] (cranks, guides) are wrapped into it."""
+        """The results as `Kinematics`: ``valid`` as given (the compiled kernel's, which wraps its
+        angles itself) and refused where singular, else as `write` marked it block by block."""
         n = phi.shape[0]
         k = self.order + 1
         xy = self.z.view(float).reshape(k, len(self.names), n, 2).transpose(0, 2, 1, 3)
         if valid is None:
-            with np.errstate(invalid="ignore"):
-                finite = np.isfinite(self.z.sum(axis=(0, 1))) & np.isfinite(self.rates[1:].sum(axis=(0, 1)))
-                valid = finite & (np.isfinite(self.condition) & (self.condition > 0)).all(axis=0)
-            for row in self.rates[0]:
-                if row.size and (row.max(initial=-np.inf) > np.pi or row.min(initial=np.inf) <= -np.pi):
-                    row[:] = wrap_angle(row)
-        if self.order >= 1 and self.condition.size:
+            valid = self.valid
+        elif self.order >= 1 and self.condition.size:
             valid = valid & (velocity_bound(self.condition) <= SINGULAR_BOUND)
         rates = self.rates.transpose(0, 2, 1)
         return Kinematics(
@@ -640,6 +648,11 @@ SINGULAR_BOUND = 1e-6
 """A position whose velocities' round-off bound (`Kinematics.error_bound`) exceeds this relative
 error is refused as singular (``valid`` False): a group there is at, or within about 10⁻⁴ of, a
 toggle (change point), where velocities are not determined."""
+
+
+WELL_CONDITIONED = 1e-2
+"""Where every group's condition is at least this, velocities are known far within
+`SINGULAR_BOUND` (64·ε·(1 + G·10⁴) < 10⁻⁸ for G < 1000 groups): their bound is not computed."""
 
 
 def velocity_bound(condition: np.ndarray) -> np.ndarray:

@@ -347,23 +347,33 @@ def track(mech: Mechanism, g: Triad, solve) -> Track:
     size = _size(g)
     phi0 = g.assembly_phi
     x0, th0, ok0, cl, local = _roots_at(mech, g, np.array([phi0]), solve)
-    where = f"group {g.name!r} (triad): at its assembly angle {math.degrees(phi0):g}°"
+    start = _start(g, x0[0], th0[0], ok0[0], cl.ref, local, size)
+    return _finish(mech, g, start, _walk(mech, g, phi0, start, +1, size, solve), solve)
+
+
+def _start(g: Triad, x0, th0, ok0, ref: int, local, size: float) -> tuple:
+    """(J_r, θ) of the assembly nearest to the joints as drawn, among the roots ``x0``, ``th0``
+    (mask ``ok0``) at the assembly angle, and no farther than a third of the group's size."""
+    where = f"group {g.name!r} (triad): at its assembly angle {math.degrees(g.assembly_phi):g}°"
     if not ok0.any():
         raise MechanismError(f"{where} the group cannot be assembled; give the angle of a position as drawn")
-    # the root nearest to the joints as drawn, and no farther than a third of the group's size
-    cost = np.zeros(x0.shape[1])
-    ref = cl.ref
+    cost = np.zeros(x0.shape[0])
     for name, (px, py) in g.assembly:
         j = g.joints.index(name)
-        pos = x0[0] + (local[j] - local[ref]) * np.exp(1j * th0[0])
+        pos = x0 + (local[j] - local[ref]) * np.exp(1j * th0)
         cost = cost + np.abs(pos - complex(px, py)) ** 2
-    cost = np.sqrt(np.where(ok0[0], cost, np.inf) / len(g.assembly))
+    cost = np.sqrt(np.where(ok0, cost, np.inf) / len(g.assembly))
     k = int(np.argmin(cost))
     if not cost[k] <= ASSEMBLY_FAR * size:
         raise MechanismError(f"{where} no assembly lies near the joints given; the nearest is {cost[k]:.3g} m "
                              f"from them (the group is {size:.3g} m across): check assembly")
-    start = (x0[0, k], th0[0, k])
-    fwd = _walk(mech, g, phi0, start, +1, size, solve)
+    return x0[k], th0[k]
+
+
+def _finish(mech: Mechanism, g: Triad, start: tuple, fwd: list, solve) -> Track:
+    """The `Track` from the nodes ``fwd`` walked forward from ``start``: checked to come back to
+    itself after a full turn, or completed backwards to where the branch ends."""
+    size, phi0 = _size(g), g.assembly_phi
     full = fwd[-1][0] >= 2 * np.pi - EDGE_TOL
     if full:
         if _distance(fwd[-1][1], fwd[-1][2], start[0], start[1], size) > 1e-6:
@@ -380,15 +390,120 @@ def track(mech: Mechanism, g: Triad, solve) -> Track:
     return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size)
 
 
+def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
+    """The branches of one triad in V variants (``gs[v]`` with ``ups[v]`` before it, `upstream`;
+    the triads differ in where they sit, not in their shape), followed over the turn in all
+    variants together: from the assembly `track` would pick and its first step, each step of
+    the same grid is Newton's correction of the configuration predicted from the last two,
+    taken where it is unambiguous (as `QUICK_MOVE`, `QUICK_CONDITION` in `_branch`). A variant
+    where a step is not is tracked alone (`track`); None where its triad cannot be assembled
+    at its assembly angle."""
+    g = gs[0]
+    size, phi0 = _size(g), g.assembly_phi
+    grid = _track_grid()
+    leads = _joined([leads_at(up, gv, phi0 + grid, solve) for up, gv in zip(ups, gs)])
+    m = grid.size
+    at0 = _Closure(g, [lead.take(slice(0, None, m)) for lead in leads])
+    xs, ths, oks = at0.candidates()
+    local = g.local()
+    starts = []
+    for v, gv in enumerate(gs):
+        try:
+            starts.append(_start(gv, xs[v], ths[v], oks[v], at0.ref, local, size))
+        except MechanismError:
+            starts.append((np.nan + 0j, np.nan))
+    x, th = np.array([s[0] for s in starts]), np.array([s[1] for s in starts])
+    alive = np.isfinite(th)
+    walked = [(x, th)]
+    prev, cur = None, (0.0, x, th)
+    for k in range(1, m):
+        cl = _Closure(g, [lead.take(slice(k, None, m)) for lead in leads])
+        if prev is None:  # no slope to predict with: the nearest of all roots, as `track` steps
+            xs, ths, _ = cl.candidates()
+            x, th, ok = _pick_rows(xs, ths, (x, th), size)
+        else:
+            x, th, ok = _correct(cl, *_predict(cur, prev, grid[k]), size)
+        alive &= ok
+        prev, cur = cur, (grid[k], x, th)
+        walked.append((x, th))
+    X, TH = np.array([w[0] for w in walked]), np.array([w[1] for w in walked])
+    out = []
+    for v, (up, gv) in enumerate(zip(ups, gs)):
+        if alive[v]:
+            out.append(_finish(up, gv, starts[v], list(zip(grid, X[:, v], TH[:, v])), solve))
+        elif np.isfinite(starts[v][1]):
+            out.append(track(up, gv, solve))
+        else:
+            out.append(None)
+    return out
+
+
+def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
+    """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
+    (J_r, θ, whether it is unambiguous: closed, moved less than `QUICK_MOVE`, well conditioned)."""
+    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5)
+    f, rows = cl._equations(y, th)
+    with np.errstate(invalid="ignore"):
+        res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
+        cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
+    x, th = y[:, 0] + cl.origin, th[:, 0]
+    return x, th, (res <= 1e-9 * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+
+
+def _track_grid() -> np.ndarray:
+    """Crank turns (rad) of the tracking steps over a turn, 0 and 2π included."""
+    steps = int(round(2 * np.pi / TRACK_STEP))
+    return np.arange(steps + 1) * (2 * np.pi / steps)
+
+
+def _joined(per_variant: list[list[Lead3]]) -> list[Lead3]:
+    """The three leads of V variants (each at its own positions) as leads over all positions."""
+    out = []
+    for leads in zip(*per_variant):
+        cat = lambda name: (None if getattr(leads[0], name) is None  # noqa: E731
+                            else np.concatenate([getattr(ld, name) for ld in leads]))
+        out.append(replace(leads[0], **{f: cat(f) for f in ("p", "v", "a", "theta", "omega", "epsilon")}))
+    return out
+
+
+@dataclass(frozen=True)
+class Tracks:
+    """The branches of one triad in consecutive variants, ``n`` crank angles each (positions
+    variant-major), read as one `Track` by `solve_triad`; a variant without one (None) never
+    closes."""
+
+    tracks: tuple
+    n: int
+
+    @property
+    def size(self) -> float:
+        return next((t.size for t in self.tracks if t is not None), 1.0)
+
+    @property
+    def pair(self) -> tuple[int, int] | np.ndarray:
+        """The leads of Assur's special point: one pair, or (V·n, 2) a pair per position where
+        the variants choose differently."""
+        pairs = [(0, 1) if t is None else t.pair for t in self.tracks]
+        if len(set(pairs)) == 1:
+            return pairs[0]
+        return np.repeat(np.array(pairs), self.n, axis=0)
+
+    def reference(self, phi: np.ndarray):
+        """(x, θ, inside) of each variant's branch at its crank angles ``phi``."""
+        n = self.n
+        empty = Track(0.0, np.zeros(0), np.zeros(0, complex), np.zeros(0), False, (0, 1), 1.0)
+        parts = [(t or empty).reference(phi[v * n:(v + 1) * n]) for v, t in enumerate(self.tracks)]
+        return tuple(np.concatenate(a) for a in zip(*parts))
+
+
 def _walk(mech, g, phi0, start, sense, size, solve):
     """Nodes (t ≥ 0, x, θ) of the branch from ``start`` in the crank's ``sense`` (±1) up to a
     full turn or to the limit where the branch ends."""
-    steps = int(round(2 * np.pi / TRACK_STEP))
-    t_grid = np.arange(steps + 1) * (2 * np.pi / steps)
+    t_grid = _track_grid()
     xs, ths, oks, _, _ = _roots_at(mech, g, phi0 + sense * t_grid, solve)
     nodes = [(0.0, start[0], start[1])]
     prev = None
-    for k in range(1, steps + 1):
+    for k in range(1, t_grid.size):
         cur = nodes[-1]
         pred = _predict(cur, prev, t_grid[k])
         pick = _pick(xs[k], ths[k], pred, size)
@@ -414,16 +529,22 @@ def _predict(cur, prev, t):
 
 def _pick(xs, ths, pred, size):
     """The root clearly nearest to ``pred``, or None (none near, or two about as near)."""
-    d = _distance(xs, ths, pred[0], pred[1], size)
-    order = np.argsort(d)
-    d1 = d[order[0]]
-    if not d1 <= FAR:
-        return None
-    # the same root found twice (a complex pair polished onto one real root) is not a rival
-    rivals = [d[j] for j in order[1:] if _distance(xs[j], ths[j], xs[order[0]], ths[order[0]], size) > 1e-7]
-    if rivals and rivals[0] < 2.0 * d1 and d1 > 1e-9:
-        return None
-    return xs[order[0]], ths[order[0]]
+    x, th, ok = _pick_rows(xs[None], ths[None], (np.atleast_1d(pred[0]), np.atleast_1d(pred[1])), size)
+    return (x[0], th[0]) if ok[0] else None
+
+
+def _pick_rows(xs, ths, pred, size):
+    """Per row of the roots ``xs``, ``ths`` (V, m): the root nearest to ``pred`` (x, θ of shape
+    (V,)), and whether it is clearly the nearest (within `FAR`, and no other root — the same
+    root found twice, a complex pair polished onto one real root, is not another — as near
+    as twice its distance)."""
+    d = _distance(xs, ths, pred[0][:, None], pred[1][:, None], size)
+    rows = np.arange(xs.shape[0])
+    j = np.argmin(d, axis=1)
+    d1, x, th = d[rows, j], xs[rows, j], ths[rows, j]
+    twin = _distance(xs, ths, x[:, None], th[:, None], size) <= 1e-7
+    rival = np.min(np.where(twin, np.inf, d), axis=1)
+    return x, th, (d1 <= FAR) & ~((rival < 2.0 * d1) & (d1 > 1e-9))
 
 
 def _refine(mech, g, phi0, sense, cur, prev, t_end, size, solve):
@@ -519,14 +640,8 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     where that is unambiguous (well conditioned, a small correction), else every assembly
     found and the nearest to the branch taken. Returns J_r, θ and the mask of closed positions."""
     xr, thr, inside = trk.reference(phi)
-    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5)
-    tol = 1e-9 * cl.size
-    f, rows = cl._equations(y, th)
-    with np.errstate(invalid="ignore"):
-        res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
-        cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
-    x, th = y[:, 0] + cl.origin, th[:, 0]
-    good = inside & (res <= tol) & (_distance(x, th, xr, thr, trk.size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    x, th, quick = _correct(cl, xr, thr, trk.size)
+    good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
         sub = _Closure(cl.g, [lead.take(rest) for lead in cl.leads])
@@ -600,14 +715,25 @@ def _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, 
             slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
-    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i])) for i in pair)
-    with np.errstate(all="ignore"):
-        K = a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
+    K = _special_point(leads, joints, pair)
     kv, ka = carry(B, vj[0], aj[0], w, e, K)
     points[g.special_name] = Motion(K, kv, ka)
     cond = _condition(rows, scale)
     return GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
                        closed=closed)
+
+
+def _special_point(leads, joints, pair):
+    """Assur's special point: where the lines of the two leads ``pair`` cross (a pair, or one
+    per position, (n, 2))."""
+    if np.ndim(pair) == 2:
+        K = np.full(joints[0].shape, np.nan + 0j)
+        for p in {tuple(int(i) for i in row) for row in pair}:
+            K = np.where(np.all(pair == p, axis=1), _special_point(leads, joints, p), K)
+        return K
+    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i])) for i in pair)
+    with np.errstate(all="ignore"):
+        return a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
 
 
 def _condition(rows, scale):

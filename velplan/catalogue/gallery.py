@@ -37,7 +37,7 @@ def write_gallery(outdir: str | Path, *, names=None, png: bool = False, lang: st
     rows = []
     for i, name in enumerate(names):
         study = Study(name)
-        files = build_sheet(study, fmt=fmt, lang=lang).write(out / f"{name}.svg", png=png)
+        files = build_sheet(study, fmt=fmt, lang=lang).save(out / f"{name}.svg", png=png)
         mech = study.mechanism
         kinds = " + ".join(g.kind for g in mech.groups)
         st = study.stroke

@@ -56,7 +56,8 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 POSITION_LIMITS = {"analyze": 1_000_000, "sheet": 72, "diagrams": 720, "steps": 360, "plan": 3600,
                    "compare": 3600, "forces": 36_000, "dynamics": 3600, "batch": 72}
 """Most --positions each command accepts: beyond them a drawing or a table is unreadable (and
-`analyze` as a table stops at 360 columns; as CSV or JSON at 10⁶ rows, ≈ 1 GB)."""
+`analyze` as a table stops at 360 columns; `analyze`, `forces` and `dynamics` as CSV or JSON at
+10⁶ rows, ≈ 1 GB)."""
 
 
 def _check_common(args) -> None:
@@ -66,7 +67,10 @@ def _check_common(args) -> None:
 
     n = getattr(args, "positions", None)
     most = POSITION_LIMITS.get(getattr(args, "command", ""), None)
-    if getattr(args, "command", "") == "analyze" and getattr(args, "format", "table") == "table":
+    streamed = getattr(args, "command", "") in ("analyze", "forces", "dynamics")
+    if streamed and getattr(args, "format", "table") != "table":  # written as computed, in bounded memory
+        most = POSITION_LIMITS["analyze"]
+    elif getattr(args, "command", "") == "analyze":
         most = 360
     if isinstance(n, int) and most is not None and n > most:
         raise VelplanError(f"--positions {n} is more than velplan {args.command} draws or prints usefully "

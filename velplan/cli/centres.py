@@ -63,12 +63,12 @@ def run_centres(args) -> int:
     drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.angle_precision)
     mu_l = None if args.scale_l is None else check_scale(args.scale_l, "--scale-l")
     study, idx, numbers = _study(args)
-    study.require_assembled(idx)
+    study.require_assembled([i + 1 for i in idx])
     kin = study.kinematics
     exact = instant_centres(kin)
     if args.svg is not None and not str(args.svg).strip():
         raise VelplanError("--svg: give a file name, not an empty string")
-    cons = [construct_centres(kin, i, drafting=drafting, mu_l=mu_l) for i in idx]
+    cons = [construct_centres(kin, i + 1, drafting=drafting, mu_l=mu_l) for i in idx]
     if args.format == "json":
         doc = {"mechanism": study.mechanism.name,
                "positions": [{"phi_deg": round(float(kin.phi_deg[i]), 9), "centres": exact.records(i)} for i in idx]}
@@ -88,7 +88,7 @@ def _plan(study: Study, drafting: Drafting, i: int):
     """The velocity plan at position index ``i`` (exact: the study's own), or None when the
     mechanism's plan cannot be constructed (its column then reads —)."""
     try:
-        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[i])
+        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[i + 1])
     except VelplanError:
         return None
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
+
 from velplan.cli.common import add_mechanism, add_output, emit, positive_int
 
 
@@ -16,7 +18,9 @@ def register(sub) -> None:
     p.add_argument("--delta", metavar="D", type=float, help="required δ (overrides the file's)")
     p.add_argument("--drive", action="store_true",
                    help="also choose the drive (seed 003) with the defaults when the file has no [dynamics.drive]")
-    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--format", choices=("table", "json", "csv", "jsonl"), default="table",
+                   help="table, json (one document), csv (a row per position) or jsonl (a JSON object per "
+                        "position, per line); json, csv and jsonl are written as they are computed")
     p.add_argument("--harmonics", metavar="N,…",
                    help="seed 004: the motion with the press load's Fourier series of N harmonics against the "
                         "exact parabola's, per N (same flywheel)")
@@ -26,7 +30,7 @@ def register(sub) -> None:
 
 
 def run_dynamics(args) -> int:
-    from velplan.dynamics.report import plot, to_dict, to_table
+    from velplan.dynamics.report import plot, to_table
     from velplan.study import Study
 
     study = Study(args.mechanism, delta=args.delta)
@@ -38,12 +42,52 @@ def run_dynamics(args) -> int:
         from velplan.dynamics.drive import select_drive
 
         drive = select_drive(d)
-    text = json.dumps(to_dict(d, args.positions, drive), indent=1, ensure_ascii=False) if args.format == "json" \
-        else to_table(d, args.positions, drive)
     if args.plot:
         plot(d, args.plot)
-    emit(text, args.output)
+    if args.format == "table":
+        emit(to_table(d, args.positions, drive), args.output)
+        return 0
+    from velplan.cli.stream import open_output
+
+    with open_output(args.output, binary=True) as out:
+        for piece in stream(d, args.format, args.positions, drive):
+            out.write(piece)
     return 0
+
+
+CHUNK = 16384
+"""Positions computed and written at a time by `stream`."""
+
+
+def stream(d, fmt: str, n: int = 12, drive=None, *, chunk: int = CHUNK):
+    """The rows of `velplan.dynamics.report.to_dict` at ``n`` positions as one JSON document (its
+    summary, then the positions), CSV or JSON lines, ``chunk`` positions computed and formatted
+    at a time: memory stays bounded however many positions there are."""
+    from velplan.cli.stream import csv_rows, json_document, json_rows
+    from velplan.dynamics.report import POSITION_KEYS, to_dict
+
+    def pieces():
+        travels = _travels(d, n)
+        for a in range(0, len(travels), chunk):
+            rows = d._rows(travels[a:a + chunk], True)  # `Dynamics.table` at these travels
+            extra = [k for k in rows if k.startswith("M_") and k not in POSITION_KEYS]
+            tree = {"position": np.arange(a + 1, a + len(rows["omega"]) + 1),
+                    **{k: rows[k] for k in (*POSITION_KEYS, *extra)}}
+            yield csv_rows(tree, header=a == 0) if fmt == "csv" else json_rows(tree, fmt)
+
+    if fmt != "json":
+        return pieces()
+    head = to_dict(d, 1, drive)  # the summary: its one position is left out
+    del head["positions"]
+    return json_document(head, "positions", pieces())
+
+
+def _travels(d, n: int) -> np.ndarray:
+    """The crank travels (rad) of `Dynamics.table`'s ``n`` positions: ``n`` per turn over the
+    cycle, or over the run's travel with both ends."""
+    if d.run is not None:
+        return np.linspace(0.0, d.run.travel, n + 1)
+    return np.arange(n * d.spec.cycle_turns) * (2 * np.pi / n)
 
 
 def _run_harmonics(args, study) -> int:
@@ -52,6 +96,8 @@ def _run_harmonics(args, study) -> int:
     from velplan.dynamics.harmonics import compare_harmonics, harmonics_table
     from velplan.errors import VelplanError
 
+    if args.format in ("csv", "jsonl"):
+        raise VelplanError(f"--harmonics: --format {args.format} is not available; use table or json")
     ns = []
     for item in args.harmonics.split(","):
         try:

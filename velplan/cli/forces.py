@@ -3,7 +3,6 @@ lever and the power method."""
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -27,7 +26,9 @@ def register(sub) -> None:
     p.add_argument("--motion", choices=("constant", "dynamic"), default="constant",
                    help="the crank at the file's constant speed, or at the ω(φ), ε(φ) computed by "
                         "its [dynamics] section (default constant)")
-    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--format", choices=("table", "json", "csv", "jsonl"), default="table",
+                   help="table, json (one document), csv (a row per position) or jsonl (a JSON object per "
+                        "position, per line); json, csv and jsonl are written as they are computed")
     p.add_argument("--no-inertia", action="store_true", help="leave out the inertia forces and moments")
     p.add_argument("--no-gravity", action="store_true", help="leave out gravity")
     p.add_argument("--mode", choices=("exact", "drafting"), default="exact",
@@ -48,29 +49,26 @@ def run_forces(args) -> int:
     angles = parse_angles(args.angles) if args.angles is not None else None
     n = STANDARD if args.position is not None else args.positions
     study = Study(args.mechanism, n=n, angles=angles, motion=args.motion)
-    loads = study.loads
-    drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.precision)
-    res = study.forces(gravity=not args.no_gravity, inertia=not args.no_inertia, mu_v=args.scale_v,
-                       drafting=drafting)
+    options = {"drafting": EXACT if args.mode == "exact" else Drafting(args.precision, args.precision),
+               "mu_v": args.scale_v, "gravity": not args.no_gravity, "inertia": not args.no_inertia}
     numbers = [args.position] if args.position is not None else list(range(1, study.n + 1))
-    text = (to_json if args.format == "json" else to_table)(res, numbers, [ld.name for ld in loads])
+    text = None
+    if args.format == "table":  # a few positions, side by side
+        text = to_table(study.forces(**options), numbers, [ld.name for ld in study.loads])
     if args.plot:
         from velplan.forces.plot import plot_balancing_moment
 
         plot_balancing_moment(study.turn_forces(gravity=not args.no_gravity, inertia=not args.no_inertia),
                               args.plot, sense=study.sense)
-    emit(text, args.output)
+    if text is not None:
+        emit(text, args.output)
+        return 0
+    from velplan.cli.stream import open_output
+
+    with open_output(args.output, binary=True) as out:
+        for piece in stream(study, args.format, numbers, chunk=CHUNK, **options):
+            out.write(piece)
     return 0
-
-
-def _num(x) -> float | None:
-    x = float(x)
-    return x if math.isfinite(x) else None
-
-
-def _omega1(kin) -> float | list:
-    w = kin.omega1
-    return [float(x) for x in w] if isinstance(w, np.ndarray) else float(w)
 
 
 def _omega1_text(kin, idx) -> str:
@@ -80,36 +78,44 @@ def _omega1_text(kin, idx) -> str:
     return f"ω1 = {np.min(w):+.6g} … {np.max(w):+.6g} rad/s (computed motion)"
 
 
-def to_json(res, numbers: list[int], load_names: list[str]) -> str:
-    """The analysis as JSON (SI units, N and N·m; null where a position is singular) at the
-    positions ``numbers`` (1-based) of ``res``."""
-    from velplan.forces.agreement import lever_difference_percent
+CHUNK = 4096
+"""Positions analysed and written at a time by `stream` (≈ 100 MB of arrays)."""
 
+
+def stream(study, fmt: str, numbers: list[int], *, drafting, mu_v: float | None = None, gravity: bool = True,
+           inertia: bool = True, chunk: int = CHUNK):
+    """The force analysis at the positions ``numbers`` (1-based) of ``study`` as one JSON document
+    (SI units, N and N·m; null where a position is singular), CSV or JSON lines, ``chunk``
+    positions analysed and formatted at a time (`velplan.study.Study.forces_in_chunks`): memory
+    stays bounded however many positions there are; the numbers are those of `Study.forces`."""
+    from velplan.cli.stream import csv_rows, json_document, json_rows
+
+    def pieces():
+        for a, res, pct in study.forces_in_chunks(numbers, chunk, drafting=drafting, mu_v=mu_v, gravity=gravity,
+                                                  inertia=inertia):
+            tree = _position_tree(res, pct, np.asarray(numbers[a:a + len(pct)]))
+            yield csv_rows(tree, header=a == 0) if fmt == "csv" else json_rows(tree, fmt)
+
+    if fmt != "json":
+        return pieces()
+    head = {"mechanism": study.mechanism.name, "omega1": study.crank_motion[0],
+            "loads": [ld.name for ld in study.loads]}
+    return json_document(head, "positions", pieces())
+
+
+def _position_tree(res, pct: np.ndarray, numbers: np.ndarray) -> dict:
+    """One position's keys (`velplan.cli.stream.object_layout`) over the positions of ``res``."""
     kin, ks = res.kinematics, res.kinetostatics
-    bm = res.balancing_moments
-    pct = lever_difference_percent(bm["lever"], bm["kinetostatics"])
-    w1 = kin.crank_rate("omega")
-    doc = {"mechanism": kin.mechanism.name, "omega1": _omega1(kin), "loads": load_names, "positions": []}
-    for number in numbers:
-        i = number - 1 if len(numbers) < len(kin) else numbers.index(number)
-        reactions = {}
-        for name, r in ks.reactions.items():
-            entry = {"x": _num(r.force[i].real), "y": _num(r.force[i].imag), "magnitude": _num(abs(r.force[i])),
-                     "on": r.pair.links[0], "from": r.pair.links[1], "kind": r.pair.kind}
-            if r.pair.kind == "P":
-                at = r.at[i]
-                entry.update({"moment": _num(r.moment[i]), "at_x": _num(at.real), "at_y": _num(at.imag)})
-            reactions[name] = entry
-        doc["positions"].append({
-            "position": number,
-            "phi_deg": float(np.degrees(kin.phi[i]) % 360.0),
-            "omega1": _num(w1[i]),
-            "balancing_moment": {k: _num(v[i]) for k, v in bm.items()},
-            "lever_difference_percent": _num(pct[i]),
-            "balancing_force": _num(res.lever.balancing_force[i]),
-            "reactions": reactions,
-        })
-    return json.dumps(doc, indent=1, ensure_ascii=False)
+    reactions = {}
+    for name, r in ks.reactions.items():
+        entry = {"x": r.force.real, "y": r.force.imag, "magnitude": np.hypot(r.force.real, r.force.imag),
+                 "on": r.pair.links[0], "from": r.pair.links[1], "kind": r.pair.kind}
+        if r.pair.kind == "P":
+            entry.update({"moment": r.moment, "at_x": r.at.real, "at_y": r.at.imag})
+        reactions[name] = entry
+    return {"position": numbers, "phi_deg": np.degrees(kin.phi) % 360.0, "omega1": kin.crank_rate("omega"),
+            "balancing_moment": res.balancing_moments, "lever_difference_percent": pct,
+            "balancing_force": res.lever.balancing_force, "reactions": reactions}
 
 
 def to_table(res, numbers: list[int], load_names: list[str]) -> str:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 
 import numpy as np
@@ -34,7 +33,7 @@ def register(sub) -> None:
                        help="N positions evenly spaced from the reference position (default 12)")
     p.add_argument("--format", choices=("table", "csv", "json", "jsonl"), default="table",
                    help="table, csv (a row per position), json (one document) or jsonl (a JSON object per "
-                        "position, per line); csv and jsonl are written as they are computed")
+                        "position, per line); csv, json and jsonl are written as they are computed")
     p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
                    help="solver engine: compiled needs numba (pip install numba); "
                         "auto uses it from 2e6 angles when installed (default)")
@@ -97,52 +96,24 @@ def run_info(args) -> int:
 def run_analyze(args) -> int:
     angles = parse_angles(args.angles) if args.angles is not None else None
     study = Study(args.mechanism, n=args.positions, angles=angles, engine=args.engine)
-    if args.format in ("csv", "jsonl"):
-        from velplan.cli.stream import open_output
-
-        with open_output(args.output, binary=True) as out:
-            for chunk in stream(study, args.format):
-                out.write(chunk)
+    if args.format == "table":
+        emit(to_table(study.kinematics), args.output)
         return 0
-    kin = study.kinematics
-    render = {"json": to_json, "csv": to_csv, "table": to_table}[args.format]
-    emit(render(kin), args.output)
+    from velplan.cli.stream import open_output
+
+    with open_output(args.output, binary=True) as out:
+        for piece in stream(study, args.format):
+            out.write(piece)
     return 0
 
 
-def _num(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
-
-
 def to_json(kin: Kinematics) -> str:
-    """The analysis as JSON in SI units with radians (NaN → null where not assembled)."""
-    doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "epsilon1": kin.epsilon1, "positions": []}
-    singular, least = kin.singular, kin.min_condition()
-    for i in range(len(kin)):
-        ok = bool(kin.valid[i])
-        rate = (lambda x: _num(x)) if ok else (lambda x: None)  # masked: never a wrong number
-        pts = {
-            k: dict(zip(("x", "y", "vx", "vy", "ax", "ay"),
-                        (*map(_num, kin.positions[i, j]), *map(rate, kin.velocities[i, j]),
-                         *map(rate, kin.accelerations[i, j]))))
-            for k, j in kin.point_index.items()
-        }
-        links = {
-            k: {"angle": _num(kin.angles[i, j]), "omega": rate(kin.omegas[i, j]), "epsilon": rate(kin.epsilons[i, j])}
-            for k, j in kin.link_index.items()
-        }
-        slides = {
-            k: dict(zip(("s", "v", "a"), (_num(kin.slides[i, j, 0]), *map(rate, kin.slides[i, j, 1:]))))
-            for k, j in kin.slide_index.items()
-        }
-        cond = {k: _num(kin.condition[i, j]) for k, j in kin.group_index.items()}
-        entry = {"position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": ok,
-                 "points": pts, "links": links, "slides": slides, "condition": cond}
-        if not ok:
-            entry["reason"] = (f"singular: a group at a toggle (condition {least[i]:.2g}), "
-                               "velocities undetermined" if singular[i] else "not assembled")
-        doc["positions"].append(entry)
-    return json.dumps(doc, indent=1, ensure_ascii=False)
+    """The analysis as JSON in SI units with radians (null where not assembled), as
+    ``velplan analyze --format json`` writes it."""
+    from velplan.cli.stream import json_document
+
+    return b"".join(json_document(_head(kin.mechanism.name, kin.omega1, kin.epsilon1), "positions",
+                                  [_entries(kin, 0, "json")])).decode("utf-8")
 
 
 def _rows(kin: Kinematics) -> tuple[list[str], list[list[float]]]:
@@ -167,28 +138,40 @@ STREAM_CHUNK = 16384
 
 
 def stream(study: Study, fmt: str = "csv", chunk: int = STREAM_CHUNK):
-    """The study's positions as CSV (`to_csv`'s bytes) or line-delimited JSON, in pieces of
-    ``chunk`` positions solved and formatted in turn: memory stays bounded however many
-    positions there are. JSON lines hold `to_json`'s per-position objects with numbers to 12
-    significant digits (as the CSV)."""
+    """The study's positions as CSV (`to_csv`'s bytes), line-delimited JSON or one JSON
+    document (`to_json`'s), in pieces of ``chunk`` positions solved and formatted in turn:
+    memory stays bounded however many positions there are. JSON lines hold the document's
+    per-position objects with numbers to 12 significant digits (as the CSV); the document's
+    numbers are exact."""
+    w, e = study.crank_motion
+    pieces = _pieces(study, fmt, chunk)
+    if fmt != "json":
+        return pieces
+    from velplan.cli.stream import json_document
+
+    return json_document(_head(study.mechanism.name, w, e), "positions", pieces)
+
+
+def _head(name: str, omega1, epsilon1) -> dict:
+    return {"mechanism": name, "omega1": omega1, "epsilon1": epsilon1}
+
+
+def _pieces(study: Study, fmt: str, chunk: int):
+    """The text of each chunk of positions: CSV rows or JSON entries (`velplan.cli.stream.json_rows`)."""
     from velplan.analysis.chunks import chunked_kinematics
     from velplan.cli.numfmt import rows
+    from velplan.cli.stream import csv_header
 
     w, e = study.crank_motion
     for a, kin in chunked_kinematics(study.mechanism, study.phi, omega1=w, epsilon1=e, engine=study.engine,
                                      chunk=chunk):
-        if fmt == "csv":
-            head, cols = _columns(kin, a)
-            if a == 0:
-                buf = io.StringIO()
-                csv.writer(buf, lineterminator="\n").writerow(head)
-                yield buf.getvalue().encode("utf-8")
-            vals = np.column_stack(cols)
-            vals[~kin.valid, 2:] = np.nan  # a position not assembled or singular: empty cells
-            yield rows(vals, [b""] + [b","] * (vals.shape[1] - 1) + [b"\n"])
-        else:
-            lits, cols = _jsonl_layout(kin, a)
-            yield rows(np.column_stack(cols), lits, na=b"null", bools=[2])
+        if fmt != "csv":
+            yield _entries(kin, a, fmt)
+            continue
+        head, cols = _columns(kin, a)
+        vals = np.column_stack(cols)
+        vals[~kin.valid, 2:] = np.nan  # a position not assembled or singular: empty cells
+        yield (csv_header(head) if a == 0 else b"") + rows(vals, [b""] + [b","] * (vals.shape[1] - 1) + [b"\n"])
 
 
 def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarray]]:
@@ -208,41 +191,27 @@ def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarra
     return head, cols
 
 
-def _jsonl_layout(kin: Kinematics, first: int = 0) -> tuple[list[bytes], list[np.ndarray]]:
-    """Literal text and number columns of one JSON object per position (`to_json`'s keys)."""
-    q = lambda name: json.dumps(name, ensure_ascii=False)  # noqa: E731
-    lits: list[str] = []
-    cols: list[np.ndarray] = []
-    pending = "{"
+def _entries(kin: Kinematics, first: int, fmt: str) -> bytes:
+    """The positions of ``kin`` (numbered from ``first`` + 1) as JSON objects (``fmt`` "json" or
+    "jsonl", `velplan.cli.stream.json_rows`); one not assembled or singular has null rates and
+    says why."""
+    from velplan.cli.stream import json_rows
 
-    def number(key: str, arr: np.ndarray, sep: str) -> None:
-        nonlocal pending
-        lits.append(pending + sep + f"{q(key)}: ")
-        cols.append(arr)
-        pending = ""
-
-    number("position", np.arange(first + 1, first + len(kin) + 1, dtype=float), "")
-    number("phi_deg", kin.phi_deg, ", ")
-    number("valid", kin.valid.astype(float), ", ")
-    sections = [("points", kin.point_index, ("x", "y", "vx", "vy", "ax", "ay"),
-                 lambda j: (kin.positions[:, j, 0], kin.positions[:, j, 1], kin.velocities[:, j, 0],
-                            kin.velocities[:, j, 1], kin.accelerations[:, j, 0], kin.accelerations[:, j, 1])),
-                ("links", kin.link_index, ("angle", "omega", "epsilon"),
-                 lambda j: (kin.angles[:, j], kin.omegas[:, j], kin.epsilons[:, j])),
-                ("slides", kin.slide_index, ("s", "v", "a"), lambda j: tuple(kin.slides[:, j].T))]
-    for name, index, fields, arrays in sections:
-        pending += f", {q(name)}: {{"
-        for n, (k, j) in enumerate(index.items()):
-            pending += ("" if n == 0 else ", ") + f"{q(k)}: {{"
-            for m, (f, arr) in enumerate(zip(fields, arrays(j))):
-                number(f, arr, "" if m == 0 else ", ")
-            pending += "}"
-        pending += "}"
-    pending += ', "condition": {'
-    for n, (k, j) in enumerate(kin.group_index.items()):
-        number(k, kin.condition[:, j], "" if n == 0 else ", ")
-    lits.append(pending + "}}\n")
-    return [t.encode("utf-8") for t in lits], cols
+    ok = kin.valid
+    singular, least = kin.singular, kin.min_condition()
+    reasons = {int(i): (f"singular: a group at a toggle (condition {least[i]:.2g}), velocities undetermined"
+                        if singular[i] else "not assembled") for i in np.flatnonzero(~ok)}
+    rate = (lambda a: a) if not reasons else (lambda a: np.where(ok, a, np.nan))  # noqa: E731 (never a wrong number)
+    P, V, A = kin.positions, kin.velocities, kin.accelerations
+    tree = {"position": np.arange(first + 1, first + len(kin) + 1), "phi_deg": kin.phi_deg, "valid": ok,
+            "points": {k: {"x": P[:, j, 0], "y": P[:, j, 1], "vx": rate(V[:, j, 0]), "vy": rate(V[:, j, 1]),
+                           "ax": rate(A[:, j, 0]), "ay": rate(A[:, j, 1])} for k, j in kin.point_index.items()},
+            "links": {k: {"angle": kin.angles[:, j], "omega": rate(kin.omegas[:, j]),
+                          "epsilon": rate(kin.epsilons[:, j])} for k, j in kin.link_index.items()},
+            "slides": {k: {"s": kin.slides[:, j, 0], "v": rate(kin.slides[:, j, 1]), "a": rate(kin.slides[:, j, 2])}
+                       for k, j in kin.slide_index.items()},
+            "condition": {k: kin.condition[:, j] for k, j in kin.group_index.items()}}
+    return json_rows(tree, fmt, reasons)
 
 
 def to_table(kin: Kinematics) -> str:

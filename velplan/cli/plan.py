@@ -77,9 +77,9 @@ def run_plan(args) -> int:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
         study, index, number = Study(args.mechanism, n=args.positions), args.position - 1, args.position
-    study.require_assembled([index])
+    study.require_assembled([index + 1])
     only = [x.strip() for x in args.only.split(",")] if args.only else None
-    res = study.plan(args.kind, positions=[index], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+    res = study.plan(args.kind, positions=[index + 1], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
                      drafting=_drafting(args))
     doc = plan_json(res, number)
     emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),
@@ -136,7 +136,7 @@ def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
     where = f", {label('position', lang).lower()} {doc['position']}" if doc["position"] else ""
     head = f"{doc['mechanism']}: {title}{where}, φ = {doc['phi_deg']:.3f}°, μ = {res.scale:g} {unit}, {res.mode}"
     lines = [head, ""]
-    lines += [f"{n}. {s}" for n, s in enumerate(res.describe(0, lang), 1)]
+    lines += [f"{n}. {s}" for n, s in enumerate(res.describe(lang=lang), 1)]
     lines.append("")
     sym, key = ("a", "accelerations") if res.kind == "acceleration" else ("V", "velocities")
     ground = dict(res.plan.mechanism.ground)

@@ -254,8 +254,8 @@ def run_steps(args) -> int:
         from velplan.plans.centres import construct_centres
         from velplan.views.centres import centre_step_figures
 
-        study.require_assembled([args.position - 1])
-        figures = centre_step_figures(construct_centres(study.kinematics, args.position - 1),
+        study.require_assembled([args.position])
+        figures = centre_step_figures(construct_centres(study.kinematics, args.position),
                                       fine=study.turn, number=args.position, lang=args.lang)
     else:
         figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},

@@ -12,7 +12,8 @@ MAX_VARIANTS = 10_000_000
 
 
 def register(sub) -> None:
-    p = sub.add_parser("sweep", help="figures of merit (H, K, γ_min, peak v, a) over a design grid or tolerances")
+    p = sub.add_parser("sweep", help="figures of merit (H, K, γ_min, peak v, a, M_b, J_I) over a design grid "
+                                     "or tolerances")
     add_mechanism(p)
     p.add_argument("--vary", metavar="KEY=FROM:TO:N", action="append", default=[],
                    help="a grid axis over a dotted key (crank.length=0.09:0.11:21, or KEY=A,B,C); repeat for more axes")
@@ -24,6 +25,9 @@ def register(sub) -> None:
                    help="deviations: normal with σ = T/3 (default) or uniform in ±T")
     p.add_argument("--positions", metavar="N", type=positive_int, default=360,
                    help="crank angles per variant (default 360)")
+    p.add_argument("--delta", metavar="δ", type=float,
+                   help="coefficient of speed fluctuation (0 < δ < 1): adds the flywheel's J_I (kg·m²) of each "
+                        "variant (a file with loads or masses; the peak balancing moment Mb_max comes without it)")
     p.add_argument("--format", choices=("table", "json", "csv", "npz", "parquet"), default="table")
     p.add_argument("--plots", metavar="DIR", help="write sweep-hist, sweep-sensitivity and sweep-scatter SVGs into DIR")
     p.add_argument("--png", action="store_true", help="also PNGs of the plots")
@@ -71,7 +75,14 @@ def run_sweep_cmd(args) -> int:
             raise VelplanError("--format parquet needs pyarrow (pip install pyarrow); --format npz needs nothing") from None
     if args.plots and not Path(args.plots).is_dir():
         raise VelplanError(f"--plots: directory {args.plots} does not exist")
+    if args.delta is not None and not 0 < args.delta < 1:
+        raise VelplanError(f"--delta must be between 0 and 1 (exclusive), not {args.delta:g}")
     mech = load(args.mechanism)
+    if args.delta is not None:
+        from velplan.sweep.dynamic import has_dynamics
+
+        if not has_dynamics(mech):
+            raise VelplanError(f"--delta: {mech.name!r} has no loads or masses: no flywheel to size")
     mode, values, meta = _values(args, mech)
     V = len(next(iter(values.values())))
     show = None if args.quiet or V <= 1024 else progress_bar()
@@ -82,7 +93,7 @@ def run_sweep_cmd(args) -> int:
 
         engine = "compiled" if available() and (loaded() or V * args.positions >= AUTO_COMPILED) else "numpy"
     res = run.run_sweep(mech, values, mode=mode, positions=args.positions, progress=show,
-                        scheduler=args.scheduler, jobs=args.jobs, engine=engine, meta=meta)
+                        scheduler=args.scheduler, jobs=args.jobs, engine=engine, delta=args.delta, meta=meta)
     if args.format == "table":
         with open_output(args.output) as out:
             out.write(report.to_table(res))

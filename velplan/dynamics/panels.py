@@ -11,7 +11,7 @@ to round-off (tests check 1e-12 against the solver), and no node ever sits on a 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numpy.polynomial import legendre as L
@@ -38,9 +38,7 @@ class Panels:
     _ref: tuple = field(init=False, repr=False)
 
     def __post_init__(self):
-        x, w = L.leggauss(self.order)
-        vinv = np.linalg.inv(L.legvander(x, self.order - 1))
-        object.__setattr__(self, "_ref", (x, w, vinv))
+        object.__setattr__(self, "_ref", _reference(self.order))
 
     @property
     def cycle(self) -> float:
@@ -118,6 +116,14 @@ class Panels:
         converged to round-off; a kink or a jump inside a panel leaves a slowly decaying
         tail)."""
         return np.abs(coef[..., -2]) + np.abs(coef[..., -1])
+
+
+@lru_cache(maxsize=None)
+def _reference(order: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights of ``order`` points, and the inverse of their
+    Legendre–Vandermonde matrix (shared by every panel set of that order)."""
+    x, w = L.leggauss(order)
+    return x, w, np.linalg.inv(L.legvander(x, order - 1))
 
 
 def legendre_basis(x: np.ndarray, n: int, deriv: bool = False) -> tuple[np.ndarray, np.ndarray | None]:

@@ -14,6 +14,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from velplan.analysis.roots import newton_bisection
 from velplan.dynamics.reduction import Profile
 from velplan.errors import VelplanError
 
@@ -122,11 +123,13 @@ def extremes(c: EnergyCurve, targets: list[Target], guess: Sequence[float] | Non
     m = owner.size
     keep = (sgn * g_ends[:m] > 0) & (sgn * g_ends[m:] < 0)
     if np.any(keep):
-        start = None
+        start = 0.5 * (lo[keep] + hi[keep])
         if guess is not None:
             g = np.asarray(guess, dtype=float)[owner[keep]]
-            start = np.where((g > lo[keep]) & (g < hi[keep]), g, 0.5 * (lo[keep] + hi[keep]))
-        roots = _newton(c, par[:, keep], lo[keep], hi[keep], g_ends[:m][keep], start)
+            start = np.where((g > lo[keep]) & (g < hi[keep]), g, start)
+        # the roots of g to 8 ulp, a Newton step onto a bracket's end accepted
+        roots = newton_bisection(lambda x: _g(par[:, keep], *c.evaluate(x)), lo[keep], hi[keep],
+                                 g_ends[:m][keep], start, ulps=8, closed=True)
         A, _, _, J, _, _ = c.evaluate(roots)
         e0, k, e1, e2 = par[:, keep]
         F = (e0 + A - k * J) / (e1 + e2 * J)
@@ -135,28 +138,6 @@ def extremes(c: EnergyCurve, targets: list[Target], guess: Sequence[float] | Non
             if s * v > s * best[n][1]:
                 best[n] = [float(r), float(v)]
     return [tuple(b) for b in best]
-
-
-def _newton(c: EnergyCurve, par: np.ndarray, lo: np.ndarray, hi: np.ndarray, g_lo: np.ndarray,
-            start: np.ndarray | None = None) -> np.ndarray:
-    """Roots of g (see `_g`) in the brackets [lo, hi] (g changes sign), to a few ulp: Newton's
-    steps, bisection where a step would leave the bracket."""
-    x = 0.5 * (lo + hi) if start is None else start
-    eps = np.finfo(float).eps
-    for _ in range(100):
-        g, dg = _g(par, *c.evaluate(x))
-        left = np.sign(g) == np.sign(g_lo)
-        lo, hi = np.where(left, x, lo), np.where(left, hi, x)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = x - g / dg
-        inside = (step >= lo) & (step <= hi) & np.isfinite(step)
-        x_new = np.where(g == 0, x, np.where(inside, step, 0.5 * (lo + hi)))
-        ulp = 8 * eps * np.maximum(np.abs(x_new), 1.0)
-        done = (np.abs(x_new - x) <= ulp) | (g == 0) | (hi - lo <= ulp)
-        x = x_new
-        if done.all():
-            break
-    return x
 
 
 @dataclass(frozen=True, eq=False)

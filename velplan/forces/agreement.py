@@ -65,6 +65,12 @@ class ForceAnalysis:
         return {"kinetostatics": self.kinetostatics.balancing_moment,
                 "lever": self.lever.balancing_moment, "power": self.power}
 
+    @property
+    def lever_difference_percent(self) -> np.ndarray:
+        """(n,) per-cent difference of M_b by the lever from M_b by kinetostatics (NaN at a dead
+        centre): `lever_difference_percent` of the two."""
+        return lever_difference_percent(self.lever.balancing_moment, self.kinetostatics.balancing_moment)
+
     def max_relative_difference(self) -> float:
         """max |M_b(method) − M_b(kinetostatics)| / max |M_b(kinetostatics)| over positions and methods."""
         ref = self.kinetostatics.balancing_moment

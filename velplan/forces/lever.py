@@ -8,7 +8,7 @@ a drawn plan as well as exact ones (`images_from_kinematics`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
@@ -79,12 +79,29 @@ class Lever:
         M_b = F_b·l_OA, N·m.
     tip_image : ndarray
         The crank tip's image turned by 90°, mm.
+    direction : ndarray
+        The unit vector i·(A − O)/l_OA (complex) along which ``balancing_force`` is signed.
+    scale : float
+        μv of the plan the images are on, (m/s)/mm.
     """
 
     forces: tuple[LeverForce, ...]
     balancing_force: np.ndarray
     balancing_moment: np.ndarray
     tip_image: np.ndarray
+    direction: np.ndarray
+    scale: float
+
+    def at_scale(self, mu_v: float) -> "Lever":
+        """This lever on the plan drawn at ``mu_v`` ((m/s)/mm): the images and the moments
+        about the pole (N·mm) scaled by μv_old/μv; the forces, F_b and M_b are unchanged."""
+        if not mu_v > 0:
+            raise VelplanError(f"velocity scale μv must be > 0 (m/s)/mm, not {mu_v}")
+        if mu_v == self.scale:
+            return self
+        r = self.scale / mu_v
+        forces = tuple(replace(f, image=f.image * r, moment=f.moment * r) for f in self.forces)
+        return replace(self, forces=forces, tip_image=self.tip_image * r, scale=mu_v)
 
 
 def _get(m: Mapping, name: str, what: str, needed: str):
@@ -172,7 +189,7 @@ def zhukovsky_lever(mech: Mechanism, positions: Mapping, images: Mapping, mu_v: 
     with np.errstate(divide="ignore", invalid="ignore"):
         e = 1j * (a - o) / l
         fb = -total / cross(tip, e)
-    return Lever(tuple(out), fb, fb * l, tip)
+    return Lever(tuple(out), fb, fb * l, tip, e, float(mu_v))
 
 
 def lever_balancing_moment(mech: Mechanism, kin: Kinematics, actions: Actions, mu_v: float = 1.0) -> np.ndarray:

@@ -29,6 +29,7 @@ from typing import Literal, Protocol, Sequence
 import numpy as np
 
 from velplan.analysis.extremes import reference_angle, stroke
+from velplan.analysis.roots import newton_bisection
 from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
 from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
@@ -127,22 +128,12 @@ class Track:
         with np.errstate(divide="ignore", invalid="ignore"):
             x = lo_ - f_lo * (hi_ - lo_) / (f_hi - f_lo)
         x = np.where((x >= lo_) & (x <= hi_), x, 0.5 * (lo_ + hi_))
-        eps = np.finfo(float).eps
-        for _ in range(100):
-            sx, ds = s_of(x)
-            f = sx - target
-            same = np.sign(f) == np.sign(f_lo)
-            lo_, f_lo, hi_ = np.where(same, x, lo_), np.where(same, f, f_lo), np.where(same, hi_, x)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                newton = x - f / ds
-            inside = (newton > lo_) & (newton < hi_) & np.isfinite(newton)
-            x_new = np.where(f == 0, x, np.where(inside, newton, 0.5 * (lo_ + hi_)))
-            ulp4 = 4 * eps * np.maximum(np.abs(x_new), 1.0)
-            done = (np.abs(x_new - x) <= ulp4) | (f == 0) | (hi_ - lo_ <= ulp4)
-            x = x_new
-            if done.all():
-                break
-        return x
+
+        def f(psi):
+            sx, ds = s_of(psi)
+            return sx - target, ds
+
+        return newton_bisection(f, lo_, hi_, f_lo, x, ulps=4, closed=False)
 
 
 def output_slider(mech: Mechanism) -> tuple[str, str, str] | None:

@@ -17,6 +17,7 @@ import re
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import PlanResult
 from velplan.plans.steps import Intersect, LayOff, Similar
@@ -49,7 +50,7 @@ def _centre_marks(kin, i: int, view, mu_l: float) -> list:
     from velplan.plans.centres import construct_centres
     from velplan.views.centres import centre_marks
 
-    return centre_marks(construct_centres(kin, i, mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
+    return centre_marks(construct_centres(kin, position_number(i), mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
 
 
 def scheme_scale(study: Study) -> float:
@@ -80,7 +81,7 @@ def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool =
             per_position.append(None)
             continue
         idx = sorted(set(reference) | {i})
-        view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=idx.index(i) + 1, lang=lang,
+        view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)), lang=lang,
                               kin=kin.take(idx), fine=fine, single=True, title=False)
         marks = _centre_marks(kin, i, view, mu_l) if centres else []
         per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
@@ -237,7 +238,7 @@ def plan_frames(study: Study, kind: str, lang: str, style: SheetStyle, *, scale_
 def _plan_records(res: PlanResult, i: int, lang: str, style: SheetStyle) -> tuple[list, list[str]]:
     """The plan at position index `i`: records ``[step, *record]`` (letters with the step that
     fixes their first image) and the sentence of each step, written as by hand."""
-    drawings = plan_steps(res, i, number=i + 1, lang=lang)
+    drawings = plan_steps(res, position_number(i), lang=lang)
     first: dict[str, int] = {}
     recs: list[list] = []
     for j, d in enumerate(drawings, 1):
@@ -245,7 +246,7 @@ def _plan_records(res: PlanResult, i: int, lang: str, style: SheetStyle) -> tupl
             first.setdefault(subscript(label_of(t)), j)
         recs += [[j, *r] for p in d.items for r in encode(p, style)]
     last = len(drawings)
-    for t in image_letters(res, i, drawings, number=i + 1):
+    for t in image_letters(res, position_number(i), drawings):
         j = min((first.get(name, last) for name in t.text.split(", ")), default=last)
         recs += [[j, *r] for r in encode(t, style)]
     return recs, [readable(d.sentence) for d in drawings]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Heading, Para
@@ -22,7 +23,8 @@ def forces_section(note, sheet) -> None:
     note.add(Heading(p("sec_forces", lang), 1), Para.of(p("ks_intro", lang)))
     for k in sheet.positions:
         note.add(Heading(p("sec_kinetostatics", lang, k), 2))
-        deg = math.degrees(float(sheet.analysis.kinematics.phi[k - 1])) % 360.0
+        kin = sheet.analysis.kinematics
+        deg = math.degrees(float(kin.phi[position_index(k, len(kin))])) % 360.0
         note.add(Para.of(p("position_phi", lang, k, fixed(deg, lang, 1))))
         for group in solving_order(sheet.mechanism):
             _group(note, sheet, k, group)
@@ -31,7 +33,7 @@ def forces_section(note, sheet) -> None:
 
 
 def _group(note, sheet, k: int, group: str) -> None:
-    lang, i = note.lang, k - 1
+    lang, i = note.lang, position_index(k, len(sheet.analysis.kinematics))
     ks = sheet.analysis.kinetostatics
     poly = ks.polygons[group]
     kind = next((g.kind for g in sheet.mechanism.groups if g.name == group), "")
@@ -95,7 +97,7 @@ def _moments(note, sheet) -> None:
     note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang)))
     head = [label("position_short", lang), "φ, °"] + [f"{mb} ({label('method_' + key, lang)})"
                                                      for key in ("kinetostatics", "lever", "power")]
-    rows = [[str(j + 1), fixed(math.degrees(phi) % 360.0, lang, 1)] +
+    rows = [[str(position_number(j)), fixed(math.degrees(phi) % 360.0, lang, 1)] +
             [fixed(float(moments[key][j]), lang, decimals) for key in ("kinetostatics", "lever", "power")]
             for j, phi in enumerate(fa.kinematics.phi)]
     note.table(f"{label('balancing_moment', lang)} {mb}, {newton_metre(lang)}", head, rows, key="moments")

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Heading, Para
@@ -27,11 +28,11 @@ def positions_section(note, study, sheet) -> None:
                        study.mechanism.crank.link)))
     png, width = views_png([sheet.views["mechanism"]], sheet.style)
     k = note.figure(p("scheme_fig", lang), png, width)
-    head = [label("position", lang)] + [str(j + 1) for j in range(study.n)]
+    head = [label("position", lang)] + [str(position_number(j)) for j in range(study.n)]
     angles = [fixed(math.degrees(a) % 360.0, lang, 1) for a in study.phi]
     if study.n > 12:
         note.table(p("crank_angles", lang), [label("position", lang), p("phi", lang)],
-                   [[str(j + 1), a] for j, a in enumerate(angles)], key="angles")
+                   [[str(position_number(j)), a] for j, a in enumerate(angles)], key="angles")
     else:
         note.table(p("crank_angles", lang), head, [[p("phi", lang)] + angles], key="angles")
     st = study.stroke
@@ -98,7 +99,7 @@ def _results_table(note, res, i: int, kind: str, number_k: int, fig: int) -> Non
                key=f"{'velocities' if kind == 'v' else 'accelerations'}-{number_k}")
     note.add(Para.of(p("readings_text", lang)))
     read_rows = []
-    for pt, read, exact in readings(res, i):
+    for pt, read, exact in readings(res, number_k):
         err = 100.0 * (read - exact) / exact if exact > 1e-12 * max(read, 1.0) else float("nan")
         read_rows.append([f"{sym}{subscript(pt)}", fixed(read, lang, 3), fixed(exact, lang, 3),
                           fixed(err, lang, 1) if np.isfinite(err) else "—"])
@@ -119,7 +120,7 @@ def analogues_section(note, study, sheet) -> None:
         _row_label(name, mech.crank.link, lang) for name in table.rows]
     rows = []
     for j, phi in enumerate(table.phi):
-        rows.append([str(j + 1), fixed(math.degrees(phi) % 360.0, lang, 1)] +
+        rows.append([str(position_number(j)), fixed(math.degrees(phi) % 360.0, lang, 1)] +
                     [fixed(float(np.asarray(v)[j]), lang, 3) for v in table.rows.values()])
     note.table(label("table_transfer", lang), head, rows, key="analogues")
 

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from velplan.analysis.centres import FAR, canonical, link_names
+from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics, length_scale
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND
@@ -289,9 +290,10 @@ def _bound(pt, lines: tuple[Line, ...], sine: float, known: dict, mu_l: float, d
     return mm * mu_l
 
 
-def construct_centres(kin: Kinematics, i: int, *, drafting: Drafting = EXACT,
+def construct_centres(kin: Kinematics, position: int, *, drafting: Drafting = EXACT,
                       mu_l: float | None = None) -> Construction:
-    """The instant centres at position index ``i`` of ``kin`` by the Kennedy construction.
+    """The instant centres at position number ``position`` (1…n) of ``kin`` by the Kennedy
+    construction.
 
     Parameters
     ----------
@@ -307,6 +309,7 @@ def construct_centres(kin: Kinematics, i: int, *, drafting: Drafting = EXACT,
         Obvious centres first, then each intersection in the order found (the best
         conditioned available first), then every centre not reachable by Kennedy lines.
     """
+    i = position_index(position, len(kin))
     if not kin.valid[i]:
         raise MechanismError(f"the mechanism is not assembled at crank angle {kin.phi_deg[i]:.6g}°")
     mech = kin.mechanism

@@ -11,8 +11,9 @@ from typing import Iterable, Literal, Sequence
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics, solve
-from velplan.errors import MechanismError, ScaleError, SingularPositionError
+from velplan.errors import MechanismError, ScaleError, SingularPositionError, VelplanError
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.plans import text as T
 from velplan.plans.build import construct
@@ -391,9 +392,21 @@ class PlanResult:
             m |= self.ctx.refused_mask(t)
         return m
 
-    def describe(self, i: int = 0, lang: str = "en") -> list[str]:
-        """The worked solution at position ``i`` (of this result), one sentence per step."""
+    def index_of(self, position: int) -> int:
+        """Index into this result of position number ``position`` (1…n of its kinematics);
+        `VelplanError` naming the position when the plan was not evaluated there."""
+        j = position_index(position, len(self.kin))
+        hit = np.flatnonzero(np.asarray(self.index) == j)
+        if hit.size == 0:
+            have = ", ".join(str(position_number(k)) for k in self.index)
+            raise VelplanError(f"position {position} is not in this plan (its positions: {have})")
+        return int(hit[0])
+
+    def describe(self, position: int | None = None, lang: str = "en") -> list[str]:
+        """The worked solution at position number ``position`` (1…n; the first position of this
+        result by default), one sentence per step."""
         T.check_lang(lang)
+        i = 0 if position is None else self.index_of(position)
         return [s.describe(self.ctx, self.values, i, lang) for s in self.steps if s.target.startswith(self.kind[0])]
 
 

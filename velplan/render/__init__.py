@@ -3,7 +3,7 @@
 The primitives, canvases, styles, symbols and label layout know nothing of mechanisms or
 plans: they draw plain geometry. The views (`velplan.views`) sit on top of them and turn
 results into shapes; the sheets (`velplan.sheets`) arrange views in a frame. Backends:
-:class:`~velplan.render.svg.SvgCanvas` (svgwrite), :class:`~velplan.render.mpl.MplCanvas`
+:class:`~velplan.render.svg.SvgCanvas` (SVG text), :class:`~velplan.render.mpl.MplCanvas`
 (matplotlib, imported lazily) and :class:`~velplan.render.canvas.RecordingCanvas` (tests).
 """
 

@@ -1,4 +1,4 @@
-"""Placing things on the sheet: views on the free area, text in cells, labels apart.
+"""Placing things on the sheet: views on the free area, text in cells; labels that overlap.
 
 Everything works on estimated boxes in sheet millimetres (see
 :func:`~velplan.render.shapes.text_extent`); shapely does the geometry.
@@ -6,9 +6,7 @@ Everything works on estimated boxes in sheet millimetres (see
 
 from __future__ import annotations
 
-import math
-from dataclasses import replace
-from typing import Iterable, Literal, Sequence
+from typing import Literal, Sequence
 
 import numpy as np
 import shapely
@@ -19,7 +17,7 @@ from velplan.render.scene import Bounds, Scene, Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_box, text_extent
 from velplan.render.style import ESKD_TEXT_HEIGHTS, MIN_TEXT_HEIGHT_MM
 
-__all__ = ["text_extent", "label_box", "overlapping_labels", "nudge_labels", "place_views",
+__all__ = ["text_extent", "label_box", "overlapping_labels", "place_views",
            "fit_text", "LINE_PITCH"]
 
 #: Distance between the baselines of wrapped lines, as a multiple of the text height.
@@ -59,56 +57,6 @@ def overlapping_labels(scene: Scene, *, layers: Sequence[str] | None = None,
             if j > i and box.intersection(boxes[j]).area > min_area:
                 pairs.append((texts[i], texts[j]))
     return pairs
-
-
-def nudge_labels(texts: Iterable[Text], obstacles: Iterable[BaseGeometry] = (), *,
-                 step_mm: float | None = None, rings: int = 6) -> tuple[Text, ...]:
-    """Move labels, in order, off the ones placed before them and off `obstacles`.
-
-    Each label that collides is tried at growing distances (multiples of `step_mm`) in
-    eight directions; it keeps its place if no free spot is found.
-
-    Parameters
-    ----------
-    texts : iterable of Text
-        Labels in order of priority (earlier ones stay put).
-    obstacles : iterable of shapely geometry
-        Areas labels must avoid, mm.
-    step_mm : float, optional
-        Ring spacing, mm; half the label's height if omitted.
-    rings : int
-        How many rings to try.
-
-    Returns
-    -------
-    tuple of Text
-        The labels, some moved.
-    """
-    taken = list(obstacles)
-    placed = []
-    for text in texts:
-        moved = _free_spot(text, taken, step_mm or 0.5 * text.size_mm, rings)
-        placed.append(moved)
-        taken.append(label_box(moved))
-    return tuple(placed)
-
-
-def _free_spot(text: Text, taken: list, step: float, rings: int) -> Text:
-    def collides(t: Text) -> bool:
-        box = label_box(t)
-        return any(box.intersection(o).area > _EPS for o in taken)
-
-    if not collides(text):
-        return text
-    x, y = text.position
-    for ring in range(1, rings + 1):
-        for k in range(8):
-            a = math.pi / 4 * k
-            candidate = replace(text, position=(x + ring * step * math.cos(a),
-                                                y + ring * step * math.sin(a)))
-            if not collides(candidate):
-                return candidate
-    return text
 
 
 def place_views(sizes: Sequence[tuple[float, float]], area: BaseGeometry, *,

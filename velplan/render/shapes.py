@@ -10,13 +10,12 @@ from __future__ import annotations
 import functools
 import math
 import unicodedata
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
 import shapely
 
 if TYPE_CHECKING:
-    from velplan.render.scene import Text
     from velplan.render.style import LineType, SheetStyle
 
 #: Estimated advance of a Latin/Cyrillic character, as a fraction of the text height.
@@ -33,6 +32,18 @@ SUBSCRIPT_DROP = 0.25
 SUPERSCRIPT_RISE = 0.45
 # Head length over full head width: an opening angle of 2·atan(1/6) ≈ 19°.
 _HEAD_LENGTH_PER_WIDTH = 3.0
+
+
+class Lettering(Protocol):
+    """What the text functions read of a line of text (the scene's ``Text`` primitive): the
+    scene builds on these shapes, so they name no scene type."""
+
+    position: tuple[float, float]  # anchor point, mm
+    text: str
+    size_mm: float  # capital letter height, mm
+    anchor: str  # "start", "middle" or "end"
+    baseline: str  # "baseline", "middle" or "top"
+    rotation_deg: float  # direction of the baseline, degrees counter-clockwise
 
 
 class ArrowShape(NamedTuple):
@@ -278,7 +289,7 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
 
 
-def text_origin(text: Text) -> np.ndarray:
+def text_origin(text: Lettering) -> np.ndarray:
     """Point on the alphabetic baseline where a backend anchors `text`, mm.
 
     ``baseline="middle"`` centres the capitals on `text.position`, ``"top"`` hangs them
@@ -290,7 +301,7 @@ def text_origin(text: Text) -> np.ndarray:
     return np.asarray(text.position, float) - drop * np.array([-math.sin(a), math.cos(a)])
 
 
-def text_box(text: Text) -> np.ndarray:
+def text_box(text: Lettering) -> np.ndarray:
     """Corners of the estimated box of `text`, shape (4, 2), mm, counter-clockwise."""
     width, _ = text_extent(text.text, text.size_mm)
     x0 = -width * {"start": 0.0, "middle": 0.5, "end": 1.0}[text.anchor]

@@ -16,19 +16,20 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Mapping
 
 import numpy as np
 
-from velplan.errors import ScaleError, VelplanError
+from velplan.errors import ScaleError
 from velplan.mechanism.model import Mechanism
-from velplan.render.i18n import check_language, label
-from velplan.render.scene import Scene
+from velplan.render.i18n import label
 from velplan.render.style import SheetStyle
-from velplan.sheets.frame import TitleInfo, sheet_scene
-from velplan.sheets.layout import FORMATS, MIN_DIAGRAM_MM, SIZES, SheetOutput, check_layout, drawing_area, fits
+from velplan.sheets.frame import TitleInfo
+from velplan.sheets.layout import MIN_DIAGRAM_MM
+from velplan.sheets.skeleton import (
+    ComposedSheet, Request, compose, course_title, fit_table, sheet_request, title_with_scale)
+from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, number, ratio_text, scale_mark, unit
 from velplan.views.dynamics import (
@@ -39,8 +40,8 @@ PANELS = ("moments", "works", "inertia", "omega")
 
 
 @dataclass(frozen=True)
-class DynamicsSheet(SheetOutput):
-    """A composed dynamics sheet.
+class DynamicsSheet(ComposedSheet):
+    """A composed dynamics sheet (the attributes of `ComposedSheet`, and these).
 
     Attributes
     ----------
@@ -55,24 +56,13 @@ class DynamicsSheet(SheetOutput):
         The diagram as drawn (its scales and the segment read off it).
     """
 
-    mechanism: Mechanism
-    scene: Scene
-    views: Mapping[str, PlacedView]
-    scales: Mapping[str, float]
     dynamics: object
     wittenbauer: object
-    fmt: str
-    lang: str
-    frame_style: str
-    style: SheetStyle
-    info: TitleInfo
 
 
 def default_dynamics_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
     """Title block of the dynamics sheet: the third document of the course work."""
-    prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
-    return TitleInfo(title=f"{label('dynamic_analysis', lang)}: {mech.name_in(lang)}",
-                     designation=f"{prefix}.{mech.name}.03", scale=scale)
+    return course_title(mech, lang, "dynamic_analysis", 3, scale)
 
 
 def _panels(d, c, lang: str, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
@@ -138,73 +128,86 @@ def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str
     VelplanError
         Bad options, or dynamics that cannot be computed (one line naming the cause).
     """
-    study = mech if isinstance(mech, Study) else Study(mech, n=n)
-    mech, n = study.mechanism, study.n
-    check_language(lang)
-    if fmt not in FORMATS:
-        raise VelplanError(f"unknown sheet format {fmt!r}; known formats: {', '.join(FORMATS)}")
-    d = study.dynamics
-    frame_style = frame_style or ("eskd" if lang in ("ru", "uk") else "iso")
-    style = style or SheetStyle(language=lang)
-    base = SIZES[fmt]
-    sizes = DynamicsSizes(base.diagram.title_mm, base.diagram.label_mm)
-    g = base.gap
-    (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1) = drawing_area(fmt, frame_style)
-    W, H = fx1 - fx0, fy1 - fy0
+    req = sheet_request(mech, n=n, fmt=fmt, lang=lang, frame_style=frame_style, style=style,
+                        assembled=False)
+    d = req.study.dynamics
     views: dict[str, PlacedView] = {}
-    scales: dict[str, float] = {}
-
-    # the left column: four panels on one φ axis, the longest axis and then the tallest
-    # ordinates that fit
-    share = 0.56 if d.flywheel is not None else 0.75
     # the curves over the cycle (or the run), read once for every panel and the energy–mass diagram
     curves = d.curves(720 * d.spec.cycle_turns if d.run is None else 720)
-    left = _fit_panels(d, curves, lang, sizes, n, share * W, H, g, fmt)
+    scales = _left_column(req, curves, views)
+    right_x0 = req.area[0] + max(views[name].view.width_mm for name in PANELS) + req.gap
+    wit = _right_column(req, curves, views, scales, right_x0)
+    scale = ratio_text(scales["flywheel"], lang) if "flywheel" in scales else ""
+    info = title_with_scale(info, lambda s: default_dynamics_title(req.mechanism, lang, s), scale)
+    return DynamicsSheet(req.mechanism, compose(req, views, list(views), info), MappingProxyType(dict(views)),
+                         MappingProxyType(scales), fmt, lang, req.frame_style, req.style, info, d, wit)
+
+
+def _left_column(req: Request, curves, views: dict) -> dict[str, float]:
+    """The four panels on one φ axis down the left, the longest axis and then the tallest
+    ordinates that fit; their scales."""
+    d = req.study.dynamics
+    fx0, _, fx1, fy1 = req.area
+    share = 0.56 if d.flywheel is not None else 0.75
+    left = _fit_panels(d, curves, req.lang, _sizes(req), req.study.n, share * (fx1 - fx0),
+                       fy1 - req.area[1], req.gap, req.fmt)
+    scales: dict[str, float] = {}
     y = fy1
     for name in PANELS:
         v = left[name]
         y -= v.height_mm
         views[name] = v.at(fx0, y)
-        y -= g
+        y -= req.gap
         scales[name] = v.meta["mu"]
     scales["mu_phi"] = left["moments"].meta["mu_phi"]
-    right_x0 = fx0 + max(v.width_mm for v in left.values()) + g
+    return scales
 
-    # the results above the title block, the flywheel beside them, Wittenbauer on top
+
+def _sizes(req: Request) -> DynamicsSizes:
+    return DynamicsSizes(req.sizes.diagram.title_mm, req.sizes.diagram.label_mm)
+
+
+def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: float):
+    """The results above the title block, the flywheel beside them, Wittenbauer on top;
+    the Wittenbauer diagram as drawn (None without a flywheel)."""
+    d, lang, g = req.study.dynamics, req.lang, req.gap
+    fx0, fy0, fx1, fy1 = req.area
+    tx0, _, _, ty1 = req.title_block
     wit = d.wittenbauer() if d.flywheel is not None else None
-    table = _fit_results(d, wit, lang, base, max_width=fx1 - right_x0, fmt=fmt)
+    table = fit_table(lambda size: results_view(results_rows(d, wit, lang), lang=lang, size_mm=size,
+                                                title_mm=req.sizes.table_title),
+                      req, max_width=fx1 - right_x0, what="table of results")
     views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     band_top = ty1 + g + table.height_mm
     if d.flywheel is not None and d.flywheel.dimensions is not None:
-        region = (right_x0, fy0, min(tx0, fx1 - table.width_mm) - g, band_top)
-        fw = _fit_flywheel(d.flywheel.dimensions, lang, sizes, region)
-        if fw is None:  # beside the table there is no room: above it
-            region = (right_x0, band_top + g, fx1, band_top + g + 0.3 * H)
-            fw = _fit_flywheel(d.flywheel.dimensions, lang, sizes, region)
-        if fw is None:
-            raise ScaleError(f"the flywheel's section does not fit {fmt} at any ESKD scale; use a larger --format")
-        views["flywheel"] = fw.at(region[0], region[1])
-        scales["flywheel"] = fw.meta["scale"]
-        band_top = max(band_top, region[1] + fw.height_mm)
+        band_top = _place_flywheel(req, views, scales, (right_x0, fy0, min(tx0, fx1 - table.width_mm) - g, band_top))
     if d.flywheel is not None:
         region = (right_x0, band_top + g, fx1, fy1)
-        wv, wit = _fit_wittenbauer(d, curves, lang, sizes, region, fmt, n)
+        wv, wit = _fit_wittenbauer(d, curves, lang, _sizes(req), region, req.fmt, req.study.n)
         views["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
         scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
         # the table reads the segment off this drawing
         table = results_view(results_rows(d, wit, lang), lang=lang, size_mm=table.meta["size_mm"],
-                             title_mm=base.table_title)
+                             title_mm=req.sizes.table_title)
         views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
-    scale = ratio_text(scales["flywheel"], lang) if "flywheel" in scales else ""
-    if info is None:
-        info = default_dynamics_title(mech, lang, scale)
-    elif not info.scale and scale:
-        info = replace(info, scale=scale)
-    check_layout(views, fmt, frame_style)
-    scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
-    scene = scene.extend(*(v.primitives for v in views.values()))
-    return DynamicsSheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales), d, wit, fmt, lang,
-                         frame_style, style, info)
+    return wit
+
+
+def _place_flywheel(req: Request, views: dict, scales: dict, region) -> float:
+    """The flywheel's section beside the table (or, without room there, above it); the top
+    of the bottom band, mm."""
+    dims = req.study.dynamics.flywheel.dimensions
+    band_top = region[3]
+    fw = _fit_flywheel(dims, req.lang, _sizes(req), region)
+    if fw is None:  # beside the table there is no room: above it
+        H = req.area[3] - req.area[1]
+        region = (region[0], band_top + req.gap, req.area[2], band_top + req.gap + 0.3 * H)
+        fw = _fit_flywheel(dims, req.lang, _sizes(req), region)
+    if fw is None:
+        raise ScaleError(f"the flywheel's section does not fit {req.fmt} at any ESKD scale; use a larger --format")
+    views["flywheel"] = fw.at(region[0], region[1])
+    scales["flywheel"] = fw.meta["scale"]
+    return max(band_top, region[1] + fw.height_mm)
 
 
 def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt) -> dict[str, View]:
@@ -226,28 +229,16 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt) -> dict[str, View
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
 
 
-def _fit_results(d, wit, lang, base, *, max_width, fmt) -> View:
-    rows = results_rows(d, wit, lang)
-    for size in base.table:
-        view = results_view(rows, lang=lang, size_mm=size, title_mm=base.table_title)
-        if view.width_mm <= max_width:
-            return view
-    raise ScaleError(f"the table of results does not fit {fmt} ({view.width_mm:.0f} mm wide, "
-                     f"{max_width:.0f} mm free); use a larger --format")
-
-
 def _fit_flywheel(dims, lang, sizes, region) -> View | None:
+    """The flywheel's section at the largest ESKD scale that fits `region`, or None."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     if w < 40 or h < 30:
         return None
-    for mu in eskd_scales():
-        if dims.outer / mu > 0.8 * h:
-            continue
-        view = flywheel_view(dims, scale=mu, lang=lang, sizes=sizes, scale_text=scale_mark(mu, lang))
-        if fits(view, w, h):
-            return view
-    return None
+    found = largest_fitting(
+        lambda mu: flywheel_view(dims, scale=mu, lang=lang, sizes=sizes, scale_text=scale_mark(mu, lang)),
+        eskd_scales(), w, h, skip=lambda mu: dims.outer / mu > 0.8 * h)
+    return None if found is None else found[1]
 
 
 def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):

@@ -19,48 +19,46 @@ Examples
 from __future__ import annotations
 
 import math
+from itertools import islice
 from dataclasses import dataclass, field
-from pathlib import Path
 from types import MappingProxyType
-from typing import Literal, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 import shapely
 
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
+from velplan.options import KINEMATIC_SHEET_KINDS, Format, SheetKind
 from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
-from velplan.study import Study
-from velplan.views.diagram import DiagramSizes, diagram_view
-from velplan.render.i18n import check_language, label
-from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
-from velplan.views.plan import PlanSizes, extent_mm, plan_view
-from velplan.render.scene import Scene
-from velplan.sheets.frame import TitleInfo, sheet_scene
 from velplan.render.style import SheetStyle
-from velplan.sheets.layout import (
-    FORMATS, GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, SIZES, SheetOutput, Sizes,
-    check_layout, drawing_area, fill_bottom_band, fits, write_outputs)
-from velplan.views.table import sheet_table, table_view
+from velplan.sheets.frame import TitleInfo
+from velplan.sheets.layout import GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, write_outputs
+from velplan.sheets.skeleton import (
+    ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
+    sheet_request, sheet_text, title_with_scale)
+from velplan.sheets.solver import Trials, fits, largest_fitting
+from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
+from velplan.views.diagram import diagram_view
+from velplan.views.mechanism import extent_m, mechanism_view
+from velplan.views.plan import extent_mm, plan_view
+from velplan.views.table import sheet_table, table_view
 
-Kind = Literal["velocity", "acceleration", "both"]
-Format = Literal["A1", "A2", "A3"]
-KINDS: tuple[str, ...] = ("velocity", "acceleration", "both")
+KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
+"""The plan kinds of the kinematic sheet."""
 
 
 @dataclass(frozen=True)
-class Sheet(SheetOutput):
-    """A composed sheet.
+class Sheet(ComposedSheet):
+    """A composed kinematic sheet (the attributes of `ComposedSheet`, and these).
 
     Attributes
     ----------
-    mechanism : Mechanism
-    scene : Scene
-        Everything drawn, in sheet mm; render it with ``velplan.render.to_svg``.
     views : Mapping[str, PlacedView]
-        ``"mechanism"``, ``"plan-v-K"``, ``"plan-a-K"``, ``"table"``, ``"diagrams"``.
+        ``"mechanism"``, ``"plan-v-K"``, ``"plan-a-K"``, ``"table"``, ``"diagrams"``,
+        ``"data"``, ``"readings"``.
     scales : Mapping[str, float]
         ``"mu_l"`` (m/mm) of the scheme, and μ of each plan by view name (``"plan-v-4"``:
         (m/s)/mm, ``"plan-a-4"``: (m/s²)/mm), as drawn.
@@ -72,27 +70,16 @@ class Sheet(SheetOutput):
         Positions (1-based) whose plans are drawn.
     n : int
         Number of positions of the scheme.
-    fmt, lang, frame_style : str
-    style : SheetStyle
+    zones : Mapping[str, tuple]
+        View name → the zone of the sheet it was fitted to (sheet mm): a plan's grid cell,
+        the scheme's share of the top band.
     """
 
-    mechanism: Mechanism
-    scene: Scene
-    views: Mapping[str, PlacedView]
-    scales: Mapping[str, float]
     plans: Mapping[str, PlanResult]
     plan_index: Mapping[str, int]
     positions: tuple[int, ...]
     n: int
-    fmt: str
-    lang: str
-    frame_style: str
-    style: SheetStyle
-    info: TitleInfo
     zones: Mapping[str, tuple] = field(default_factory=lambda: MappingProxyType({}))
-    """View name → the zone of the sheet it was fitted to (sheet mm): a plan's grid cell, the
-    scheme's share of the top band."""
-
 
 
 def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
@@ -129,16 +116,44 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
     return tuple(picks)
 
 
-def default_title(mech: Mechanism, lang: str, fmt: str, scale: str,
-                  frame_style: str) -> TitleInfo:
-    """Title block filled with what velplan knows; no date (velplan never reads the clock)."""
-    prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
-    return TitleInfo(title=f"{label('kinematic_analysis', lang)}: {mech.name_in(lang)}",
-                     designation=f"{prefix}.{mech.name}.01", scale=scale)
+def default_title(mech, lang: str, fmt: str, scale: str, frame_style: str) -> TitleInfo:
+    """Title block of the kinematic sheet: the first document of the course work."""
+    return course_title(mech, lang, "kinematic_analysis", 1, scale)
+
+
+class _Drawings:
+    """The trial drawings of one kinematic sheet, each drawn once however many layouts try
+    it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view), the
+    kinematic diagrams by (arrangement, φ axis mm, height mm)."""
+
+    def __init__(self, req: Request, thick: int):
+        self.req, self.thick = req, thick
+        study = req.study
+        self.fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
+        self.bold = _extreme_positions(study)
+        self.scheme = Trials(self._scheme)
+        self.plan = Trials(self._plan)
+        self.diagrams = Trials(self._diagrams)
+
+    def _scheme(self, mu: float) -> View:
+        study, req = self.req.study, self.req
+        return mechanism_view(study.mechanism, mu_l=mu, n=study.n, thick=self.thick, lang=req.lang,
+                              sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
+                              extreme=study.other_extreme, bold=self.bold)
+
+    def _plan(self, kind: str, number: int, mu: float):
+        res = self.req.study.plan(kind).at_scale(mu)
+        return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan)
+
+    def _diagrams(self, arrangement: str, length: float, height: float) -> View:
+        study = self.req.study
+        return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
+                            omega=study.mechanism.crank.omega, arrangement=arrangement,
+                            sizes=self.req.sizes.diagram)
 
 
 def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
-                kind: Kind = "both", fmt: Format = "A1", lang: str = "ru",
+                kind: SheetKind = "both", fmt: Format = "A1", lang: str = "ru",
                 frame_style: str | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
                 style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
@@ -167,10 +182,10 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     info : TitleInfo, optional
         Title block fields; the scale field is filled with the scheme's scale when empty.
     diagrams : bool or None
-        Draw the kinematic diagrams (True: or raise ScaleError), leave them out (False),
-        or draw them when they fit and the mechanism names an output (None, the default):
-        beside the table, or else in the largest free corner left by the scheme and the
-        plans, in a row or a column.
+        Draw the kinematic diagrams where they fit and the mechanism names an output (None,
+        the default): beside the table, or else in the largest free corner left by the
+        scheme and the plans, in a row, a grid or a column; the same but raise ScaleError
+        where they fit nowhere (True); leave them out (False).
     table : bool
         Draw the table of transfer functions.
     data : bool
@@ -192,140 +207,177 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     VelplanError
         Bad options (unknown format, kind or language, positions out of range).
     """
-    study = mech if isinstance(mech, Study) else Study(mech, n=n)
-    mech, n = study.mechanism, study.n
-    check_language(lang)
-    if fmt not in FORMATS:
-        raise VelplanError(f"unknown sheet format {fmt!r}; known formats: {', '.join(FORMATS)}")
-    if kind not in KINDS:
-        raise VelplanError(f"unknown plan kind {kind!r}; known kinds: {', '.join(KINDS)}")
-    if n < 3:
-        raise VelplanError(f"a sheet needs at least 3 positions, not {n}")
-    kin = study.kinematics
-    bad = np.flatnonzero(~kin.valid)
-    if bad.size:
-        raise VelplanError(f"{mech.name} cannot be assembled at position {bad[0] + 1} "
-                           f"(crank angle {math.degrees(kin.phi[bad[0]]):.6g}°)")
-    chosen = tuple(default_plan_positions(study.plan("velocity")) if plans is None else plans)
-    if not chosen:
-        raise VelplanError("--plans: give at least one position")
-    for k in chosen:
-        if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
-            raise VelplanError(f"--plans: position {k} is outside 1…{n}")
-    if len(set(chosen)) != len(chosen):
-        raise VelplanError(f"--plans: a position is repeated in {', '.join(map(str, chosen))}")
-    frame_style = frame_style or ("eskd" if lang in ("ru", "uk") else "iso")
-    style = style or SheetStyle(language=lang)
-    sizes = SIZES[fmt]
-    g = sizes.gap
-
-    fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
-
-    (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1) = drawing_area(fmt, frame_style)
-    W, H = fx1 - fx0, fy1 - fy0
+    req = sheet_request(mech, n=n, fmt=fmt, lang=lang, frame_style=frame_style, style=style)
+    study, mech = req.study, req.mechanism
+    chosen = _check_options(study, plans, kind, diagrams, centres)
+    draw = _Drawings(req, chosen[0])
     views: dict[str, PlacedView] = {}
-
-    # the bottom band: the table above the title block, the diagrams to their left
-    if diagrams and mech.output is None:
-        raise VelplanError(f"{mech.name} names no output, so it has no kinematic diagrams")
-    tview = _fit_table(study, lang, sizes, max_width=0.62 * W, fmt=fmt) if table else None
-    band_top, _ = fill_bottom_band(
-        views, (fx0, fy0, fx1, fy1), (tx0, ty0, tx1, ty1), g, table_view=tview,
-        fit_diagram=(lambda r: _fit_diagrams(study, lang, sizes, r, fmt=fmt))
-        if diagrams is not False and mech.output is not None else None,
-        diagram_share=0.3, required=bool(diagrams), diagram_name="diagrams")
-
-    # the top band: the scheme, then the plans to its right
-    top = (fx0, band_top + g, fx1, fy1)
-    thick = chosen[0]
+    with_diagrams = diagrams is not False and mech.output is not None
+    band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
     kinds = ("velocity", "acceleration") if kind == "both" else (kind,)
-    # the largest scheme whose neighbours, the plans, still get vectors of a good length;
-    # failing that, the scheme that leaves the plans the longest vectors
-    best, failure = None, None
-    drawn: dict = {}  # (kind, number, μ) → (result, view): a plan's view does not depend on its cell
-    # the default positions' plans that fit no scheme: the first position's alone
-    attempts = [chosen] + ([chosen[:1]] if plans is None and len(chosen) > 1 else [])
-    bold = _extreme_positions(study)
-    for mview, attempt in ((m, a) for a in attempts for m in _mechanism_candidates(
-            mech, kin, fine, n, thick, lang, sizes, top, fmt=fmt, extreme=study.other_extreme,
-            bold=bold)):
-        if best is not None and attempt is not chosen:
-            break
-        # the plans go to the right of the scheme, or below it across the sheet
-        regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
-                   (fx0, band_top + g, fx1, fy1 - mview.height_mm - g)]
-        good = False
-        for plan_region in regions:
-            if plan_region[2] - plan_region[0] < 40 or plan_region[3] - plan_region[1] < 40:
-                continue
-            try:
-                plan_views, results, score, cells = _fit_plans(study, attempt, kinds, lang, sizes,
-                                                               plan_region, g, fmt=fmt, drawn=drawn)
-            except ScaleError as exc:
-                failure = failure or exc
-                continue
-            if best is None or score > best[0]:
-                best = (score, mview, plan_views, results, cells)
-                chosen = attempt
-            good = good or score >= GOOD_PLAN_MM[fmt]
-        if good:
-            break
-    if best is None:
-        raise failure
-    _, mview, plan_views, results, cells = best
+    mview, fitted, chosen = _scheme_and_plans(req, draw, chosen, kinds, band_top,
+                                              fallback=plans is None)
+    plan_views, results, cells = fitted
     if not scale_per_plan:
-        plan_views, results = _one_scale_per_kind(plan_views, results, cells, lang, sizes, drawn)
+        plan_views, results = _one_scale_per_kind(draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
+    fx0, _, _, fy1 = req.area
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
-    if "diagrams" not in views and diagrams is not False and mech.output is not None:
-        placed = _diagrams_in_free_corner(study, lang, sizes, views, (fx0, fy0, fx1, fy1),
-                                          (tx0, ty0, tx1, ty1), g, fmt)
+    if "diagrams" not in views and with_diagrams:
+        placed = _diagrams_in_free_corner(req, draw, views)
+        if placed is None and diagrams:
+            raise ScaleError(f"the kinematic diagrams do not fit {fmt} beside the table nor in a "
+                             f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm; "
+                             f"use a larger --format")
         if placed is not None:
             views["diagrams"] = placed
     if data:
-        from velplan.views.data import data_view
-        from velplan.views.readings import readings_view
-
-        top_band = (fx0, band_top + g, fx1, fy1)
-        placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
-                            ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, g)
-        if placed is not None:
-            views["data"] = placed
-        on_sheet = {name: (res, index[name]) for name, res in results.items()}
-        placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
-                            ((2.5, 3.5), (1.8, 2.5)), views, top_band, g)
-        if placed is not None:
-            views["readings"] = placed
-
-    scales = {"mu_l": mview.mu}
-    for name, res in results.items():
-        scales[name] = res.scale
-    if info is None:
-        info = default_title(mech, lang, fmt, ratio_text(mview.mu, lang), frame_style)
-    elif not info.scale:
-        from dataclasses import replace
-        info = replace(info, scale=ratio_text(mview.mu, lang))
-    check_layout(views, fmt, frame_style)
-    scene = sheet_scene(info, fmt, frame_style=frame_style, lang=lang)
+        _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
+    info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
+                            ratio_text(mview.mu, lang))
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
         k for k in ("data", "readings", "diagrams", "table") if k in views]
-    scene = scene.extend(*(views[k].primitives for k in order))
-    if centres:  # the instant centres of the chosen positions, on the scheme
-        from velplan.plans.centres import construct_centres
-        from velplan.views.centres import centre_marks
-
-        for k in centres:
-            if not 1 <= k <= len(kin):
-                raise VelplanError(f"--centres: position {k} is outside 1…{len(kin)}")
-            con = construct_centres(kin, k - 1, mu_l=mview.mu) if kin.valid[k - 1] else None
-            tag = f" ({k})" if len(centres) > 1 else ""
-            scene = scene.extend(centre_marks(con, views["mechanism"], tag=tag) if con else ())
+    scene = compose(req, views, order, info)
+    if centres:
+        scene = scene.extend(_centre_marks(study, centres, views["mechanism"], mview.mu))
     zones = dict(cells)
-    zones["mechanism"] = (top[0], top[1], top[0] + 0.62 * (top[2] - top[0]), top[3])
-    return Sheet(mech, scene, MappingProxyType(dict(views)), MappingProxyType(scales),
-                 MappingProxyType(results), MappingProxyType(index), chosen, n, fmt, lang,
-                 frame_style, style, info, MappingProxyType(zones))
+    zones["mechanism"] = _scheme_zone((fx0, band_top + req.gap, req.area[2], fy1))
+    return Sheet(mech, scene, MappingProxyType(dict(views)),
+                 MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
+                 fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
+                 MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
+
+
+def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centres) -> tuple[int, ...]:
+    """The positions whose plans are drawn, after checking the kinematic sheet's options."""
+    mech = study.mechanism
+    if kind not in KINDS:
+        raise VelplanError(f"unknown plan kind {kind!r}; known kinds: {', '.join(KINDS)}")
+    chosen = check_plan_positions(
+        default_plan_positions(study.plan("velocity")) if plans is None else plans, study.n)
+    for k in centres:
+        if not 1 <= k <= study.n:
+            raise VelplanError(f"--centres: position {k} is outside 1…{study.n}")
+    if diagrams and mech.output is None:
+        raise VelplanError(f"{mech.name} names no output, so it has no kinematic diagrams")
+    return chosen
+
+
+def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, diagrams: bool) -> float:
+    """The table above the title block, the diagrams to their left where they fit; the
+    band's top, mm."""
+    study = req.study
+    tview = None
+    if table:
+        data = sheet_table(study.plan("velocity"))
+        tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
+                                                  title_mm=req.sizes.table_title),
+                          req, max_width=0.62 * req.width,
+                          what=f"table of transfer functions ({study.n} positions)",
+                          advice="fewer --positions or ")
+    band_top, _ = fill_bottom_band(
+        views, req, table_view=tview,
+        fit_diagram=(lambda region: _fit_diagrams(req, draw, region)) if diagrams else None,
+        diagram_share=0.3, required=False, diagram_name="diagrams")
+    return band_top
+
+
+#: The scheme's share of the width of the top band.
+SCHEME_WIDTH = 0.62
+#: The share of its zone (along the fuller direction) a scheme fills, below which a smaller
+#: scheme is drawn only where no scheme of that share leaves the plans room.
+SCHEME_SHARE = 0.5
+
+
+def _scheme_and_plans(req: Request, draw: _Drawings, chosen, kinds, band_top: float, *, fallback: bool):
+    """(scheme view, (plan views, results, cells), positions drawn): the largest scheme whose
+    neighbours, the plans, still get vectors of a good length; failing that, the scheme that
+    leaves the plans the longest vectors. With `fallback`, the first position's plans alone
+    when the positions' plans fit beside no scheme filling `SCHEME_SHARE` of its zone."""
+    attempts = [chosen] + ([chosen[:1]] if fallback and len(chosen) > 1 else [])
+    failure = None
+    for least in (SCHEME_SHARE, 0.0):
+        best, failure = _pairing(req, draw, attempts, kinds, band_top, least, failure)
+        if best is not None:
+            return best[1:]
+    raise failure or ScaleError(f"the plans do not fit {req.fmt} beside the scheme; use a larger --format")
+
+
+def _pairing(req: Request, draw: _Drawings, attempts, kinds, band_top: float, least: float, failure):
+    """(the best (score, scheme, fitted plans, positions) or None, the first ScaleError) of
+    the schemes filling at least `least` of their zone with the plans of the first of the
+    `attempts` that fits."""
+    fx0, _, fx1, fy1 = req.area
+    g = req.gap
+    top = (fx0, band_top + g, fx1, fy1)
+    best = None
+    for attempt in attempts:
+        if best is not None:
+            break
+        for mview in _mechanism_candidates(req, draw, top):
+            if _zone_share(mview, top) < least:
+                continue
+            # the plans go to the right of the scheme, or below it across the sheet
+            regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
+                       (fx0, band_top + g, fx1, fy1 - mview.height_mm - g)]
+            good = False
+            for region in regions:
+                if region[2] - region[0] < 40 or region[3] - region[1] < 40:
+                    continue
+                try:
+                    score, fitted = _fit_plans(req, draw, attempt, kinds, region)
+                except ScaleError as exc:
+                    failure = failure or exc
+                    continue
+                if best is None or score > best[0]:
+                    best = (score, mview, fitted, attempt)
+                good = good or score >= GOOD_PLAN_MM[req.fmt]
+            if good:
+                return best, failure
+    return best, failure
+
+
+def _scheme_zone(top) -> tuple[float, float, float, float]:
+    """The scheme's zone: its share of the top band, at the left."""
+    return (top[0], top[1], top[0] + SCHEME_WIDTH * (top[2] - top[0]), top[3])
+
+
+def _zone_share(view: View, top) -> float:
+    """The share of its zone a scheme spans along the fuller direction."""
+    x0, y0, x1, y1 = _scheme_zone(top)
+    return max(view.width_mm / (x1 - x0), view.height_mm / (y1 - y0))
+
+
+def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
+    """The input data and the readings off the plans, each in a free spot of the top band."""
+    from velplan.views.data import data_view
+    from velplan.views.readings import readings_view
+
+    top_band = (req.area[0], band_top + req.gap, req.area[2], req.area[3])
+    study, lang = req.study, req.lang
+    placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
+                        ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    if placed is not None:
+        views["data"] = placed
+    placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
+                        ((2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    if placed is not None:
+        views["readings"] = placed
+
+
+def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> list:
+    """The instant centres of the chosen positions, on the scheme."""
+    from velplan.plans.centres import construct_centres
+    from velplan.views.centres import centre_marks
+
+    kin = study.kinematics
+    items = []
+    for k in centres:
+        con = construct_centres(kin, k, mu_l=mu_l) if kin.valid[k - 1] else None
+        tag = f" ({k})" if len(centres) > 1 else ""
+        items += centre_marks(con, scheme, tag=tag) if con else ()
+    return items
 
 
 def _free_spot(build, sizes, views, region, gap):
@@ -351,72 +403,42 @@ def _free_spot(build, sizes, views, region, gap):
     return None
 
 
-def _fit_table(study: Study, lang, sizes: Sizes, *, max_width: float, fmt: str) -> View:
-    mech, n = study.mechanism, study.n
-    data = sheet_table(study.plan("velocity"))
-    for size in sizes.table:
-        view = table_view(data, mech, lang=lang, size_mm=size, title_mm=sizes.table_title)
-        if view.width_mm <= max_width:
-            return view
-    raise ScaleError(f"the table of transfer functions ({n} positions) does not fit {fmt} "
-                     f"even with 1.8 mm text ({view.width_mm:.0f} mm wide, "
-                     f"{max_width:.0f} mm free); use fewer --positions or a larger --format")
+#: φ axes (mm per turn: μφ a round number of degrees per mm) and heights of the diagrams, mm.
+DIAGRAM_LENGTHS = (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0)
+DIAGRAM_HEIGHTS = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0)
 
 
-def _fit_diagrams(study: Study, lang, sizes: Sizes, region, *, fmt: str,
-                  arrangement: str = "row") -> View:
+def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row") -> View:
+    """The kinematic diagrams in `region`: the longest φ axis that fits with the lowest
+    diagrams, then the highest diagrams that fit with it."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    d = study.diagrams
-    best = None
+    low = DIAGRAM_HEIGHTS[-1]
+    length = _longest_axis(lambda L: draw.diagrams(arrangement, L, low), w, arrangement)
+    if length is not None:
+        # the view grows with its diagrams' height: start from the tallest that the lowest
+        # view's margins leave room for, and step down until one fits (or up while one does)
+        room = h - (draw.diagrams(arrangement, length, low).height_mm - low)
+        k = next((j for j, ht in enumerate(DIAGRAM_HEIGHTS) if ht <= room + 1e-6), len(DIAGRAM_HEIGHTS) - 1)
+        found = largest_fitting(lambda ht: draw.diagrams(arrangement, length, ht), DIAGRAM_HEIGHTS[k:], w, h)
+        if found is not None:
+            j = DIAGRAM_HEIGHTS.index(found[0])
+            while j > 0 and fits(draw.diagrams(arrangement, length, DIAGRAM_HEIGHTS[j - 1]), w, h):
+                j -= 1
+            return draw.diagrams(arrangement, length, DIAGRAM_HEIGHTS[j])
+    raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} ({w:.0f} × {h:.0f} mm free "
+                     f"beside the title block) with a φ axis of at least "
+                     f"{MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
 
-    def build(length, height):
-        return diagram_view(d, length_mm=length, height_mm=height, lang=lang, omega=study.mechanism.crank.omega,
-                            arrangement=arrangement, sizes=sizes.diagram)
 
-    # the longest φ axis (μφ a round number of degrees per mm) that fits with the lowest
-    # diagrams, then the highest diagrams that fit with it
-    heights = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0)
-    lengths = (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0)
-    # the width grows linearly with the φ axis: from the longest and the shortest axis, the
-    # longest that may fit is tried first (the longer ones cannot)
-    widths = {lengths[0]: build(lengths[0], heights[-1])}
-    start = 0
-    if widths[lengths[0]].width_mm > w:
-        widths[lengths[-1]] = build(lengths[-1], heights[-1])
-        w0, w1 = widths[lengths[0]].width_mm, widths[lengths[-1]].width_mm
-        per_mm = (w0 - w1) / (lengths[0] - lengths[-1])
-        start = next((j for j, L in enumerate(lengths) if w1 + per_mm * (L - lengths[-1]) <= w + 1.0),
-                     len(lengths) - 1)
-        while start > 0 and (widths.get(lengths[start - 1]) or build(lengths[start - 1], heights[-1])).width_mm <= w:
-            start -= 1
-    for length in lengths[start:]:
-        low = widths.get(length) or build(length, heights[-1])
-        if low.width_mm <= w:
-            # the view grows with its diagrams' height: start from the tallest that the lowest
-            # view's margins leave room for, and step down until one fits (or up while one does)
-            room = h - (low.height_mm - heights[-1])
-            k = next((j for j, ht in enumerate(heights) if ht <= room + 1e-6), len(heights) - 1)
-            views = {len(heights) - 1: low}
-            fitting = None
-            for j in range(k, len(heights)):
-                views[j] = views.get(j) or build(length, heights[j])
-                if fits(views[j], w, h):
-                    fitting = j
-                    break
-            while fitting is not None and fitting > 0:
-                above = build(length, heights[fitting - 1])
-                if not fits(above, w, h):
-                    break
-                fitting, views[fitting - 1] = fitting - 1, above
-            if fitting is not None:
-                best = (length * heights[fitting], views[fitting])
-            break
-    if best is None:
-        raise ScaleError(f"the kinematic diagrams do not fit {fmt} ({w:.0f} × {h:.0f} mm free "
-                         f"beside the title block) with a φ axis of at least "
-                         f"{MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
-    return best[1]
+def _longest_axis(draw_low, w: float, arrangement: str) -> float | None:
+    """The longest of `DIAGRAM_LENGTHS` whose lowest view ``draw_low(length)`` is at most w mm
+    wide, or None. An axis at which the diagrams side by side alone (each as wide as its φ
+    axis, 12 mm apart as `diagram_view` sets them) are wider is passed over undrawn."""
+    columns = {"row": 3, "grid": 2}.get(arrangement, 1)
+    found = largest_fitting(draw_low, DIAGRAM_LENGTHS, w, math.inf,
+                            skip=lambda length: columns * length + 12.0 * (columns - 1) > w)
+    return None if found is None else found[0]
 
 
 def _extreme_positions(study: Study) -> tuple[int, ...]:
@@ -432,7 +454,7 @@ def _extreme_positions(study: Study) -> tuple[int, ...]:
     return tuple(dict.fromkeys(out))
 
 
-def _one_scale_per_kind(plan_views, results, cells, lang, sizes: Sizes, drawn: dict):
+def _one_scale_per_kind(draw: _Drawings, plan_views, results, cells):
     """The plans redrawn so that each kind has one μ, the largest of their fits (every plan
     then fits its cell), each centred in its cell again."""
     common: dict[str, float] = {}
@@ -441,14 +463,8 @@ def _one_scale_per_kind(plan_views, results, cells, lang, sizes: Sizes, drawn: d
     views, out = {}, {}
     for name, res in results.items():
         mu = common[res.kind]
-        number = int(name.rsplit("-", 1)[1])
         if res.scale != mu:
-            key = (res.kind, number, mu)
-            if key not in drawn:
-                at = res.at_scale(mu)
-                drawn[key] = at, plan_view(at, number - 1, number=number, lang=lang,
-                                           sizes=sizes.plan)
-            res, view = drawn[key]
+            res, view = draw.plan(res.kind, int(name.rsplit("-", 1)[1]), mu)
             x0, y0, x1, y1 = cells[name]
             views[name] = view.at(x0 + (x1 - x0 - view.width_mm) / 2,
                                   y0 + (y1 - y0 - view.height_mm) / 2)
@@ -458,23 +474,22 @@ def _one_scale_per_kind(plan_views, results, cells, lang, sizes: Sizes, drawn: d
     return views, out
 
 
-def _diagrams_in_free_corner(study: Study, lang, sizes: Sizes, views, area, title_block, gap,
-                             fmt):
+def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
     """The kinematic diagrams in the largest free rectangle at the lower left corner of the
     drawing area, in a row, a grid or a column; None where they fit nowhere."""
-    fx0, fy0, fx1, _ = area
-    boxes = [v.bounds for v in views.values()] + [title_block]
+    fx0, fy0, fx1, fy1 = req.area
+    gap = req.gap
+    boxes = [v.bounds for v in views.values()] + [req.title_block]
     best = None
     for right in sorted({b[0] for b in boxes if b[0] > fx0 + 60.0} | {fx1 + gap}):
         x1 = right - gap
         below = [b[1] for b in boxes if b[0] < x1 and b[2] > fx0]
-        y1 = min(below, default=area[3] + gap) - gap
+        y1 = min(below, default=fy1 + gap) - gap
         if x1 - fx0 < MIN_DIAGRAM_MM or y1 - fy0 < 30.0:
             continue
         for arrangement in ("row", "grid", "column"):
             try:
-                view = _fit_diagrams(study, lang, sizes, (fx0, fy0, x1, y1), fmt=fmt,
-                                     arrangement=arrangement)
+                view = _fit_diagrams(req, draw, (fx0, fy0, x1, y1), arrangement)
             except ScaleError:
                 continue
             score = view.width_mm * view.height_mm
@@ -483,21 +498,20 @@ def _diagrams_in_free_corner(study: Study, lang, sizes: Sizes, views, area, titl
     return None if best is None else best[1]
 
 
-def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region, *, extreme=None,
-                          fmt: str, count: int = 3, bold=()):
+def _mechanism_candidates(req: Request, draw: _Drawings, region, count: int = 3):
     """Up to `count` schemes at successive ESKD scales, the largest that fits first."""
-    x0, y0, x1, y1 = region
-    w, h = 0.62 * (x1 - x0), y1 - y0
-    wx, wy = extent_m(mech, kin, fine)
+    study = req.study
+    mech = study.mechanism
+    x0, y0, x1, y1 = _scheme_zone(region)
+    w, h = x1 - x0, y1 - y0
+    wx, wy = extent_m(mech, study.kinematics, draw.fine)
     found = 0
     for mu in eskd_scales():
         if wx / mu > w or wy / mu > h:
             continue
         if mech.crank.length / mu < MIN_CRANK_MM:
             break
-        view = mechanism_view(mech, mu_l=mu, n=n, thick=thick, lang=lang,
-                              sizes=sizes.mechanism, kin=kin, fine=fine, extreme=extreme,
-                              bold=bold)
+        view = draw.scheme(mu)
         if fits(view, w, h):
             yield view
             found += 1
@@ -505,87 +519,89 @@ def _mechanism_candidates(mech, kin, fine, n, thick, lang, sizes: Sizes, region,
                 return
     if found:
         return
-    raise ScaleError(f"the scheme of {mech.name} does not fit {fmt} ({w:.0f} × {h:.0f} mm free) "
+    raise ScaleError(f"the scheme of {mech.name} does not fit {req.fmt} ({w:.0f} × {h:.0f} mm free) "
                      f"at any ESKD scale with a crank of at least {MIN_CRANK_MM:.0f} mm; "
                      f"use a larger --format")
 
 
-def _fit_plans(study: Study, chosen, kinds, lang, sizes: Sizes, region, gap, *, fmt: str,
-               drawn: dict | None = None):
-    """Plans in a grid of equal cells, each at its own standard scale (the largest drawing
-    that fits its cell); of the grid shapes tried (a row per kind, a row per position, one
-    row, one column) the one giving the longest shortest-plan wins."""
-    x0, y0, x1, y1 = region
-    W, H = x1 - x0, y1 - y0
-    kin = study.kinematics
+def _grid_shapes(chosen, kinds) -> list[tuple[int, int, tuple]]:
+    """(rows, columns, plans in reading order) of the grids tried: a row per kind, a row per
+    position, one row, one column, and for many plans the grids between."""
     K, M = len(chosen), len(kinds)
-    kind_major = [(kd, k) for kd in kinds for k in chosen]
-    position_major = [(kd, k) for k in chosen for kd in kinds]
+    kind_major = tuple((kd, k) for kd in kinds for k in chosen)
+    position_major = tuple((kd, k) for k in chosen for kd in kinds)
     shapes = [(M, K, kind_major), (K, M, position_major), (1, K * M, kind_major),
               (K * M, 1, kind_major)]
-    # many plans (all 12 of a course work): the grids between one row and one column too
     count = K * M
     shapes += [(r, math.ceil(count / r), kind_major) for r in range(2, count)
                if (r - 1) * math.ceil(count / r) < count]
-    best = None
-    cache: dict = {}
-    drawn = {} if drawn is None else drawn
-    first = {(kd, k): study.plan(kd) for kd, k in kind_major}
+    return list(dict.fromkeys(shapes))
 
-    def estimate(shape) -> float:
-        """Longest shortest plan (mm) the grid shape promises from the images alone."""
-        rows, cols, _ = shape
+
+def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
+    """Longest shortest plan (mm) the grid shape promises from the images alone."""
+    rows, cols, order = shape
+    cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
+    if cw <= 24 or ch <= 38:
+        return 0.0
+    worst = math.inf
+    for kd, k in order:
+        res = study.plan(kd)
+        ew, eh = extent_mm(res, k)
+        mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
+        worst = min(worst, _peak(res, k - 1) / mu)
+    return worst
+
+
+def _peak(res: PlanResult, i: int) -> float:
+    """The longest vector of the plan at position index i, in its units."""
+    vec = res.kin.velocities if res.kind == "velocity" else res.kin.accelerations
+    return float(np.nanmax(np.hypot(vec[i, :, 0], vec[i, :, 1])))
+
+
+def _fit_plans(req: Request, draw: _Drawings, chosen, kinds, region):
+    """(score, (placed views, results, cells)): the plans in a grid of equal cells, each at
+    its own standard scale (the largest drawing that fits its cell); of the grid shapes
+    tried, the most promising first, the first that fits wins; its score is its shortest
+    plan's longest vector, mm."""
+    x0, y0, x1, y1 = region
+    W, H = x1 - x0, y1 - y0
+    gap, least = req.gap, MIN_PLAN_MM[req.fmt]
+    shapes = sorted(_grid_shapes(chosen, kinds), key=lambda s: _promise(req.study, s, W, H, gap),
+                    reverse=True)
+    for rows, cols, order in shapes:
         cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
-        if cw <= 24 or ch <= 38:
-            return 0.0
-        worst = math.inf
-        for (kd, k), res in first.items():
-            ew, eh = extent_mm(res, k - 1)
-            vec = kin.velocities if kd == "velocity" else kin.accelerations
-            peak = float(np.nanmax(np.hypot(vec[k - 1, :, 0], vec[k - 1, :, 1])))
-            mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
-            worst = min(worst, peak / mu)
-        return worst
-
-    # the most promising grid shapes first; drawing stops at the first that fits
-    candidates = sorted(dict.fromkeys((r, c, tuple(o)) for r, c, o in shapes), key=estimate, reverse=True)
-    for rows, cols, order in candidates:
-        if best is not None:
-            break
-        cw = (W - gap * (cols - 1)) / cols
-        ch = (H - gap * (rows - 1)) / rows
         if cw <= 0 or ch <= 0:
             continue
         fitted = {}
         for kind, number in order:
-            key = (kind, number, round(cw, 3), round(ch, 3))
-            if key not in cache:
-                cache[key] = _fit_one(study.plan(kind), number, lang, sizes, cw, ch,
-                                      MIN_PLAN_MM[fmt], drawn)
-            if cache[key] is None:
+            fitted[kind, number] = _fit_one(req.study.plan(kind), number, draw, cw, ch, least)
+            if fitted[kind, number] is None:
                 break
-            fitted[kind, number] = cache[key]
         else:
             score = min(f[2] for f in fitted.values())
-            if best is None or score > best[0] + 1e-9:
-                best = (score, cols, order, cw, ch, fitted)
-    if best is None or best[0] < MIN_PLAN_MM[fmt]:
-        what = " and ".join(kinds)
-        raise ScaleError(f"the {what} plans of positions {', '.join(map(str, chosen))} do not "
-                         f"fit {fmt} at any standard scale with vectors of at least "
-                         f"{MIN_PLAN_MM[fmt]:.0f} mm ({W:.0f} × {H:.0f} mm free); use fewer "
-                         f"--plans or a larger --format")
-    score, cols, order, cw, ch, fitted = best
-    placed, results, zones = {}, {}, {}
+            if score >= least:
+                return score, _place_grid(fitted, order, cols, (x0, y1), cw, ch, gap)
+            break
+    raise ScaleError(f"the {' and '.join(kinds)} plans of positions {', '.join(map(str, chosen))} do "
+                     f"not fit {req.fmt} at any standard scale with vectors of at least "
+                     f"{least:.0f} mm ({W:.0f} × {H:.0f} mm free); use fewer --plans or a larger "
+                     f"--format")
+
+
+def _place_grid(fitted, order, cols: int, corner, cw: float, ch: float, gap: float):
+    """(placed views, results, cells) of plans in a grid from the upper left `corner`, each
+    centred in its cell."""
+    x0, y1 = corner
+    placed, results, cells = {}, {}, {}
     for j, (kind, number) in enumerate(order):
         res, view, _ = fitted[kind, number]
         results[view.name] = res
         r, c = divmod(j, cols)
-        cx = x0 + c * (cw + gap) + (cw - view.width_mm) / 2
-        cy = y1 - r * (ch + gap) - ch + (ch - view.height_mm) / 2
-        placed[view.name] = view.at(cx, cy)
-        zones[view.name] = (x0 + c * (cw + gap), y1 - r * (ch + gap) - ch, x0 + c * (cw + gap) + cw, y1 - r * (ch + gap))
-    return placed, results, score, zones
+        cx0, cy0 = x0 + c * (cw + gap), y1 - r * (ch + gap) - ch
+        placed[view.name] = view.at(cx0 + (cw - view.width_mm) / 2, cy0 + (ch - view.height_mm) / 2)
+        cells[view.name] = (cx0, cy0, cx0 + cw, cy0 + ch)
+    return placed, results, cells
 
 
 def _standard_from(mu: float):
@@ -596,39 +612,36 @@ def _standard_from(mu: float):
         value = standard_scale(value * 1.0001)
 
 
-def _fit_one(res0: PlanResult, number, lang, sizes, cw, ch, least, drawn: dict):
+def _fit_one(res0: PlanResult, number: int, draw: _Drawings, cw: float, ch: float, least: float):
     """(result, view, longest vector mm) of the plan of position ``number`` at the smallest
-    standard μ that fits a cell of cw × ch mm, or None."""
+    standard μ that fits a cell of cw × ch mm, or None: ten scales at most are drawn, none
+    whose longest vector is under `least` mm."""
     i = number - 1
-    kin, kind = res0.kin, res0.kind
-    ew, eh = extent_mm(res0, i)
+    ew, eh = extent_mm(res0, number)
     room_w, room_h = cw - 2 * 12.0, ch - 2 * 12.0 - 14.0
     if room_w <= 0 or room_h <= 0:
         return None
+    peak = _peak(res0, i)
     # start a little below the estimate: labels rarely need the whole margin
     estimate = res0.scale * max(ew / room_w, eh / room_h, 1e-9)
-    vec = kin.velocities if kind == "velocity" else kin.accelerations
-    peak = float(np.nanmax(np.hypot(vec[[i], :, 0], vec[[i], :, 1])))
-    tried = 0
-    for mu in _standard_from(estimate / 1.6):
-        if tried >= 10 or peak / mu < least:
-            return None
-        # the images alone must fit the cell (its margins are for the letters): a scale at
-        # which they do not is skipped without drawing the view
-        if ew * res0.scale / mu > cw or eh * res0.scale / mu > ch - 14.0:
-            continue
-        tried += 1
-        if (kind, number, mu) not in drawn:
-            res = res0.at_scale(mu)
-            drawn[kind, number, mu] = res, plan_view(res, i, number=number, lang=lang, sizes=sizes.plan)
-        res, view = drawn[kind, number, mu]
-        if fits(view, cw, ch):
-            return res, view, peak / mu
-    return None
+    # the images alone must fit the cell (its margins are for the letters): a scale at
+    # which they do not is passed over undrawn; ten scales are drawn at most
+    scales = islice((mu for mu in _legible(_standard_from(estimate / 1.6), peak, least)
+                     if ew * res0.scale / mu <= cw and eh * res0.scale / mu <= ch - 14.0), 10)
+    found = largest_fitting(lambda mu: draw.plan(res0.kind, number, mu)[1], scales, cw, ch)
+    if found is None:
+        return None
+    mu, view = found
+    return draw.plan(res0.kind, number, mu)[0], view, peak / mu
 
 
-def sheet_text(sheet: Sheet) -> str:
-    """Every text of the sheet, one per line (for tests and search)."""
-    from velplan.render.scene import Text
+def _legible(scales, peak: float, least: float):
+    """The `scales` while the longest vector stays at least `least` mm."""
+    for mu in scales:
+        if peak / mu < least:
+            return
+        yield mu
 
-    return "\n".join(t.text for t in sheet.scene.of_kind(Text))
+
+__all__ = ["KINDS", "Sheet", "build_sheet", "default_plan_positions", "default_title", "sheet_text",
+           "write_outputs"]

@@ -11,10 +11,10 @@ from typing import Mapping
 
 import shapely
 
-from velplan.errors import ScaleError, VelplanError
+from velplan.errors import ScaleError, VelplanError, deprecated
 from velplan.io import write_atomic
 from velplan.sheets.frame import free_area, frame_bounds, title_block_bounds
-from velplan.views.base import PlacedView, View
+from velplan.views.base import PlacedView
 from velplan.views.diagram import DiagramSizes
 from velplan.views.mechanism import MechanismSizes
 from velplan.views.plan import PlanSizes
@@ -40,34 +40,6 @@ def drawing_area(fmt: str, frame_style: str) -> tuple[tuple[float, float, float,
     fx0, fy0, fx1, fy1 = frame_bounds(fmt)
     m = CLEARANCE_MM
     return (fx0 + m, fy0 + m, fx1 - m, fy1 - m), title_block_bounds(fmt, frame_style)
-
-
-def fill_bottom_band(views: dict, area, title_block, gap: float, *, table_view: View | None,
-                     fit_diagram, diagram_share: float, required: bool, diagram_name: str):
-    """The bottom band every sheet shares: ``table_view`` right-aligned above the title block,
-    the diagram that ``fit_diagram(region)`` draws to their left (at least ``diagram_share`` of
-    the height tall). Places them in ``views``; returns (the band's top, the diagram's view or
-    None — when it does not fit and is not ``required``)."""
-    fx0, fy0, fx1, fy1 = area
-    tx0, _, tx1, ty1 = title_block
-    right_w = tx1 - tx0
-    band_top = ty1 + gap
-    if table_view is not None:
-        right_w = max(right_w, table_view.width_mm)
-        band_top = ty1 + gap + table_view.height_mm
-        views["table"] = table_view.at(fx1 - table_view.width_mm, ty1 + gap)
-    dview = None
-    if fit_diagram is not None:
-        region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
-        try:
-            dview = fit_diagram(region)
-        except ScaleError:
-            if required:
-                raise
-        if dview is not None:
-            band_top = max(band_top, fy0 + dview.height_mm)
-            views[diagram_name] = dview.at(fx0, fy0)
-    return band_top, dview
 
 
 @dataclass(frozen=True)
@@ -100,13 +72,15 @@ class SheetOutput:
 
         return to_svg(self.scene, self.style, precision=precision)
 
-    def write(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
-              dpi: float = 150.0) -> list[Path]:
-        """Write the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
+    def save(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
+             dpi: float = 150.0) -> list[Path]:
+        """Save the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
 
         Conversions run before anything is written, so a failure leaves no file behind.
         """
         return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
+
+    write = deprecated(save, "SheetOutput.write", "SheetOutput.save")
 
 
 def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
@@ -131,10 +105,6 @@ def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: 
     for data, where in blobs:
         written.append(write_atomic(where, data))
     return written
-
-
-def fits(view: View, w: float, h: float) -> bool:
-    return view.width_mm <= w + 1e-6 and view.height_mm <= h + 1e-6
 
 
 def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) -> None:

@@ -1,6 +1,6 @@
 """A sweep's chunks on a Dask cluster (``pip install velplan[dask]``).
 
-Each chunk of variants is one task, ``chunk_figures(mech, values, positions)``, the very
+Each chunk of variants is one task, ``chunk_figures(mech, values, positions, engine, delta)``, the very
 function a local sweep runs, so a cluster gives the same figures bit for bit. It pays when a
 sweep takes minutes on one machine (10⁶ variants and more, or fine grids of angles): a task
 of 256 variants × 360 angles is about 0.1 s of work, and the scheduler adds a few ms per
@@ -13,8 +13,8 @@ from velplan.errors import VelplanError
 
 
 def map_chunks(scheduler, task, mech, parts: list[dict], positions: int, progress=None,
-               engine: str = "numpy") -> list:
-    """Run ``task(mech, part, positions, engine)`` (the sweep's ``chunk_figures``) on every part
+               engine: str = "numpy", delta: float | None = None) -> list:
+    """Run ``task(mech, part, positions, engine, delta)`` (the sweep's ``chunk_figures``) on every part
     on ``scheduler`` (a ``dask.distributed.Client`` or a scheduler address such as
     ``tcp://10.0.0.5:8786``); the results in order."""
     try:
@@ -32,7 +32,7 @@ def map_chunks(scheduler, task, mech, parts: list[dict], positions: int, progres
     try:
         shared = client.scatter(mech, broadcast=True)
         n = len(parts)
-        futures = client.map(task, [shared] * n, parts, [positions] * n, [engine] * n, pure=False)
+        futures = client.map(task, [shared] * n, parts, [positions] * n, [engine] * n, [delta] * n, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}
         results: list = [None] * len(parts)
         for done, fut in enumerate(as_completed(futures), start=1):

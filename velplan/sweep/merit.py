@@ -3,7 +3,9 @@
 Per variant: whether it closes (assembles, off every toggle) over the whole turn, the stroke
 H and the time-ratio coefficient K of the output with its extreme positions found to
 round-off (grid, then Newton steps on the exact derivatives, all variants together), the
-minimum transmission angle γ_min with where it occurs, and the peak |v| and |a| of the output.
+minimum transmission angle γ_min with where it occurs, and the peak |v| and |a| of the output;
+with loads or masses in the file, the peak balancing moment and, for a required δ, the
+flywheel's J_I (`velplan.sweep.dynamic`).
 """
 
 from __future__ import annotations
@@ -13,8 +15,9 @@ import math
 import numpy as np
 
 from velplan.analysis.design import DesignKinematics, solve_design
-from velplan.analysis.extremes import output_quantity
+from velplan.analysis.extremes import output_quantity, reference_angle
 from velplan.mechanism.model import RPR, Mechanism, turning_sense
+from velplan.sweep import dynamic
 
 FIGURES = {
     "H": "stroke of the output (m; rad for a rocker)",
@@ -26,6 +29,8 @@ FIGURES = {
     "gamma_phi_deg": "crank angle where it occurs, deg",
     "v_max": "peak |v| of the output point, m/s (|ω|, rad/s, of an output link)",
     "a_max": "peak |a| of the output point, m/s² (|ε|, rad/s², of an output link)",
+    "Mb_max": "peak |M_b|, the balancing moment on the crank (loads, gravity, inertia), N·m",
+    "J_I": "constant reduced inertia for the coefficient of speed fluctuation δ (flywheel), kg·m²",
 }
 """Figures of merit: name → meaning and unit."""
 
@@ -39,9 +44,11 @@ def grid_angles(n: int) -> np.ndarray:
     return (np.arange(n) + 0.3819660112501051) * (2 * np.pi / n)
 
 
-def figures(mech: Mechanism, values: dict, n: int = 360, engine: str = "numpy") -> tuple[dict[str, np.ndarray], list[str], list[str]]:
+def figures(mech: Mechanism, values: dict, n: int = 360, engine: str = "numpy",
+            delta: float | None = None) -> tuple[dict[str, np.ndarray], list[str], list[str]]:
     """Figures of merit of the variants ``values`` (key → (V,) array) of ``mech`` at ``n`` crank
-    angles over the turn, solved by ``engine`` ("numpy" or "compiled", `solve_design`).
+    angles over the turn, solved by ``engine`` ("numpy" or "compiled", `solve_design`);
+    ``delta`` (0 < δ < 1) adds the flywheel's J_I when the file has loads or masses.
 
     Returns
     -------
@@ -61,14 +68,31 @@ def figures(mech: Mechanism, values: dict, n: int = 360, engine: str = "numpy") 
     gamma, where, group = transmission(dk)
     out["gamma_min_deg"], out["gamma_phi_deg"] = gamma, where
     q = output_quantity(mech, dk.flat)
+    ends = None
     if q is not None:
-        stroke, reason = _strokes(mech, dk, q, engine)
+        stroke, reason, ends = _strokes(mech, dk, q, engine)
         out.update(stroke)
         out["v_max"], out["a_max"] = _peaks(mech, dk, q)
         failures = [f or r for f, r in zip(failures, reason)]
+    if dynamic.has_dynamics(mech):
+        out.update(_dynamic(mech, dk, ends, delta, engine))
     for k, arr in out.items():
         out[k] = np.where(ok, arr, np.nan)
     return {k: out[k] for k in FIGURES if k in out}, failures, group
+
+
+def _dynamic(mech: Mechanism, dk: DesignKinematics, ends, delta: float | None, engine: str) -> dict[str, np.ndarray]:
+    """Mb_max and, with ``delta``, J_I per variant (`velplan.sweep.dynamic`)."""
+    V = dk.shape[0]
+    if ends is None:  # no output: loads need none, and position 1 is φ = 0
+        nan = np.full(V, np.nan)
+        ends = dynamic.Ends(nan, nan, nan, nan, nan, np.full(V, mech.crank.sense), np.zeros(V))
+    loads = dynamic.variant_loads(mech, dk.values, ends, engine)
+    inertia = dynamic.centre_inertias(mech, dk)
+    out = {"Mb_max": dynamic.balancing_peak(mech, dk, loads, ends, inertia)}
+    if delta is not None:
+        out["J_I"] = dynamic.flywheel_inertia(mech, dk.values, loads, ends, inertia, delta, engine)
+    return out
 
 
 def transmission(dk: DesignKinematics) -> tuple[np.ndarray, np.ndarray, list[str]]:
@@ -130,8 +154,10 @@ def _analogues(dk: DesignKinematics, kind: str, i: int):
     return tuple(dk.per_variant(a) for a in (f, d1, d2))
 
 
-def _strokes(mech: Mechanism, dk: DesignKinematics, q, engine: str) -> tuple[dict[str, np.ndarray], list[str]]:
-    """H, K, θ and the extremes per variant; the reason where the output does not reverse."""
+def _strokes(mech: Mechanism, dk: DesignKinematics, q, engine: str
+             ) -> tuple[dict[str, np.ndarray], list[str], dynamic.Ends]:
+    """H, K, θ and the extremes per variant; the reason where the output does not reverse; the
+    working stroke's extremes (NaN where it does not)."""
     _, kind, i = q
     f, d1, _ = _analogues(dk, kind, i)
     V, n = dk.shape
@@ -168,7 +194,11 @@ def _strokes(mech: Mechanism, dk: DesignKinematics, q, engine: str) -> tuple[dic
            "phi_start_deg": nan(np.degrees(np.where(slow_lo, lo, hi) % (2 * np.pi))),
            "phi_end_deg": nan(np.degrees(np.where(slow_lo, hi, lo) % (2 * np.pi)))}
     reason = ["output does not reverse (no stroke)" if b else "" for b in bad]
-    return out, reason
+    start, end = nan(np.where(slow_lo, lo, hi)), nan(np.where(slow_lo, hi, lo))
+    s_start, s_end = nan(np.where(slow_lo, val[:, 1], val[:, 0])), nan(np.where(slow_lo, val[:, 0], val[:, 1]))
+    sense = np.broadcast_to(np.asarray(sense, float), (V,))
+    reference = np.full(V, reference_angle(mech)) if mech.reference_deg is not None else np.where(bad, 0.0, start)
+    return out, reason, dynamic.Ends(start, end, s_start, s_end, np.pi + theta, sense, reference)
 
 
 def _newton(mech: Mechanism, values: dict, x: np.ndarray, kind: str, i: int, h: float, engine: str):
@@ -198,7 +228,7 @@ def _peaks(mech: Mechanism, dk: DesignKinematics, q) -> tuple[np.ndarray, np.nda
     return np.max(v, axis=1), np.max(a, axis=1)
 
 
-def nominal_figures(mech: Mechanism, n: int = 360) -> dict[str, float]:
+def nominal_figures(mech: Mechanism, n: int = 360, delta: float | None = None) -> dict[str, float]:
     """The figures of merit of ``mech`` itself."""
-    figs, fail, _ = figures(mech, {}, n)
+    figs, fail, _ = figures(mech, {}, n, delta=delta)
     return {k: float(v[0]) for k, v in figs.items()}

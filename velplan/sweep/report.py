@@ -22,7 +22,8 @@ def _units(res: SweepResult) -> dict[str, str]:
     angular = res.meta.get("output_kind") == "link"
     return {"H": "rad" if angular else "m", "K": "", "theta_deg": "deg", "phi_start_deg": "deg",
             "phi_end_deg": "deg", "gamma_min_deg": "deg", "gamma_phi_deg": "deg",
-            "v_max": "rad/s" if angular else "m/s", "a_max": "rad/s²" if angular else "m/s²"}
+            "v_max": "rad/s" if angular else "m/s", "a_max": "rad/s²" if angular else "m/s²",
+            "Mb_max": "N·m", "J_I": "kg·m²"}
 
 
 def to_table(res: SweepResult) -> str:
@@ -41,7 +42,7 @@ def to_table(res: SweepResult) -> str:
     if keys and ok > len(keys) + 1:
         lines += ["", "share of each figure's spread (linear fit over the variants; R² its fit):"]
         width = max(len(k) for k in keys) + 2
-        figs = [f for f in sens if f in ("H", "K", "gamma_min_deg", "v_max", "a_max")]
+        figs = [f for f in sens if f in ("H", "K", "gamma_min_deg", "v_max", "a_max", "Mb_max", "J_I")]
         lines.append(f"{'key':<{width}}" + "".join(f"{f:>14}" for f in figs))
         for k in keys:
             lines.append(f"{k:<{width}}" + "".join(f"{100 * sens[f][k]:>13.1f}%" for f in figs))

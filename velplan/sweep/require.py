@@ -2,7 +2,8 @@
 ``"K>=1.4, gamma_min>=40deg, H=0.25..0.35"``.
 
 Names: ``H`` (m, or deg for a rocker: give ``H>=40deg``), ``K``, ``theta`` (deg),
-``gamma_min`` (deg), ``v_max`` (m/s or rad/s), ``a_max`` (m/s² or rad/s²). Comparisons:
+``gamma_min`` (deg), ``v_max`` (m/s or rad/s), ``a_max`` (m/s² or rad/s²), ``Mb_max`` (N·m; a
+file with loads or masses). Comparisons:
 ``>=``, ``<=``, ``>``, ``<`` and ``=LO..HI`` (both ends included). Numbers may carry ``mm``,
 ``m``, ``deg`` or ``°``.
 """
@@ -18,7 +19,7 @@ import numpy as np
 from velplan.errors import VelplanError
 
 NAMES = {"H": "H", "K": "K", "theta": "theta_deg", "theta_deg": "theta_deg", "gamma_min": "gamma_min_deg",
-         "gamma_min_deg": "gamma_min_deg", "v_max": "v_max", "a_max": "a_max"}
+         "gamma_min_deg": "gamma_min_deg", "v_max": "v_max", "a_max": "a_max", "Mb_max": "Mb_max"}
 _UNIT = {"": 1.0, "m": 1.0, "mm": 1e-3, "deg": 1.0, "°": 1.0}
 _PART = re.compile(r"\s*([A-Za-z_]+)\s*(>=|<=|>|<|=)\s*(.+?)\s*$")
 _NUM = re.compile(r"\s*([-+0-9.eE]+)\s*(mm|m|deg|°)?\s*$")
@@ -65,7 +66,7 @@ def parse_require(text: str) -> list[Constraint]:
         m = _PART.fullmatch(item)
         if not m or m.group(1) not in NAMES:
             raise VelplanError(f"--require {item.strip()!r}: give NAME>=X, NAME<=X or NAME=LO..HI with NAME one of "
-                               f"H, K, theta, gamma_min, v_max, a_max")
+                               f"H, K, theta, gamma_min, v_max, a_max, Mb_max")
         name, op, rhs = NAMES[m.group(1)], m.group(2), m.group(3)
         if op == "=":
             lo_t, dots, hi_t = rhs.partition("..")
@@ -91,7 +92,8 @@ def check(figures: dict[str, np.ndarray], constraints: list[Constraint], *, angu
     out = [""] * V
     for c in constraints:
         if c.figure not in figures:
-            raise VelplanError(f"--require {c.text!r}: the mechanism has no output, so no {c.figure}")
+            why = "loads or masses" if c.figure == "Mb_max" else "output"
+            raise VelplanError(f"--require {c.text!r}: the mechanism has no {why}, so no {c.figure}")
         value = np.asarray(figures[c.figure], dtype=float)
         if c.figure == "H" and angular and c.degrees:
             value = np.degrees(value)

@@ -179,14 +179,14 @@ def chunks(values: Mapping[str, np.ndarray], size: int) -> list[dict[str, np.nda
     return [{k: v[a:a + size] for k, v in values.items()} for a in range(0, V, size)]
 
 
-def chunk_figures(mech: Mechanism, values: dict, positions: int, engine: str = "numpy"):
+def chunk_figures(mech: Mechanism, values: dict, positions: int, engine: str = "numpy", delta: float | None = None):
     """Figures of one chunk (a picklable task for a process pool or a Dask worker)."""
-    return figures(mech, values, positions, engine)
+    return figures(mech, values, positions, engine, delta)
 
 
 def run_sweep(mech: Mechanism, values: Mapping[str, np.ndarray], *, mode: str = "grid", positions: int = 360,
               chunk: int | None = None, progress: Callable | None = None, scheduler=None, jobs: int = 1,
-              engine: str = "numpy", meta: dict | None = None) -> SweepResult:
+              engine: str = "numpy", delta: float | None = None, meta: dict | None = None) -> SweepResult:
     """Figures of merit of every variant of ``values`` (key → (V,) array).
 
     The variants are solved ``chunk`` at a time (`CHUNK` by default; ``positions`` angles each): in this
@@ -194,32 +194,35 @@ def run_sweep(mech: Mechanism, values: Mapping[str, np.ndarray], *, mode: str = 
     `dask.distributed.Client` or a scheduler address (``tcp://host:port``,
     `velplan.sweep.cluster`). Every way runs the same function on the same chunks: the same
     figures, bit for bit. ``engine`` "compiled" solves each chunk with the compiled kernel on
-    every core (numba), equal to the numpy engine's to round-off.
+    every core (numba), equal to the numpy engine's to round-off. With loads or masses in the
+    file the figures include the peak balancing moment ``Mb_max``, and with ``delta`` (the
+    coefficient of speed fluctuation, 0 < δ < 1) the flywheel's ``J_I``.
     """
     parts = chunks(values, chunk or CHUNK[engine])
     if scheduler is not None:
         from velplan.sweep.cluster import map_chunks
 
-        results = map_chunks(scheduler, chunk_figures, mech, parts, positions, progress, engine)
+        results = map_chunks(scheduler, chunk_figures, mech, parts, positions, progress, engine, delta)
     else:
-        results = _map_local(mech, parts, positions, jobs, progress, engine)
+        results = _map_local(mech, parts, positions, jobs, progress, engine, delta)
     figs = {k: np.concatenate([r[0][k] for r in results]) for k in results[0][0]}
     failures = [f for r in results for f in r[1]]
     group = [g for r in results for g in r[2]]
-    nom, _, _ = figures(mech, {}, positions, engine)
+    nom, _, _ = figures(mech, {}, positions, engine, delta)
     q = output_quantity(mech)
     info = {"positions": positions, "engine": engine, "output": None if q is None else q[0], "output_kind": None if q is None else q[1],
-            **(meta or {})}
+            **({"delta": delta} if delta is not None else {}), **(meta or {})}
     return SweepResult(mech.name, mode, {k: np.asarray(v) for k, v in values.items()}, figs, failures, group,
                        {k: float(v[0]) for k, v in nom.items()}, info)
 
 
-def _map_local(mech: Mechanism, parts: list[dict], positions: int, jobs: int, progress, engine: str) -> list:
+def _map_local(mech: Mechanism, parts: list[dict], positions: int, jobs: int, progress, engine: str,
+               delta: float | None = None) -> list:
     """`chunk_figures` of every part, in order, on ``jobs`` processes (1: in this one)."""
     if jobs <= 1 or len(parts) < 2:
         out = []
         for i, part in enumerate(parts):
-            out.append(chunk_figures(mech, part, positions, engine))
+            out.append(chunk_figures(mech, part, positions, engine, delta))
             if progress:
                 progress(i + 1, len(parts), "chunks of variants")
         return out
@@ -228,7 +231,8 @@ def _map_local(mech: Mechanism, parts: list[dict], positions: int, jobs: int, pr
     out = []
     with ProcessPoolExecutor(max_workers=min(jobs, len(parts))) as pool:
         n = len(parts)
-        for i, res in enumerate(pool.map(chunk_figures, [mech] * n, parts, [positions] * n, [engine] * n)):
+        tasks = pool.map(chunk_figures, [mech] * n, parts, [positions] * n, [engine] * n, [delta] * n)
+        for i, res in enumerate(tasks):
             out.append(res)
             if progress:
                 progress(i + 1, len(parts), "chunks of variants")

@@ -302,74 +302,136 @@ def _farther(text, x0, y0, x1, y1, step, rings, placed):
     return 0, None, None
 
 
+#: Spots a label tries at once, in order: the wanted one, the first ring, the next two rings,
+#: then the rest. Most labels find room near their point and the first free spot wins, so the
+#: outer rings are seldom examined.
+_LABEL_STAGES = (1, 9, 25)
+#: cos and sin of the eight directions of a ring, counter-clockwise from +x.
+_RING_DIRECTIONS = np.array([(math.cos(math.pi / 4 * k), math.sin(math.pi / 4 * k)) for k in range(8)])
+
+
+class _PlacedLabels:
+    """The padded boxes of the labels placed so far. Two upright boxes meet exactly when their
+    bounds overlap (closed intervals), so only a pair with a rotated box asks shapely."""
+
+    def __init__(self) -> None:
+        self.boxes: list = []
+        self._bounds = np.empty((0, 4))
+        self._upright = np.empty(0, dtype=bool)
+
+    def add(self, box, bounds, upright: bool) -> None:
+        self.boxes.append(box)
+        self._bounds = np.vstack([self._bounds, bounds])
+        self._upright = np.append(self._upright, upright)
+
+    def meet(self, boxes, bounds, upright: bool) -> np.ndarray:
+        """Whether each of `boxes` (bounds (n, 4): xmin, ymin, xmax, ymax, mm) meets a placed box."""
+        import shapely
+
+        b = self._bounds
+        meets = ((bounds[:, None, 0] <= b[:, 2]) & (b[:, 0] <= bounds[:, None, 2])
+                 & (bounds[:, None, 1] <= b[:, 3]) & (b[:, 1] <= bounds[:, None, 3]))
+        rows, cols = np.nonzero(meets & ~(self._upright & upright))
+        if len(rows):
+            meets[rows, cols] = shapely.intersects(boxes[rows], np.array(self.boxes)[cols])
+        return meets.any(axis=1)
+
+
+def _spots(position, step: float, rings: int) -> np.ndarray:
+    """The wanted spot, then `rings` rings of eight directions around it, `step` apart, mm,
+    shape (1 + 8·rings, 2)."""
+    radii = np.repeat(np.arange(1, rings + 1), 8)[:, None] * step
+    return np.vstack([position, position + radii * np.tile(_RING_DIRECTIONS, (rings, 1))])
+
+
+def _enlarged_box(text) -> np.ndarray:
+    """Corners of the estimated box of `text`, 1.25 times wider and 1.1 times taller about its
+    anchor, mm: rendered glyphs run wider than the layout's estimate."""
+    from velplan.render.shapes import text_box
+
+    position = np.asarray(text.position)
+    return position + (text_box(text) - position) * (1.25, 1.1)
+
+
+def _spot_boxes(text, spots):
+    """The padded box of `text` at each of `spots` (0.4 mm round its enlarged box), their bounds
+    (n, 4), mm, and the box's offsets (x0, y0, x1, y1) from its spot. An upright text's boxes
+    are made from their bounds when needed: None, with its offsets; a rotated text has no
+    offsets (None)."""
+    import shapely
+
+    if text.rotation_deg != 0.0:
+        boxes = np.array([shapely.Polygon(_enlarged_box(
+            text if j == 0 else _moved(text, position=tuple(spot)))).buffer(0.4)
+            for j, spot in enumerate(spots.tolist())])
+        return boxes, shapely.bounds(boxes), None
+    # an upright label's box only moves with it: all spots' boxes at once
+    x, y = text.position
+    scaled = _enlarged_box(text)
+    (x0, y0), (x1, y1) = scaled.min(axis=0) - (x, y), scaled.max(axis=0) - (x, y)
+    bounds = np.column_stack([spots[:, 0] + x0 - 0.4, spots[:, 1] + y0 - 0.4,
+                              spots[:, 0] + x1 + 0.4, spots[:, 1] + y1 + 0.4])
+    return None, bounds, (x0, y0, x1, y1)
+
+
+def _survey(boxes, bounds, field, placed: _PlacedLabels):
+    """Per spot: clear of the obstacles, how many obstacles its box meets, apart from the placed
+    labels. Spots are examined by `_LABEL_STAGES` up to the first stage with a free one; the
+    spots left unexamined read clear and apart, behind a free spot that is taken first."""
+    import shapely
+
+    n = len(bounds)
+    clear, apart, crossings = np.ones(n, dtype=bool), np.ones(n, dtype=bool), np.zeros(n, dtype=int)
+    start = 0
+    for stop in [s for s in _LABEL_STAGES if s < n] + [n]:
+        part = slice(start, stop)
+        some = shapely.box(*bounds[part].T) if boxes is None else boxes[part]
+        if field is not None:
+            hits = field.query(some, predicate="intersects")[0]
+            clear[start + hits] = False
+            crossings[part] = np.bincount(hits, minlength=stop - start)
+        apart[part] = ~placed.meet(some, bounds[part], boxes is None)
+        if (clear[part] & apart[part]).any():
+            break
+        start = stop
+    return clear, crossings, apart
+
+
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
                  rings: int = 8) -> tuple:
     """Move labels, in order, clear of `obstacles` and of the labels placed before them.
 
-    The same search as :func:`velplan.render.layout.nudge_labels` (rings of eight
-    directions around the wanted spot), on one prepared union of the obstacles, so a view
-    with many lines places its letters quickly. A label with no free spot takes the spot clear
-    of the other labels that meets the fewest obstacles (the first of those), looking twice as
-    far out if it must, or keeps its place.
+    Each label that collides is tried in rings of eight directions around its wanted spot,
+    with a tree of the obstacles and the spots examined
+    ring by ring, so a view with many lines places its letters quickly. A label with no free
+    spot takes the spot clear of the other labels that meets the fewest obstacles (the first of
+    those), looking twice as far out if it must, or keeps its place.
     """
     import shapely
-
-    from velplan.render.shapes import text_box
 
     # a box meets the obstacles' union exactly when it meets one of them: a tree finds which
     shapes = [g for g in obstacles if not g.is_empty]
     field = shapely.STRtree(shapes) if shapes else None
-    def padded(t):
-        # rendered glyphs run wider than the layout's estimate: keep a margin around each
-        corners = text_box(t)
-        scaled = np.asarray(t.position) + (corners - np.asarray(t.position)) * (1.25, 1.1)
-        if t.rotation_deg == 0.0:
-            (x0, y0), (x1, y1) = scaled.min(axis=0), scaled.max(axis=0)
-            return shapely.box(x0 - 0.4, y0 - 0.4, x1 + 0.4, y1 + 0.4)
-        return shapely.Polygon(scaled).buffer(0.4)
-
-    placed: list = []
+    placed = _PlacedLabels()
     out = []
     for text in texts:
         step = step_mm or 0.5 * text.size_mm
-        x, y = text.position
-        # the wanted spot, then rings of eight directions around it, in this order
-        spots = [(x, y)] + [(x + ring * step * math.cos(math.pi / 4 * k),
-                             y + ring * step * math.sin(math.pi / 4 * k))
-                            for ring in range(1, rings + 1) for k in range(8)]
-        if text.rotation_deg == 0.0:
-            # an upright label's box only moves with it: all spots' boxes at once
-            corners = text_box(text)
-            scaled = np.asarray(text.position) + (corners - np.asarray(text.position)) * (1.25, 1.1)
-            (x0, y0), (x1, y1) = scaled.min(axis=0) - (x, y), scaled.max(axis=0) - (x, y)
-            xy = np.array(spots)
-            boxes = shapely.box(xy[:, 0] + x0 - 0.4, xy[:, 1] + y0 - 0.4,
-                                xy[:, 0] + x1 + 0.4, xy[:, 1] + y1 + 0.4)
-        else:
-            boxes = np.array([padded(text if j == 0 else _moved(text, position=spot))
-                              for j, spot in enumerate(spots)])
-        clear = np.ones(len(spots), dtype=bool)  # of the obstacles
-        crossings = np.zeros(len(spots), dtype=int)
-        if field is not None:
-            hits = field.query(boxes, predicate="intersects")[0]
-            clear[np.unique(hits)] = False
-            crossings = np.bincount(hits, minlength=len(spots))
-        apart = np.ones(len(spots), dtype=bool)  # from the labels placed before
-        if placed:
-            apart = ~shapely.intersects(boxes[:, None], np.array(placed)[None, :]).any(axis=1)
+        spots = _spots(text.position, step, rings)
+        upright = text.rotation_deg == 0.0
+        boxes, bounds, offsets = _spot_boxes(text, spots)
+        clear, crossings, apart = _survey(boxes, bounds, field, placed)
         free = clear & apart
         # no free spot: at least off the other labels (a line under a letter still reads)
         j = int(np.argmax(free)) if free.any() else (
             int(np.argmin(np.where(apart, crossings, np.iinfo(int).max))) if apart.any() else -1)
-        if j < 0 and text.rotation_deg != 0.0:
+        if j < 0 and not upright:
             j = 0
         if j < 0:  # crowded all round: off the other labels further out, else where it was
-            j, spot, box = _farther(text, x0, y0, x1, y1, step, rings, placed)
+            j, spot, box = _farther(text, *offsets, step, rings, placed.boxes)
             if spot is not None:
-                spots.append(spot)
-                boxes = np.append(boxes, box)
+                spots, bounds = np.vstack([spots, spot]), np.vstack([bounds, shapely.bounds(box)])
                 j = len(spots) - 1
-        chosen = text if j == 0 else _moved(text, position=spots[j])
-        placed.append(boxes[j])
+        chosen = text if j == 0 else _moved(text, position=tuple(spots[j].tolist()))
+        placed.add(shapely.box(*bounds[j]) if boxes is None else boxes[j], bounds[j], upright)
         out.append(chosen)
     return tuple(out)

@@ -12,6 +12,7 @@ import math
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics
 from velplan.plans.centres import Construction, CentreStep, centre_name
 from velplan.render.scene import Circle, Polyline, Primitive, Text
@@ -129,18 +130,19 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     fine : Kinematics
         The mechanism over a fine turn (`velplan.study.Study.turn`): the guides' extents.
     number : int, optional
-        The position's number, for the title.
+        The position's number (1-based) written in the title.
     emphasis : int, optional
         The step (1-based) whose centre and Kennedy lines are drawn thick.
 
     Returns
     -------
     View
-        ``mu`` is μl (m/mm); ``meta["centres"]`` counts the centres drawn on the scheme.
+        ``mu`` is μl (m/mm); ``meta["centres"]`` counts the centres drawn on the scheme,
+        ``meta["position"]`` is the position's number (1…n of the construction's kinematics).
     """
     kin = con.kin
     scheme = mechanism_view(kin.mechanism, kin=kin, fine=fine, mu_l=con.mu_l, n=len(kin),
-                            thick=con.index + 1, lang=lang, sizes=sizes, title=False, single=True)
+                            thick=position_number(con.index), lang=lang, sizes=sizes, title=False, single=True)
     to_mm = lambda z: scheme.to_view([z.real, z.imag])  # noqa: E731 - metres → the scheme's mm
     m = max(MARGIN_MM, 0.75 * max(scheme.width_mm, scheme.height_mm))
     box = shapely.box(-m, -m, scheme.width_mm + m, scheme.height_mm + m)
@@ -165,7 +167,7 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     items.append(Text((x0, top + 4.0 + 1.6 * sizes.title_mm), title, "labels", sizes.title_mm))
     items.append(Text((x0, top + 4.0), scale_text("μl", con.mu_l, "m/mm", lang), "labels", sizes.label_mm))
     return make_view("centres", items, pad_mm=2.0, mu=con.mu_l, origin=tuple(scheme.origin),
-                     meta={"centres": len(marks), "position": con.index})
+                     meta={"centres": len(marks), "position": position_number(con.index)})
 
 
 def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: str = "en",

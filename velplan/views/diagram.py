@@ -28,7 +28,6 @@ Arrangement = Literal["row", "column", "grid"]
 
 #: Pole distances a draughtsman picks from, mm.
 POLE_DISTANCES_MM: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 80.0)
-#: Standard mantissas of a drawing scale (units per mm), as `velplan.plans.standard_scale`.
 
 
 def standard_up(raw: float) -> float:
@@ -107,112 +106,134 @@ def _names(d: Diagrams, lang: str, timed: bool) -> tuple[str, str, str, str, str
     return "S", "dS/dφ", "d²S/dφ²", unit("m", lang), unit("m", lang), unit("m", lang)
 
 
-def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, height_mm: float, lang: str,
-          sizes: DiagramSizes, text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
+@dataclass(frozen=True)
+class _Curve:
+    """One diagram's data: its scale (units per mm), ordinate symbol and unit, pole distance
+    (mm, None for S), the graphical points (closed over the turn) and the points marked, the
+    analytic curve, the error of the graphical curve and the title."""
+
+    mu: float
+    symbol: str
+    unit: str
+    H: float | None
+    graphical: tuple[np.ndarray, np.ndarray]
+    marks: tuple[np.ndarray, np.ndarray]
+    analytic: tuple[np.ndarray, np.ndarray]
+    error: float | None
+    title: str
+
+
+def _curve(kind: str, d: Diagrams, sc: DiagramScales, lang: str, timed: bool) -> _Curve:
+    """The data of diagram `kind` ("s", "v" or "a")."""
+    sym_s, sym_v, sym_a, u, u_v, u_a = _names(d, lang, timed)
+    exact = {"s": d.s_exact, "v": d.v_exact, "a": d.a_exact}[kind]
+    if kind == "s":
+        return _Curve(sc.mu_s, sym_s, u, None, (np.append(d.phi, 2 * math.pi), np.append(d.s, d.s[0])),
+                      (d.phi, d.s), (d.phi_fine, exact), None, label("displacement_diagram", lang))
+    if kind == "v":
+        # the mid-interval points, closed over the turn
+        edge = 0.5 * (d.v_chord[0] + d.v_chord[-1])
+        graphical = (np.concatenate([[0.0], d.phi_mid, [2 * math.pi]]),
+                     np.concatenate([[edge], d.v_chord, [edge]]))
+        title = "velocity_diagram" if timed else "velocity_analogue_diagram"
+        return _Curve(sc.mu_v, sym_v, u_v, sc.H_v, graphical, (d.phi_mid, d.v_chord),
+                      (d.phi_fine, exact), d.error_v, label(title, lang))
+    title = "acceleration_diagram" if timed else "acceleration_analogue_diagram"
+    return _Curve(sc.mu_a, sym_a, u_a, sc.H_a,
+                  (np.append(d.phi, 2 * math.pi), np.append(d.a_chord, d.a_chord[0])),
+                  (d.phi, d.a_chord), (d.phi_fine, exact), d.error_a, label(title, lang))
+
+
+def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *, layer: str,
+             text_layer: str, label_mm: float, tick_mm: float) -> list[Primitive]:
+    """The axes of a diagram over a turn, mm from its origin: the φ axis `length` long with
+    the n positions marked (numbered from 1, at most twelve numbers), and the ordinate axis
+    from `bottom` to `top` named `ordinate`; numbers `tick_mm` high, names `label_mm`."""
+    items: list[Primitive] = [
+        Arrow((0.0, 0.0), (length + 8.0, 0.0), layer, "thin", 3.0, 1.0),
+        Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), layer, "thin", 3.0, 1.0),
+        Text((length + 9.0, -1.0), "φ", text_layer, label_mm, "start", "top"),
+        Text((-1.5, top + 6.0), ordinate, text_layer, label_mm, "end", "top")]
+    every = max(1, int(math.ceil(n / 12)))
+    for k in range(n + 1):
+        x = k * length / n
+        items.append(Polyline([(x, -1.0), (x, 1.0)], layer, "thin"))
+        if k % every == 0:
+            items.append(Text((x, -1.8), str(k % n + 1), text_layer, tick_mm, "middle", "top"))
+    return items
+
+
+def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: str, sizes: DiagramSizes,
+          text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
     """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
     ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
     μt = μφ/ω — else as the analogues."""
-    L = sc.length_mm
-    n = d.n
-    w = abs(omega)
-    timed = w > 0
-    items: list[Primitive] = []
-    sym_s, sym_v, sym_a, u, u_v, u_a = _names(d, lang, timed)
-    if kind == "s":
-        mu, sym, H = sc.mu_s, sym_s, None
-        gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.s, d.s[0])
-        fx, fy = d.phi_fine, d.s_exact
-        error = None
-        title = label("displacement_diagram", lang)
-    elif kind == "v":
-        mu, sym, H = sc.mu_v, sym_v, sc.H_v
-        # the mid-interval points, closed over the turn
-        gx = np.concatenate([[0.0], d.phi_mid, [2 * math.pi]])
-        edge = 0.5 * (d.v_chord[0] + d.v_chord[-1])
-        gy = np.concatenate([[edge], d.v_chord, [edge]])
-        fx, fy = d.phi_fine, d.v_exact
-        error = d.error_v
-        title = label("velocity_diagram" if timed else "velocity_analogue_diagram", lang)
-    else:
-        mu, sym, H = sc.mu_a, sym_a, sc.H_a
-        gx, gy = np.append(d.phi, 2 * math.pi), np.append(d.a_chord, d.a_chord[0])
-        fx, fy = d.phi_fine, d.a_exact
-        error = d.error_a
-        title = label("acceleration_diagram" if timed else "acceleration_analogue_diagram", lang)
-    top, bottom = _span(fy, gy, mu)
-    # axes with arrowheads
-    items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), "diagram", "thin", 3.0, 1.0))
-    items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), "diagram", "thin", 3.0, 1.0))
-    items.append(Text((L + 9.0, -1.0), "φ", "diagram-labels", sizes.label_mm, "start", "top"))
-    unit_of = {"s": u, "v": u_v, "a": u_a}[kind]
-    items.append(Text((-1.5, top + 6.0), f"{sym}, {unit_of}" if unit_of else sym,
-                      "diagram-labels", sizes.label_mm, "end", "top"))
-    # positions on the φ axis
-    every = max(1, int(math.ceil(n / 12)))
-    for k in range(n + 1):
-        x = k * L / n
-        items.append(Polyline([(x, -1.0), (x, 1.0)], "diagram", "thin"))
-        if k % every == 0:
-            items.append(Text((x, -1.8), str(k % n + 1) if k < n else "1", "diagram-labels",
-                              sizes.label_mm * 0.8 if sizes.label_mm > 2.5 else sizes.label_mm,
-                              "middle", "top"))
-    # the pole and the rays parallel to the chords of the diagram above
-    if H is not None:
-        parent = d.s if kind == "v" else d.v_chord
-        parent_mu = sc.mu_s if kind == "v" else sc.mu_v
-        step = d.step / sc.mu_phi  # mm between positions
-        intercepts = H * (np.roll(parent, -1) - parent) / parent_mu / step
-        items.append(Polyline([(-H, 0.0), (0.0, 0.0)], "diagram", "thin"))
-        items.append(Circle((-H, 0.0), 0.6, "diagram", "thin", "solid"))
-        items.append(Text((-H, -1.5), "P", "diagram-labels", sizes.label_mm, "middle", "top"))
-        for yi in intercepts:
-            if abs(yi) > 1e-6:
-                items.append(Polyline([(-H, 0.0), (0.0, float(yi))], "diagram-lines",
-                                      "construction"))
+    c = _curve(kind, d, sc, lang, abs(omega) > 0)
+    top, bottom = _span(c.analytic[1], c.graphical[1], c.mu)
+    items = phi_axes(sc.length_mm, top, bottom, d.n, f"{c.symbol}, {c.unit}" if c.unit else c.symbol,
+                     layer="diagram", text_layer="diagram-labels", label_mm=sizes.label_mm,
+                     tick_mm=sizes.label_mm * 0.8 if sizes.label_mm > 2.5 else sizes.label_mm)
+    if c.H is not None:
+        items += _pole_rays(kind, d, sc, c.H, sizes.label_mm)
     # curves: analytic thin dashed, graphical thick through its points
-    exact_xy = np.column_stack([fx / sc.mu_phi, fy / mu])
-    drawn_xy = np.column_stack([gx / sc.mu_phi, gy / mu])
+    exact_xy = np.column_stack([c.analytic[0] / sc.mu_phi, c.analytic[1] / c.mu])
+    drawn_xy = np.column_stack([c.graphical[0] / sc.mu_phi, c.graphical[1] / c.mu])
     items.append(Polyline(exact_xy, "diagram", "hidden"))
     items.append(Polyline(drawn_xy, "diagram", "thick"))
     items = axis_numbers_clear(items, [exact_xy, drawn_xy])
-    marks = (d.phi, d.s) if kind == "s" else ((d.phi_mid, d.v_chord) if kind == "v"
-                                              else (d.phi, d.a_chord))
-    for x, y in zip(*marks):
-        items.append(Circle((float(x / sc.mu_phi), float(y / mu)), 0.5, "diagram", "thin",
+    for x, y in zip(*c.marks):
+        items.append(Circle((float(x / sc.mu_phi), float(y / c.mu)), 0.5, "diagram", "thin",
                             "solid"))
     # title, scales and error, above the plot
-    unit_key = "m/mm" if not d.angular else "rad/mm"
-    if kind == "s":
-        lines = [scale_text("μ" + ("ψ" if d.angular else "s"), mu, unit_key, lang),
-                 scale_text("μφ", sc.mu_phi, "rad/mm", lang) +
-                 f" ({number(math.degrees(sc.mu_phi), lang, 3)}°/{unit('mm', lang)})"]
-    elif timed:
-        # the same drawing read in time: μt = μφ/ω, μv = μs/(μt·H), μa = μv/(μt·H)
-        up = "μs" if kind == "v" else "μv"
-        sym_mu = "μv" if kind == "v" else "μa"
-        value = mu * w if kind == "v" else mu * w * w
-        unit_key = {("v", False): "(m/s)/mm", ("a", False): "(m/s²)/mm",
-                    ("v", True): "(rad/s)/mm", ("a", True): "(rad/s²)/mm"}[kind, d.angular]
-        lines = [f"H = {number(H, lang, 3)} {unit('mm', lang)};  μt = μφ/ω1 = "
-                 f"{number(sc.mu_phi / w, lang, 3)} {unit('s/mm', lang)};  {sym_mu} = {up}/(μt·H) = "
-                 f"{number(value, lang, 3)} {unit(unit_key, lang)}",
-                 f"δ = {number(100 * error, lang, 2)} % ({label('error', lang)}, "
-                 f"{label('chord_method', lang)})"]
-    else:
-        up = "μs" if kind == "v" else "μv"
-        sym_mu = "μv" if kind == "v" else "μa"
-        unit_txt = unit("m/mm", lang) if not d.angular else unit("1/mm", lang)
-        lines = [f"H = {number(H, lang, 3)} {unit('mm', lang)};  {sym_mu} = {up}/(μφ·H) = "
-                 f"{number(mu, lang, 3)} {unit_txt}",
-                 f"δ = {number(100 * error, lang, 2)} % ({label('error', lang)}, "
-                 f"{label('chord_method', lang)})"]
+    lines = _scale_lines(kind, d, sc, c, lang, abs(omega))
     y = (top if text_top is None else text_top) + 8.0 + 1.6 * sizes.label_mm * len(lines)
-    items.append(Text((-(H or 0.0), y + 1.8 * sizes.label_mm), title, "diagram-labels",
+    items.append(Text((-(c.H or 0.0), y + 1.8 * sizes.label_mm), c.title, "diagram-labels",
                       sizes.title_mm))
     for k, line in enumerate(lines):
-        items.append(Text((-(H or 0.0), y - 1.6 * sizes.label_mm * k), line, "diagram-labels",
+        items.append(Text((-(c.H or 0.0), y - 1.6 * sizes.label_mm * k), line, "diagram-labels",
                           sizes.label_mm))
     return items
+
+
+def _pole_rays(kind: str, d: Diagrams, sc: DiagramScales, H: float, size: float) -> list[Primitive]:
+    """The pole P at the distance H left of the origin and the rays parallel to the chords of
+    the diagram above (S for V, V for a)."""
+    parent = d.s if kind == "v" else d.v_chord
+    parent_mu = sc.mu_s if kind == "v" else sc.mu_v
+    step = d.step / sc.mu_phi  # mm between positions
+    intercepts = H * (np.roll(parent, -1) - parent) / parent_mu / step
+    items: list[Primitive] = [Polyline([(-H, 0.0), (0.0, 0.0)], "diagram", "thin"),
+                              Circle((-H, 0.0), 0.6, "diagram", "thin", "solid"),
+                              Text((-H, -1.5), "P", "diagram-labels", size, "middle", "top")]
+    for yi in intercepts:
+        if abs(yi) > 1e-6:
+            items.append(Polyline([(-H, 0.0), (0.0, float(yi))], "diagram-lines", "construction"))
+    return items
+
+
+def _scale_lines(kind: str, d: Diagrams, sc: DiagramScales, c: _Curve, lang: str,
+                 w: float) -> list[str]:
+    """The lines written above a diagram: its scales (in time at the crank speed `w` rad/s
+    when ≠ 0), and the error of the chord method for V and a."""
+    if kind == "s":
+        return [scale_text("μ" + ("ψ" if d.angular else "s"), c.mu, "m/mm" if not d.angular else "rad/mm", lang),
+                scale_text("μφ", sc.mu_phi, "rad/mm", lang) +
+                f" ({number(math.degrees(sc.mu_phi), lang, 3)}°/{unit('mm', lang)})"]
+    up = "μs" if kind == "v" else "μv"
+    sym_mu = "μv" if kind == "v" else "μa"
+    error = (f"δ = {number(100 * c.error, lang, 2)} % ({label('error', lang)}, "
+             f"{label('chord_method', lang)})")
+    if w > 0:
+        # the same drawing read in time: μt = μφ/ω, μv = μs/(μt·H), μa = μv/(μt·H)
+        value = c.mu * w if kind == "v" else c.mu * w * w
+        unit_key = {("v", False): "(m/s)/mm", ("a", False): "(m/s²)/mm",
+                    ("v", True): "(rad/s)/mm", ("a", True): "(rad/s²)/mm"}[kind, d.angular]
+        return [f"H = {number(c.H, lang, 3)} {unit('mm', lang)};  μt = μφ/ω1 = "
+                f"{number(sc.mu_phi / w, lang, 3)} {unit('s/mm', lang)};  {sym_mu} = {up}/(μt·H) = "
+                f"{number(value, lang, 3)} {unit(unit_key, lang)}", error]
+    unit_txt = unit("m/mm", lang) if not d.angular else unit("1/mm", lang)
+    return [f"H = {number(c.H, lang, 3)} {unit('mm', lang)};  {sym_mu} = {up}/(μφ·H) = "
+            f"{number(c.mu, lang, 3)} {unit_txt}", error]
 
 
 def _span(fy, gy, mu) -> tuple[float, float]:
@@ -262,8 +283,7 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
     tops = _tops(d, sc)
     common = max(tops) if arrangement != "column" else None
-    plots = [_plot(k, d, sc, height_mm=height_mm, lang=lang, sizes=sizes, text_top=common, omega=omega)
-             for k in "sva"]
+    plots = [_plot(k, d, sc, lang=lang, sizes=sizes, text_top=common, omega=omega) for k in "sva"]
     from velplan.views.base import bounds_of, shift
 
     items: list[Primitive] = []

@@ -17,6 +17,7 @@ from typing import Sequence
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_number
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
@@ -106,7 +107,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         x = k * L / count
         items.append(Polyline([(x, -1.0), (x, 1.0)], LAYER, "thin"))
         if k % every == 0:
-            items.append(Text((x, -1.8), str(k % positions + 1), LABELS, 0.8 * size if size > 2.5 else size,
+            items.append(Text((x, -1.8), str(position_number(k % positions)), LABELS, 0.8 * size if size > 2.5 else size,
                               "middle", "top"))
     # ordinate ticks with their values
     step = nice_step((top - bottom) * mu)
@@ -191,7 +192,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     for k, (pj, pt) in enumerate(points):
         px, py = pj / mJ, pt / mT
         items.append(Circle((px, py), 0.6, LAYER, "thin", "solid"))
-        names.append(Text((px + 1.2, py + 1.2), str(k + 1), LABELS, size, "start", "baseline"))
+        names.append(Text((px + 1.2, py + 1.2), str(position_number(k)), LABELS, size, "start", "baseline"))
     # the tangents: from the ΔT axis through the touch points and a little beyond
     for (ax, ay), (tx, ty), psi, mark in (((kx, ky), tmax, w.psi_max_deg, "k"), ((lx, ly), tmin, w.psi_min_deg, "l")):
         ex, ey = ends[mark]

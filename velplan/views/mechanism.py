@@ -20,8 +20,8 @@ from typing import Sequence
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
-from velplan.errors import ScaleError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
@@ -378,40 +378,64 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
-    if not 1 <= thick <= n:
-        raise ScaleError(f"thick position {thick} is outside 1…{n}")
+    t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
-    t = thick - 1
     items: list[Primitive] = []
     obstacles: list = []
+    if not single:
+        _other_positions(items, obstacles, geo, fine, t, mm, mu_l, extreme, bold)
+    drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, special)
+    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme)
+    items += place_labels(labels, obstacles, rings=8)
+    if title:
+        items += _title(items, thick, single, mu_l, lang, sizes)
+    return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
+                     meta={"positions": kin.phi, "thick": thick, "n": n})
 
-    # trajectories, under everything
-    for name in ([] if single else trajectory_points(mech)):
+
+def _other_positions(items: list, obstacles: list, geo: _Geometry, fine: Kinematics, t: int, mm,
+                     mu_l: float, extreme: Kinematics | None, bold: Sequence[int]) -> None:
+    """Add the trajectories, the positions other than the thick one `t` (thin, or bold when
+    1-based in `bold`) and the other extreme position to `items` (bold lines to `obstacles`)."""
+    kin = geo.kin
+    for name in trajectory_points(geo.mech):  # under everything
         path = fine.position(name)
         path = path[np.all(np.isfinite(path), axis=1)]
         if len(path) >= 2 and np.ptp(path, axis=0).max() / mu_l > 0.5:
             items.append(Polyline(mm(path), "trajectory", "thin"))
-
-    # the thin positions
     for i in range(len(kin)):
-        if i == t or not kin.valid[i] or single:
+        if i == t or not kin.valid[i]:
             continue
-        weight = "thick" if i + 1 in bold else "thin"
+        weight = "thick" if position_number(i) in bold else "thin"
         for s in geo.segments(i):
             items += link(mm(s.a), mm(s.b), trim_a_mm=0.0, trim_b_mm=0.0, layer="positions",
                           line=weight)
             if weight == "thick":  # letters keep off the bold lines too
                 obstacles.append(shapely.LineString([mm(s.a), mm(s.b)]).buffer(0.6))
-
-    if extreme is not None and not single and extreme.valid[0]:
-        other = _Geometry(mech, extreme)
-        for sg in other.segments(0):
+    if extreme is not None and extreme.valid[0]:
+        for sg in _Geometry(geo.mech, extreme).segments(0):
             items.append(Polyline([mm(sg.a), mm(sg.b)], "positions", "thick"))
             obstacles.append(shapely.LineString([mm(sg.a), mm(sg.b)]).buffer(0.6))
 
-    # the thick position: guides, pivots, links, blocks, joints
-    centre = mm(_centroid(kin))
+
+@dataclass(frozen=True)
+class _Thick:
+    """What the labels of the thick position need to know of its drawing."""
+
+    centre: np.ndarray
+    tracks: list
+    segments: list
+    blocks: list
+    guide_sides: dict
+    special_letters: list
+
+
+def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinematics, t: int, mm,
+                    mu_l: float, label_mm: float, special: bool) -> _Thick:
+    """Add the thick position `t` to `items`: guides, pivots, (special point), links, blocks,
+    joints; their outlines to `obstacles`."""
+    centre = mm(_centroid(geo.kin))
     tracks = geo.tracks(fine)
     thick_segments = geo.segments(t)
     guide_sides = {}
@@ -426,7 +450,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                               layer="mechanism")
         items += support
         obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
-    special_letters = _add_special(items, obstacles, geo, t, mm, sizes.label_mm) if special else []
+    special_letters = _add_special(items, obstacles, geo, t, mm, label_mm) if special else []
     for _, corners in geo.plates(t):
         items += plate_corners(mm(corners))
     for s in thick_segments:
@@ -436,50 +460,60 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         obstacles.append(shapely.LineString([a, b]).buffer(0.6))
     blocks = geo.blocks(t)
     for bl in blocks:
-        c = mm(bl.centre)
-        body = slider_block(c, math.degrees(bl.angle), length_mm=BLOCK_MM[0],
+        body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
                             width_mm=BLOCK_MM[1], layer="mechanism")
         items += body
         obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
-    for name in sorted(joints, key=lambda p: list(kin.point_index).index(p)):
+    for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
+    return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
 
-    # labels: points of the thick position, position numbers, ω1, links
-    labels: list[Text] = list(special_letters)
-    labels += _point_labels(geo, t, mm, sizes.label_mm, thick_segments, blocks,
-                          {pt: side for pt, side in guide_sides.items() if pt in _lead_blocks(mech)})
+
+def _output_on_track(mech: Mechanism, out: str) -> bool:
+    """Whether the output point slides on a guide (its numbers go beside the guide)."""
+    return any(g.point == out for g in mech.groups if isinstance(g, (RRP, PRP))) or any(
+        out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP)) or any(
+        out == j and ld.slider for g in mech.groups if isinstance(g, Triad)
+        for ld, j in zip(g.leads, g.joints))
+
+
+def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
+                   single: bool, extreme: Kinematics | None) -> list[Text]:
+    """The labels to place: points of the thick position, position numbers, ω1 (its arrow
+    added to `items`), links."""
+    mech, kin = geo.mech, geo.kin
+    labels: list[Text] = list(drawn.special_letters)
+    labels += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+                            {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
     if not single:
         labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
     out = output_point(mech)
     if out is not None and out != mech.crank.tip and not single:
-        on_track = any(g.point == out for g in mech.groups if isinstance(g, (RRP, PRP))) or any(
-            out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP)) or any(
-            out == j and ld.slider for g in mech.groups if isinstance(g, Triad)
-            for ld, j in zip(g.leads, g.joints))
-        labels += _output_numbers(kin, out, mm, sizes.number_mm, on_track and bool(tracks),
-                                  centre, guide_sides.get(out))
+        labels += _output_numbers(kin, out, mm, sizes.number_mm,
+                                  _output_on_track(mech, out) and bool(drawn.tracks),
+                                  drawn.centre, drawn.guide_sides.get(out))
     if extreme is not None and not single and extreme.valid[0] and out is not None:
         at = mm(extreme.position(out)[0])
         labels.append(Text((at[0] + 1.5, at[1] + 1.5), "1′", "labels", sizes.number_mm))
     omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
     items += omega[:-1]
     labels.append(omega[-1])
-    away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in guide_sides.items()]
-    labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, thick_segments, blocks, centre,
-                            away_from_guides)
+    away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
+    labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+                            drawn.centre, away_from_guides)
+    return labels
 
-    items += place_labels(labels, obstacles, rings=8)
 
-    if title:
-        x0, _, _, y1 = bounds_of(items)
-        items.append(Text((x0, y1 + 4.0 + 1.6 * sizes.title_mm),
-                          f"{label('position', lang)} {thick}" if single
-                          else label("mechanism_positions", lang), "labels", sizes.title_mm))
-        items.append(Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) +
-                          f"  ({scale_mark(mu_l, lang)})", "labels", sizes.label_mm))
-    return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
-                     meta={"positions": kin.phi, "thick": thick, "n": n})
+def _title(items: list, thick: int, single: bool, mu_l: float, lang: str,
+           sizes: MechanismSizes) -> list[Text]:
+    """The view's title and scale, above `items`."""
+    x0, _, _, y1 = bounds_of(items)
+    return [Text((x0, y1 + 4.0 + 1.6 * sizes.title_mm),
+                 f"{label('position', lang)} {thick}" if single else label("mechanism_positions", lang),
+                 "labels", sizes.title_mm),
+            Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) + f"  ({scale_mark(mu_l, lang)})",
+                 "labels", sizes.label_mm)]
 
 
 def extent_m(mech: Mechanism, kin: Kinematics, fine: Kinematics) -> tuple[float, float]:
@@ -600,7 +634,7 @@ def _crank_numbers(mech: Mechanism, kin: Kinematics, mm, size: float) -> list[Te
     for i, tip in enumerate(tips):
         d = tip - pivot
         d = d / max(np.hypot(*d), 1e-9)
-        out.append(Text(tip + d * (1.0 + 0.9 * size), str(i + 1), "labels", size, "middle",
+        out.append(Text(tip + d * (1.0 + 0.9 * size), str(position_number(i)), "labels", size, "middle",
                         "middle"))
     return out
 
@@ -633,7 +667,7 @@ def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool
         if anchor == "middle":
             gap += 0.6 * size  # half the text's height, above or below the path
         for row in range(4 * n):
-            text = Text(p + normal * (gap + 0.5 * size * row), str(i + 1), "labels", size,
+            text = Text(p + normal * (gap + 0.5 * size * row), str(position_number(i)), "labels", size,
                         anchor, "middle")
             box = label_box(text).buffer(0.3 * size)
             if not any(box.intersects(b) for b in boxes):

@@ -86,26 +86,26 @@ def _image(res, target: str, i: int) -> complex:
     return complex(res.values[target][i])
 
 
-def plan_steps(res, i: int, *, number: int, lang: str = "ru") -> list[StepDrawing]:
-    """The plan of `res` at its position index `i`, step by step, in the plan's mm.
+def plan_steps(res, position: int, *, lang: str = "ru") -> list[StepDrawing]:
+    """The plan of `res` at position `position`, step by step, in the plan's mm.
 
     Parameters
     ----------
     res : PlanResult
         A velocity or acceleration plan.
-    i : int
-        Index into the result's positions.
-    number : int
-        Position number (1-based) written in the layer names.
+    position : int
+        Position number (1…n of the result's kinematics; one the result was evaluated at),
+        also written in the layer names.
     lang : str
         Language of the sentences.
     """
+    i = res.index_of(position)
     k = _kind(res)
-    vec_layer, line_layer, _ = layer_names(k, number)
+    vec_layer, line_layer, _ = layer_names(k, position)
     pole = f"{k}:{'p' if k == 'v' else 'π'}"
     steps = [s for s in res.steps if s.target.startswith(k + ":")]
-    sentences = res.describe(i, lang)
-    area = plan_area(res, i)
+    sentences = res.describe(position, lang)
+    area = plan_area(res, position)
     # which intersection each line serves, to run the line past it
     meets: dict[str, str] = {}
     for s in steps:
@@ -171,22 +171,21 @@ def _finite(p: Primitive) -> bool:
     return bool(np.all(np.isfinite(np.asarray(coords, float))))
 
 
-def plan_area(res, i: int) -> shapely.Polygon:
-    """The plan's drawing area: its images' box with a margin, mm (pole at 0)."""
-    k = _kind(res)
-    pts = [0j] + [complex(z[i]) for t, z in res.values.items()
-                  if t.startswith(k + ":") and not isinstance(z, tuple)]
-    pts = [z for z in pts if np.isfinite(z)]
+def plan_area(res, position: int) -> shapely.Polygon:
+    """The plan's drawing area at position number `position`: its images' box with a margin,
+    mm (pole at 0)."""
+    pts = [z for z in _images(res, position) if np.isfinite(z)]
     xs, ys = [z.real for z in pts], [z.imag for z in pts]
     return shapely.box(min(xs) - AREA_MARGIN_MM, min(ys) - AREA_MARGIN_MM,
                        max(xs) + AREA_MARGIN_MM, max(ys) + AREA_MARGIN_MM)
 
 
-def image_letters(res, i: int, drawings: list[StepDrawing], *, number: int,
-                  size_mm: float = 3.5, upto: int | None = None) -> list[Text]:
-    """Letters of the images fixed by the first `upto` steps, clear of the vectors."""
-    k = _kind(res)
-    _, _, text_layer = layer_names(k, number)
+def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
+                  upto: int | None = None) -> list[Text]:
+    """Letters of the images fixed by the first `upto` steps of the plan at position number
+    `position`, clear of the vectors."""
+    i = res.index_of(position)
+    _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
     shown = [t for d in drawings[:upto] for t in d.images]
     groups: list[list[str]] = []
@@ -237,17 +236,16 @@ def plan_title(res, number: int, lang: str) -> tuple[str, str]:
             scale_text(symbol, res.scale, unit_key, lang))
 
 
-def plan_view(res, i: int, *, number: int, lang: str = "ru",
-              sizes: PlanSizes = PlanSizes(), title: bool = True) -> View:
-    """The plan of `res` at position index `i` as a view.
+def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSizes(),
+              title: bool = True) -> View:
+    """The plan of `res` at position number `position` as a view.
 
     Parameters
     ----------
     res : PlanResult
-    i : int
-        Index into ``res.index`` (0 for a result evaluated at one position).
-    number : int
-        Position number written in the title and the layer names.
+    position : int
+        Position number (1…n of the result's kinematics; one the result was evaluated at),
+        written in the title and the layer names.
     lang : {"en", "ru", "uk", "zh"}
     sizes : PlanSizes
     title : bool
@@ -259,21 +257,20 @@ def plan_view(res, i: int, *, number: int, lang: str = "ru",
         ``to_view`` maps plan mm (pole at 0) to the view's mm; ``meta`` holds ``kind``,
         ``number``, ``scale`` and ``images`` (target → plan mm).
     """
-    drawings = plan_steps(res, i, number=number, lang=lang)
+    drawings = plan_steps(res, position, lang=lang)
     items: list[Primitive] = [p for d in drawings for p in d.items]
-    items += image_letters(res, i, drawings, number=number, size_mm=sizes.label_mm)
+    items += image_letters(res, position, drawings, size_mm=sizes.label_mm)
     if title:
-        _, _, text_layer = layer_names(_kind(res), number)
+        _, _, text_layer = layer_names(_kind(res), position)
         x0, _, _, y1 = _bounds(items)
-        head, scale = plan_title(res, number, lang)
+        head, scale = plan_title(res, position, lang)
         items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
                           sizes.title_mm))
         items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
-    k = _kind(res)
+    k, i = _kind(res), res.index_of(position)
     images = {t: _image(res, t, i) for d in drawings for t in d.images}
-    return make_view(f"plan-{k}-{number}", items, pad_mm=2.0, mu=None,
-                     meta={"kind": k, "number": number, "scale": res.scale,
-                           "images": images, "index": i})
+    return make_view(f"plan-{k}-{position}", items, pad_mm=2.0, mu=None,
+                     meta={"kind": k, "number": position, "scale": res.scale, "images": images})
 
 
 def _bounds(items):
@@ -281,13 +278,17 @@ def _bounds(items):
     return bounds_of(items)
 
 
-def extent_mm(res, i: int) -> tuple[float, float]:
-    """Width and height of the plan's images at its scale, mm."""
-    k = _kind(res)
-    pts = [0j] + [complex(z[i]) for t, z in res.values.items()
-                  if t.startswith(k + ":") and not isinstance(z, tuple)]
-    pts = np.array([z for z in pts if np.isfinite(z)])
+def extent_mm(res, position: int) -> tuple[float, float]:
+    """Width and height of the plan's images at position number `position`, at its scale, mm."""
+    pts = np.array([z for z in _images(res, position) if np.isfinite(z)])
     return float(np.ptp(pts.real)), float(np.ptp(pts.imag))
+
+
+def _images(res, position: int) -> list[complex]:
+    """The pole and the images of the plan at position number `position`, plan mm."""
+    k, i = _kind(res), res.index_of(position)
+    return [0j] + [complex(z[i]) for t, z in res.values.items()
+                   if t.startswith(k + ":") and not isinstance(z, tuple)]
 
 
 __all__ = ["StepDrawing", "PlanSizes", "plan_steps", "plan_view", "plan_area", "image_letters",

@@ -18,11 +18,12 @@ PRECISION_MM = 0.5
 """Drafting precision the lengths are read to, mm."""
 
 
-def readings(res, i: int, precision: float = PRECISION_MM) -> list[tuple[str, float, float]]:
+def readings(res, position: int, precision: float = PRECISION_MM) -> list[tuple[str, float, float]]:
     """(point, read value, exact value) of every moving point of plan ``res`` (not a triad's
-    special point, a construction point) at its position
-    index ``i``: |vector| read on the drawing at ``precision`` mm times μ, and the solver's."""
+    special point, a construction point) at position number ``position`` (1…n): |vector| read
+    on the drawing at ``precision`` mm times μ, and the solver's."""
     kin = res.kin
+    i = res.index_of(position)
     j = res.index[i]
     ground = dict(kin.mechanism.ground)
     ground.update(dict.fromkeys(special_points(kin.mechanism)))  # construction points
@@ -39,19 +40,19 @@ def readings(res, i: int, precision: float = PRECISION_MM) -> list[tuple[str, fl
 
 
 def readings_view(plans: dict, *, lang: str = "ru", size_mm: float = 2.5, title_mm: float = 3.5) -> View:
-    """The table for ``plans`` (view name → (PlanResult, index)): a row per point, for each
+    """The table for ``plans`` (view name → (PlanResult, position number 1…n)): a row per point, for each
     plan (velocity plans first) the value read off it and its difference from the analytic
     value in per cent ("—" where the vector is shorter than two drafting steps, 1 mm)."""
-    order = sorted(plans.items(), key=lambda kv: (kv[1][0].kind != "velocity", int(kv[1][0].index[kv[1][1]])))
+    order = sorted(plans.items(), key=lambda kv: (kv[1][0].kind != "velocity", kv[1][1]))
     head = [label("position_short", lang)]
     units = [label("quantity", lang)]
     rows: dict[str, list[str]] = {}
-    for k, (name, (res, i)) in enumerate(order):
+    for k, (name, (res, position)) in enumerate(order):
         sym = "V" if res.kind == "velocity" else "a"
         u = unit("m/s", lang) if res.kind == "velocity" else unit("m/s²", lang)
-        head += [str(int(res.index[i]) + 1), ""]
+        head += [str(position), ""]
         units += [f"{sym}, {u}", "δ, %"]
-        for p, read, exact in readings(res, i):
+        for p, read, exact in readings(res, position):
             row = rows.setdefault(subscript(p), [""] * (2 * len(order)))
             # a per cent of a vector shorter than two drafting steps says nothing: "—"
             err = 100.0 * (read - exact) / exact if exact / res.scale >= 2 * PRECISION_MM else float("nan")

@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 
 from typing import Mapping
 
+from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
@@ -57,16 +58,14 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
         Size the plan is drawn to (its scale is the standard one that keeps it within).
     """
     n = len(kin)
-    if not 1 <= position <= n:
-        raise VelplanError(f"--position {position} is outside 1…{n}")
+    i = position_index(position, n)
     kinds = {"velocity": ("velocity",), "acceleration": ("acceleration",),
              "both": ("velocity", "acceleration")}.get(kind)
     if kinds is None:
         raise VelplanError(f"unknown plan kind {kind!r}; known kinds: velocity, acceleration, "
                            "both")
-    if not kin.valid[position - 1]:
+    if not kin.valid[i]:
         raise VelplanError(f"{mech.name} cannot be assembled at position {position}")
-    i = position - 1
     # the mechanism alone in the position, about 120 mm across
     wx, wy = extent_m(mech, kin, kin)
     mu_l = next((m for m in eskd_scales() if max(wx, wy) / m <= 170.0), eskd_scales()[-1])
@@ -76,11 +75,10 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     series = []
     for kd in kinds:
         res0 = plans[kd]
-        ew, eh = extent_mm(res0, i)
+        ew, eh = extent_mm(res0, position)
         mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
         res = res0.at_scale(mu)
-        series.append((kd, res, plan_view(res, i, number=position, lang=lang),
-                       plan_steps(res, i, number=position, lang=lang)))
+        series.append((kd, res, plan_view(res, position, lang=lang), plan_steps(res, position, lang=lang)))
     # one page size for the whole series, velocity and acceleration alike
     width = max([_MARGIN * 3 + mview.width_mm + full.width_mm for _, _, full, _ in series] + [297.0])
     height = max([_MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
@@ -91,8 +89,8 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
         total = len(drawings)
         for k in range(1, total + 1):
             items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
-            items += [shift(p, px, py) for p in partial_plan(res, i, k, full=full, drawings=drawings,
-                                                             number=position, lang=lang)]
+            items += [shift(p, px, py) for p in partial_plan(res, position, k, full=full, drawings=drawings,
+                                                             lang=lang)]
             sentence = f"{label('step', lang)} {k}/{total}. {readable(drawings[k - 1].sentence)}"
             box = (_MARGIN, _MARGIN, width - _MARGIN, _MARGIN + _SENTENCE_H - 4.0)
             items += fit_text(sentence, box, layer="labels", size_mm=5.0, anchor="start")
@@ -115,14 +113,15 @@ def readable(sentence: str) -> str:
     return _INDEX.sub(lambda m: digits_down(m.group(1)), text)
 
 
-def partial_plan(res, i: int, k: int, *, full, drawings, number: int, lang: str) -> list:
-    """The plan as far as construction step ``k`` (1-based), in the coordinates of the full
-    plan view ``full``: the step's own vectors and line thick, earlier ones thin, the image
-    letters placed so far, and the plan's title. ``drawings`` are `plan_steps` of the plan."""
+def partial_plan(res, position: int, k: int, *, full, drawings, lang: str) -> list:
+    """The plan at position number ``position`` as far as construction step ``k`` (1-based),
+    in the coordinates of the full plan view ``full``: the step's own vectors and line thick,
+    earlier ones thin, the image letters placed so far, and the plan's title. ``drawings`` are
+    `plan_steps` of the plan."""
     ox, oy = full.origin
     items = [shift(_emphasis(p, j == k - 1), ox, oy) for j, d in enumerate(drawings[:k]) for p in d.items]
-    items += [shift(t, ox, oy) for t in image_letters(res, i, drawings, number=number, upto=k)]
-    heads = plan_title(res, number, lang)
+    items += [shift(t, ox, oy) for t in image_letters(res, position, drawings, upto=k)]
+    heads = plan_title(res, position, lang)
     return items + [p for p in full.primitives if isinstance(p, Text) and p.text in heads]
 
 

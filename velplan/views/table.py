@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import Mechanism
 from velplan.plans.engine import PlanResult
 from velplan.plans.table import TransferTable, table_points, transfer_table
@@ -87,7 +88,7 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: str = "ru",
         Decimals of the values.
     """
     n = len(table.phi)
-    head = [label("position", lang)] + [str(i + 1) for i in range(n)]
+    head = [label("position", lang)] + [str(position_number(i)) for i in range(n)]
     rows = [[f"φ, {unit('deg', lang)}"] +
             [fixed(math.degrees(p) % 360.0, lang, 1) for p in table.phi]]
     for name, values in table.rows.items():

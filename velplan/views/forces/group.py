@@ -1,0 +1,340 @@
+"""A group with its forces: the links of one Assur group (or of the initial link) at a
+standard μl, cut free of the frame and of their neighbours, every force on them as an arrow
+of a conventional length from its point of application and the couples as curved arrows."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+from velplan.forces.kinetostatics import reaction_label
+from velplan.mechanism.structure import material_points, pairs
+from velplan.render.i18n import label
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.symbols import (
+    JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
+from velplan.views.base import View, make_view, place_labels, scale_mark, scale_text, subscript
+from velplan.views.forces.arrows import arrow_obstacle, place_arrows
+from velplan.views.forces.common import (
+    ForceSizes, Sketch, anchor_of, away_from_lines, force_text, group_layers, slug, title_lines,
+    unit_vector, xy)
+from velplan.views.mechanism import BLOCK_MM, _Geometry, plate_corners
+
+#: Reaction components ("R12τ") drop these suffixes to find their pair.
+_SUFFIXES = "τn∥⊥"
+
+
+# -- where each force acts ---------------------------------------------------------------
+
+
+def application_points(fa, i: int) -> dict[str, complex]:
+    """Label of every force of the analysis → its point of application at position index
+    `i`, m (complex): loads, gravity and inertia at their points, a reaction (either sense)
+    at its joint or, for a prismatic pair, where its resultant crosses the guide line."""
+    kin = fa.kinematics
+    out: dict[str, complex] = {}
+    for f in fa.actions.forces:
+        x, y = kin.position(f.point)[i]
+        out[f.label] = complex(x, y)
+    for rc in fa.kinetostatics.reactions.values():
+        at = complex(rc.at[i])
+        if not np.isfinite(at):
+            at = complex(rc.reference[i])
+        k0, k1 = rc.pair.links
+        out.setdefault(rc.label, at)
+        out.setdefault(reaction_label(k0, k1), at)
+    return out
+
+
+def _point_of(points: dict[str, complex], name: str) -> complex:
+    if name in points:
+        return points[name]
+    if name and name[-1] in _SUFFIXES and name[:-1] in points:
+        return points[name[:-1]]
+    raise KeyError(name)
+
+
+def group_forces(fa, group: str, i: int) -> list[tuple[str, complex, complex]]:
+    """(label, point m, force N) of every force on the group `group` (or ``"crank"``) at
+    position index `i`, in the order of its polygon; zero forces left out."""
+    poly = fa.kinetostatics.polygons[group]
+    points = application_points(fa, i)
+    parts = list(poly.vectors) + list(poly.closing_vectors)
+    scale = max([abs(complex(v[i])) for _, v in parts if np.isfinite(v[i])] or [0.0])
+    out = []
+    for name, v in parts:
+        f = complex(v[i])
+        if not np.isfinite(f) or abs(f) <= 1e-9 * max(scale, 1e-300):
+            continue
+        out.append((name, _point_of(points, name), f))
+    return out
+
+
+def group_links(mech, group: str) -> tuple[str, ...]:
+    """The links of group `group`, or the crank's link for ``"crank"``."""
+    if group == "crank":
+        return (mech.crank.link,)
+    return tuple(next(g for g in mech.groups if g.name == group).links)
+
+
+def group_extent_m(fa, group: str, i: int) -> tuple[float, float]:
+    """Width and height of the group's points and points of application, m."""
+    mech, kin = fa.kinetostatics.mechanism, fa.kinematics
+    links = group_links(mech, group)
+    mp = material_points(mech)
+    pts = [complex(*kin.position(p)[i]) for lk in links for p in mp.get(lk, ())]
+    pts += [z for _, z, _ in group_forces(fa, group, i)]
+    pts = np.array([z for z in pts if np.isfinite(z)])
+    return float(np.ptp(pts.real)), float(np.ptp(pts.imag))
+
+
+# -- the view ----------------------------------------------------------------------------
+
+
+def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = "ru",
+               sizes: ForceSizes = ForceSizes()) -> View:
+    """One Assur group (or ``"crank"``, the initial link) with every force on it.
+
+    Parameters
+    ----------
+    fa : ForceAnalysis
+        The analysis at the sheet's positions.
+    group : str
+        Group name, or ``"crank"``.
+    i : int
+        Position index into `fa`.
+    mu_l : float
+        Length scale, m/mm.
+    number : int
+        Position number (1-based) written in the title and the layer names.
+
+    Returns
+    -------
+    View
+        ``mu`` is μl, ``to_view`` maps metres to the view's mm; ``meta["forces"]`` holds
+        (label, point m, force N) of the drawn arrows, ``meta["arrows"]`` their count,
+        ``meta["couples"]`` (label, centre in content mm, moment N·m) of the curved arrows.
+    """
+    mech = fa.kinetostatics.mechanism
+    links = group_links(mech, group)
+    body_layer, force_layer, text_layer = group_layers(number, group)
+
+    def mm(at) -> np.ndarray:  # content mm
+        return np.asarray(at, float) / mu_l
+
+    sk = Sketch()
+    axes, joints, centres = _draw_links(sk, fa, links, i, mm, body_layer)
+    # letters of the points, then the forces: arrows of a conventional length at their points
+    named = joints + centres + [f.point for f in fa.actions.forces if f.link in links]
+    letters = _point_letters(fa.kinematics, i, mm, named, sk.lines, text_layer, sizes.label_mm)
+    forces = group_forces(fa, group, i)
+    force_labels = _draw_forces(sk, forces, [mm(fa.kinematics.position(q)[i])
+                                             for q in dict.fromkeys(named)],
+                                letters, mm, force_layer, text_layer, sizes)
+    couples = _couples(fa, group, links, i, mm, lang)
+    radius = max(4.5, 0.35 * sizes.arrow_mm)
+    force_labels += _draw_couples(sk, couples, radius, force_layer, text_layer, sizes.label_mm)
+    items = sk.items + list(place_labels(letters + force_labels, sk.clear_of() + axes, rings=10))
+    head = (label("initial_link", lang).format(name=mech.crank.link) if group == "crank"
+            else label("assur_group", lang).format(name=group))
+    items += title_lines(items, [
+        (head, sizes.title_mm),
+        (scale_text("μl", mu_l, "m/mm", lang) + f" ({scale_mark(mu_l, lang)})", sizes.label_mm)],
+        text_layer)
+    return make_view(f"group-{number}-{slug(group)}", items, pad_mm=2.0, mu=mu_l,
+                     origin=(0.0, 0.0),
+                     meta={"group": group, "number": number, "index": i,
+                           "forces": tuple(forces), "arrows": len(forces),
+                           "couples": tuple((t, tuple(c), v) for t, c, v in couples),
+                           "arc_radius": radius})
+
+
+# -- the links ---------------------------------------------------------------------------
+
+
+def _draw_links(sk: Sketch, fa, links, i: int, mm, layer: str) -> tuple[list, list, list]:
+    """The links of the group: plates, bars, the guides they ride on as axes, blocks, joints
+    and centres of mass. Returns (guide axes as shapes, joint names, centre names)."""
+    mech, kin = fa.kinetostatics.mechanism, fa.kinematics
+    geo = _Geometry(mech, kin)
+    _draw_bars(sk, geo, links, i, mm, layer)
+    axes = _draw_guide_axes(sk, fa.kinetostatics, links, i, mm, layer)
+    for bl in geo.blocks(i):
+        if bl.link not in links:
+            continue
+        body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
+                            width_mm=BLOCK_MM[1], layer=layer)
+        sk.items += body
+        sk.obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
+    joints = _draw_joints(sk, mech, kin, links, i, mm, layer)
+    centres = [m.centre for m in mech.masses if m.link in links]
+    for name in centres:
+        c = mm(kin.position(name)[i])
+        if any(np.hypot(*(c - mm(kin.position(j)[i]))) < 1.0 for j in joints):
+            continue
+        sk.items.append(Circle(c, 1.0, layer, "thin", "solid"))
+        sk.obstacles.append(shapely.Point(c).buffer(1.5))
+    return axes, joints, centres
+
+
+def _draw_bars(sk: Sketch, geo, links, i: int, mm, layer: str) -> None:
+    """The plates and bars of `links`, trimmed at their joints."""
+    for plate, corners in geo.plates(i):
+        if plate in links:
+            sk.items += plate_corners(mm(corners), layer=layer)
+    for s in geo.segments(i):
+        if s.link not in links:
+            continue
+        a, b = mm(s.a), mm(s.b)
+        sk.items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
+                         trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer=layer)
+        if np.hypot(*(b - a)) > 1e-9:
+            sk.obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+            sk.lines.append((a, b))
+
+
+def _draw_guide_axes(sk: Sketch, ks, links, i: int, mm, layer: str) -> list:
+    """The axis of every guide a link of the group slides on (a prismatic pair with the frame
+    or a neighbour); forces along a guide are drawn on it, so it keeps labels off, not
+    arrows. Returns the axes as shapes."""
+    axes = []
+    for rc in ks.reactions.values():
+        p = rc.pair
+        if p.kind != "P" or sum(lk in links for lk in p.links) != 1:
+            continue
+        u = xy(rc.direction[i])
+        c = mm(xy(rc.reference[i]))
+        half = BLOCK_MM[0] / 2 + 7.0
+        axis = Polyline([c - u * half, c + u * half], layer, "axis")
+        sk.items.append(axis)
+        axes.append(shapely.LineString(axis.points).buffer(0.4))
+    return axes
+
+
+def _draw_joints(sk: Sketch, mech, kin, links, i: int, mm, layer: str) -> list[str]:
+    """The revolute joints of the group's links. Returns their point names."""
+    joints = []
+    for p in pairs(mech):
+        if p.kind == "R" and any(lk in links for lk in p.links) and p.point not in joints:
+            joints.append(p.point)
+    for name in joints:
+        c = mm(kin.position(name)[i])
+        sk.items += revolute_joint(c, layer=layer)
+        sk.obstacles.append(shapely.Point(c).buffer(JOINT_RADIUS_MM + 0.5))
+    return joints
+
+
+def _point_letters(kin, i, mm, names, lines, layer, size) -> list[Text]:
+    """The letters of the named points (once per place), opposite the lines that leave them."""
+    out: list[Text] = []
+    placed: list[np.ndarray] = []
+    for name in dict.fromkeys(names):
+        p = mm(kin.position(name)[i])
+        if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
+            continue
+        placed.append(p)
+        away = away_from_lines(p, lines)
+        if np.hypot(*away) < 0.2:
+            away = np.array([-1.0, 1.0])
+        away = away / np.hypot(*away)
+        pos = p + away * (JOINT_RADIUS_MM + 1.2 + 0.5 * size)
+        out.append(Text(pos, subscript(name), layer, size, anchor_of(away), "middle"))
+    return out
+
+
+# -- the forces and the couples ----------------------------------------------------------
+
+
+def _draw_forces(sk: Sketch, forces, marks, letters, mm, layer: str, text_layer: str,
+                 sizes: ForceSizes) -> list[Text]:
+    """The arrows of `forces` (label, point m, force N), kept clear of the points `marks` (mm)
+    and of the letters. Returns their labels."""
+    entries = [(mm(xy(z)), unit_vector(xy(f)), force_text(name)) for name, z, f in forces]
+    labels: list[Text] = []
+    for a, b, tag in place_arrows(entries, sizes.arrow_mm, sk.obstacles, marks, letters,
+                                  layer=text_layer, size=sizes.label_mm):
+        arrow = Arrow(a, b, layer, "thin")
+        sk.items.append(arrow)
+        sk.obstacles.append(arrow_obstacle(arrow))
+        sk.lines.append((a, b))
+        labels.append(tag)
+    return labels
+
+
+def _couples(fa, group: str, links, i: int, mm, lang: str) -> list[tuple[str, np.ndarray, float]]:
+    """(label, centre in content mm, moment N·m) of the couples on the group: the inertia
+    moments at the centres of mass, and the balancing moment at the crank's pivot."""
+    mech, kin = fa.kinetostatics.mechanism, fa.kinematics
+    out: list[tuple[str, np.ndarray, float]] = []
+    for m in fa.actions.moments:
+        if m.link not in links:
+            continue
+        value = float(m.moment[i])
+        if not np.isfinite(value) or value == 0.0:
+            continue
+        centre = next((lm.centre for lm in mech.masses if lm.link == m.link), None)
+        if centre is None:  # a link without a mass: its first point
+            points = material_points(mech).get(m.link, ())
+            centre = next(p for p in kin.point_index if p in points)
+        out.append((force_text(m.label), mm(kin.position(centre)[i]), value))
+    if group == "crank":
+        mb = float(fa.kinetostatics.balancing_moment[i])
+        out.append((label("symbol_balancing_moment", lang),
+                    mm(kin.position(mech.crank.pivot)[i]), mb))
+    return out
+
+
+def _draw_couples(sk: Sketch, couples, radius: float, layer: str, text_layer: str,
+                  size: float) -> list[Text]:
+    """Curved arrows of the couples, each towards the freest direction about its centre.
+    Returns their labels."""
+    labels: list[Text] = []
+    for text, c, value in couples:
+        arc, tag = _moment_arc(c, value, text, _busy_angles(c, sk.lines), radius=radius,
+                               layer=layer, text_layer=text_layer, size=size)
+        sk.items += arc
+        sk.obstacles += [shapely.LineString(a.points).buffer(0.5) for a in arc
+                         if isinstance(a, Polyline)]
+        labels.append(tag)
+    return labels
+
+
+def _busy_angles(centre, segments) -> list[float]:
+    """Directions (deg) of the lines that leave `centre`, or pass by it."""
+    out = []
+    c = np.asarray(centre, float)
+    for a, b in segments:
+        a, b = np.asarray(a, float), np.asarray(b, float)
+        for here, other in ((a, b), (b, a)):
+            if np.hypot(*(here - c)) < 0.8 and np.hypot(*(other - here)) > 1e-9:
+                d = other - here
+                out.append(math.degrees(math.atan2(d[1], d[0])))
+    return out
+
+
+def _free_angle(busy: list[float]) -> float:
+    """The direction (deg, a multiple of 5) farthest from every busy direction."""
+    if not busy:
+        return 45.0
+    best, gap = 45.0, -1.0
+    for k in range(72):
+        cand = 5.0 * k
+        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
+        if g > gap + 1e-9:
+            best, gap = cand, g
+    return best
+
+
+def _moment_arc(centre, value: float, text: str, busy: list[float], *, radius: float,
+                layer: str, text_layer: str, size: float) -> tuple[list[Primitive], Text]:
+    """A curved arrow about `centre` in the sense of `value` (counter-clockwise positive),
+    centred on the freest direction, and its label beyond the arc."""
+    mid = _free_angle(busy)
+    sweep = 110.0 if value >= 0 else -110.0
+    arc = rotation_arrow(np.asarray(centre, float), radius, mid - sweep / 2, sweep, layer=layer)
+    a = math.radians(mid)
+    u = np.array([math.cos(a), math.sin(a)])
+    where = np.asarray(centre, float) + u * (radius + 1.2 + 0.6 * size)
+    return list(arc), Text(where, text, text_layer, size, anchor_of(u), "middle")

@@ -1,0 +1,44 @@
+"""The table of the three balancing moments — kinetostatics, Zhukovsky's lever, the power
+method — at every position of the sheet."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from velplan.render.i18n import label
+from velplan.render.scene import Text
+from velplan.views.base import View, fixed, make_view, unit
+from velplan.views.forces.common import newton_metre
+from velplan.views.table import grid_table
+
+
+def moment_decimals(values) -> int:
+    """Decimals that give the largest |M_b| four significant figures."""
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    top = float(np.max(np.abs(v))) if v.size else 0.0
+    if top == 0.0:
+        return 1
+    return int(min(4, max(0, 3 - math.floor(math.log10(top)))))
+
+
+def moments_table_view(fa, *, lang: str = "ru", size_mm: float = 2.5,
+                       title_mm: float = 3.5) -> View:
+    """The three balancing moments (kinetostatics, lever, power) at every position, N·m."""
+    n = len(fa.kinematics)
+    moments = fa.balancing_moments
+    decimals = moment_decimals(moments["kinetostatics"])
+    mb = label("symbol_balancing_moment", lang)
+    head = [label("position", lang)] + [str(k + 1) for k in range(n)]
+    rows = [[f"φ, {unit('deg', lang)}"] +
+            [fixed(math.degrees(p) % 360.0, lang, 1) for p in fa.kinematics.phi]]
+    for key in ("kinetostatics", "lever", "power"):
+        rows.append([f"{mb} ({label('method_' + key, lang)})"] +
+                    [fixed(float(v), lang, decimals) for v in moments[key]])
+    items, total_w, total_h = grid_table([head] + rows, size_mm)
+    items.append(Text((0.0, total_h + 2.5), f"{label('balancing_moment', lang)} {mb}, "
+                      f"{newton_metre(lang)}", "table", title_mm))
+    return make_view("table", items, pad_mm=1.0, meta={"n": n, "size_mm": size_mm,
+                                                      "decimals": decimals})
