@@ -117,12 +117,12 @@ def test_branch_continuity_through_a_revolution():
 
 def test_blocks_give_the_same_results_as_one_pass(monkeypatch):
     """Solving in cache-sized blocks must not change a single bit."""
-    import velplan.analysis.solver as solver
+    from velplan.analysis import blocks as engine
 
     mech = velplan.load("shaper")
     phi = np.linspace(0, 2 * np.pi, 1001)
     whole = velplan.solve(mech, phi)
-    monkeypatch.setattr(solver, "BLOCK", 97)
+    monkeypatch.setattr(engine, "BLOCK", 97)
     blocks = velplan.solve(mech, phi)
     for name in ("positions", "velocities", "accelerations", "angles", "omegas", "epsilons", "slides", "condition"):
         assert np.array_equal(getattr(whole, name), getattr(blocks, name), equal_nan=True), name

@@ -30,7 +30,7 @@ def case(request):
     fa = Study(velplan.load(request.param), n=12).forces()
     i = int(np.nanargmax(np.abs(fa.kinetostatics.balancing_moment)))
     mu_v = standard_scale(fa.lever.scale * 1.0001)  # the next standard scale
-    return fa, i, lever_view(fa, i, mu_v=mu_v, number=i + 1, lang="en")
+    return fa, i, lever_view(fa, i + 1, mu_v=mu_v, lang="en")
 
 
 def test_the_numbers_written_are_the_force_analysis(case):

@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from velplan.analysis import groups as G
-from velplan.analysis import solver
+from velplan.analysis import blocks
+from velplan.analysis.kinematics import SINGULAR_BOUND, Kinematics, length_scale
 from velplan.errors import VelplanError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad
 from velplan.mechanism.structure import schedule
@@ -42,7 +43,7 @@ CHUNK = 256
 CORES = ("cross", "solve2", "cis", "direction", "wrap_angle", "carry", "crank_tip", "link_point", "guide_line",
          "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
 ROUND_OFF = 64 * float(np.finfo(float).eps)
-"""The factor of `solver.velocity_bound`: 64·ε."""
+"""The factor of `velplan.analysis.kinematics.velocity_bound`: 64·ε."""
 
 
 @lru_cache(maxsize=1)
@@ -290,7 +291,7 @@ def _rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
 
 def _mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit):
     """valid[i0 + t]: every kept output finite, every group closed and, velocities kept, their
-    relative round-off (`solver.velocity_bound`) within ``limit``; the angles wrapped into (−π, π]."""
+    relative round-off (`velplan.analysis.kinematics.velocity_bound`) within ``limit``; the angles wrapped into (−π, π]."""
     for t in range(m):
         ok = True
         for j in range(p.shape[0]):
@@ -432,7 +433,7 @@ def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid) -> None:
 
     k = kernel()
     units = par.shape[0] * ((nper + CHUNK - 1) // CHUNK)
-    args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, solver.SINGULAR_BOUND)
+    args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, SINGULAR_BOUND)
     if not k.overloads:
         _load_cached(k, (0, units, *args))
     if phi.shape[0] <= SERIAL:
@@ -499,13 +500,13 @@ def layout(mech: Mechanism, points) -> Layout:
 
 
 def _layout(mech: Mechanism, points) -> Layout:
-    items = schedule(mech) if points is None else solver.needed_items(mech, points)
+    items = schedule(mech) if points is None else blocks.needed_items(mech, points)
     triad = next((g.name for g in items if isinstance(g, Triad)), None)
     if triad is not None:
         return Layout(items, triad, None, None, None, {}, (0, 0, 0, 0))
-    scale = solver.length_scale(mech)
+    scale = length_scale(mech)
     # the numpy engine on one angle fixes the outputs' names, order and link origins
-    st, conditions = solver._solve_block(mech, np.zeros(1), 1.0, 0.0, scale, "nan", items)
+    st, conditions = blocks.solve_block(mech, np.zeros(1), 1.0, 0.0, scale, "nan", items)
     pts, links, slides = list(st.points), [k for k in st.links if k != GROUND], list(st.slides)
     ops, par, ground = encode(mech, pts, links, slides, list(conditions), scale, items)
     names = {"point_index": {k: i for i, k in enumerate(pts)}, "link_index": {k: i for i, k in enumerate(links)},
@@ -516,7 +517,7 @@ def _layout(mech: Mechanism, points) -> Layout:
     return Layout(items, None, ops, par[None], ground[None], names, sizes)
 
 
-def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int) -> solver.Kinematics:
+def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int) -> Kinematics:
     """`solver.solve` of ``mech`` (its `Layout` ``lay``) at the angles ``phi`` (rad) and one crank
     speed ``w1`` (rad/s) and acceleration ``e1`` (rad/s²), derivatives up to ``order``: the
     outputs are allocated for that order only, and the kernel writes nothing above it."""
@@ -528,7 +529,7 @@ def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, o
         z, rates, slides, condition, valid)
     xy = z.view(float).reshape(k, P, n, 2).transpose(0, 2, 1, 3)
     rates = rates.transpose(0, 2, 1)
-    return solver.Kinematics(
+    return Kinematics(
         mechanism=mech, phi=phi, omega1=w1, epsilon1=e1, positions=xy[0], velocities=xy[1] if k > 1 else None,
         accelerations=xy[2] if k > 2 else None, angles=rates[0], omegas=rates[1] if k > 1 else None,
         epsilons=rates[2] if k > 2 else None, slides=slides.transpose(2, 0, 1), condition=condition.T, valid=valid,

@@ -40,8 +40,9 @@ import numpy as np
 
 from velplan.analysis import triad
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip
-from velplan.analysis.solver import (BLOCK, Kinematics, _about_pivot, _Outputs, _solve_items, group_lengths,
-                                     solve)
+from velplan.analysis.blocks import BLOCK, Outputs, about_pivot, solve_items
+from velplan.analysis.kinematics import Kinematics, group_lengths
+from velplan.analysis.solver import solve
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
 from velplan.mechanism.structure import schedule
@@ -161,7 +162,7 @@ def _set(mech: Mechanism, key: str, value) -> Mechanism:
                          "group.N.lengths.0, group.N.guide.offset, point.P.along …")
 
 
-def _check(key: str, values: np.ndarray) -> None:
+def check_closed(key: str, values: np.ndarray) -> None:
     """Lengths must be > 0 and every number finite: one line naming the key, value, variant."""
     bad = ~np.isfinite(values)
     positive = key == "crank.length" or key.endswith((".length",)) or ".lengths." in key
@@ -177,7 +178,7 @@ def variant(mech: Mechanism, values: Mapping[str, float]) -> Mechanism:
     """``mech`` with the keys ``values`` set: one variant, checked like a loaded file."""
     out = mech
     for key, v in values.items():
-        _check(key, np.array([float(v)]))
+        check_closed(key, np.array([float(v)]))
         out = _set(out, key, float(v))
     # rebuild each value through its constructor, so that its own checks run
     groups = tuple(replace(g) for g in out.groups)
@@ -285,7 +286,7 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
     """
     vals, V = _as_values(values)
     for key, arr in vals.items():
-        _check(key, arr)
+        check_closed(key, arr)
         _set(mech, key, arr)  # an unknown key fails here, before any work
     phi = np.asarray(phi, dtype=float)
     if phi.ndim not in (1, 2) or (phi.ndim == 2 and phi.shape[0] != V):
@@ -311,7 +312,7 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
         block = {name: triad.Tracks(tuple(t[a:b]), n) for name, t in tracks.items()}
         st, conditions, shift[where] = _solve_elements(mech, per, flat_phi[where], order, block)
         if out is None:
-            out = _Outputs(st, conditions, E, order)
+            out = Outputs(st, conditions, E, order)
         out.write(st, conditions, where)
     kin = out.kinematics(mech, flat_phi, w1, float(mech.crank.epsilon) if order >= 2 else 0.0, st)
     return DesignKinematics(mech, vals, phi2, replace(kin, positions=kin.positions + shift[:, None, :]))
@@ -320,7 +321,8 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
 def _solve_compiled(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -> DesignKinematics:
     """The compiled kernel over V variants: one program, a parameter set per variant."""
     from velplan.analysis import compiled
-    from velplan.analysis.solver import _solve_block, length_scale
+    from velplan.analysis.blocks import solve_block
+    from velplan.analysis.kinematics import length_scale
 
     V, n = phi2.shape
     el = mech
@@ -331,9 +333,9 @@ def _solve_compiled(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -
     pivot = ground[el.crank.pivot].copy()
     local = _with(el, ground=tuple((name, ((p - pivot).real, (p - pivot).imag)) for name, p in ground.items()))
     items = schedule(local)
-    st, conditions = _solve_block(mech, np.zeros(1), 1.0, 0.0, length_scale(mech), "nan", schedule(mech))
+    st, conditions = solve_block(mech, np.zeros(1), 1.0, 0.0, length_scale(mech), "nan", schedule(mech))
     E = V * n
-    out = _Outputs(st, conditions, E, order)  # the kernel writes no derivative above ``order``
+    out = Outputs(st, conditions, E, order)  # the kernel writes no derivative above ``order``
     ops, par, gr = compiled.encode_design(local, V, out.names, out.links, out.slide_names, out.groups,
                                           _scale(el, ground), items)
     speed = np.broadcast_to(_speed(mech, vals), (V,)).astype(float)
@@ -381,7 +383,7 @@ def _solve_elements(mech: Mechanism, per: dict, phi: np.ndarray, order: int, tra
     st.points[crank.tip] = Motion(*crank_tip(st.points[crank.pivot].p, crank.length, phi, w, e))
     st.links[crank.link] = LinkMotion(crank.pivot, phi.copy(), w, e)
     with np.errstate(all="ignore"):
-        _solve_items(items[1:], st, phi, w, e, scale, conditions, "nan", el, tracks)
+        solve_items(items[1:], st, phi, w, e, scale, conditions, "nan", el, tracks)
     return st, conditions, np.column_stack([pivot.real, pivot.imag])
 
 
@@ -409,7 +411,7 @@ def _triad_tracks(mech: Mechanism, vals: dict, V: int) -> dict[str, list]:
 def _tracks_of(mech: Mechanism, geometry: tuple, V: int) -> dict[str, list]:
     """`_triad_tracks` of the V variants whose varied keys' values are ``geometry`` (key, bytes)."""
     vals = {k: np.broadcast_to(np.frombuffer(b), (V,)) for k, b in geometry}
-    local = [_about_pivot(variant(mech, {k: float(a[v]) for k, a in vals.items()}))[0] for v in range(V)]
+    local = [about_pivot(variant(mech, {k: float(a[v]) for k, a in vals.items()}))[0] for v in range(V)]
     out = {}
     for i, g in enumerate(mech.groups):
         if isinstance(g, Triad):

@@ -67,9 +67,9 @@ def stream(d, fmt: str, n: int = 12, drive=None, *, chunk: int = CHUNK):
     from velplan.dynamics.report import POSITION_KEYS, to_dict
 
     def pieces():
-        travels = _travels(d, n)
+        travels = d.travels(n)
         for a in range(0, len(travels), chunk):
-            rows = d._rows(travels[a:a + chunk], True)  # `Dynamics.table` at these travels
+            rows = d.table_at(travels[a:a + chunk])
             extra = [k for k in rows if k.startswith("M_") and k not in POSITION_KEYS]
             tree = {"position": np.arange(a + 1, a + len(rows["omega"]) + 1),
                     **{k: rows[k] for k in (*POSITION_KEYS, *extra)}}
@@ -80,14 +80,6 @@ def stream(d, fmt: str, n: int = 12, drive=None, *, chunk: int = CHUNK):
     head = to_dict(d, 1, drive)  # the summary: its one position is left out
     del head["positions"]
     return json_document(head, "positions", pieces())
-
-
-def _travels(d, n: int) -> np.ndarray:
-    """The crank travels (rad) of `Dynamics.table`'s ``n`` positions: ``n`` per turn over the
-    cycle, or over the run's travel with both ends."""
-    if d.run is not None:
-        return np.linspace(0.0, d.run.travel, n + 1)
-    return np.arange(n * d.spec.cycle_turns) * (2 * np.pi / n)
 
 
 def _run_harmonics(args, study) -> int:

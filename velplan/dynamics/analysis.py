@@ -106,12 +106,19 @@ class Dynamics:
         ``exact=False`` reads J, J′ and the moments off the tabulated profile instead of
         solving at these positions (equal to round-off between the loads' jumps; for curves
         of many points)."""
+        return self.table_at(self.travels(n), exact=exact)
+
+    def travels(self, n: int = 12) -> np.ndarray:
+        """Crank travels (rad) of `table`'s ``n`` positions: ``n`` per turn over the cycle, or
+        over the run's travel with both ends."""
         if self.run is not None:
-            theta = np.linspace(0.0, self.run.travel, n + 1)
-        else:
-            turns = self.spec.cycle_turns
-            theta = np.arange(n * turns) * (2 * np.pi / n)
-        return self._rows(theta, exact)
+            return np.linspace(0.0, self.run.travel, n + 1)
+        return np.arange(n * self.spec.cycle_turns) * (2 * np.pi / n)
+
+    def table_at(self, travels: np.ndarray, *, exact: bool = True) -> dict[str, np.ndarray]:
+        """`table`'s quantities at the crank travels ``travels`` (rad, from the cycle's start;
+        a slice of `travels` for a table written in chunks)."""
+        return self._rows(np.asarray(travels, dtype=float), exact)
 
     def curves(self, m: int = 720) -> dict[str, np.ndarray]:
         """The `table` quantities at ``m`` + 1 evenly spaced travels over the cycle (or the

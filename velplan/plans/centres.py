@@ -141,9 +141,10 @@ def _z(xy) -> complex:
     return complex(float(xy[0]), float(xy[1]))
 
 
-def scheme_scale(kin: Kinematics, i: int, target_mm: float = SCHEME_MM) -> float:
-    """Standard μl (m/mm) that draws the mechanism at position ``i`` within ``target_mm``."""
-    xy = kin.positions[i]
+def scheme_scale(kin: Kinematics, position: int, target_mm: float = SCHEME_MM) -> float:
+    """Standard μl (m/mm) that draws the mechanism at position number ``position`` (1…n)
+    within ``target_mm``."""
+    xy = kin.positions[position_index(position, len(kin))]
     xy = xy[np.all(np.isfinite(xy), axis=1)]
     span = float(np.ptp(xy, axis=0).max()) if len(xy) > 1 else 0.0
     return standard_scale(max(span, length_scale(kin.mechanism)) / target_mm)
@@ -164,7 +165,7 @@ def _drawn(u: complex, drafting: Drafting) -> complex:
     return complex(drafting.direction(np.array([u]))[0])
 
 
-def obvious(kin: Kinematics, i: int, drafting: Drafting = EXACT) -> list[tuple[tuple[str, str], str, object, object]]:
+def _obvious(kin: Kinematics, i: int, drafting: Drafting = EXACT) -> list[tuple[tuple[str, str], str, object, object]]:
     """The centres known at once at position ``i``: (pair, how, point or direction, the joint;
     for a slider (joint, slider, guide's link)).
 
@@ -315,7 +316,7 @@ def construct_centres(kin: Kinematics, position: int, *, drafting: Drafting = EX
     mech = kin.mechanism
     links = link_names(mech)
     size = length_scale(mech)
-    mu = mu_l if mu_l is not None else scheme_scale(kin, i)
+    mu = mu_l if mu_l is not None else scheme_scale(kin, position)
     every = [(a, b) for k, a in enumerate(links) for b in links[k + 1:]]
     known: dict[tuple[str, str], CentreStep] = {}
     steps: list[CentreStep] = []
@@ -328,7 +329,7 @@ def construct_centres(kin: Kinematics, position: int, *, drafting: Drafting = EX
                                    "remaining": remaining}))
         known[step.pair] = steps[-1]
 
-    for pair, how, where, joint in obvious(kin, i, drafting):
+    for pair, how, where, joint in _obvious(kin, i, drafting):
         if how == "slider":  # via: the slider's joint, the slider, the guide's link
             add(CentreStep(0, pair, how, direction=where, via=joint))
         else:

@@ -248,12 +248,12 @@ class _ForceDrawings:
         self.view = Trials(self._draw)
 
     def _draw(self, kind: str, k: int, grp: str | None, mu: float) -> View:
-        fa, kw = self.fa, {"number": k, "lang": self.lang, "sizes": self.fsizes}
+        fa, kw = self.fa, {"lang": self.lang, "sizes": self.fsizes}
         if kind == "group":
-            return group_view(fa, grp, k - 1, mu_l=mu, **kw)
+            return group_view(fa, grp, k, mu_l=mu, **kw)
         if kind == "poly":
-            return polygon_view(fa, grp, k - 1, mu_f=mu, **kw)
-        return lever_view(fa, k - 1, mu_v=mu, **kw)
+            return polygon_view(fa, grp, k, mu_f=mu, **kw)
+        return lever_view(fa, k, mu_v=mu, **kw)
 
 
 def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
@@ -438,12 +438,12 @@ def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
     drawing as tall as a row (the groups: the largest ESKD scale)."""
     ks = fa.kinetostatics
     eskd = eskd_scales()
-    group_span = max(max(group_extent_m(fa, grp, k - 1)) for k in chosen for grp in order)
+    group_span = max(max(group_extent_m(fa, grp, k)) for k in chosen for grp in order)
     span: dict = {"groups": group_span}
     for k in chosen:
         for grp in order:
-            span[("poly", k, grp)] = max(max(polygon_extent(ks.polygons[grp], k - 1)), 1e-9)
-        span[("lever", k)] = max(max(lever_extent(fa, k - 1)), 1e-12)
+            span[("poly", k, grp)] = max(max(polygon_extent(ks.polygons[grp], k)), 1e-9)
+        span[("lever", k)] = max(max(lever_extent(fa, k)), 1e-12)
     scale: dict = {"groups": next((mu for mu in eskd if group_span / mu <= row_h), eskd[-1])}
     for e, value in span.items():
         if e != "groups":

@@ -435,3 +435,17 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
         placed.add(shapely.box(*bounds[j]) if boxes is None else boxes[j], bounds[j], upright)
         out.append(chosen)
     return tuple(out)
+
+
+def free_direction(busy: list[float], default: float = 45.0) -> float:
+    """The direction (deg, a multiple of 5) farthest from every busy direction (deg);
+    ``default`` when nothing is busy."""
+    if not busy:
+        return default
+    best, gap = default, -1.0
+    for k in range(72):
+        cand = 5.0 * k
+        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
+        if g > gap + 1e-9:
+            best, gap = cand, g
+    return best

@@ -30,7 +30,7 @@ from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
 from velplan.views.base import (
-    View, bounds_of, digits_down, make_view, place_labels, scale_mark, scale_text, subscript)
+    View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
 
 #: Slider block length and width, mm.
 BLOCK_MM = (12.0, 7.0)
@@ -701,12 +701,7 @@ def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> li
         if L > 0 and abs(d[0] * (pivot - a)[1] - d[1] * (pivot - a)[0]) / L < radius and 0 < (pivot - a) @ d < L * L:
             ang = math.degrees(math.atan2(d[1], d[0]))
             busy += [ang, ang + 180.0]
-    best, gap = 0.0, -1.0
-    for k in range(72):
-        cand = 5.0 * k
-        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
-        if g > gap + 1e-9:
-            best, gap = cand, g
+    best = free_direction(busy, 0.0)
     sweep = 70.0 * c.sense
     start = best - sweep / 2
     arrow = rotation_arrow(pivot, radius, start, sweep, layer="mechanism")

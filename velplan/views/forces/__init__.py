@@ -38,15 +38,15 @@ from velplan.views.forces.common import (
     polygon_layers, slug)
 from velplan.views.forces.diagram import MomentCurve, moment_diagram_view
 from velplan.views.forces.group import (
-    application_points, group_extent_m, group_forces, group_links, group_view)
-from velplan.views.forces.lever import lever_balance, lever_extent, lever_forces, lever_view
+    group_extent_m, group_forces, group_links, group_view)
+from velplan.views.forces.lever import lever_balance, lever_extent, lever_view
 from velplan.views.forces.polygon import (
     LINE_OVERRUN_MM, SHORT_VECTOR_MM, polygon_extent, polygon_view)
 from velplan.views.forces.table import moment_decimals, moments_table_view
 
-__all__ = ["ForceSizes", "MomentCurve", "application_points", "group_forces", "group_view",
+__all__ = ["ForceSizes", "MomentCurve", "group_forces", "group_view",
            "polygon_view", "lever_view", "lever_balance", "moments_table_view",
            "moment_diagram_view", "group_layers", "polygon_layers", "lever_layers",
            "force_text", "slug", "group_extent_m", "polygon_extent", "lever_extent",
-           "group_links", "lever_forces", "moment_decimals", "newton", "newton_metre",
+           "group_links", "moment_decimals", "newton", "newton_metre",
            "number_text", "place_arrows", "LINE_OVERRUN_MM", "SHORT_VECTOR_MM"]

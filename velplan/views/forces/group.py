@@ -9,13 +9,14 @@ import math
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_index
 from velplan.forces.kinetostatics import reaction_label
 from velplan.mechanism.structure import material_points, pairs
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
-from velplan.views.base import View, make_view, place_labels, scale_mark, scale_text, subscript
+from velplan.views.base import View, free_direction, make_view, place_labels, scale_mark, scale_text, subscript
 from velplan.views.forces.arrows import arrow_obstacle, place_arrows
 from velplan.views.forces.common import (
     ForceSizes, Sketch, anchor_of, away_from_lines, force_text, group_layers, slug, title_lines,
@@ -29,7 +30,7 @@ _SUFFIXES = "τn∥⊥"
 # -- where each force acts ---------------------------------------------------------------
 
 
-def application_points(fa, i: int) -> dict[str, complex]:
+def _application_points(fa, i: int) -> dict[str, complex]:
     """Label of every force of the analysis → its point of application at position index
     `i`, m (complex): loads, gravity and inertia at their points, a reaction (either sense)
     at its joint or, for a prismatic pair, where its resultant crosses the guide line."""
@@ -56,11 +57,12 @@ def _point_of(points: dict[str, complex], name: str) -> complex:
     raise KeyError(name)
 
 
-def group_forces(fa, group: str, i: int) -> list[tuple[str, complex, complex]]:
+def group_forces(fa, group: str, position: int) -> list[tuple[str, complex, complex]]:
     """(label, point m, force N) of every force on the group `group` (or ``"crank"``) at
-    position index `i`, in the order of its polygon; zero forces left out."""
+    position number ``position`` (1…n), in the order of its polygon; zero forces left out."""
+    i = position_index(position, len(fa.kinematics))
     poly = fa.kinetostatics.polygons[group]
-    points = application_points(fa, i)
+    points = _application_points(fa, i)
     parts = list(poly.vectors) + list(poly.closing_vectors)
     scale = max([abs(complex(v[i])) for _, v in parts if np.isfinite(v[i])] or [0.0])
     out = []
@@ -79,13 +81,15 @@ def group_links(mech, group: str) -> tuple[str, ...]:
     return tuple(next(g for g in mech.groups if g.name == group).links)
 
 
-def group_extent_m(fa, group: str, i: int) -> tuple[float, float]:
-    """Width and height of the group's points and points of application, m."""
+def group_extent_m(fa, group: str, position: int) -> tuple[float, float]:
+    """Width and height of the group's points and points of application at position number
+    ``position`` (1…n), m."""
     mech, kin = fa.kinetostatics.mechanism, fa.kinematics
+    i = position_index(position, len(kin))
     links = group_links(mech, group)
     mp = material_points(mech)
     pts = [complex(*kin.position(p)[i]) for lk in links for p in mp.get(lk, ())]
-    pts += [z for _, z, _ in group_forces(fa, group, i)]
+    pts += [z for _, z, _ in group_forces(fa, group, position)]
     pts = np.array([z for z in pts if np.isfinite(z)])
     return float(np.ptp(pts.real)), float(np.ptp(pts.imag))
 
@@ -93,7 +97,7 @@ def group_extent_m(fa, group: str, i: int) -> tuple[float, float]:
 # -- the view ----------------------------------------------------------------------------
 
 
-def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = "ru",
+def group_view(fa, group: str, position: int, *, mu_l: float, lang: str = "ru",
                sizes: ForceSizes = ForceSizes()) -> View:
     """One Assur group (or ``"crank"``, the initial link) with every force on it.
 
@@ -103,12 +107,10 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
         The analysis at the sheet's positions.
     group : str
         Group name, or ``"crank"``.
-    i : int
-        Position index into `fa`.
+    position : int
+        Position number (1…n of `fa`), written in the title and the layer names.
     mu_l : float
         Length scale, m/mm.
-    number : int
-        Position number (1-based) written in the title and the layer names.
 
     Returns
     -------
@@ -117,6 +119,7 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
         (label, point m, force N) of the drawn arrows, ``meta["arrows"]`` their count,
         ``meta["couples"]`` (label, centre in content mm, moment N·m) of the curved arrows.
     """
+    i, number = position_index(position, len(fa.kinematics)), position
     mech = fa.kinetostatics.mechanism
     links = group_links(mech, group)
     body_layer, force_layer, text_layer = group_layers(number, group)
@@ -129,7 +132,7 @@ def group_view(fa, group: str, i: int, *, mu_l: float, number: int, lang: str = 
     # letters of the points, then the forces: arrows of a conventional length at their points
     named = joints + centres + [f.point for f in fa.actions.forces if f.link in links]
     letters = _point_letters(fa.kinematics, i, mm, named, sk.lines, text_layer, sizes.label_mm)
-    forces = group_forces(fa, group, i)
+    forces = group_forces(fa, group, position)
     force_labels = _draw_forces(sk, forces, [mm(fa.kinematics.position(q)[i])
                                              for q in dict.fromkeys(named)],
                                 letters, mm, force_layer, text_layer, sizes)
@@ -314,24 +317,11 @@ def _busy_angles(centre, segments) -> list[float]:
     return out
 
 
-def _free_angle(busy: list[float]) -> float:
-    """The direction (deg, a multiple of 5) farthest from every busy direction."""
-    if not busy:
-        return 45.0
-    best, gap = 45.0, -1.0
-    for k in range(72):
-        cand = 5.0 * k
-        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
-        if g > gap + 1e-9:
-            best, gap = cand, g
-    return best
-
-
 def _moment_arc(centre, value: float, text: str, busy: list[float], *, radius: float,
                 layer: str, text_layer: str, size: float) -> tuple[list[Primitive], Text]:
     """A curved arrow about `centre` in the sense of `value` (counter-clockwise positive),
     centred on the freest direction, and its label beyond the arc."""
-    mid = _free_angle(busy)
+    mid = free_direction(busy)
     sweep = 110.0 if value >= 0 else -110.0
     arc = rotation_arrow(np.asarray(centre, float), radius, mid - sweep / 2, sweep, layer=layer)
     a = math.radians(mid)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_index
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
@@ -26,26 +27,27 @@ from velplan.views.plan import plan_steps
 TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
 
 
-def lever_extent(fa, i: int) -> tuple[float, float]:
-    """Width and height of the turned velocity plan at μv = 1 (m/s)/mm, i.e. m/s."""
-    v = fa.kinematics.velocities[i]
+def lever_extent(fa, position: int) -> tuple[float, float]:
+    """Width and height of the turned velocity plan at position number ``position`` (1…n) at
+    μv = 1 (m/s)/mm, i.e. m/s."""
+    v = fa.kinematics.velocities[position_index(position, len(fa.kinematics))]
     v = v[np.all(np.isfinite(v), axis=1)]
     v = np.vstack([v, [[0.0, 0.0]]])
     span = np.ptp(v, axis=0)
     return float(span[1]), float(span[0])
 
 
-def lever_balance(fa, i: int, mu_v: float):
+def lever_balance(fa, mu_v: float):
     """(velocity plan at μv, lever at μv): the force analysis' plan and Zhukovsky's lever
-    (`ForceAnalysis.lever`, every position) read at the scale μv ((m/s)/mm) of a drawing;
-    `i` is the position index the drawing shows (the lever holds them all)."""
+    (`ForceAnalysis.lever`, every position) read at the scale μv ((m/s)/mm) of a drawing."""
     res = fa.plan.at_scale(mu_v)
     return res, fa.lever.at_scale(res.scale)
 
 
-def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
+def lever_view(fa, position: int, *, mu_v: float, lang: str = "ru",
                sizes: ForceSizes = ForceSizes()) -> View:
-    """Zhukovsky's lever at position index `i`: the velocity plan at μv turned by 90°.
+    """Zhukovsky's lever at position number ``position`` (1…n): the velocity plan at μv
+    turned by 90°.
 
     Returns
     -------
@@ -54,8 +56,9 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
         ``"mb_lever"``, ``"mb_kinetostatics"`` (N·m, as computed), ``"percent"``,
         ``"balancing_force"`` (N, signed) and the texts written (``"balance"``).
     """
+    i, number = position_index(position, len(fa.kinematics)), position
     body_layer, force_layer, text_layer = lever_layers(number)
-    res, lever = lever_balance(fa, i, mu_v)
+    res, lever = lever_balance(fa, mu_v)
     drawings = plan_steps(res, number, lang=lang)
     sk = Sketch()
     _draw_turned_plan(sk, drawings, f"plan-v-{number}", body_layer)
@@ -63,7 +66,7 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
     images = _image_groups(drawings, res, i)
     letters = [_image_letter(p, names, sk.lines, text_layer, sizes.label_mm)
                for p, names in images]
-    forces = lever_forces(lever, i)
+    forces = _lever_forces(lever, i)
     texts = _draw_forces(sk, fa, lever, i, forces, [p for p, _ in images], letters, lang, sizes,
                          force_layer, text_layer)
     items = sk.items + list(place_labels(letters + texts, sk.clear_of(), rings=10))
@@ -84,7 +87,7 @@ def lever_view(fa, i: int, *, mu_v: float, number: int, lang: str = "ru",
                            "forces": tuple(forces)})
 
 
-def lever_forces(lever, i: int) -> list[tuple[str, np.ndarray, complex]]:
+def _lever_forces(lever, i: int) -> list[tuple[str, np.ndarray, complex]]:
     """(label, image turned mm, force N) of the forces on the lever at position index `i`,
     those of no size left out."""
     forces = [(f.label, xy(complex(f.image[i])), complex(f.vector[i])) for f in lever.forces]

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_index
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.views.base import View, make_view, place_labels, unit
@@ -23,16 +24,19 @@ SHORT_VECTOR_MM = 2.5
 LINE_OVERRUN_MM = 8.0
 
 
-def polygon_extent(poly, i: int) -> tuple[float, float]:
-    """Width and height of the polygon's vertices at μF = 1 N/mm, i.e. N."""
-    z = poly.vertices(1.0)[i]
+def polygon_extent(poly, position: int) -> tuple[float, float]:
+    """Width and height of the polygon's vertices at position number ``position`` (1…n) at
+    μF = 1 N/mm, i.e. N."""
+    verts = poly.vertices(1.0)
+    z = np.asarray(verts[position_index(position, len(verts))])
     z = z[np.isfinite(z)]
     return float(np.ptp(z.real)), float(np.ptp(z.imag))
 
 
-def polygon_view(fa, group: str, i: int, *, mu_f: float, number: int, lang: str = "ru",
+def polygon_view(fa, group: str, position: int, *, mu_f: float, lang: str = "ru",
                  sizes: ForceSizes = ForceSizes()) -> View:
-    """The force polygon of `group` (or ``"crank"``) at position index `i`, at μF (N/mm).
+    """The force polygon of `group` (or ``"crank"``) at position number ``position`` (1…n), at
+    μF (N/mm).
 
     Returns
     -------
@@ -41,6 +45,7 @@ def polygon_view(fa, group: str, i: int, *, mu_f: float, number: int, lang: str 
         holds the drawn vertices (complex, mm from the pole), ``meta["labels"]`` the vector
         labels in drawing order.
     """
+    i, number = position_index(position, len(fa.kinematics)), position
     ks = fa.kinetostatics
     mech = ks.mechanism
     poly = ks.polygons[group]

@@ -1,0 +1,238 @@
+"""The numpy engine: the solving schedule cut to the points asked for, and the groups solved
+in closed form over a block of crank angles into preallocated outputs (`velplan.analysis.groups`,
+`velplan.analysis.triad`). `velplan.analysis.solver.solve` drives it block by block.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable
+
+import numpy as np
+
+from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
+from velplan.analysis.kinematics import SINGULAR_BOUND, WELL_CONDITIONED, Kinematics, velocity_bound
+from velplan.errors import AssemblyError, MechanismError
+from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism, Triad
+from velplan.mechanism.structure import guides_of, joints_in, points_out, schedule
+
+
+def needed_items(mech: Mechanism, points: Iterable[str]) -> tuple:
+    """The solving schedule cut to what ``points`` need: the crank, the groups and link points
+    that determine them or a point, guide or link they rest on.
+
+    Raises
+    ------
+    MechanismError
+        A name is not a point of ``mech``.
+    """
+    items = schedule(mech)
+    want = set(points)
+    made: dict[str, object] = {name: None for name, _ in mech.ground}
+    for item in items:
+        made.update(dict.fromkeys(_produced(item)[0], item))
+    unknown = sorted(want - set(made))
+    if unknown:
+        raise MechanismError(f"unknown point {unknown[0]!r}; known points: {', '.join(made)}")
+    want_links: set[str] = set()
+    keep = []
+    for item in reversed(items):
+        pts, links = _produced(item)
+        if isinstance(item, Crank) or pts & want or links & want_links:
+            keep.append(item)
+            need_pts, need_links = _needs(item)
+            want |= need_pts
+            want_links |= need_links
+    return tuple(reversed(keep))
+
+
+def _produced(item) -> tuple[set[str], set[str]]:
+    if isinstance(item, Crank):
+        return {item.tip}, {item.link}
+    if isinstance(item, LinkPoint):
+        return {item.name}, set()
+    return set(points_out(item)), set(item.links)
+
+
+def _needs(item) -> tuple[set[str], set[str]]:
+    if isinstance(item, Crank):
+        return {item.pivot}, set()
+    if isinstance(item, LinkPoint):
+        return set(), {item.link}
+    return set(joints_in(item)), {g.link for g in guides_of(item) if g.link != GROUND}
+
+
+BLOCK = 16384
+"""Crank angles solved at a time (the arrays of a block stay in the CPU's caches)."""
+
+
+def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None) -> tuple[State, dict[str, np.ndarray]]:
+    """The schedule ``items`` solved at the crank angles ``phi`` (rad), crank rates ``w1``, ``e1``:
+    the motions and each group's condition estimate (NaN where it does not close). ``tracks``
+    holds each class III group's branch over the turn (`velplan.analysis.triad.track`)."""
+    n = phi.shape[0]
+    st = State(n)
+    zeros = np.zeros(n, dtype=complex)
+    for name, (x, y) in mech.ground:
+        st.points[name] = Motion(np.full(n, complex(x, y)), zeros, zeros)
+    zr = np.zeros(n)
+    st.links[GROUND] = LinkMotion(mech.ground[0][0], zr, zr, zr)
+    conditions: dict[str, np.ndarray] = {}
+    with np.errstate(all="ignore"):  # singular positions give inf/NaN, masked by `valid`
+        solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tracks)
+    return st, conditions
+
+
+def solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tracks=None) -> None:
+    """Solve ``items`` in order into the state ``st`` (see `solve_block`)."""
+    for item in items:
+        if isinstance(item, Crank):
+            solve_crank(item, st, phi, w1, e1)
+        elif isinstance(item, LinkPoint):
+            link = st.links[item.link]
+            o = st.points[link.origin]
+            st.points[item.name] = Motion(*link_point(o.p, o.v, o.a, link.theta, link.omega, link.epsilon,
+                                                      item.along, item.offset))
+        else:
+            if isinstance(item, Triad):
+                from velplan.analysis import triad
+
+                res = triad.solve_triad(item, st, phi, tracks[item.name], scale)
+            else:
+                res = solve_group(item, st, scale)
+            check_closed(item, res.closed, phi, on_failure)
+            st.points.update(res.points)
+            st.links.update(res.links)
+            st.slides.update(res.slides)
+            conditions[item.name] = np.where(res.closed, res.condition, np.nan)
+
+
+def solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> None:
+    st.points[c.tip] = Motion(*crank_tip(st.points[c.pivot].p, c.length, phi, w1, e1))
+    n = phi.shape[0]
+    st.links[c.link] = LinkMotion(c.pivot, phi.copy(), np.full(n, w1), np.full(n, e1))
+
+
+def group_point(g: Group) -> str:
+    """The point a group is said to solve for, used in messages."""
+    if isinstance(g, (RPR, RPP)):
+        return g.coincident or g.joint
+    if isinstance(g, Triad):
+        return g.joints[0]
+    return g.point
+
+
+def check_closed(g: Group, closed: np.ndarray, phi: np.ndarray, on_failure: str) -> None:
+    if on_failure == "raise" and not closed.all():
+        bad = float(np.degrees(phi[np.argmin(closed)]))
+        raise AssemblyError(
+            f"group {g.name!r} ({g.kind}) cannot be assembled: point {group_point(g)!r} "
+            f"has no position at crank angle {bad:.6g}°",
+            group=g.name,
+            point=group_point(g),
+            phi_deg=bad,
+        )
+
+
+def about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
+    """``mech`` moved so that its crank's pivot is at the origin, and the shift (m)."""
+    pivot = np.array(dict(mech.ground)[mech.crank.pivot], float)
+    if not pivot.any():
+        return mech, pivot
+    from dataclasses import replace
+
+    ground = tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in mech.ground)
+    groups = tuple(replace(g, assembly=tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in g.assembly))
+                   if isinstance(g, Triad) else g for g in mech.groups)
+    return replace(mech, ground=ground, groups=groups), pivot
+
+
+class Outputs:
+    """Preallocated result arrays, point- (link-, slide-, group-) major so that each block
+    writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
+    derivatives up to ``order`` are kept."""
+
+    def __init__(self, st: State, conditions: dict, n: int, order: int = 2):
+        self.names = list(st.points)
+        self.links = [k for k in st.links if k != GROUND]
+        self.slide_names = list(st.slides)
+        self.groups = list(conditions)
+        self.order = order
+        P, L, S, G = len(self.names), len(self.links), len(self.slide_names), len(self.groups)
+        k = order + 1
+        self.z = np.empty((k, P, n), dtype=complex)  # positions, velocities, accelerations
+        self.rates = np.empty((k, L, n))  # angles, ω, ε
+        self.slides = np.empty((S, k, n))
+        self.condition = np.empty((G, n))
+        self.valid = np.empty(n, dtype=bool)
+
+    def write(self, st: State, conditions: dict, where: slice) -> None:
+        """Copy a block's motions to the positions ``where``, then mark them (`_mark`) while
+        they are still in the CPU's caches."""
+        k = self.order + 1
+        for j, name in enumerate(self.names):
+            m = st.points[name]
+            for d, arr in zip(range(k), (m.p, m.v, m.a)):
+                self.z[d, j, where] = arr
+        for j, name in enumerate(self.links):
+            m = st.links[name]
+            for d, arr in zip(range(k), (m.theta, m.omega, m.epsilon)):
+                self.rates[d, j, where] = arr
+        for j, name in enumerate(self.slide_names):
+            m = st.slides[name]
+            for d, arr in zip(range(k), (m.p, m.v, m.a)):
+                self.slides[j, d, where] = arr.real
+        for j, name in enumerate(self.groups):
+            self.condition[j, where] = conditions[name]
+        self._mark(where)
+
+    def _mark(self, where: slice) -> None:
+        """Valid positions among ``where`` (every output finite, every group closed and its
+        velocities within `SINGULAR_BOUND`), and their angles wrapped into (−π, π]."""
+        z, rates, condition = self.z[:, :, where], self.rates[:, :, where], self.condition[:, where]
+        with np.errstate(invalid="ignore"):
+            valid = np.isfinite(z.sum(axis=(0, 1))) & np.isfinite(rates[1:].sum(axis=(0, 1)))
+            valid &= (np.isfinite(condition) & (condition > 0)).all(axis=0)
+        if self.order >= 1 and condition.size and not np.fmin.reduce(condition, axis=None) >= WELL_CONDITIONED:
+            valid &= velocity_bound(condition) <= SINGULAR_BOUND
+        self.valid[where] = valid
+        for row in rates[0]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others
+            if ((row > np.pi) | (row <= -np.pi)).any():
+                row[:] = wrap_angle(row)
+
+    def keep(self, order: int) -> None:
+        """Drop the derivatives above ``order`` (views: nothing is copied)."""
+        self.order = order
+        self.z, self.rates, self.slides = self.z[:order + 1], self.rates[:order + 1], self.slides[:, :order + 1]
+
+    def kinematics(self, mech, phi, w1, e1, st: State, valid: np.ndarray | None = None) -> Kinematics:
+        """The results as `Kinematics`: ``valid`` as given (the compiled kernel's, which wraps its
+        angles itself) and refused where singular, else as `write` marked it block by block."""
+        n = phi.shape[0]
+        k = self.order + 1
+        xy = self.z.view(float).reshape(k, len(self.names), n, 2).transpose(0, 2, 1, 3)
+        if valid is None:
+            valid = self.valid
+        elif self.order >= 1 and self.condition.size:
+            valid = valid & (velocity_bound(self.condition) <= SINGULAR_BOUND)
+        rates = self.rates.transpose(0, 2, 1)
+        return Kinematics(
+            mechanism=mech,
+            phi=phi,
+            omega1=w1,
+            epsilon1=e1,
+            positions=xy[0],
+            velocities=xy[1] if k > 1 else None,
+            accelerations=xy[2] if k > 2 else None,
+            point_index={name: i for i, name in enumerate(self.names)},
+            angles=rates[0],
+            omegas=rates[1] if k > 1 else None,
+            epsilons=rates[2] if k > 2 else None,
+            link_index={name: i for i, name in enumerate(self.links)},
+            link_origins={name: st.links[name].origin for name in self.links},
+            slides=self.slides.transpose(2, 0, 1),
+            slide_index={name: i for i, name in enumerate(self.slide_names)},
+            condition=self.condition.T,
+            group_index={name: i for i, name in enumerate(self.groups)},
+            valid=valid,
+            order=self.order,
+        )
