@@ -53,7 +53,7 @@ def test_views_scales_and_results(shaper):
     fly = shaper.dynamics.flywheel
     text = "\n".join(_texts(shaper))
     assert "Energy–mass diagram (Wittenbauer)" in text
-    assert shaper.info.title == "Dynamic analysis of the machine: shaper"
+    assert shaper.info.title == "Dynamic analysis of the machine: shaping machine"
     assert f"{fly.exact:.3f}" in text  # J_I exact, six figures
     # the second half of the sheet is used: every view is at least 60 mm on its longer side
     for name, v in shaper.views.items():

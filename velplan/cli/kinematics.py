@@ -31,9 +31,10 @@ def register(sub) -> None:
     where.add_argument("--angles", metavar="DEG,DEG,…", help="absolute crank angles in degrees")
     where.add_argument("--positions", metavar="N", type=positive_int, default=12,
                        help="N positions evenly spaced from the reference position (default 12)")
-    p.add_argument("--format", choices=("table", "csv", "json", "jsonl"), default="table",
-                   help="table, csv (a row per position), json (one document) or jsonl (a JSON object per "
-                        "position, per line); csv, json and jsonl are written as they are computed")
+    p.add_argument("--format", choices=("table", "csv", "json", "jsonl", "parquet"), default="table",
+                   help="table, csv (a row per position), json (one document), jsonl (a JSON object per "
+                        "position, per line) or parquet (the CSV's columns; -o FILE, pip install "
+                        "\".[parquet]\"); all but table are written as they are computed")
     p.add_argument("--engine", choices=("auto", "numpy", "compiled"), default="auto",
                    help="solver engine: compiled needs numba (pip install numba); "
                         "auto uses it from 2e6 angles when installed (default)")
@@ -95,25 +96,29 @@ def run_info(args) -> int:
 
 def run_analyze(args) -> int:
     angles = parse_angles(args.angles) if args.angles is not None else None
+    if args.format != "table":
+        from velplan.cli.stream import check_format
+
+        check_format(args.format, args.output)
     study = Study(args.mechanism, n=args.positions, angles=angles, engine=args.engine)
     if args.format == "table":
         emit(to_table(study.kinematics), args.output)
         return 0
-    from velplan.cli.stream import open_output
+    from velplan.cli.stream import write_rows
 
-    with open_output(args.output, binary=True) as out:
-        for piece in stream(study, args.format):
-            out.write(piece)
+    w, e = study.crank_motion
+    write_rows(args.output, args.format, chunks(study, args.format),
+               head=lambda: _head(study.mechanism.name, w, e))
     return 0
 
 
 def to_json(kin: Kinematics) -> str:
     """The analysis as JSON in SI units with radians (null where not assembled), as
     ``velplan analyze --format json`` writes it."""
-    from velplan.cli.stream import json_document
+    from velplan.cli.stream import json_document, json_rows
 
     return b"".join(json_document(_head(kin.mechanism.name, kin.omega1, kin.epsilon1), "positions",
-                                  [_entries(kin, 0, "json")])).decode("utf-8")
+                                  [json_rows(*_entries(kin, 0), "json")])).decode("utf-8")
 
 
 def _rows(kin: Kinematics) -> tuple[list[str], list[list[float]]]:
@@ -143,12 +148,12 @@ def stream(study: Study, fmt: str = "csv", chunk: int = STREAM_CHUNK):
     memory stays bounded however many positions there are. JSON lines hold the document's
     per-position objects with numbers to 12 significant digits (as the CSV); the document's
     numbers are exact."""
-    w, e = study.crank_motion
-    pieces = _pieces(study, fmt, chunk)
+    from velplan.cli.stream import json_document, text_pieces
+
+    pieces = text_pieces(chunks(study, fmt, chunk), fmt)
     if fmt != "json":
         return pieces
-    from velplan.cli.stream import json_document
-
+    w, e = study.crank_motion
     return json_document(_head(study.mechanism.name, w, e), "positions", pieces)
 
 
@@ -156,28 +161,27 @@ def _head(name: str, omega1, epsilon1) -> dict:
     return {"mechanism": name, "omega1": omega1, "epsilon1": epsilon1}
 
 
-def _pieces(study: Study, fmt: str, chunk: int):
-    """The text of each chunk of positions: CSV rows or JSON entries (`velplan.cli.stream.json_rows`)."""
+def chunks(study: Study, fmt: str, chunk: int = STREAM_CHUNK):
+    """(tree, reasons) of each chunk of positions (`velplan.cli.stream.write_rows`): the CSV's
+    columns for "csv" and "parquet", the JSON objects' keys otherwise."""
     from velplan.analysis.chunks import chunked_kinematics
-    from velplan.cli.numfmt import rows
-    from velplan.cli.stream import csv_header
 
     w, e = study.crank_motion
     for a, kin in chunked_kinematics(study.mechanism, study.phi, omega1=w, epsilon1=e, engine=study.engine,
                                      chunk=chunk):
-        if fmt != "csv":
-            yield _entries(kin, a, fmt)
+        if fmt not in ("csv", "parquet"):
+            yield _entries(kin, a)
             continue
         head, cols = _columns(kin, a)
-        vals = np.column_stack(cols)
-        vals[~kin.valid, 2:] = np.nan  # a position not assembled or singular: empty cells
-        yield (csv_header(head) if a == 0 else b"") + rows(vals, [b""] + [b","] * (vals.shape[1] - 1) + [b"\n"])
+        bad = ~kin.valid  # a position not assembled or singular: its angle, then empty cells
+        yield {name: (np.where(bad, np.nan, c) if m > 1 and bad.any() else c)
+               for m, (name, c) in enumerate(zip(head, cols))}, None
 
 
 def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarray]]:
     """CSV header and columns of `to_csv`, positions numbered from ``first`` + 1."""
     head = ["position", "phi_deg"]
-    cols = [np.arange(first + 1, first + len(kin) + 1, dtype=float), kin.phi_deg]
+    cols = [np.arange(first + 1, first + len(kin) + 1), kin.phi_deg]
     for k, j in kin.point_index.items():
         for q, arr in (("x", kin.positions[:, j, 0]), ("y", kin.positions[:, j, 1]),
                        ("vx", kin.velocities[:, j, 0]), ("vy", kin.velocities[:, j, 1]),
@@ -191,12 +195,9 @@ def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarra
     return head, cols
 
 
-def _entries(kin: Kinematics, first: int, fmt: str) -> bytes:
-    """The positions of ``kin`` (numbered from ``first`` + 1) as JSON objects (``fmt`` "json" or
-    "jsonl", `velplan.cli.stream.json_rows`); one not assembled or singular has null rates and
-    says why."""
-    from velplan.cli.stream import json_rows
-
+def _entries(kin: Kinematics, first: int) -> tuple[dict, dict]:
+    """(tree, reasons) of the positions of ``kin`` (numbered from ``first`` + 1) as JSON objects
+    (`velplan.cli.stream.json_rows`); one not assembled or singular has null rates and says why."""
     ok = kin.valid
     singular, least = kin.singular, kin.min_condition()
     reasons = {int(i): (f"singular: a group at a toggle (condition {least[i]:.2g}), velocities undetermined"
@@ -211,7 +212,7 @@ def _entries(kin: Kinematics, first: int, fmt: str) -> bytes:
             "slides": {k: {"s": kin.slides[:, j, 0], "v": rate(kin.slides[:, j, 1]), "a": rate(kin.slides[:, j, 2])}
                        for k, j in kin.slide_index.items()},
             "condition": {k: kin.condition[:, j] for k, j in kin.group_index.items()}}
-    return json_rows(tree, fmt, reasons)
+    return tree, reasons
 
 
 def to_table(kin: Kinematics) -> str:

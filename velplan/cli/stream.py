@@ -1,6 +1,7 @@
 """Output written as it is computed: a text stream to standard output or to a file that
 appears, atomically, only when it is complete (no half-written file after an error); rows of
-many positions as CSV, JSON lines or one JSON document, a chunk of positions at a time."""
+many positions as CSV, JSON lines, one JSON document or Parquet (a row group per chunk), a
+chunk of positions at a time."""
 
 from __future__ import annotations
 
@@ -192,3 +193,74 @@ def _json_numbers(values: np.ndarray, chunk: int = 65536) -> Iterator[bytes]:
         text = rows(values[a:a + chunk, None], [b", ", b""], na=b"null", exact=True)
         yield text[2:] if a == 0 else text
     yield b"]"
+
+
+# ---- chunks of rows to a file or standard output --------------------------------------------
+# A command yields, per chunk of positions, (tree, reasons): the tree of its numbers (for "csv"
+# and "parquet" the CSV's columns) and the positions that say why they have no rates (or None).
+
+BINARY = ("npz", "parquet")
+"""Formats that are written only to a file (``-o``)."""
+
+
+def check_format(fmt: str, output) -> None:
+    """Refuse a binary ``fmt`` to standard output, and Parquet without pyarrow (one line each)."""
+    if fmt in BINARY and not output:
+        raise VelplanError(f"--format {fmt} is binary: give -o FILE")
+    if fmt == "parquet":
+        try:
+            import pyarrow  # noqa: F401
+            import pyarrow.parquet  # noqa: F401
+        except ImportError:
+            raise VelplanError('--format parquet needs pyarrow: pip install ".[parquet]"') from None
+
+
+def text_pieces(chunks: Iterable[tuple[dict, dict | None]], fmt: str) -> Iterator[bytes]:
+    """Each chunk's rows as CSV (the header before the first), JSON lines ("jsonl") or the
+    entries of `json_document` ("json")."""
+    for n, (tree, reasons) in enumerate(chunks):
+        yield csv_rows(tree, header=n == 0) if fmt == "csv" else json_rows(tree, fmt, reasons)
+
+
+def write_rows(output, fmt: str, chunks: Iterable[tuple[dict, dict | None]], head=None) -> None:
+    """Write ``chunks`` to ``output`` (None: standard output) as they come: CSV, JSON lines,
+    Parquet, or with ``head`` (a callable giving `json_document`'s head) one JSON document."""
+    with open_output(output, binary=True) as out:
+        if fmt == "parquet":
+            write_parquet(out, (tree for tree, _ in chunks))
+            return
+        pieces = text_pieces(chunks, fmt)
+        for piece in json_document(head(), "positions", pieces) if fmt == "json" else pieces:
+            out.write(piece)
+
+
+def write_parquet(out, trees: Iterable[dict]) -> int:
+    """The numbers of each tree as one row group of a Parquet file written to ``out`` (a binary
+    file object): the CSV's columns (dotted names), float64 with null where not finite, whole
+    numbers int64, booleans bool. Returns the number of row groups."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    writer, groups = None, 0
+    try:
+        for tree in trees:
+            names, cols = zip(*_numbers(tree))
+            table = pa.Table.from_arrays([_arrow(c) for c in cols], names=list(names))
+            if writer is None:
+                writer = pq.ParquetWriter(out, table.schema)
+            writer.write_table(table.cast(writer.schema), row_group_size=max(table.num_rows, 1))
+            groups += 1
+    finally:
+        if writer is not None:
+            writer.close()
+    return groups
+
+
+def _arrow(column: np.ndarray):
+    """One column as an Arrow array: floats with null where not finite."""
+    import pyarrow as pa
+
+    a = np.asarray(column)
+    if a.dtype.kind == "f":
+        return pa.array(a.astype(np.float64, copy=False), mask=~np.isfinite(a))
+    return pa.array(a.astype(np.int64, copy=False) if a.dtype.kind in "iu" else a)

@@ -211,8 +211,20 @@ def moment_curve(study: Study) -> MomentCurve:
     """M_b by kinetostatics over a revolution from position 1, on the study's fine turn."""
     turn = study.turn_forces()
     rot = study.sense * (turn.kinematics.phi - turn.kinematics.phi[0])
-    return MomentCurve(rot, np.asarray(turn.balancing_moments["kinetostatics"], float),
-                       np.asarray(study.forces().kinetostatics.balancing_moment, float))
+    mom = np.asarray(turn.balancing_moments["kinetostatics"], float)
+    return MomentCurve(rot, mom, np.asarray(study.forces().kinetostatics.balancing_moment, float),
+                       turn_mean(mom))
+
+
+def turn_mean(moment: np.ndarray) -> float:
+    """Mean (N·m) of a moment sampled over a closed turn (the last sample repeats the first):
+    0 where it is round-off of a moment whose work over the turn is nil."""
+    ok = moment[np.isfinite(moment)]
+    if ok.size < 2:
+        return float("nan")
+    mean = float(np.mean(ok[:-1]))
+    span = max(float(ok.max()), 0.0) - min(float(ok.min()), 0.0)
+    return 0.0 if abs(mean) < 1e-9 * max(span, 1e-12) else mean
 
 
 def _fit_diagram(req: Request, region) -> View:

@@ -21,11 +21,13 @@ LAYER, TEXT_LAYER = "mb-diagram", "mb-diagram-labels"
 @dataclass(frozen=True)
 class MomentCurve:
     """M_b over a revolution from position 1: turn angles (rad, 0…2π) and moments (N·m) of a
-    fine grid, and the values at the n positions."""
+    fine grid, the values at the n positions, and the mean over the turn (N·m; 0 where its
+    work over the turn is round-off, NaN with fewer than two finite values)."""
 
     turn: np.ndarray
     moment: np.ndarray
     at_positions: np.ndarray
+    mean: float
 
 
 def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
@@ -62,9 +64,7 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
     for k, v in enumerate(at):
         if np.isfinite(v):
             items.append(Circle((k * length_mm / n, float(v) / mu_m), 0.6, LAYER, "thin", "solid"))
-    mean = float(np.mean(mom[ok][:-1])) if ok.sum() > 1 else float("nan")
-    if abs(mean) < 1e-9 * span:
-        mean = 0.0  # round-off of a moment whose work over the turn is nil
+    mean = curve.mean
     if np.isfinite(mean):
         items += _mean_line(mean / mu_m, mean, length_mm, lang, label_mm)
     y = top + 8.0 + 1.6 * label_mm
