@@ -1,9 +1,9 @@
 """Large outputs written as they are computed (issue 27, item 6): wall time and peak memory of
 a fresh process for
 
-* ``velplan analyze four-bar --positions N --format csv|jsonl|json``,
-* ``velplan forces shaper --positions N --format csv|jsonl|json``,
-* ``velplan dynamics triad-rocker --positions N --format csv|jsonl|json``,
+* ``velplan analyze four-bar --positions N --format csv|jsonl|json|parquet``,
+* ``velplan forces shaper --positions N --format csv|jsonl|json|parquet``,
+* ``velplan dynamics triad-rocker --positions N --format csv|jsonl|json|parquet``,
 
 each to a file (``-o``), once; peak memory is the process's max RSS (GNU time, else
 ``getrusage`` of the children). With ``--before OLD_ROOT`` the JSON documents are also written
@@ -33,11 +33,11 @@ RUN = "import sys; sys.path.insert(0, sys.argv[1]); from velplan.cli import main
 COMMANDS = {"analyze": ["analyze", "four-bar"], "forces": ["forces", "shaper"],
             "dynamics": ["dynamics", "triad-rocker"]}
 CASES = [("analyze", 100_000, "json"), ("analyze", 1_000_000, "csv"), ("analyze", 1_000_000, "jsonl"),
-         ("analyze", 1_000_000, "json"),
+         ("analyze", 1_000_000, "json"), ("analyze", 1_000_000, "parquet"),
          ("forces", 10_000, "jsonl"), ("forces", 100_000, "jsonl"), ("forces", 100_000, "csv"),
-         ("forces", 100_000, "json"),
+         ("forces", 100_000, "json"), ("forces", 100_000, "parquet"),
          ("dynamics", 10_000, "csv"), ("dynamics", 100_000, "csv"), ("dynamics", 100_000, "jsonl"),
-         ("dynamics", 100_000, "json"), ("dynamics", 1_000_000, "csv")]
+         ("dynamics", 100_000, "json"), ("dynamics", 1_000_000, "csv"), ("dynamics", 1_000_000, "parquet")]
 BEFORE = [("analyze", 10_000, "json"), ("analyze", 100_000, "json"), ("forces", 10_000, "json"),
           ("dynamics", 3600, "json")]
 """JSON documents written by both trees (at most the positions the older one accepts)."""
@@ -76,7 +76,7 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="10⁴ positions only")
     args = parser.parse_args()
     load0 = load_average()
-    cases = [(c, 10_000, f) for c in COMMANDS for f in ("csv", "jsonl", "json")] if args.quick else CASES
+    cases = [(c, 10_000, f) for c in COMMANDS for f in ("csv", "jsonl", "json", "parquet")] if args.quick else CASES
     rows = [row(c, n, f, run(c, n, f)) for c, n, f in cases]
     paired = []
     for c, n, f in BEFORE if args.before else ():
@@ -102,7 +102,8 @@ def main() -> None:
         "Positions are solved (and for `forces` analysed, for `dynamics` reduced) and written a chunk at a "
         "time: 16 384 positions for `analyze` and `dynamics`, 4096 for `forces`. CSV and JSON lines write numbers "
         "to 12 significant digits, the JSON document exactly (`repr`, as `json.dumps` does; each position's "
-        f"object on one line). {note}. `forces` over more than one chunk first runs the kinetostatics over all "
+        "object on one line), Parquet the CSV's columns as float64 (pyarrow, a row group per chunk, "
+        f"Snappy-compressed, pyarrow's default). {note}. `forces` over more than one chunk first runs the kinetostatics over all "
         "positions once for the plan's scale and the largest |M_b| (what the whole analysis reads off all "
         "positions), so it does the work about twice.",
         "",

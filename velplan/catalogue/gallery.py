@@ -3,7 +3,9 @@
 Writes ``OUTDIR/NAME.svg`` (and ``NAME.png`` with ``--png``) — the kinematic-analysis sheet
 that ``velplan sheet NAME`` draws — and ``OUTDIR/index.md``, a table of the mechanisms with
 their structure, stroke H, time-ratio coefficient K and a link to each sheet. The output is
-not kept in the repository; regenerate it when you want to look.
+not kept in the repository; regenerate it when you want to look. ``--contact FILE`` also
+writes a contact sheet, every sheet's PNG as a captioned thumbnail on one image (the README's
+gallery, ``docs/gallery.png``, is made this way).
 """
 
 from __future__ import annotations
@@ -65,6 +67,43 @@ def write_gallery(outdir: str | Path, *, names=None, png: bool = False, lang: st
     return write_atomic(out / "index.md", text)
 
 
+def contact_sheet(pngs: dict[str, Path], path: str | Path, *, columns: int = 5,
+                  thumb_px: int = 320) -> Path:
+    """One image of the sheets' PNGs (``pngs``: caption → file), ``columns`` thumbnails
+    ``thumb_px`` pixels wide to a row, each captioned, in 16 greys; written atomically to ``path``."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    if not pngs:
+        raise VelplanError("contact sheet: no sheets to put on it")
+    images = {name: plt.imread(str(f)) for name, f in pngs.items()}
+    aspect = max(img.shape[0] / img.shape[1] for img in images.values())
+    rows = math.ceil(len(images) / columns)
+    dpi = 100
+    cell_w, cell_h = thumb_px / dpi, thumb_px * aspect / dpi + 0.22
+    fig, axes = plt.subplots(rows, columns, figsize=(columns * cell_w, rows * cell_h), dpi=dpi,
+                             squeeze=False)
+    for ax in axes.flat:
+        ax.set_axis_off()
+    for ax, (name, img) in zip(axes.flat, images.items()):
+        ax.imshow(img, interpolation="lanczos")
+        ax.set_title(name, fontsize=8, pad=2)
+    fig.subplots_adjust(left=0.005, right=0.995, top=0.99, bottom=0.005, wspace=0.03, hspace=0.12)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    plt.close(fig)
+    from PIL import Image  # matplotlib's own dependency
+
+    grey = Image.open(io.BytesIO(buf.getvalue())).convert("L").quantize(colors=16)  # line art: 16 greys
+    out = io.BytesIO()
+    grey.save(out, format="PNG", optimize=True)
+    return write_atomic(Path(path), out.getvalue())
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m velplan.catalogue.gallery",
                                 description="Draw a sheet of every catalogue mechanism and an index.md.")
@@ -73,6 +112,8 @@ def main(argv=None) -> int:
     p.add_argument("--lang", choices=LANGS, default="en")
     p.add_argument("--format", choices=("A1", "A2", "A3"), default="A1")
     p.add_argument("--only", metavar="NAME,…", help="only these catalogue mechanisms")
+    p.add_argument("--contact", metavar="FILE", help="also a contact sheet of every sheet as one PNG "
+                   "(implies --png)")
     args = p.parse_args(argv)
     names = None if args.only is None else [n.strip() for n in args.only.split(",") if n.strip()]
 
@@ -82,8 +123,11 @@ def main(argv=None) -> int:
             sys.stderr.write("\n")
 
     try:
-        index = write_gallery(args.outdir, names=names, png=args.png, lang=args.lang, fmt=args.format,
-                              progress=progress)
+        index = write_gallery(args.outdir, names=names, png=args.png or bool(args.contact), lang=args.lang,
+                              fmt=args.format, progress=progress)
+        if args.contact:
+            drawn = names if names is not None else catalogue_names()
+            print(contact_sheet({n: Path(args.outdir) / f"{n}.png" for n in drawn}, args.contact))
     except VelplanError as exc:
         sys.stderr.write(f"velplan: error: {exc}\n")
         return 2

@@ -18,9 +18,10 @@ def register(sub) -> None:
     p.add_argument("--delta", metavar="D", type=float, help="required δ (overrides the file's)")
     p.add_argument("--drive", action="store_true",
                    help="also choose the drive (seed 003) with the defaults when the file has no [dynamics.drive]")
-    p.add_argument("--format", choices=("table", "json", "csv", "jsonl"), default="table",
-                   help="table, json (one document), csv (a row per position) or jsonl (a JSON object per "
-                        "position, per line); json, csv and jsonl are written as they are computed")
+    p.add_argument("--format", choices=("table", "json", "csv", "jsonl", "parquet"), default="table",
+                   help="table, json (one document), csv (a row per position), jsonl (a JSON object per "
+                        "position, per line) or parquet (the CSV's columns; -o FILE, pip install "
+                        "\".[parquet]\"); all but table are written as they are computed")
     p.add_argument("--harmonics", metavar="N,…",
                    help="seed 004: the motion with the press load's Fourier series of N harmonics against the "
                         "exact parabola's, per N (same flywheel)")
@@ -33,6 +34,10 @@ def run_dynamics(args) -> int:
     from velplan.dynamics.report import plot, to_table
     from velplan.study import Study
 
+    if args.format not in ("table", "json"):
+        from velplan.cli.stream import check_format
+
+        check_format(args.format, args.output)
     study = Study(args.mechanism, delta=args.delta)
     if args.harmonics is not None:
         return _run_harmonics(args, study)
@@ -47,11 +52,9 @@ def run_dynamics(args) -> int:
     if args.format == "table":
         emit(to_table(d, args.positions, drive), args.output)
         return 0
-    from velplan.cli.stream import open_output
+    from velplan.cli.stream import write_rows
 
-    with open_output(args.output, binary=True) as out:
-        for piece in stream(d, args.format, args.positions, drive):
-            out.write(piece)
+    write_rows(args.output, args.format, chunks(d, args.positions, CHUNK), head=lambda: _head(d, drive))
     return 0
 
 
@@ -63,23 +66,32 @@ def stream(d, fmt: str, n: int = 12, drive=None, *, chunk: int = CHUNK):
     """The rows of `velplan.dynamics.report.to_dict` at ``n`` positions as one JSON document (its
     summary, then the positions), CSV or JSON lines, ``chunk`` positions computed and formatted
     at a time: memory stays bounded however many positions there are."""
-    from velplan.cli.stream import csv_rows, json_document, json_rows
-    from velplan.dynamics.report import POSITION_KEYS, to_dict
+    from velplan.cli.stream import json_document, text_pieces
 
-    def pieces():
-        travels = d.travels(n)
-        for a in range(0, len(travels), chunk):
-            rows = d.table_at(travels[a:a + chunk])
-            extra = [k for k in rows if k.startswith("M_") and k not in POSITION_KEYS]
-            tree = {"position": np.arange(a + 1, a + len(rows["omega"]) + 1),
-                    **{k: rows[k] for k in (*POSITION_KEYS, *extra)}}
-            yield csv_rows(tree, header=a == 0) if fmt == "csv" else json_rows(tree, fmt)
+    pieces = text_pieces(chunks(d, n, chunk), fmt)
+    return json_document(_head(d, drive), "positions", pieces) if fmt == "json" else pieces
 
-    if fmt != "json":
-        return pieces()
-    head = to_dict(d, 1, drive)  # the summary: its one position is left out
+
+def _head(d, drive) -> dict:
+    """The summary of `velplan.dynamics.report.to_dict` (its one position left out)."""
+    from velplan.dynamics.report import to_dict
+
+    head = to_dict(d, 1, drive)
     del head["positions"]
-    return json_document(head, "positions", pieces())
+    return head
+
+
+def chunks(d, n: int = 12, chunk: int = CHUNK):
+    """(tree, None) of each chunk of ``chunk`` of the ``n`` positions, computed in turn
+    (`velplan.cli.stream.write_rows`)."""
+    from velplan.dynamics.report import POSITION_KEYS
+
+    travels = d.travels(n)
+    for a in range(0, len(travels), chunk):
+        rows = d.table_at(travels[a:a + chunk])
+        extra = [k for k in rows if k.startswith("M_") and k not in POSITION_KEYS]
+        yield {"position": np.arange(a + 1, a + len(rows["omega"]) + 1),
+               **{k: rows[k] for k in (*POSITION_KEYS, *extra)}}, None
 
 
 def _run_harmonics(args, study) -> int:
@@ -88,7 +100,7 @@ def _run_harmonics(args, study) -> int:
     from velplan.dynamics.harmonics import compare_harmonics, harmonics_table
     from velplan.errors import VelplanError
 
-    if args.format in ("csv", "jsonl"):
+    if args.format not in ("table", "json"):
         raise VelplanError(f"--harmonics: --format {args.format} is not available; use table or json")
     ns = []
     for item in args.harmonics.split(","):

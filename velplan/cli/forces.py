@@ -26,9 +26,10 @@ def register(sub) -> None:
     p.add_argument("--motion", choices=("constant", "dynamic"), default="constant",
                    help="the crank at the file's constant speed, or at the ω(φ), ε(φ) computed by "
                         "its [dynamics] section (default constant)")
-    p.add_argument("--format", choices=("table", "json", "csv", "jsonl"), default="table",
-                   help="table, json (one document), csv (a row per position) or jsonl (a JSON object per "
-                        "position, per line); json, csv and jsonl are written as they are computed")
+    p.add_argument("--format", choices=("table", "json", "csv", "jsonl", "parquet"), default="table",
+                   help="table, json (one document), csv (a row per position), jsonl (a JSON object per "
+                        "position, per line) or parquet (the CSV's columns; -o FILE, pip install "
+                        "\".[parquet]\"); all but table are written as they are computed")
     p.add_argument("--no-inertia", action="store_true", help="leave out the inertia forces and moments")
     p.add_argument("--no-gravity", action="store_true", help="leave out gravity")
     p.add_argument("--mode", choices=("exact", "drafting"), default="exact",
@@ -46,6 +47,10 @@ def run_forces(args) -> int:
 
     if args.position is not None and args.position > STANDARD:
         raise VelplanError(f"--position {args.position}: must be between 1 and {STANDARD}")
+    if args.format != "table":
+        from velplan.cli.stream import check_format
+
+        check_format(args.format, args.output)
     angles = parse_angles(args.angles) if args.angles is not None else None
     n = STANDARD if args.position is not None else args.positions
     study = Study(args.mechanism, n=n, angles=angles, motion=args.motion)
@@ -63,11 +68,10 @@ def run_forces(args) -> int:
     if text is not None:
         emit(text, args.output)
         return 0
-    from velplan.cli.stream import open_output
+    from velplan.cli.stream import write_rows
 
-    with open_output(args.output, binary=True) as out:
-        for piece in stream(study, args.format, numbers, chunk=CHUNK, **options):
-            out.write(piece)
+    write_rows(args.output, args.format, chunks(study, numbers, chunk=CHUNK, **options),
+               head=lambda: _head(study))
     return 0
 
 
@@ -86,21 +90,27 @@ def stream(study, fmt: str, numbers: list[int], *, drafting, mu_v: float | None 
            inertia: bool = True, chunk: int = CHUNK):
     """The force analysis at the positions ``numbers`` (1-based) of ``study`` as one JSON document
     (SI units, N and N·m; null where a position is singular), CSV or JSON lines, ``chunk``
-    positions analysed and formatted at a time (`velplan.study.Study.forces_in_chunks`): memory
-    stays bounded however many positions there are; the numbers are those of `Study.forces`."""
-    from velplan.cli.stream import csv_rows, json_document, json_rows
+    positions analysed and formatted at a time (`chunks`): memory stays bounded however many
+    positions there are; the numbers are those of `Study.forces`."""
+    from velplan.cli.stream import json_document, text_pieces
 
-    def pieces():
-        for a, res, pct in study.forces_in_chunks(numbers, chunk, drafting=drafting, mu_v=mu_v, gravity=gravity,
-                                                  inertia=inertia):
-            tree = _position_tree(res, pct, np.asarray(numbers[a:a + len(pct)]))
-            yield csv_rows(tree, header=a == 0) if fmt == "csv" else json_rows(tree, fmt)
+    pieces = text_pieces(chunks(study, numbers, drafting=drafting, mu_v=mu_v, gravity=gravity, inertia=inertia,
+                                chunk=chunk), fmt)
+    return json_document(_head(study), "positions", pieces) if fmt == "json" else pieces
 
-    if fmt != "json":
-        return pieces()
-    head = {"mechanism": study.mechanism.name, "omega1": study.crank_motion[0],
+
+def _head(study) -> dict:
+    return {"mechanism": study.mechanism.name, "omega1": study.crank_motion[0],
             "loads": [ld.name for ld in study.loads]}
-    return json_document(head, "positions", pieces())
+
+
+def chunks(study, numbers: list[int], *, drafting, mu_v: float | None = None, gravity: bool = True,
+           inertia: bool = True, chunk: int = CHUNK):
+    """(tree, None) of each chunk of ``chunk`` positions of ``numbers`` (1-based), analysed in turn
+    (`velplan.study.Study.forces_in_chunks`; `velplan.cli.stream.write_rows`)."""
+    for a, res, pct in study.forces_in_chunks(numbers, chunk, drafting=drafting, mu_v=mu_v, gravity=gravity,
+                                              inertia=inertia):
+        yield _position_tree(res, pct, np.asarray(numbers[a:a + len(pct)])), None
 
 
 def _position_tree(res, pct: np.ndarray, numbers: np.ndarray) -> dict:

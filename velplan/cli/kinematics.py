@@ -107,7 +107,7 @@ def run_analyze(args) -> int:
     from velplan.cli.stream import write_rows
 
     w, e = study.crank_motion
-    write_rows(args.output, args.format, chunks(study, args.format),
+    write_rows(args.output, args.format, chunks(study, args.format, STREAM_CHUNK),
                head=lambda: _head(study.mechanism.name, w, e))
     return 0
 
@@ -117,8 +117,9 @@ def to_json(kin: Kinematics) -> str:
     ``velplan analyze --format json`` writes it."""
     from velplan.cli.stream import json_document, json_rows
 
+    tree, reasons = _entries(kin, 0)
     return b"".join(json_document(_head(kin.mechanism.name, kin.omega1, kin.epsilon1), "positions",
-                                  [json_rows(*_entries(kin, 0), "json")])).decode("utf-8")
+                                  [json_rows(tree, "json", reasons)])).decode("utf-8")
 
 
 def _rows(kin: Kinematics) -> tuple[list[str], list[list[float]]]:

@@ -13,7 +13,7 @@ import os
 import sys
 import tempfile
 from pathlib import Path
-from typing import Iterable, Iterator
+from typing import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -234,10 +234,12 @@ def write_rows(output, fmt: str, chunks: Iterable[tuple[dict, dict | None]], hea
             out.write(piece)
 
 
-def write_parquet(out, trees: Iterable[dict]) -> int:
+def write_parquet(out, trees: Iterable[dict], metadata: Callable[[], dict] | None = None) -> int:
     """The numbers of each tree as one row group of a Parquet file written to ``out`` (a binary
     file object): the CSV's columns (dotted names), float64 with null where not finite, whole
-    numbers int64, booleans bool. Returns the number of row groups."""
+    numbers int64, booleans bool, arrays of text strings; then the file's key-value metadata
+    ``metadata()`` (str → str), when given, read after the last tree. Returns the number of row
+    groups."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -250,6 +252,8 @@ def write_parquet(out, trees: Iterable[dict]) -> int:
                 writer = pq.ParquetWriter(out, table.schema)
             writer.write_table(table.cast(writer.schema), row_group_size=max(table.num_rows, 1))
             groups += 1
+        if writer is not None and metadata is not None:
+            writer.add_key_value_metadata(metadata())
     finally:
         if writer is not None:
             writer.close()

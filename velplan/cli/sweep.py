@@ -28,7 +28,10 @@ def register(sub) -> None:
     p.add_argument("--delta", metavar="δ", type=float,
                    help="coefficient of speed fluctuation (0 < δ < 1): adds the flywheel's J_I (kg·m²) of each "
                         "variant (a file with loads or masses; the peak balancing moment Mb_max comes without it)")
-    p.add_argument("--format", choices=("table", "json", "csv", "npz", "parquet"), default="table")
+    p.add_argument("--format", choices=("table", "json", "csv", "jsonl", "npz", "parquet"), default="table",
+                   help="table (quantiles, sensitivities), json (the summary and columns), npz (-o FILE), or a "
+                        "row per variant written as each chunk is computed: csv, jsonl, parquet (-o FILE; "
+                        "the summary in the file's metadata 'velplan'; pip install \".[parquet]\")")
     p.add_argument("--plots", metavar="DIR", help="write sweep-hist, sweep-sensitivity and sweep-scatter SVGs into DIR")
     p.add_argument("--png", action="store_true", help="also PNGs of the plots")
     p.add_argument("--engine", choices=("numpy", "compiled", "auto"), default="numpy",
@@ -62,17 +65,11 @@ def _values(args, mech):
 
 def run_sweep_cmd(args) -> int:
     from velplan.batch import progress_bar
-    from velplan.cli.stream import open_output
+    from velplan.cli.stream import check_format, open_output
     from velplan.mechanism.loader import load
     from velplan.sweep import report, run
 
-    if args.format in ("npz", "parquet") and not args.output:
-        raise VelplanError(f"--format {args.format} is binary: give -o FILE")
-    if args.format == "parquet":
-        try:
-            import pyarrow  # noqa: F401
-        except ImportError:
-            raise VelplanError("--format parquet needs pyarrow (pip install pyarrow); --format npz needs nothing") from None
+    check_format(args.format, args.output)
     if args.plots and not Path(args.plots).is_dir():
         raise VelplanError(f"--plots: directory {args.plots} does not exist")
     if args.delta is not None and not 0 < args.delta < 1:
@@ -92,20 +89,56 @@ def run_sweep_cmd(args) -> int:
         from velplan.analysis.solver import AUTO_COMPILED
 
         engine = "compiled" if available() and (loaded() or V * args.positions >= AUTO_COMPILED) else "numpy"
-    res = run.run_sweep(mech, values, mode=mode, positions=args.positions, progress=show,
-                        scheduler=args.scheduler, jobs=args.jobs, engine=engine, delta=args.delta, meta=meta)
-    if args.format == "table":
-        with open_output(args.output) as out:
-            out.write(report.to_table(res))
-    elif args.format in ("json", "csv"):
-        with open_output(args.output) as out:
-            (report.write_json if args.format == "json" else report.write_csv)(res, out)
+    work = {"positions": args.positions, "scheduler": args.scheduler, "jobs": args.jobs, "engine": engine,
+            "delta": args.delta}
+    if args.format in STREAMED:
+        res = _write_streamed(args, mech, values, {"mode": mode, "meta": meta}, work, show)
     else:
-        with open_output(args.output, binary=True) as out:
-            report.write_binary(res, out, args.format)
+        res = run.run_sweep(mech, values, mode=mode, meta=meta, progress=show, **work)
+        with open_output(args.output, binary=args.format == "npz") as out:
+            if args.format == "table":
+                out.write(report.to_table(res))
+            else:
+                (report.write_npz if args.format == "npz" else report.write_json)(res, out)
     if args.plots:
         from velplan.sweep.plot import plot_all
 
         files = plot_all(res, args.plots, png=args.png)
         sys.stderr.write(f"plots: {', '.join(f.name for f in files)} in {args.plots}\n")
     return 0
+
+
+STREAMED = ("csv", "jsonl", "parquet")
+"""Formats written a chunk of variants at a time, as each is computed."""
+
+
+def _write_streamed(args, mech, values, about: dict, work: dict, progress):
+    """Run the sweep, writing each chunk's rows to ``args.output`` (csv, jsonl or parquet) as soon
+    as it and those before it are computed; the `SweepResult` (``about``: its mode and meta)."""
+    from velplan.cli.stream import open_output, write_parquet
+    from velplan.sweep import report, run
+
+    results = []
+
+    def columns():
+        first = 0
+        for part, r in run.sweep_chunks(mech, values, progress=progress, **work):
+            results.append(r)
+            yield report.chunk_columns(first, part, *r)
+            first += len(r[1])
+
+    done = []
+
+    def finish():  # once every chunk is written (before Parquet's metadata)
+        done.append(run.assemble(mech, values, results, positions=work["positions"], engine=work["engine"],
+                                 delta=work["delta"], **about))
+        return done[0]
+
+    with open_output(args.output, binary=args.format == "parquet") as out:
+        if args.format == "parquet":
+            write_parquet(out, columns(), metadata=lambda: report.parquet_metadata(finish()))
+        else:
+            for n, cols in enumerate(columns()):
+                report.write_rows(cols, out, args.format, header=n == 0)
+            finish()
+    return done[0]

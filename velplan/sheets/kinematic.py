@@ -5,7 +5,9 @@ functions, each at a standard scale, placed without overlap.
 The layout follows the Russian course sheet (METHOD.md §7): the scheme in the upper left,
 the plans to its right in a grid (one row per kind, one column per chosen position, or the
 transpose when that gives larger plans), the diagrams along the bottom and the table above
-the title block. Each view takes the largest drawing (the smallest μ of the standard
+the title block. A scheme too large for the top band at every legible scale (a jaw crusher
+on A3) takes the whole height left of the table and the title block instead, the plans to
+its right and the diagrams in a free corner if one is left. Each view takes the largest drawing (the smallest μ of the standard
 series) that fits its region; a view that cannot be drawn legibly at any standard scale
 raises :class:`~velplan.errors.ScaleError` with a one-line message.
 
@@ -72,7 +74,8 @@ class Sheet(ComposedSheet):
         Number of positions of the scheme.
     zones : Mapping[str, tuple]
         View name → the zone of the sheet it was fitted to (sheet mm): a plan's grid cell,
-        the scheme's share of the top band.
+        the scheme's share of the top band (or, for a scheme too tall for it, the whole
+        height of the drawing area left of the table and the title block).
     """
 
     plans: Mapping[str, PlanResult]
@@ -215,8 +218,8 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
     kinds = ("velocity", "acceleration") if kind == "both" else (kind,)
-    mview, fitted, chosen = _scheme_and_plans(req, draw, chosen, kinds, band_top,
-                                              fallback=plans is None)
+    mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
+                                                           fallback=plans is None)
     plan_views, results, cells = fitted
     if not scale_per_plan:
         plan_views, results = _one_scale_per_kind(draw, plan_views, results, cells)
@@ -242,7 +245,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     if centres:
         scene = scene.extend(_centre_marks(study, centres, views["mechanism"], mview.mu))
     zones = dict(cells)
-    zones["mechanism"] = _scheme_zone((fx0, band_top + req.gap, req.area[2], fy1))
+    zones["mechanism"] = scheme_zone
     return Sheet(mech, scene, MappingProxyType(dict(views)),
                  MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
                  fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
@@ -290,37 +293,58 @@ SCHEME_WIDTH = 0.62
 SCHEME_SHARE = 0.5
 
 
-def _scheme_and_plans(req: Request, draw: _Drawings, chosen, kinds, band_top: float, *, fallback: bool):
-    """(scheme view, (plan views, results, cells), positions drawn): the largest scheme whose
-    neighbours, the plans, still get vectors of a good length; failing that, the scheme that
-    leaves the plans the longest vectors. With `fallback`, the first position's plans alone
-    when the positions' plans fit beside no scheme filling `SCHEME_SHARE` of its zone."""
+def _scheme_and_plans(req: Request, draw: _Drawings, views: dict, chosen, kinds, band_top: float, *,
+                      fallback: bool):
+    """(scheme view, (plan views, results, cells), positions drawn, the scheme's zone): the
+    largest scheme whose neighbours, the plans, still get vectors of a good length; failing
+    that, the scheme that leaves the plans the longest vectors. With `fallback`, the first
+    position's plans alone when the positions' plans fit beside no scheme filling
+    `SCHEME_SHARE` of its zone. Where nothing fits the top band, the scheme's zone takes the
+    whole height left of the table and the title block (`_tall_zone`): the bottom band's
+    diagrams give way to it, taken out of `views`."""
     attempts = [chosen] + ([chosen[:1]] if fallback and len(chosen) > 1 else [])
+    fx0, _, fx1, fy1 = req.area
+    zones = [(_scheme_zone((fx0, band_top + req.gap, fx1, fy1)), band_top), _tall_zone(req, views)]
     failure = None
-    for least in (SCHEME_SHARE, 0.0):
-        best, failure = _pairing(req, draw, attempts, kinds, band_top, least, failure)
-        if best is not None:
-            return best[1:]
+    for tall, (zone, floor) in enumerate(zones):
+        for least in (SCHEME_SHARE, 0.0):
+            try:
+                best, failure = _pairing(req, draw, attempts, kinds, zone, floor, least, failure)
+            except ScaleError as exc:  # no scheme fits the zone
+                failure = failure or exc
+                break
+            if best is not None:
+                if tall:
+                    views.pop("diagrams", None)
+                return best[1:] + (zone,)
     raise failure or ScaleError(f"the plans do not fit {req.fmt} beside the scheme; use a larger --format")
 
 
-def _pairing(req: Request, draw: _Drawings, attempts, kinds, band_top: float, least: float, failure):
+def _tall_zone(req: Request, views: dict) -> tuple[tuple, float]:
+    """(zone, the plans' floor) of a scheme as tall as the drawing area, left of the table
+    and the title block, with the plans to its right above them (their floor: the top of
+    the table or the title block, mm)."""
+    fx0, fy0, _, fy1 = req.area
+    right = [req.title_block] + [views["table"].bounds] * ("table" in views)
+    return (fx0, fy0, min(b[0] for b in right) - req.gap, fy1), max(b[3] for b in right)
+
+
+def _pairing(req: Request, draw: _Drawings, attempts, kinds, zone, floor: float, least: float, failure):
     """(the best (score, scheme, fitted plans, positions) or None, the first ScaleError) of
-    the schemes filling at least `least` of their zone with the plans of the first of the
-    `attempts` that fits."""
+    the schemes in `zone` (at its upper left) filling at least `least` of it with the plans
+    of the first of the `attempts` that fits, the plans above `floor` (mm)."""
     fx0, _, fx1, fy1 = req.area
     g = req.gap
-    top = (fx0, band_top + g, fx1, fy1)
     best = None
     for attempt in attempts:
         if best is not None:
             break
-        for mview in _mechanism_candidates(req, draw, top):
-            if _zone_share(mview, top) < least:
+        for mview in _mechanism_candidates(req, draw, zone):
+            if _zone_share(mview, zone) < least:
                 continue
             # the plans go to the right of the scheme, or below it across the sheet
-            regions = [(fx0 + mview.width_mm + g, band_top + g, fx1, fy1),
-                       (fx0, band_top + g, fx1, fy1 - mview.height_mm - g)]
+            regions = [(fx0 + mview.width_mm + g, floor + g, fx1, fy1),
+                       (fx0, floor + g, fx1, fy1 - mview.height_mm - g)]
             good = False
             for region in regions:
                 if region[2] - region[0] < 40 or region[3] - region[1] < 40:
@@ -343,9 +367,9 @@ def _scheme_zone(top) -> tuple[float, float, float, float]:
     return (top[0], top[1], top[0] + SCHEME_WIDTH * (top[2] - top[0]), top[3])
 
 
-def _zone_share(view: View, top) -> float:
-    """The share of its zone a scheme spans along the fuller direction."""
-    x0, y0, x1, y1 = _scheme_zone(top)
+def _zone_share(view: View, zone) -> float:
+    """The share of its `zone` a scheme spans along the fuller direction."""
+    x0, y0, x1, y1 = zone
     return max(view.width_mm / (x1 - x0), view.height_mm / (y1 - y0))
 
 
@@ -498,11 +522,11 @@ def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
     return None if best is None else best[1]
 
 
-def _mechanism_candidates(req: Request, draw: _Drawings, region, count: int = 3):
-    """Up to `count` schemes at successive ESKD scales, the largest that fits first."""
+def _mechanism_candidates(req: Request, draw: _Drawings, zone, count: int = 3):
+    """Up to `count` schemes at successive ESKD scales that fit `zone`, the largest first."""
     study = req.study
     mech = study.mechanism
-    x0, y0, x1, y1 = _scheme_zone(region)
+    x0, y0, x1, y1 = zone
     w, h = x1 - x0, y1 - y0
     wx, wy = extent_m(mech, study.kinematics, draw.fine)
     found = 0

@@ -9,14 +9,16 @@ task and the network the chunk's values and figures (a few kB).
 
 from __future__ import annotations
 
+from typing import Iterator
+
 from velplan.errors import VelplanError
 
 
 def map_chunks(scheduler, task, mech, parts: list[dict], positions: int, progress=None,
-               engine: str = "numpy", delta: float | None = None) -> list:
+               engine: str = "numpy", delta: float | None = None) -> Iterator:
     """Run ``task(mech, part, positions, engine, delta)`` (the sweep's ``chunk_figures``) on every part
     on ``scheduler`` (a ``dask.distributed.Client`` or a scheduler address such as
-    ``tcp://10.0.0.5:8786``); the results in order."""
+    ``tcp://10.0.0.5:8786``); the results in order, each as soon as it and those before it are done."""
     try:
         from dask.distributed import Client, as_completed
     except ImportError:
@@ -34,12 +36,15 @@ def map_chunks(scheduler, task, mech, parts: list[dict], positions: int, progres
         n = len(parts)
         futures = client.map(task, [shared] * n, parts, [positions] * n, [engine] * n, [delta] * n, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}
-        results: list = [None] * len(parts)
+        results: dict = {}
+        given = 0
         for done, fut in enumerate(as_completed(futures), start=1):
             results[index[fut.key]] = fut.result()
             if progress:
                 progress(done, len(parts), "chunks of variants")
-        return results
+            while given in results:  # in order: each chunk once it and those before it are done
+                yield results.pop(given)
+                given += 1
     finally:
         if own:
             client.close()

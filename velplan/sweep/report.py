@@ -1,12 +1,15 @@
-"""A sweep as text: the summary table, JSON (columnar), CSV (a row per variant) and npz or
-Parquet (columnar binary). Floats are written with 17 significant digits (they read back
-bit for bit); NaN is ``null`` in JSON and an empty cell in CSV."""
+"""A sweep as text: the summary table, JSON (columnar), CSV or JSON lines (a row per variant),
+npz (columnar binary); Parquet (a row group per chunk of variants) is written by
+`velplan.cli.stream.write_parquet` with `chunk_columns` and `parquet_metadata`. Floats are
+written with 17 significant digits (they read back bit for bit); NaN is ``null`` in JSON and
+Parquet and an empty cell in CSV."""
 
 from __future__ import annotations
 
 import io
 import json
 import math
+from typing import Mapping
 
 import numpy as np
 
@@ -69,8 +72,7 @@ def write_json(res: SweepResult, out) -> None:
     """The summary and the variants as columns, written piece by piece to ``out``."""
     head = json.dumps(summary(res), ensure_ascii=False, allow_nan=False)
     out.write(head[:-1] + ', "columns": {')
-    cols = list(_columns(res))
-    for n, (name, arr) in enumerate(cols):
+    for n, (name, arr) in enumerate(_columns(res).items()):
         out.write(("" if n == 0 else ", ") + json.dumps(name, ensure_ascii=False) + ": [")
         for a in range(0, len(arr), 4096):
             part = arr[a:a + 4096]
@@ -85,52 +87,58 @@ def write_json(res: SweepResult, out) -> None:
     out.write("}}\n")
 
 
-def _columns(res: SweepResult):
-    yield "variant", np.arange(1, len(res) + 1)
-    yield from res.values.items()
-    yield from res.figures.items()
-    yield "gamma_group", np.array(res.gamma_group, dtype=object)
-    yield "failure", np.array(res.failures, dtype=object)
+def chunk_columns(first: int, values: Mapping[str, np.ndarray], figs: Mapping[str, np.ndarray], failures: list,
+                  group: list) -> dict[str, np.ndarray]:
+    """The columns of the variants ``first`` + 1 … (a chunk, `velplan.sweep.run.chunk_figures`):
+    their numbers, keys, figures, γ_min's group and failure."""
+    return {"variant": np.arange(first + 1, first + len(failures) + 1), **values, **figs,
+            "gamma_group": np.array(group, dtype=object), "failure": np.array(failures, dtype=object)}
+
+
+def _columns(res: SweepResult) -> dict[str, np.ndarray]:
+    return chunk_columns(0, res.values, res.figures, res.failures, res.gamma_group)
 
 
 def write_csv(res: SweepResult, out) -> None:
     """A header, then one row per variant: its number, keys, figures, γ_min's group, failure."""
+    write_rows(_columns(res), out, "csv", header=True)
+
+
+def write_rows(cols: Mapping[str, np.ndarray], out, fmt: str, header: bool = False) -> None:
+    """The variants of ``cols`` (`chunk_columns`) to the text file ``out``: CSV rows (after the
+    header when ``header``) or JSON lines ("jsonl", an object per variant)."""
     import csv
 
-    cols = list(_columns(res))
-    w = csv.writer(out, lineterminator="\n")
-    w.writerow([name for name, _ in cols])
-    for a in range(0, len(res), 4096):
-        rows = []
-        for i in range(a, min(a + 4096, len(res))):
-            row = []
-            for name, arr in cols:
-                x = arr[i]
-                if name == "variant":
-                    row.append(str(i + 1))
-                elif isinstance(x, (float, np.floating)):
-                    row.append(repr(float(x)) if math.isfinite(x) else "")
-                else:
-                    row.append(str(x))
-            rows.append(row)
-        w.writerows(rows)
+    names, arrays = list(cols), list(cols.values())
+    w = csv.writer(out, lineterminator="\n") if fmt == "csv" else None
+    if header and w is not None:
+        w.writerow(names)
+    for a in range(0, len(arrays[0]), 4096):
+        rows = [[_cell(arr[i], w is not None) for arr in arrays] for i in range(a, min(a + 4096, len(arrays[0])))]
+        if w is not None:
+            w.writerows(rows)
+        else:
+            out.write("".join(json.dumps(dict(zip(names, row)), ensure_ascii=False) + "\n" for row in rows))
 
 
-def write_binary(res: SweepResult, out, fmt: str) -> None:
-    """npz (numpy, always) or Parquet (needs pyarrow): one column per key and figure."""
-    cols = dict(_columns(res))
-    if fmt == "npz":
-        arrays = {k: (v.astype(str) if v.dtype == object else v) for k, v in cols.items()}
-        buf = io.BytesIO()
-        np.savez(buf, summary=np.array(json.dumps(summary(res), ensure_ascii=False)), **arrays)
-        out.write(buf.getvalue())
-        return
-    import pyarrow as pa
-    import pyarrow.parquet as pq
+def _cell(x, text: bool):
+    """A CSV cell (``text``: floats to 17 digits, empty where not finite) or a JSON value (None)."""
+    if isinstance(x, (float, np.floating)):
+        finite = math.isfinite(x)
+        return (repr(float(x)) if finite else "") if text else (float(x) if finite else None)
+    if isinstance(x, np.integer):
+        return str(x) if text else int(x)
+    return str(x)
 
-    table = pa.table({k: (v.astype(str).tolist() if v.dtype == object else v) for k, v in cols.items()})
-    table = table.replace_schema_metadata({"velplan": json.dumps(summary(res), ensure_ascii=False)})
+
+def parquet_metadata(res: SweepResult) -> dict[str, str]:
+    """The Parquet file's key-value metadata: ``velplan``, the `summary` as JSON."""
+    return {"velplan": json.dumps(summary(res), ensure_ascii=False)}
+
+
+def write_npz(res: SweepResult, out) -> None:
+    """npz (numpy): one array per key and figure, and ``summary`` (JSON text)."""
+    arrays = {k: (v.astype(str) if v.dtype == object else v) for k, v in _columns(res).items()}
     buf = io.BytesIO()
-    pq.write_table(table, buf)
+    np.savez(buf, summary=np.array(json.dumps(summary(res), ensure_ascii=False)), **arrays)
     out.write(buf.getvalue())
-

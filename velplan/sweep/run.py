@@ -14,7 +14,7 @@ import hashlib
 import math
 import re
 from dataclasses import dataclass, field
-from typing import Callable, Mapping
+from typing import Callable, Iterator, Mapping
 
 import numpy as np
 
@@ -198,13 +198,29 @@ def run_sweep(mech: Mechanism, values: Mapping[str, np.ndarray], *, mode: str = 
     file the figures include the peak balancing moment ``Mb_max``, and with ``delta`` (the
     coefficient of speed fluctuation, 0 < δ < 1) the flywheel's ``J_I``.
     """
+    results = [r for _, r in sweep_chunks(mech, values, positions=positions, chunk=chunk, progress=progress,
+                                          scheduler=scheduler, jobs=jobs, engine=engine, delta=delta)]
+    return assemble(mech, values, results, mode=mode, positions=positions, engine=engine, delta=delta, meta=meta)
+
+
+def sweep_chunks(mech: Mechanism, values: Mapping[str, np.ndarray], *, positions: int = 360,
+                 chunk: int | None = None, progress: Callable | None = None, scheduler=None, jobs: int = 1,
+                 engine: str = "numpy", delta: float | None = None) -> Iterator[tuple[dict, tuple]]:
+    """(values, `chunk_figures`) of each chunk of variants in order, each as soon as it and those
+    before it are computed (`run_sweep`'s work, for output written as it is computed)."""
     parts = chunks(values, chunk or CHUNK[engine])
     if scheduler is not None:
         from velplan.sweep.cluster import map_chunks
 
-        results = map_chunks(scheduler, chunk_figures, mech, parts, positions, progress, engine, delta)
+        done = map_chunks(scheduler, chunk_figures, mech, parts, positions, progress, engine, delta)
     else:
-        results = _map_local(mech, parts, positions, jobs, progress, engine, delta)
+        done = _map_local(mech, parts, positions, jobs, progress, engine, delta)
+    yield from zip(parts, done)
+
+
+def assemble(mech: Mechanism, values: Mapping[str, np.ndarray], results: list, *, mode: str, positions: int,
+             engine: str, delta: float | None = None, meta: dict | None = None) -> SweepResult:
+    """The `SweepResult` of the chunks' ``results`` (`chunk_figures`, in order) and the nominal figures."""
     figs = {k: np.concatenate([r[0][k] for r in results]) for k in results[0][0]}
     failures = [f for r in results for f in r[1]]
     group = [g for r in results for g in r[2]]
@@ -217,26 +233,23 @@ def run_sweep(mech: Mechanism, values: Mapping[str, np.ndarray], *, mode: str = 
 
 
 def _map_local(mech: Mechanism, parts: list[dict], positions: int, jobs: int, progress, engine: str,
-               delta: float | None = None) -> list:
-    """`chunk_figures` of every part, in order, on ``jobs`` processes (1: in this one)."""
+               delta: float | None = None) -> Iterator:
+    """`chunk_figures` of every part, in order as each completes, on ``jobs`` processes (1: in this one)."""
     if jobs <= 1 or len(parts) < 2:
-        out = []
         for i, part in enumerate(parts):
-            out.append(chunk_figures(mech, part, positions, engine, delta))
+            yield chunk_figures(mech, part, positions, engine, delta)
             if progress:
                 progress(i + 1, len(parts), "chunks of variants")
-        return out
+        return
     from concurrent.futures import ProcessPoolExecutor
 
-    out = []
     with ProcessPoolExecutor(max_workers=min(jobs, len(parts))) as pool:
         n = len(parts)
         tasks = pool.map(chunk_figures, [mech] * n, parts, [positions] * n, [engine] * n, [delta] * n)
         for i, res in enumerate(tasks):
-            out.append(res)
+            yield res
             if progress:
                 progress(i + 1, len(parts), "chunks of variants")
-    return out
 
 
 # ---- summaries ------------------------------------------------------------------------------
