@@ -325,7 +325,7 @@ def _tall_zone(req: Request, views: dict) -> tuple[tuple, float]:
     and the title block, with the plans to its right above them (their floor: the top of
     the table or the title block, mm)."""
     fx0, fy0, _, fy1 = req.area
-    right = [req.title_block] + [views["table"].bounds] * ("table" in views)
+    right = [req.title_block] + ([views["table"].bounds] if "table" in views else [])
     return (fx0, fy0, min(b[0] for b in right) - req.gap, fy1), max(b[3] for b in right)
 
 
