@@ -146,6 +146,13 @@ def test_the_title_names_the_mechanism_in_the_sheets_language(tmp_path):
         velplan.load(bad)
 
 
+def test_bundled_kinematic_sheets_on_a3_are_legible(studies, built):
+    """The bundled examples' kinematic sheets on A3 (the catalogue's: `test_catalogue_gallery`)
+    hold the bars of A1: no text over text, all inside the frame, every glyph in the font."""
+    for name in velplan.example_names():
+        _assert_legible(built(name, "kinematic", "en", "A3"), "A3", name, "kinematic")
+
+
 @pytest.mark.parametrize("fmt", ["A1", "A3"])
 def test_schemes_and_plans_fill_at_least_half_their_zones(studies, built, fmt):
     """Each plan spans at least half its grid cell, and the scheme half of its share of the top
