@@ -176,7 +176,7 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
     wit = d.wittenbauer() if d.flywheel is not None else None
     table = fit_table(lambda size: results_view(results_rows(d, wit, lang), lang=lang, size_mm=size,
                                                 title_mm=req.sizes.table_title),
-                      req, max_width=fx1 - right_x0, what="table of results")
+                      req, what="table of results", max_width=fx1 - right_x0, advice="")
     views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     band_top = ty1 + g + table.height_mm
     if d.flywheel is not None and d.flywheel.dimensions is not None:

@@ -195,9 +195,7 @@ def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
     if table:
         tview = fit_table(lambda size: moments_table_view(fa, lang=req.lang, size_mm=size,
                                                           title_mm=req.sizes.table_title),
-                          req, max_width=0.62 * req.width,
-                          what=f"table of balancing moments ({len(fa.kinematics)} positions)",
-                          advice="fewer --positions or ")
+                          req, what=f"table of balancing moments ({len(fa.kinematics)} positions)")
     band_top, dview = fill_bottom_band(
         views, req, table_view=tview,
         fit_diagram=None if diagrams is False else (lambda region: _fit_diagram(req, region)),

@@ -276,9 +276,7 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
         data = sheet_table(study.plan("velocity"))
         tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
                                                   title_mm=req.sizes.table_title),
-                          req, max_width=0.62 * req.width,
-                          what=f"table of transfer functions ({study.n} positions)",
-                          advice="fewer --positions or ")
+                          req, what=f"table of transfer functions ({study.n} positions)")
     band_top, _ = fill_bottom_band(
         views, req, table_view=tview,
         fit_diagram=(lambda region: _fit_diagrams(req, draw, region)) if diagrams else None,

@@ -142,11 +142,16 @@ def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
     return chosen
 
 
-def fit_table(build: Callable[[float], View], req: Request, *, max_width: float,
-              what: str, advice: str = "") -> View:
+#: The share of the drawing area's width a table of positions may take in the bottom band.
+TABLE_WIDTH = 0.62
+
+
+def fit_table(build: Callable[[float], View], req: Request, *, what: str, max_width: float | None = None,
+              advice: str = "fewer --positions or ") -> View:
     """The table ``build(text size)`` at the largest of the format's text sizes that leaves
-    it at most `max_width` mm wide; `what` names it in the error, `advice` precedes "a larger
-    --format" there."""
+    it at most `max_width` mm wide (`TABLE_WIDTH` of the area by default: a table of
+    positions); `what` names it in the error, `advice` precedes "a larger --format" there."""
+    max_width = TABLE_WIDTH * req.width if max_width is None else max_width
     size, view = widest_first(build, req.sizes.table, max_width)
     if size is None:
         raise ScaleError(f"the {what} does not fit {req.fmt} even with {req.sizes.table[-1]:g} mm "
