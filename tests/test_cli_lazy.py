@@ -32,3 +32,11 @@ def test_help_lists_every_subcommand(capsys):
     text = parser.format_help()
     for command in cli.SUBCOMMANDS:
         assert command in text
+
+
+def test_version_imports_no_subcommand_and_no_numpy():
+    code = ("import sys\nfrom velplan.cli import main\ntry:\n    main(['--version'])\nexcept SystemExit:\n    pass\n"
+            "print(sorted(m for m in sys.modules if m.startswith('velplan.cli.') or m == 'numpy'))")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert run.stdout.splitlines()[0].startswith("velplan ")
+    assert eval(run.stdout.splitlines()[-1]) == []

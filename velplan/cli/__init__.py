@@ -41,7 +41,10 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     first = next((a for a in argv or () if not a.startswith("-")), None)
-    modules = (SUBCOMMANDS[first],) if first in SUBCOMMANDS else COMMANDS
+    if first in SUBCOMMANDS:
+        modules = (SUBCOMMANDS[first],)
+    else:  # the list of commands, for the help; `velplan --version` needs none of them
+        modules = () if first is None and "--version" in (argv or ()) else COMMANDS
     for name in modules:
         try:
             module = import_module(f"velplan.cli.{name}")
