@@ -236,7 +236,7 @@ NB01 = [
        table, `velplan/examples/press-table2.csv`. Which entries differ by more than 0.5 mm on
        the plan?
     2. Set `MU_V = 0.001`. Which numbers on the plan change, and which readouts do not?
-    3. Print the worked solution in Ukrainian (`res.describe(0, "uk")`) and draw the plan in
+    3. Print the worked solution in Ukrainian (`res.describe(lang="uk")`) and draw the plan in
        Chinese (`draw_plan(res, lang="zh")`).
     4. Where is the punch fastest? Find it in the table, then with `N = 360`.
     5. Explain, from the plan at position 4, why ω2 is nearly zero there.

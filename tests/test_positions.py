@@ -26,7 +26,7 @@ PUBLIC = ["study.py", "notebook.py", "html/page.py", "html/frames.py", "note/bui
           "note/kinematics.py", "note/forces.py", "views/plan.py", "views/steps.py",
           "views/readings.py", "views/mechanism.py", "views/centres.py", "views/table.py",
           "views/dynamics.py", "views/forces/group.py", "views/forces/polygon.py",
-          "views/forces/lever.py", "plans/centres.py"]
+          "views/forces/lever.py", "plans/centres.py", "plans/engine.py"]
 #: Parameter names that would hold a 0-based position index.
 INDEX_NAMES = {"i", "index", "idx"}
 #: Parameter names that hold position numbers (``positions`` annotated ``int`` is a count).

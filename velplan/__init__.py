@@ -22,6 +22,7 @@ stays light.
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 from velplan.errors import (
     AssemblyError,
@@ -32,6 +33,16 @@ from velplan.errors import (
     VelplanError,
 )
 from velplan.options import LANGUAGES, Language, PlanKind, SheetKind
+
+if TYPE_CHECKING:  # the lazy names below, as type checkers should see them
+    from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
+    from velplan.analysis.solver import Kinematics, solve, transfer_functions
+    from velplan.html.page import Page
+    from velplan.mechanism.loader import example_names, load, parse
+    from velplan.mechanism.model import Mechanism
+    from velplan.mechanism.structure import structure
+    from velplan.note.build import build_note as explanatory_note
+    from velplan.study import Study
 
 __all__ = [
     "AssemblyError", "Kinematics", "LANGUAGES", "Language", "Mechanism", "MechanismError", "Page",

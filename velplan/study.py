@@ -229,7 +229,9 @@ class Study:
                 res = self._plans[(kind,)] = self.construction.evaluate(
                     self.kinematics, kind=kind, velocity=velocity)
             return res if scale is None else res.at_scale(scale)
-        pos = None if positions is None else tuple(self._indices(positions))
+        pos = None if positions is None else tuple(int(k) for k in np.atleast_1d(positions))
+        if pos is not None:
+            self._indices(pos)  # numbers 1…n, checked before the cache is asked
         key = (kind, drafting, scale_v, scale_a, pos, None if only is None else tuple(only), on_failure)
         res = self._plans.get(key)
         if res is None:

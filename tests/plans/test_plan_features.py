@@ -35,7 +35,7 @@ def test_one_point_evaluates_strictly_fewer_steps_than_the_whole_plan():
 def test_only_the_requested_positions_are_evaluated():
     mech = velplan.load("press")
     kin = velplan.solve(mech, velplan.positions(mech, 12))
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[3, 7], scale_v=0.001)
+    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[4, 8], scale_v=0.001)
     assert res.image("C").shape == (2, 2)
     full = Plan.of(mech).evaluate(kin, kind="velocity", scale_v=0.001)
     assert np.allclose(res.image("C"), full.image("C")[[3, 7]], rtol=0, atol=1e-12)
@@ -50,7 +50,7 @@ def test_standard_scale_series(raw, mu):
 def test_auto_scale_fits_the_longest_vector_in_100_mm():
     mech = velplan.load("press")
     kin = velplan.solve(mech, velplan.positions(mech, 12))
-    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[1])
+    res = Plan.of(mech).evaluate(kin, kind="velocity", positions=[2])
     assert res.scale == 0.0005  # V_A = 0.05 m/s → 0.05/100 = 0.0005 (m/s)/mm
     assert max(np.hypot(*v[0]) for v in res.images.values()) <= 100.0
     seg = res.segments["pa"][0]
@@ -228,6 +228,6 @@ def test_acceleration_plan_on_a_velocity_plan_already_drawn(name):
     for t, z in rng_plan.values.items():
         assert acc.values[t] is z
     with pytest.raises(ValueError, match="same kinematics, positions"):
-        plan.evaluate(kin, kind="acceleration", positions=[0, 1], velocity=rv)
+        plan.evaluate(kin, kind="acceleration", positions=[1, 2], velocity=rv)
     with pytest.raises(ValueError, match="takes a velocity plan"):
         plan.evaluate(kin, kind="acceleration", velocity=fresh)

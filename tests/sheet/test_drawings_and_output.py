@@ -73,7 +73,7 @@ def test_diagrams_demanded_go_where_they_fit_else_raise_scale_error():
 
 
 @pytest.mark.parametrize("options, message", [
-    ({"plans": (13,)}, r"^--plans: position 13 is outside 1…12$"),
+    ({"plans": (13,)}, r"^--plans: position 13 is outside 1…12 \(positions are numbered from 1\)$"),
     ({"plans": (3, 3)}, r"^--plans: a position is repeated in 3, 3$"),
     ({"fmt": "A0"}, r"^unknown sheet format 'A0'; known formats: A1, A2, A3$"),
     ({"kind": "jerk"}, r"^unknown plan kind 'jerk'; known kinds: velocity, acceleration, both$"),

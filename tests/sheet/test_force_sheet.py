@@ -265,7 +265,7 @@ def test_scale_error_is_one_line_and_says_what_to_do():
 
 
 @pytest.mark.parametrize("options, message", [
-    ({"plans": (13,)}, r"^--plans: position 13 is outside 1…12$"),
+    ({"plans": (13,)}, r"^--plans: position 13 is outside 1…12 \(positions are numbered from 1\)$"),
     ({"plans": (6, 6)}, r"^--plans: a position is repeated in 6, 6$"),
     ({"fmt": "A0"}, r"^unknown sheet format 'A0'; known formats: A1, A2, A3$"),
     ({"lang": "de"}, r"^unknown language 'de'; known languages: en, ru, uk, zh$"),

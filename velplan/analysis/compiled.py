@@ -18,6 +18,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import threading
 import types
 from dataclasses import dataclass
 from functools import lru_cache
@@ -434,7 +435,7 @@ def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid) -> None:
     k = kernel()
     units = par.shape[0] * ((nper + CHUNK - 1) // CHUNK)
     args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, SINGULAR_BOUND)
-    if not k.overloads:
+    if not getattr(k, "overloads", True):  # a plain function under NUMBA_DISABLE_JIT
         _load_cached(k, (0, units, *args))
     if phi.shape[0] <= SERIAL:
         k(0, units, *args)
@@ -484,6 +485,7 @@ class Layout:
 
 _LAYOUTS: dict = {}
 """Layouts by mechanism content and ``points`` (`layout`), the latest few."""
+_LAYOUTS_LOCK = threading.Lock()
 
 
 def layout(mech: Mechanism, points) -> Layout:
@@ -493,9 +495,10 @@ def layout(mech: Mechanism, points) -> Layout:
     hit = _LAYOUTS.get(key)
     if hit is None:
         hit = _layout(mech, key[-1])
-        if len(_LAYOUTS) >= 32:
-            _LAYOUTS.pop(next(iter(_LAYOUTS)))
-        _LAYOUTS[key] = hit
+        with _LAYOUTS_LOCK:  # solves from several threads: evict and add one at a time
+            if len(_LAYOUTS) >= 32:
+                _LAYOUTS.pop(next(iter(_LAYOUTS)), None)
+            _LAYOUTS[key] = hit
     return hit
 
 

@@ -37,6 +37,8 @@ def position_indices(numbers_, n: int) -> np.ndarray:
     array([ 0, 11])
     """
     arr = np.atleast_1d(numbers_)
+    if arr.size == 0:
+        raise VelplanError(f"no positions given: give position numbers 1…{n}")
     if arr.dtype.kind not in "iu":
         for k in arr.tolist():
             position_index(k, n)  # names the first that is not a whole number

@@ -58,8 +58,8 @@ def solve(
     engine : {"numpy", "compiled", "auto"}
         ``"numpy"``: whole arrays, in cache-sized blocks. ``"compiled"``: the same closed forms
         run per position by numba on every core (``pip install velplan[fast]``; the first call
-        on a machine compiles for ≈ 20 s, later processes load it in ≈ 0.1 s after numba's own
-        import); ``points=`` and ``order=`` reach its kernel, which writes nothing else. ``"auto"``:
+        on a machine compiles for ≈ 10 s, later processes load it in ≈ 0.05 s after numba's own
+        import, itself ≈ 0.3 s); ``points=`` and ``order=`` reach its kernel, which writes nothing else. ``"auto"``:
         compiled when numba is installed and either the kernel is loaded already or there are
         at least `AUTO_COMPILED` angles. Both give the same values to round-off.
 
@@ -143,8 +143,8 @@ def _crank_rate(value, what: str, n: int):
 
 
 AUTO_COMPILED = 2_000_000
-"""From this many angles ``engine="auto"`` loads the compiled engine (≈ 0.5 s: numba's import and
-the kernel from its disk cache; ≈ 20 s the first time on a machine; it saves ≈ 0.4 µs per angle);
+"""From this many angles ``engine="auto"`` loads the compiled engine (≈ 0.35 s: numba's import and
+the kernel from its disk cache; ≈ 10 s the first time on a machine; it saves ≈ 0.4 µs per angle);
 once loaded in a process, "auto" always uses it."""
 
 

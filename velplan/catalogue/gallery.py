@@ -73,20 +73,20 @@ def contact_sheet(pngs: dict[str, Path], path: str | Path, *, columns: int = 5,
     ``thumb_px`` pixels wide to a row, each captioned, in 16 greys; written atomically to ``path``."""
     import io
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from matplotlib.image import imread
 
     if not pngs:
         raise VelplanError("contact sheet: no sheets to put on it")
-    images = {name: plt.imread(str(f)) for name, f in pngs.items()}
+    images = {name: imread(str(f)) for name, f in pngs.items()}
     aspect = max(img.shape[0] / img.shape[1] for img in images.values())
     rows = math.ceil(len(images) / columns)
     dpi = 100
     cell_w, cell_h = thumb_px / dpi, thumb_px * aspect / dpi + 0.22
-    fig, axes = plt.subplots(rows, columns, figsize=(columns * cell_w, rows * cell_h), dpi=dpi,
-                             squeeze=False)
+    fig = Figure(figsize=(columns * cell_w, rows * cell_h), dpi=dpi)  # no pyplot: the caller's backend stays
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(rows, columns, squeeze=False)
     for ax in axes.flat:
         ax.set_axis_off()
     for ax, (name, img) in zip(axes.flat, images.items()):
@@ -95,7 +95,6 @@ def contact_sheet(pngs: dict[str, Path], path: str | Path, *, columns: int = 5,
     fig.subplots_adjust(left=0.005, right=0.995, top=0.99, bottom=0.005, wspace=0.03, hspace=0.12)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
-    plt.close(fig)
     from PIL import Image  # matplotlib's own dependency
 
     grey = Image.open(io.BytesIO(buf.getvalue())).convert("L").quantize(colors=16)  # line art: 16 greys

@@ -11,7 +11,7 @@ from typing import Iterable, Literal, Sequence
 
 import numpy as np
 
-from velplan.analysis.numbering import position_index, position_number
+from velplan.analysis.numbering import position_index, position_indices, position_number
 from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError, ScaleError, SingularPositionError, VelplanError
 from velplan.mechanism.model import GROUND, Mechanism
@@ -135,7 +135,7 @@ class Plan:
         on_failure: Literal["nan", "raise"] = "nan",
         velocity: "PlanResult | None" = None,
     ) -> "PlanResult":
-        """Construct the plan at ``positions`` (indices into ``kin``; all by default).
+        """Construct the plan at ``positions`` (position numbers 1…n of ``kin``; all by default).
 
         Parameters
         ----------
@@ -161,7 +161,7 @@ class Plan:
             raise MechanismError("the kinematics were solved for another mechanism")
         if np.any(kin.epsilon1 != 0) and not self.tangential:
             raise MechanismError("ε1 ≠ 0: build the plan with tangential=True")
-        idx = np.arange(len(kin)) if positions is None else np.asarray(positions, dtype=int)
+        idx = np.arange(len(kin)) if positions is None else position_indices(positions, len(kin))
         sel = slice(None) if positions is None else idx  # every position: views, not copies
         mu = {
             "v": velocity.scales["v"] if velocity is not None
@@ -190,10 +190,10 @@ def _xy(z: np.ndarray) -> np.ndarray:
     return z.view(float).reshape(z.shape[0], 2)
 
 
-def auto_scale(kin: Kinematics, idx, kind: Kind, target_mm: float | None = None) -> float:
-    """Standard scale so that the longest vector of ``kind`` at ``idx`` (indices or a slice) is
-    ≤ ``target_mm``."""
-    vmax = kin.largest(kind, idx)
+def auto_scale(kin: Kinematics, rows, kind: Kind, target_mm: float | None = None) -> float:
+    """Standard scale so that the longest vector of ``kind`` in the rows ``rows`` of ``kin`` (a
+    slice or array indices 0…n−1, as `Plan.evaluate` selects them) is ≤ ``target_mm``."""
+    vmax = kin.largest(kind, rows)
     if vmax == 0:
         raise ScaleError(f"every {kind} is zero at the requested positions; give the scale explicitly")
     return standard_scale(vmax / (target_mm or TARGET_MM[kind]))

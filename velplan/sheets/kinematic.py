@@ -29,6 +29,7 @@ from typing import Mapping, Sequence
 import numpy as np
 import shapely
 
+from velplan.analysis.numbering import position_index
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.options import KINEMATIC_SHEET_KINDS, Format, SheetKind
@@ -260,8 +261,10 @@ def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centre
     chosen = check_plan_positions(
         default_plan_positions(study.plan("velocity")) if plans is None else plans, study.n)
     for k in centres:
-        if not 1 <= k <= study.n:
-            raise VelplanError(f"--centres: position {k} is outside 1…{study.n}")
+        try:
+            position_index(k, study.n)
+        except VelplanError as exc:
+            raise VelplanError(f"--centres: {exc}") from None
     if diagrams and mech.output is None:
         raise VelplanError(f"{mech.name} names no output, so it has no kinematic diagrams")
     return chosen

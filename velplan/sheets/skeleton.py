@@ -20,6 +20,7 @@ from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.render.i18n import check_language, label
@@ -135,8 +136,11 @@ def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
     if not chosen:
         raise VelplanError("--plans: give at least one position")
     for k in chosen:
-        if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
-            raise VelplanError(f"--plans: position {k} is outside 1…{n}")
+        try:
+            position_index(k, n)
+        except VelplanError as exc:
+            raise VelplanError(f"--plans: {exc}") from None
+    chosen = tuple(int(k) for k in chosen)
     if len(set(chosen)) != len(chosen):
         raise VelplanError(f"--plans: a position is repeated in {', '.join(map(str, chosen))}")
     return chosen
