@@ -98,6 +98,9 @@ def test_study_plan_takes_position_numbers(press):
     for bad in ([0], [13]):
         with pytest.raises(VelplanError, match=rf"^position {bad[0]} is outside 1…12 "):
             press.plan("velocity", positions=bad, only=["C"])
+    for bad in ([2.5], [True], []):  # not a whole position number, or none at all
+        with pytest.raises(VelplanError, match=r"^(position .* is not a whole number 1…12|no positions given)"):
+            press.plan("velocity", positions=bad, only=["C"])
 
 
 def test_require_assembled_takes_position_numbers(press):

@@ -31,7 +31,7 @@ import numpy as np
 
 from velplan.analysis.chord import Diagrams, kinematic_diagrams
 from velplan.analysis.extremes import Extreme, Stroke, extremes, positions, reference_angle, stroke
-from velplan.analysis.numbering import position_indices
+from velplan.analysis.numbering import position_indices, position_number
 from velplan.analysis.solver import Kinematics, group_point, solve
 from velplan.errors import AssemblyError, MechanismError, VelplanError
 from velplan.mechanism.loader import load
@@ -229,9 +229,8 @@ class Study:
                 res = self._plans[(kind,)] = self.construction.evaluate(
                     self.kinematics, kind=kind, velocity=velocity)
             return res if scale is None else res.at_scale(scale)
-        pos = None if positions is None else tuple(int(k) for k in np.atleast_1d(positions))
-        if pos is not None:
-            self._indices(pos)  # numbers 1…n, checked before the cache is asked
+        # the numbers, checked (1…n, whole) before the cache is asked
+        pos = None if positions is None else tuple(position_number(i) for i in self._indices(positions))
         key = (kind, drafting, scale_v, scale_a, pos, None if only is None else tuple(only), on_failure)
         res = self._plans.get(key)
         if res is None:
