@@ -201,3 +201,55 @@ def test_every_command_runs(tmp_path):
         out = tmp_path / f"sheet-{kind}.svg"
         run_cli("sheet", str(f), "--kind", kind, "-o", str(out))
         assert out.read_text(encoding="utf-8").lstrip().startswith("<")
+
+
+@pytest.mark.parametrize("pair", ["[1, 3]", "[2, 3]", "[1, 2]"])
+def test_exact_plans_equal_the_solver(pair):
+    """The velocity and acceleration plans by Assur's special point (with the two blocks' normals
+    as its lines for [2, 3]): every image and every ω, ε as the solver's, to 1e-12."""
+    from velplan.plans import Plan
+
+    mech = two_blocks(pair)
+    kin = velplan.solve(mech, np.radians(np.arange(12) * 30.0 + 7.0))
+    plan = Plan.of(mech)
+    for kind, ref in (("velocity", kin.velocities), ("acceleration", kin.accelerations)):
+        res = plan.evaluate(kin, kind=kind)
+        assert not res.refused.any() and {"B", "C", "D", "K3"} <= set(res.vectors)
+        size = np.hypot(ref[:, :, 0], ref[:, :, 1]).max(axis=1)
+        for p, v in res.vectors.items():
+            assert (np.hypot(*(v - ref[:, kin.point_index[p]]).T) / size).max() < 1e-12, (kind, p)
+        rates = res.omegas if kind == "velocity" else res.epsilons
+        exact = {k: (kin.omega(k) if kind == "velocity" else kin.epsilon(k)) for k in rates}
+        largest = np.max([np.abs(e) for e in exact.values()], axis=0)
+        assert set(kin.link_index) <= set(rates)
+        for k, w in rates.items():
+            assert (np.abs(w - exact[k]) <= 1e-12 * largest).all(), (kind, k)
+
+
+@pytest.mark.parametrize("pair", ["[1, 3]", "[2, 3]", "[1, 2]"])
+def test_force_polygon_by_the_special_point(pair):
+    """The course's polygon of the group closes and gives the 12 × 12 system's outer reactions:
+    the blocks pushed along their guides' normals only, the rod's Rᵗ across it."""
+    from velplan.forces.common import cross, point
+    from velplan.mechanism.structure import pairs
+
+    mech = two_blocks(pair)
+    kin = velplan.solve(mech, velplan.positions(mech, 12))
+    acts = mechanism_actions(mech, kin)
+    ks = kinetostatics(mech, kin, acts)
+    f_big = max(np.nanmax(r.magnitude) for r in ks.reactions.values())
+    g = mech.groups[0]
+    poly = ks.polygons[g.name]
+    assert poly.misclosure().max() <= 1e-9 * f_big
+    assert np.abs(poly.special - point(kin, g.special_name)).max() <= 1e-9
+    names = [p.name for p in pairs(mech) if p.group == g.name]
+    assert [lf.rod for lf in poly.leads] == [True, False, False]
+    for i, lf in enumerate(poly.leads):
+        r = ks.reactions[names[2 * i]]
+        assert np.abs(poly.outer[names[2 * i]] - r.force).max() <= 1e-9 * f_big
+        if lf.rod:
+            assert np.abs(cross(lf.along, lf.tangential) - cross(lf.along, r.force)).max() <= 1e-9 * f_big
+        else:
+            assert np.abs(cross(lf.along, r.force)).max() <= 1e-9 * f_big
+    for name, v in poly.inner.items():
+        assert np.abs(v - ks.reactions[name].force).max() <= 1e-9 * f_big
