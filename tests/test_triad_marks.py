@@ -127,3 +127,12 @@ def test_csv_has_the_same_numbers_and_no_text_columns():
     assert [h for h in head if h.startswith("K3.")] == [f"K3.{q}" for q in ("x", "y", "vx", "vy", "ax", "ay")]
     values = dict(zip(head, rows[1].split(",")))
     assert float(values["K3.vy"]) == pytest.approx(doc["positions"][0]["points"]["K3"]["vy"], rel=1e-11)
+
+
+def test_two_rods_from_two_ground_points_at_one_place_are_refused():
+    text = ROCKER.replace("F = [0.131, -0.035]", "F = [0.574, 0.011]")  # F moved onto E
+    assert text != ROCKER
+    with pytest.raises(MechanismError) as err:
+        velplan.parse(text)
+    assert str(err.value) == ("group '3-2-4-5': leads 2 and 3 are rods from 'E' and 'F', both at [0.574, 0.011], "
+                              "so links 4, 5 and 3 make one rigid body (a truss), not a class III group")

@@ -117,6 +117,7 @@ def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
     ground = _ground(_table(data, "ground", required=True))
     crank = _crank(_table(data, "crank", required=True))
     groups = tuple(_group(g, i) for i, g in enumerate(_list(data, "group")))
+    _no_truss_on_ground(groups, dict(ground))
     points = tuple(_point(p, i) for i, p in enumerate(_list(data, "point")))
     masses = _masses(_table(data, "link"))
     output = _output(data.get("output"))
@@ -290,6 +291,21 @@ def _no_truss(leads: tuple[Lead, ...], base: str, where: str) -> None:
                 raise MechanismError(
                     f"{where}: leads {k + 1} and {m + 1} are rods from the same joint {a.joint!r}, so links "
                     f"{a.link}, {b.link} and {base} make one rigid body (a truss), not a class III group")
+
+
+def _no_truss_on_ground(groups, ground: dict[str, tuple[float, float]]) -> None:
+    """Refuse two rod leads of a triad from two ground points at one place (a truss too)."""
+    for g in groups:
+        if not isinstance(g, Triad):
+            continue
+        rods = [(k, lead) for k, lead in enumerate(g.leads) if not lead.slider and lead.joint in ground]
+        for n, (k, a) in enumerate(rods):
+            for m, b in rods[n + 1:]:
+                if a.joint != b.joint and ground[a.joint] == ground[b.joint]:
+                    raise MechanismError(
+                        f"group {g.name!r}: leads {k + 1} and {m + 1} are rods from {a.joint!r} and {b.joint!r}, "
+                        f"both at {list(ground[a.joint])}, so links {a.link}, {b.link} and {g.base} make one rigid "
+                        "body (a truss), not a class III group")
 
 
 def _lead(t: dict, k: int, where: str) -> Lead:
