@@ -102,7 +102,7 @@ def _set_field(obj, path: list[str], value):
 
 
 def _set_group(g, rest: list[str], value, key: str):
-    params = g.design_parameters()
+    params = g.design_fields
     if not params:
         raise MechanismError(f"design key {key!r}: group {g.name!r} is a class {'I' * g.group_class[0]} group, "
                              "not varied here")

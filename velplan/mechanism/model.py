@@ -125,6 +125,20 @@ class AssurGroup:
     tracked: ClassVar[bool] = False
     """True when its assembly is followed over the turn (no closed form picks the branch)."""
 
+    design_fields: ClassVar[tuple[str, ...]] = ()
+    """Its numbers a design study may vary: field paths (``guide.offset``, ``lengths.0``; a last
+    ``…_deg`` is its radian field in degrees)."""
+
+    def design_parameters(self) -> dict[str, float]:
+        """Each of ``design_fields`` → its value (m, or deg)."""
+        out = {}
+        for path in self.design_fields:
+            value: Any = self
+            for part in path.split("."):
+                value = value[int(part)] if isinstance(value, tuple) else getattr(value, part.removesuffix("_deg"))
+            out[path] = math.degrees(value) if path.endswith("_deg") else float(value)
+        return out
+
     def special_points(self) -> tuple[str, ...]:
         """Assur's special points (construction points of a class III group's base link)."""
         return ()
@@ -205,6 +219,7 @@ class RRR(Dyad):
     lengths: tuple[float, float]
     branch: int = 1
     kind: GroupKind = field(default="RRR", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("lengths.0", "lengths.1")
 
     def joints_in(self) -> tuple[str, ...]:
         return self.joints
@@ -249,8 +264,6 @@ class RRR(Dyad):
     def given_lengths(self) -> tuple[float, ...]:
         return tuple(self.lengths) + (0.0,)
 
-    def design_parameters(self) -> dict[str, float]:
-        return {f"lengths.{j}": float(v) for j, v in enumerate(self.lengths)}
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point),)
@@ -274,6 +287,7 @@ class RRP(Dyad):
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RRP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("length", "guide.offset", "guide.angle_deg")
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.joint, self.guide.through)
@@ -330,8 +344,6 @@ class RRP(Dyad):
     def given_lengths(self) -> tuple[float, ...]:
         return (self.length,)
 
-    def design_parameters(self) -> dict[str, float]:
-        return {"length": float(self.length), **_guide_parameters("guide", self.guide)}
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point), ("coincident", self.coincident))
@@ -355,6 +367,7 @@ class RPR(Dyad):
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RPR", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("offset",)
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.joint, self.pivot)
@@ -390,8 +403,6 @@ class RPR(Dyad):
     def solved_point(self) -> str:
         return self.coincident or self.joint
 
-    def design_parameters(self) -> dict[str, float]:
-        return {"offset": float(self.offset)}
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("coincident", self.coincident),)
@@ -411,6 +422,8 @@ class PRP(Dyad):
     guides: tuple[Guide, Guide]
     coincident: tuple[str | None, str | None] = (None, None)
     kind: GroupKind = field(default="PRP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("guides.0.offset", "guides.0.angle_deg",
+                                                "guides.1.offset", "guides.1.angle_deg")
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.guides[0].through, self.guides[1].through)
@@ -450,11 +463,6 @@ class PRP(Dyad):
     def solved_point(self) -> str:
         return self.point
 
-    def design_parameters(self) -> dict[str, float]:
-        out: dict[str, float] = {}
-        for k, gd in enumerate(self.guides):
-            out.update(_guide_parameters(f"guides.{k}", gd))
-        return out
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point),) + tuple(("coincident", c) for c in self.coincident)
@@ -477,6 +485,7 @@ class RPP(Dyad):
     coincident: str | None = None
     origin: str | None = None
     kind: GroupKind = field(default="RPP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("guide.offset", "guide.angle_deg", "slot_angle_deg")
 
     @property
     def origin_name(self) -> str:
@@ -526,8 +535,6 @@ class RPP(Dyad):
     def solved_point(self) -> str:
         return self.coincident or self.joint
 
-    def design_parameters(self) -> dict[str, float]:
-        return {**_guide_parameters("guide", self.guide), "slot_angle_deg": math.degrees(self.slot_angle)}
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("coincident", self.coincident), ("origin", self.origin_name))
@@ -684,8 +691,6 @@ class Triad(AssurGroup):
     def given_lengths(self) -> tuple[float, ...]:
         return self.sides + tuple(lead.length for lead in self.leads)
 
-    def design_parameters(self) -> dict[str, float]:
-        return {}
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         named = [("joint", j) for j in self.joints] + [("special point", self.special_name)]
@@ -701,11 +706,6 @@ KINDS: tuple[type, ...] = (RRR, RRP, RPR, PRP, RPP, Triad)
 """Every group kind of the model (each layer's registry must hold every one)."""
 
 _T = TypeVar("_T")
-
-
-def _guide_parameters(where: str, guide: Guide) -> dict[str, float]:
-    """The design parameters of a group's guide (offset m, angle deg) under ``where``."""
-    return {f"{where}.offset": float(guide.offset), f"{where}.angle_deg": math.degrees(guide.angle)}
 
 
 def kind_entry(registry: Mapping[type, _T], group: Any, where: str) -> _T:
