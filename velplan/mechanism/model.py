@@ -156,6 +156,11 @@ class AssurGroup:
         """The point whose positions are read for the output point ``point`` of this group."""
         return point
 
+    def line_point(self, slider: str) -> str | None:
+        """The point the guide line of ``slider``'s prismatic pair is referred to, when not its
+        joint (an RPP runner's origin K)."""
+        return None
+
     def shifted(self, dx: float, dy: float):
         """The group with every absolute position it gives moved by (dx, dy) m."""
         return self
@@ -531,6 +536,9 @@ class RPP(Dyad):
 
     def track_point(self, point: str) -> str:
         return self.origin_name if point == self.coincident else point  # the runner's, on its guide
+
+    def line_point(self, slider: str) -> str | None:
+        return self.origin_name if slider == self.links[1] else None  # the runner's guide line passes K
 
     def solved_point(self) -> str:
         return self.coincident or self.joint
