@@ -25,7 +25,7 @@ from velplan.errors import MechanismError
 import velplan.forces as vf
 from velplan.mechanism import loader
 from velplan.mechanism.loader import catalogue_names, example_names
-from velplan.mechanism.model import KINDS, PRP, RPP, RPR, RRP, RRR, Dyad, Triad
+from velplan.mechanism.model import FACTS, KINDS, PRP, RPP, RPR, RRP, RRR, AssurGroup, Dyad, Triad
 from velplan.mechanism.structure import (coincident_points, facts, guides_of, joints_in, pairs, point_owners,
                                          points_out, revolute_joints, structure)
 from velplan.plans import build
@@ -63,9 +63,17 @@ class Fake(Dyad):
     kind: str = field(default="FAKE", init=False)
 
 
-for _fact in ("joints_in", "guide_lines", "points_out", "revolute_joints", "slides", "pairs", "inner_joints",
-              "link_lines", "link_lengths", "sizes", "output_joint", "solved_point", "given_lengths", "named_points"):
+for _fact in FACTS:
     setattr(Fake, _fact, getattr(RRR, _fact))
+
+
+@dataclass(frozen=True)
+class Mute(AssurGroup):
+    """A group kind that states none of its structure."""
+
+    name: str
+    links: tuple[str, str]
+    kind: str = field(default="MUTE", init=False)
 
 
 @dataclass(frozen=True)
@@ -126,6 +134,8 @@ def test_a_value_that_is_no_group_kind_is_refused_by_the_structure():
     for run in (lambda: pairs(bare), lambda: point_owners(bare), lambda: facts(bare.groups[0])):
         with pytest.raises(MechanismError, match="kind Bare is not an Assur group kind"):
             run()
+    with pytest.raises(MechanismError, match="kind Mute does not state its joints_in, guide_lines, .*named_points$"):
+        pairs(replace(mech, groups=(Mute("x", ("2", "3")),)))
 
 
 # ---- the reference: what the switches over the kinds computed --------------------------------

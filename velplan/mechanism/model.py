@@ -106,12 +106,18 @@ class Guide:
     offset: float = 0.0
 
 
+FACTS = ("joints_in", "guide_lines", "points_out", "revolute_joints", "pairs", "slides", "coincident_names",
+         "inner_joints", "link_lines", "link_lengths", "sizes", "offsets", "output_slides", "output_joint",
+         "solved_point", "given_lengths", "named_points")
+"""The structural facts every group kind states (`AssurGroup`)."""
+
+
 class AssurGroup:
     """What every Assur group kind states about its own structure; the layers above ask these
     facts, never the kind's class (each layer's own work for a kind sits in one registry keyed
     by the class, read through `kind_entry`).
 
-    A kind defines: ``joints_in`` (known points it attaches to), ``guide_lines`` (guides it
+    A kind defines (`FACTS`): ``joints_in`` (known points it attaches to), ``guide_lines`` (guides it
     slides on), ``points_out`` (points it determines → owner link), ``revolute_joints``
     (joint centre → its links), ``pairs`` (its lower pairs), ``slides`` (its prismatic pairs),
     ``coincident_names``, ``inner_joints`` (the joints it solves for), ``link_lines`` (the
@@ -138,6 +144,10 @@ class AssurGroup:
                 value = value[int(part)] if isinstance(value, tuple) else getattr(value, part.removesuffix("_deg"))
             out[path] = math.degrees(value) if path.endswith("_deg") else float(value)
         return out
+
+    def slide_pair(self, slider: str, guide_link: str) -> str:
+        """Name of the prismatic pair of ``slider`` on ``guide_link``."""
+        return f"P:{slider}/{guide_link}"
 
     def special_points(self) -> tuple[str, ...]:
         """Assur's special points (construction points of a class III group's base link)."""
@@ -168,10 +178,6 @@ class AssurGroup:
 
 class Dyad(AssurGroup):
     """A class II group of the second order: two links, three pairs, ``links = (a, b)``."""
-
-    def slide_pair(self, slider: str, guide_link: str) -> str:
-        """Name of the prismatic pair of ``slider`` on ``guide_link``."""
-        return f"P:{slider}/{guide_link}"
 
     def output_joint(self, link: str) -> str | None:
         """The moving joint whose positions are numbered for the output link ``link``."""
@@ -208,6 +214,7 @@ class Dyad(AssurGroup):
     def output_slides(self) -> dict[str, tuple[str, str]]:
         """Point that may be the output slider → (slider link, its prismatic pair)."""
         return {}
+
 
 @dataclass(frozen=True)
 class RRR(Dyad):
@@ -632,10 +639,6 @@ class Triad(AssurGroup):
 
     def slides(self) -> tuple[tuple[str, str, str], ...]:
         return tuple((lead.link, lead.guide.link, j) for j, lead in zip(self.joints, self.leads) if lead.slider)
-
-    def slide_pair(self, slider: str, guide_link: str) -> str:
-        """Name of the prismatic pair of ``slider`` on ``guide_link``."""
-        return f"P:{slider}/{guide_link}"
 
     def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
         """Its six pairs, lead by lead: the outer pair (R at the rod's outer joint, or P of the

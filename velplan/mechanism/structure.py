@@ -11,6 +11,7 @@ from typing import Union
 from velplan.errors import MechanismError, deprecated
 from velplan.mechanism.model import (
     GROUND,
+    FACTS,
     AssurGroup,
     Crank,
     Group,
@@ -29,6 +30,10 @@ def facts(group) -> AssurGroup:
     if not isinstance(group, AssurGroup):
         raise MechanismError(f"group {getattr(group, 'name', '?')!r}: kind {type(group).__name__} is not an Assur "
                              f"group kind (velplan.mechanism.model.AssurGroup): its structure is unknown")
+    missing = [f for f in FACTS if not hasattr(group, f)]
+    if missing:
+        raise MechanismError(f"group {group.name!r}: kind {type(group).__name__} does not state its "
+                             f"{', '.join(missing)}")
     return group
 
 
