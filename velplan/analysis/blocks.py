@@ -12,7 +12,7 @@ import numpy as np
 from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
 from velplan.analysis.kinematics import SINGULAR_BOUND, WELL_CONDITIONED, Kinematics, velocity_bound
 from velplan.errors import AssemblyError, MechanismError
-from velplan.mechanism.model import GROUND, RPP, RPR, Crank, Group, LinkPoint, Mechanism, Triad
+from velplan.mechanism.model import GROUND, Crank, Group, LinkPoint, Mechanism
 from velplan.mechanism.structure import guides_of, joints_in, points_out, schedule
 
 
@@ -93,12 +93,7 @@ def solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tra
             st.points[item.name] = Motion(*link_point(o.p, o.v, o.a, link.theta, link.omega, link.epsilon,
                                                       item.along, item.offset))
         else:
-            if isinstance(item, Triad):
-                from velplan.analysis import triad
-
-                res = triad.solve_triad(item, st, phi, tracks[item.name], scale)
-            else:
-                res = solve_group(item, st, scale)
+            res = solve_group(item, st, scale, phi, tracks[item.name] if item.tracked else None)
             check_closed(item, res.closed, phi, on_failure)
             st.points.update(res.points)
             st.links.update(res.links)
@@ -114,11 +109,7 @@ def solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> N
 
 def group_point(g: Group) -> str:
     """The point a group is said to solve for, used in messages."""
-    if isinstance(g, (RPR, RPP)):
-        return g.coincident or g.joint
-    if isinstance(g, Triad):
-        return g.joints[0]
-    return g.point
+    return g.solved_point()
 
 
 def check_closed(g: Group, closed: np.ndarray, phi: np.ndarray, on_failure: str) -> None:
@@ -141,8 +132,7 @@ def about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
     from dataclasses import replace
 
     ground = tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in mech.ground)
-    groups = tuple(replace(g, assembly=tuple((n, (x - pivot[0], y - pivot[1])) for n, (x, y) in g.assembly))
-                   if isinstance(g, Triad) else g for g in mech.groups)
+    groups = tuple(g.shifted(-pivot[0], -pivot[1]) for g in mech.groups)
     return replace(mech, ground=ground, groups=groups), pivot
 
 

@@ -30,7 +30,7 @@ from velplan.analysis import groups as G
 from velplan.analysis import blocks
 from velplan.analysis.kinematics import SINGULAR_BOUND, Kinematics, length_scale
 from velplan.errors import VelplanError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, kind_entry
 from velplan.mechanism.structure import schedule
 
 
@@ -108,41 +108,58 @@ def _program(mech, points, links, slides, groups, length_scale, items) -> tuple[
             row(CRANK, [P[item.pivot], P[item.tip], L[item.link]], [item.length])
         elif isinstance(item, LinkPoint):
             row(POINT, [L[item.link], P[origin[item.link]], P[item.name]], [item.along, item.offset])
-        elif isinstance(item, RRR):
-            origin.update(zip(item.links, item.joints))
-            row(OP_RRR, [P[item.joints[0]], P[item.joints[1]], P[item.point], L[item.links[0]],
-                         L[item.links[1]], Gi[item.name]], [*item.lengths, item.branch])
-        elif isinstance(item, RRP):
-            rod, slider = item.links
-            origin.update({rod: item.joint, slider: item.point})
-            g = item.guide
-            row(OP_RRP, [P[item.joint], P[g.through], L[g.link], P[item.point], opt(item.coincident),
-                         L[rod], L[slider], S[G.slide_name(slider, g.link)], Gi[item.name]],
-                [g.angle, g.offset, item.length, item.branch])
-        elif isinstance(item, RPR):
-            block, bar = item.links
-            origin.update({block: item.joint, bar: item.pivot})
-            row(OP_RPR, [P[item.joint], P[item.pivot], opt(item.coincident), L[block], L[bar],
-                         S[G.slide_name(block, bar)], Gi[item.name]], [item.offset, item.branch, length_scale])
-        elif isinstance(item, PRP):
-            m1, m2 = item.links
-            origin.update({m1: item.point, m2: item.point})
-            g1, g2 = item.guides
-            row(OP_PRP, [P[g1.through], L[g1.link], P[g2.through], L[g2.link], P[item.point],
-                         opt(item.coincident[0]), opt(item.coincident[1]), L[m1], L[m2],
-                         S[G.slide_name(m1, g1.link)], S[G.slide_name(m2, g2.link)], Gi[item.name]],
-                [g1.angle, g1.offset, g2.angle, g2.offset])
-        elif isinstance(item, RPP):
-            block, runner = item.links
-            origin.update({block: item.joint, runner: item.origin_name})
-            g = item.guide
-            row(OP_RPP, [P[item.joint], P[g.through], L[g.link], opt(item.coincident), P[item.origin_name],
-                         L[block], L[runner], S[G.slide_name(block, runner)], S[G.slide_name(runner, g.link)],
-                         Gi[item.name]], [g.angle, g.offset, item.slot_angle])
-        else:  # pragma: no cover - the model has no other kinds
-            raise TypeError(f"no compiled form for {type(item).__name__}")
+        else:
+            op, ints, reals = kind_entry(_ROWS, item, "velplan.analysis.compiled._ROWS")(item, P, L, S, Gi, opt, origin,
+                                                                                   length_scale)
+            row(op, ints, reals)
     return ops, pars
 
+
+# Each group kind's program row: (opcode, register slots, reals); it records its links' origins.
+def _row_rrr(item, P, L, S, Gi, opt, origin, scale):
+    origin.update(zip(item.links, item.joints))
+    return OP_RRR, [P[item.joints[0]], P[item.joints[1]], P[item.point], L[item.links[0]],
+                    L[item.links[1]], Gi[item.name]], [*item.lengths, item.branch]
+
+
+def _row_rrp(item, P, L, S, Gi, opt, origin, scale):
+    rod, slider = item.links
+    origin.update({rod: item.joint, slider: item.point})
+    g = item.guide
+    return OP_RRP, [P[item.joint], P[g.through], L[g.link], P[item.point], opt(item.coincident),
+                    L[rod], L[slider], S[G.slide_name(slider, g.link)], Gi[item.name]], \
+        [g.angle, g.offset, item.length, item.branch]
+
+
+def _row_rpr(item, P, L, S, Gi, opt, origin, scale):
+    block, bar = item.links
+    origin.update({block: item.joint, bar: item.pivot})
+    return OP_RPR, [P[item.joint], P[item.pivot], opt(item.coincident), L[block], L[bar],
+                    S[G.slide_name(block, bar)], Gi[item.name]], [item.offset, item.branch, scale]
+
+
+def _row_prp(item, P, L, S, Gi, opt, origin, scale):
+    m1, m2 = item.links
+    origin.update({m1: item.point, m2: item.point})
+    g1, g2 = item.guides
+    return OP_PRP, [P[g1.through], L[g1.link], P[g2.through], L[g2.link], P[item.point],
+                    opt(item.coincident[0]), opt(item.coincident[1]), L[m1], L[m2],
+                    S[G.slide_name(m1, g1.link)], S[G.slide_name(m2, g2.link)], Gi[item.name]], \
+        [g1.angle, g1.offset, g2.angle, g2.offset]
+
+
+def _row_rpp(item, P, L, S, Gi, opt, origin, scale):
+    block, runner = item.links
+    origin.update({block: item.joint, runner: item.origin_name})
+    g = item.guide
+    return OP_RPP, [P[item.joint], P[g.through], L[g.link], opt(item.coincident), P[item.origin_name],
+                    L[block], L[runner], S[G.slide_name(block, runner)], S[G.slide_name(runner, g.link)],
+                    Gi[item.name]], [g.angle, g.offset, item.slot_angle]
+
+
+#: The compiled engine's lookup by group kind (a `tracked` kind, the triad, runs on the numpy
+#: engine: `_layout` sends it there before any row is made).
+_ROWS = {RRR: _row_rrr, RRP: _row_rrp, RPR: _row_rpr, PRP: _row_prp, RPP: _row_rpp}
 
 # ---- the kernel ------------------------------------------------------------------------------
 # Each kind of program row has its own function over the angles i0 … i0+m−1 of a chunk, all with
@@ -504,7 +521,7 @@ def layout(mech: Mechanism, points) -> Layout:
 
 def _layout(mech: Mechanism, points) -> Layout:
     items = schedule(mech) if points is None else blocks.needed_items(mech, points)
-    triad = next((g.name for g in items if isinstance(g, Triad)), None)
+    triad = next((g.name for g in items if getattr(g, "tracked", False)), None)
     if triad is not None:
         return Layout(items, triad, None, None, None, {}, (0, 0, 0, 0))
     scale = length_scale(mech)

@@ -44,7 +44,7 @@ from velplan.analysis.blocks import BLOCK, Outputs, about_pivot, solve_items
 from velplan.analysis.kinematics import Kinematics, group_lengths
 from velplan.analysis.solver import solve
 from velplan.errors import MechanismError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
+from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import schedule
 
 
@@ -61,21 +61,7 @@ def design_keys(mech: Mechanism, *, speed: bool = False) -> dict[str, float]:
     if speed:
         out["crank.omega"] = float(mech.crank.omega)
     for g in mech.groups:
-        base = f"group.{g.name}"
-        if isinstance(g, RRR):
-            out.update({f"{base}.lengths.{j}": float(v) for j, v in enumerate(g.lengths)})
-        elif isinstance(g, RRP):
-            out[f"{base}.length"] = float(g.length)
-        elif isinstance(g, RPR):
-            out[f"{base}.offset"] = float(g.offset)
-        guides = {"guide": g.guide} if isinstance(g, (RRP, RPP)) else {}
-        if isinstance(g, PRP):
-            guides = {f"guides.{k}": gd for k, gd in enumerate(g.guides)}
-        for where, gd in guides.items():
-            out[f"{base}.{where}.offset"] = float(gd.offset)
-            out[f"{base}.{where}.angle_deg"] = math.degrees(gd.angle)
-        if isinstance(g, RPP):
-            out[f"{base}.slot_angle_deg"] = math.degrees(g.slot_angle)
+        out.update({f"group.{g.name}.{k}": v for k, v in g.design_parameters().items()})
     for p in mech.points:
         out[f"point.{p.name}.along"], out[f"point.{p.name}.offset"] = float(p.along), float(p.offset)
     return out
@@ -100,34 +86,28 @@ def _with(obj, **fields):
     return new
 
 
-def _set_guide(gd, field: str, value, key: str):
-    if field == "offset":
-        return _with(gd, offset=value)
-    if field == "angle_deg":
-        return _with(gd, angle=np.radians(value))
-    raise MechanismError(f"unknown design key {key!r}: a guide has offset and angle_deg")
+def _set_field(obj, path: list[str], value):
+    """``obj`` with the number at ``path`` (field names, tuple indices; a last ``…_deg``
+    field is set in radians) set to ``value``."""
+    head, rest = path[0], path[1:]
+    if isinstance(obj, tuple):
+        items = list(obj)
+        items[int(head)] = _set_field(items[int(head)], rest, value) if rest else value
+        return tuple(items)
+    if rest:
+        return _with(obj, **{head: _set_field(getattr(obj, head), rest, value)})
+    if head.endswith("_deg"):
+        return _with(obj, **{head[:-4]: np.radians(value)})
+    return _with(obj, **{head: value})
 
 
 def _set_group(g, rest: list[str], value, key: str):
-    if isinstance(g, Triad):
-        raise MechanismError(f"design key {key!r}: group {g.name!r} is a class III group, not varied here")
-    if isinstance(g, RRR) and len(rest) == 2 and rest[0] == "lengths" and rest[1] in ("0", "1"):
-        lengths = list(g.lengths)
-        lengths[int(rest[1])] = value
-        return _with(g, lengths=tuple(lengths))
-    if rest == ["length"] and isinstance(g, RRP):
-        return _with(g, length=value)
-    if rest == ["offset"] and isinstance(g, RPR):
-        return _with(g, offset=value)
-    if rest == ["slot_angle_deg"] and isinstance(g, RPP):
-        return _with(g, slot_angle=np.radians(value))
-    if len(rest) == 2 and rest[0] == "guide" and isinstance(g, (RRP, RPP)):
-        return _with(g, guide=_set_guide(g.guide, rest[1], value, key))
-    if len(rest) == 3 and rest[0] == "guides" and rest[1] in ("0", "1") and isinstance(g, PRP):
-        guides = list(g.guides)
-        k = int(rest[1])
-        guides[k] = _set_guide(guides[k], rest[2], value, key)
-        return _with(g, guides=tuple(guides))
+    params = g.design_fields
+    if not params:
+        raise MechanismError(f"design key {key!r}: group {g.name!r} is a class {'I' * g.group_class[0]} group, "
+                             "not varied here")
+    if ".".join(rest) in params:
+        return _set_field(g, rest, value)
     raise MechanismError(f"unknown design key {key!r}: group {g.name!r} ({g.kind}) has no {'.'.join(rest)!r}")
 
 
@@ -401,7 +381,7 @@ def _triad_tracks(mech: Mechanism, vals: dict, V: int) -> dict[str, list]:
     """Group name → the branch (`velplan.analysis.triad.Track`, None where it cannot be
     assembled) of each variant, of every class III group of ``mech``, solved about the pivot
     (memoised: a sweep solves the same variants at several sets of angles)."""
-    if not any(isinstance(g, Triad) for g in mech.groups):
+    if not any(g.tracked for g in mech.groups):
         return {}
     geometry = tuple((k, a.tobytes()) for k, a in vals.items() if k not in ("crank.omega", "crank.rpm"))
     return _tracks_of(mech, geometry, V)
@@ -414,7 +394,7 @@ def _tracks_of(mech: Mechanism, geometry: tuple, V: int) -> dict[str, list]:
     local = [about_pivot(variant(mech, {k: float(a[v]) for k, a in vals.items()}))[0] for v in range(V)]
     out = {}
     for i, g in enumerate(mech.groups):
-        if isinstance(g, Triad):
+        if g.tracked:
             here = [m.groups[i] for m in local]
             out[g.name] = triad.tracks([triad.upstream(m, h) for m, h in zip(local, here)], here, solve)
     return out

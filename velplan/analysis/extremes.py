@@ -15,7 +15,7 @@ import numpy as np
 
 from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
-from velplan.mechanism.model import PRP, RPP, RRP, Mechanism, Triad
+from velplan.mechanism.model import Mechanism
 
 GRID = 1440
 
@@ -138,19 +138,9 @@ def output_quantity(mech: Mechanism, kin: Kinematics | None = None) -> tuple[str
     if out.link is not None:
         return f"link {out.link}", "link", kin.link_index[out.link]
     for g in mech.groups:
-        if isinstance(g, RRP) and g.point == out.point:
-            pair = f"P:{g.links[1]}/{g.guide.link}"
-            return f"point {out.point}", "slide", kin.slide_index[pair]
-        if isinstance(g, PRP) and g.point == out.point:
-            pair = f"P:{g.links[0]}/{g.guides[0].link}"
-            return f"point {out.point}", "slide", kin.slide_index[pair]
-        if isinstance(g, RPP) and out.point in (g.coincident, g.origin_name):
-            pair = f"P:{g.links[1]}/{g.guide.link}"
-            return f"point {out.point}", "slide", kin.slide_index[pair]
-        if isinstance(g, Triad):
-            for joint, lead in zip(g.joints, g.leads):
-                if lead.slider and out.point == joint:
-                    return f"point {out.point}", "slide", kin.slide_index[f"P:{lead.link}/{lead.guide.link}"]
+        slide = g.output_slides().get(out.point)
+        if slide is not None:
+            return f"point {out.point}", "slide", kin.slide_index[slide[1]]
     raise MechanismError(
         f"output point {out.point!r} is not a slider on a guide; give output = {{link = ...}} for a rocker"
     )

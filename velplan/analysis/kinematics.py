@@ -13,7 +13,7 @@ from typing import Literal, Mapping
 import numpy as np
 
 from velplan.errors import MechanismError
-from velplan.mechanism.model import Group, Mechanism, Triad
+from velplan.mechanism.model import Group, Mechanism
 from velplan.options import PlanKind
 
 
@@ -251,9 +251,7 @@ class Kinematics:
 
 def group_lengths(g: Group) -> tuple[float, ...]:
     """The lengths a group gives (m): rods, and a triad's base-link sides."""
-    if isinstance(g, Triad):
-        return g.sides + tuple(lead.length for lead in g.leads)
-    return tuple(getattr(g, "lengths", ())) + (getattr(g, "length", 0.0),)
+    return g.given_lengths()
 
 
 def length_scale(mech: Mechanism) -> float:

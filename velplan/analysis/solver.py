@@ -185,7 +185,7 @@ def special_pair(mech: Mechanism, g: Triad) -> tuple[int, int]:
 def triad_tracks(mech: Mechanism, items) -> dict:
     """Each class III group of ``items``: its branch followed over the turn (`velplan.analysis.triad.track`),
     for the numpy engine's blocks."""
-    triads = [g for g in items if isinstance(g, Triad)]
+    triads = [g for g in items if getattr(g, "tracked", False)]
     if not triads:
         return {}
     from velplan.analysis import triad

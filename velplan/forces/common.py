@@ -13,7 +13,7 @@ import numpy as np
 
 from velplan.analysis.solver import Kinematics
 from velplan.errors import MechanismError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, Mechanism, Triad
+from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import material_points, pairs, point_owners
 
 
@@ -76,19 +76,8 @@ def check_point_of_link(mech: Mechanism, link: str, name: str, where: str) -> No
 @lru_cache(maxsize=None)
 def _rotation_classes_of(groups: tuple) -> tuple[tuple[str, str], ...]:
     edges = []
-    for g in groups:
-        if isinstance(g, Triad):  # a block lead turns with its guide's link
-            edges += [(lead.link, lead.guide.link) for lead in g.leads if lead.slider]
-            continue
-        a, b = g.links
-        if isinstance(g, RRP):
-            edges.append((b, g.guide.link))
-        elif isinstance(g, RPR):
-            edges.append((a, b))
-        elif isinstance(g, PRP):
-            edges += [(a, g.guides[0].link), (b, g.guides[1].link)]
-        elif isinstance(g, RPP):
-            edges += [(a, b), (b, g.guide.link)]
+    for g in groups:  # a slider turns with its guide's link
+        edges += [(slider, guide_link) for slider, guide_link, _ in g.slides()]
     return tuple(edges)
 
 

@@ -12,7 +12,7 @@ from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
 from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
 from velplan.forces.common import check_point_of_link, link_motion, material_points, point
-from velplan.mechanism.model import RRP, RRR, LinkMass, Mechanism, Triad
+from velplan.mechanism.model import LinkMass, Mechanism
 
 DEFAULT_K = 10.0
 """Default K in J_S ≈ m·l²/K (course works take K = 8…10)."""
@@ -25,17 +25,9 @@ def link_length(mech: Mechanism, link: str) -> float:
     if link == mech.crank.link:
         return mech.crank.length
     for g in mech.groups:
-        if isinstance(g, Triad):
-            if link == g.base:
-                return max(g.sides)
-            rods = {lead.link: lead.length for lead in g.leads if not lead.slider}
-            if link in rods:
-                return rods[link]
-            continue
-        if isinstance(g, RRR) and link in g.links:
-            return g.lengths[g.links.index(link)]
-        if isinstance(g, RRP) and link == g.links[0]:
-            return g.length
+        lengths = g.link_lengths()
+        if link in lengths:
+            return lengths[link]
     names = material_points(mech).get(link, ())
     if len(names) < 2:
         return 0.0

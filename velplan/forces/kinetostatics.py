@@ -22,7 +22,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics
 from velplan.forces.actions import Actions
 from velplan.forces.common import cross, dot, point
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Mechanism, Pair, Triad
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Mechanism, Pair, Triad, kind_entry
 from velplan.mechanism.structure import pairs
 from velplan.forces.reactions import ForcePolygon, Reaction, reaction_label  # noqa: F401  (re-exported)
 
@@ -67,9 +67,8 @@ class Kinetostatics:
 
 
 def _reference(g: Group, p: Pair, kin: Kinematics) -> np.ndarray:
-    if p.kind == "P" and isinstance(g, RPP) and p.links[0] == g.links[1]:
-        return point(kin, g.origin_name)  # the runner's guide line passes through K
-    return point(kin, p.point)
+    line = g.line_point(p.links[0]) if p.kind == "P" else None
+    return point(kin, line or p.point)  # an RPP runner's guide line passes through K
 
 
 class _Known:
@@ -206,6 +205,7 @@ def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetos
     condition: dict[str, np.ndarray] = {}
     finite = kin.valid.copy()
     for g in reversed(mech.groups):
+        polygon = kind_entry(POLYGONS, g, "velplan.forces.kinetostatics.POLYGONS")
         gp = [p for p in all_pairs if p.group == g.name]
         refs = [_reference(g, p, kin) for p in gp]
         dirs = [np.exp(1j * kin.angle(p.links[0])) if p.kind == "P" else np.full(n, np.nan + 0j) for p in gp]
@@ -229,12 +229,7 @@ def kinetostatics(mech: Mechanism, kin: Kinematics, actions: Actions) -> Kinetos
                 known.add_force(p.links[1], reaction_label(p.links[0], p.links[1]), -force, refs[j])
                 if p.kind == "P":
                     known.add_moment(p.links[1], -moment)
-        if isinstance(g, Triad):
-            from velplan.forces.triad import triad_polygon
-
-            polygons[g.name] = triad_polygon(mech, g, gp, reactions, group_known, group_moments, kin)
-        else:
-            polygons[g.name] = _polygon(g, gp, reactions, group_known, kin)
+        polygons[g.name] = polygon(mech, g, gp, reactions, group_known, group_moments, kin)
     # The crank: R01 and M_b.
     c = mech.crank
     pivot = point(kin, c.pivot)
@@ -256,6 +251,43 @@ def _component(v: np.ndarray, e: np.ndarray) -> np.ndarray:
     return dot(v, e) * e
 
 
+def _unit(z):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return z / np.abs(z)
+
+
+def _rrr(g: RRR, r: list[Reaction], lab: list[str], kin: Kinematics):
+    c = point(kin, g.point)
+    ea, ed = _unit(c - r[0].reference), _unit(c - r[2].reference)
+    first = [(lab[0] + "τ", _component(r[0].force, 1j * ea))]
+    last = [(lab[2] + "τ", _component(r[2].force, 1j * ed))]
+    return first, last, ((lab[0] + "n", ea), (lab[2] + "n", ed))
+
+
+def _rrp(g: RRP, r: list[Reaction], lab: list[str], kin: Kinematics):
+    ea = _unit(point(kin, g.point) - r[0].reference)
+    first = [(lab[0] + "τ", _component(r[0].force, 1j * ea))]
+    return first, [], ((lab[0] + "n", ea), (lab[2], 1j * r[2].direction))
+
+
+def _rpr(g: RPR, r: list[Reaction], lab: list[str], kin: Kinematics):
+    u = r[1].direction
+    eo = _unit(r[0].reference - r[2].reference)
+    first = [(lab[0] + "∥", _component(r[0].force, u))]
+    last = [(lab[2] + "τ", _component(r[2].force, 1j * eo))]
+    return first, last, ((lab[0] + "⊥", 1j * u), (lab[2] + "n", eo))
+
+
+def _prp(g: PRP, r: list[Reaction], lab: list[str], kin: Kinematics):
+    return [], [], ((lab[0], 1j * r[0].direction), (lab[2], 1j * r[2].direction))
+
+
+def _rpp(g: RPP, r: list[Reaction], lab: list[str], kin: Kinematics):
+    v = r[1].direction
+    first = [(lab[0] + "∥", _component(r[0].force, v))]
+    return first, [], ((lab[0] + "⊥", 1j * v), (lab[2], 1j * r[2].direction))
+
+
 def _polygon(g: Group, gp: list[Pair], reactions: dict[str, Reaction],
              known: dict[str, list[tuple[str, np.ndarray, np.ndarray]]], kin: Kinematics) -> ForcePolygon:
     """Decompose the group's outer reactions as the graphical method does and close the polygon
@@ -264,34 +296,7 @@ def _polygon(g: Group, gp: list[Pair], reactions: dict[str, Reaction],
     loads = [(lab, v) for k in (a, b) for lab, v, _ in known.get(k, ())]
     r = [reactions[p.name] for p in gp]
     lab = [x.label for x in r]
-
-    def unit(z):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return z / np.abs(z)
-
-    if isinstance(g, RRR):
-        c = point(kin, g.point)
-        ea, ed = unit(c - r[0].reference), unit(c - r[2].reference)
-        first = [(lab[0] + "τ", _component(r[0].force, 1j * ea))]
-        last = [(lab[2] + "τ", _component(r[2].force, 1j * ed))]
-        closing = ((lab[0] + "n", ea), (lab[2] + "n", ed))
-    elif isinstance(g, RRP):
-        ea = unit(point(kin, g.point) - r[0].reference)
-        first, last = [(lab[0] + "τ", _component(r[0].force, 1j * ea))], []
-        closing = ((lab[0] + "n", ea), (lab[2], 1j * r[2].direction))
-    elif isinstance(g, RPR):
-        u = r[1].direction
-        eo = unit(r[0].reference - r[2].reference)
-        first = [(lab[0] + "∥", _component(r[0].force, u))]
-        last = [(lab[2] + "τ", _component(r[2].force, 1j * eo))]
-        closing = ((lab[0] + "⊥", 1j * u), (lab[2] + "n", eo))
-    elif isinstance(g, PRP):
-        first, last = [], []
-        closing = ((lab[0], 1j * r[0].direction), (lab[2], 1j * r[2].direction))
-    else:  # RPP
-        v = r[1].direction
-        first, last = [(lab[0] + "∥", _component(r[0].force, v))], []
-        closing = ((lab[0] + "⊥", 1j * v), (lab[2], 1j * r[2].direction))
+    first, last, closing = _DYADS[type(g)](g, r, lab, kin)
     vectors = tuple(first + loads + last)
     n = len(kin)
     end = np.sum([vv for _, vv in vectors], axis=0) if vectors else np.zeros(n, complex)
@@ -301,3 +306,21 @@ def _polygon(g: Group, gp: list[Pair], reactions: dict[str, Reaction],
         alpha = cross(-end, d2) / den
         beta = cross(d1, -end) / den
     return ForcePolygon(g.name, g.kind, vectors, closing, ((l1, alpha * d1), (l2, beta * d2)))
+
+
+def _dyad_polygon(mech, g, gp, reactions, known, moments, kin) -> ForcePolygon:
+    return _polygon(g, gp, reactions, known, kin)
+
+
+def _triad_polygon(mech, g, gp, reactions, known, moments, kin):
+    from velplan.forces.triad import triad_polygon
+
+    return triad_polygon(mech, g, gp, reactions, known, moments, kin)
+
+
+#: How a dyad kind decomposes its outer reactions: (first, last, the two closing directions).
+_DYADS = {RRR: _rrr, RRP: _rrp, RPR: _rpr, PRP: _prp, RPP: _rpp}
+
+#: The kinetostatics' one lookup by group kind: kind → its force polygon
+#: (mech, g, its pairs, reactions, known forces and moments by link, kin).
+POLYGONS = {**dict.fromkeys(_DYADS, _dyad_polygon), Triad: _triad_polygon}

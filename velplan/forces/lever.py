@@ -17,7 +17,7 @@ from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.forces.actions import Actions
 from velplan.forces.common import as_complex, cross, material_points, rotation_class
-from velplan.mechanism.model import GROUND, Mechanism, Triad
+from velplan.mechanism.model import GROUND, Mechanism
 
 
 def images_from_kinematics(kin: Kinematics, i: int | None, mu_v: float) -> dict[str, complex | np.ndarray]:
@@ -115,7 +115,7 @@ def _couple_points(mech: Mechanism, link: str, positions: Mapping, images: Mappi
     """Two points of ``link``, or of a link turning with it, with images: the farthest apart (a
     triad's special point is left out: it runs to infinity where two lead lines turn parallel)."""
     mp = material_points(mech)
-    special = {g.special_name for g in mech.groups if isinstance(g, Triad)}
+    special = {p for g in mech.groups for p in g.special_points()}
     for member in rotation_class(mech, link):
         if member == GROUND:
             continue

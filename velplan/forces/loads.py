@@ -35,7 +35,7 @@ from velplan.errors import MechanismError
 from velplan.forces.actions import Actions, AppliedForce, AppliedMoment
 from velplan.forces.common import as_complex, check_point_of_link, dot, guide_frame_link, link_motion, point
 from velplan.forces.fourier import FourierSeries, quadratic_coefficients
-from velplan.mechanism.model import PRP, RPP, RRP, Mechanism, Triad
+from velplan.mechanism.model import Mechanism
 
 TWO_PI = 2.0 * math.pi
 
@@ -142,18 +142,9 @@ def output_slider(mech: Mechanism) -> tuple[str, str, str] | None:
     if out is None or out.point is None:
         return None
     for g in mech.groups:
-        if isinstance(g, Triad):  # a block lead's joint slides on its guide
-            for j, lead in zip(g.joints, g.leads):
-                if lead.slider and out.point in (j, lead.coincident):
-                    return out.point, lead.link, f"P:{lead.link}/{lead.guide.link}"
-            continue
-        a, b = g.links
-        if isinstance(g, RRP) and g.point == out.point:
-            return out.point, b, f"P:{b}/{g.guide.link}"
-        if isinstance(g, PRP) and g.point == out.point:
-            return out.point, a, f"P:{a}/{g.guides[0].link}"
-        if isinstance(g, RPP) and out.point in (g.coincident, g.origin_name):
-            return out.point, b, f"P:{b}/{g.guide.link}"
+        slide = g.output_slides().get(out.point)
+        if slide is not None:
+            return (out.point, *slide)
     return None
 
 

@@ -208,35 +208,51 @@ def _group(t: Any, i: int) -> Group:
     name = str(t.get("name", "-".join(links)))
     where = f"group {name!r}"
     _no_unknown(t, _GROUP_KEYS[kind] | {"kind", "name"}, where)
-    if kind == "RRR":
-        lengths = _pair_of(t, "lengths", where, kind=float)
-        for k, v in zip(links, lengths):
-            _positive(v, f"{where} length of link {k}")
-        return RRR(name, links, _pair_of(t, "joints", where), _name(t, "point", where), lengths, _branch(t, where))
-    if kind == "RRP":
-        return RRP(
-            name, links, _name(t, "joint", where), _name(t, "point", where), _length(t, "length", where),
-            _guide(t.get("guide"), where), _branch(t, where), _opt_name(t, "coincident"),
-        )
-    if kind == "RPR":
-        return RPR(
-            name, links, _name(t, "joint", where), _name(t, "pivot", where),
-            _finite(t.get("offset", 0.0), f"{where} offset"), _branch(t, where), _opt_name(t, "coincident"),
-        )
-    if kind == "PRP":
-        gs = t.get("guides")
-        if not (isinstance(gs, list) and len(gs) == 2):
-            raise MechanismError(f"{where}: guides must be a list of two guide tables")
-        co = t.get("coincident", [None, None])
-        if not (isinstance(co, list) and len(co) == 2):
-            raise MechanismError(f"{where}: coincident must be a list of two point names")
-        return PRP(name, links, _name(t, "point", where), (_guide(gs[0], where), _guide(gs[1], where)),
-                   tuple(None if c in (None, "") else str(c) for c in co))
+    return _PARSERS[kind](t, name, links, where)
+
+
+def _rrr(t: dict, name: str, links: tuple[str, str], where: str) -> RRR:
+    lengths = _pair_of(t, "lengths", where, kind=float)
+    for k, v in zip(links, lengths):
+        _positive(v, f"{where} length of link {k}")
+    return RRR(name, links, _pair_of(t, "joints", where), _name(t, "point", where), lengths, _branch(t, where))
+
+
+def _rrp(t: dict, name: str, links: tuple[str, str], where: str) -> RRP:
+    return RRP(
+        name, links, _name(t, "joint", where), _name(t, "point", where), _length(t, "length", where),
+        _guide(t.get("guide"), where), _branch(t, where), _opt_name(t, "coincident"),
+    )
+
+
+def _rpr(t: dict, name: str, links: tuple[str, str], where: str) -> RPR:
+    return RPR(
+        name, links, _name(t, "joint", where), _name(t, "pivot", where),
+        _finite(t.get("offset", 0.0), f"{where} offset"), _branch(t, where), _opt_name(t, "coincident"),
+    )
+
+
+def _prp(t: dict, name: str, links: tuple[str, str], where: str) -> PRP:
+    gs = t.get("guides")
+    if not (isinstance(gs, list) and len(gs) == 2):
+        raise MechanismError(f"{where}: guides must be a list of two guide tables")
+    co = t.get("coincident", [None, None])
+    if not (isinstance(co, list) and len(co) == 2):
+        raise MechanismError(f"{where}: coincident must be a list of two point names")
+    return PRP(name, links, _name(t, "point", where), (_guide(gs[0], where), _guide(gs[1], where)),
+               tuple(None if c in (None, "") else str(c) for c in co))
+
+
+def _rpp(t: dict, name: str, links: tuple[str, str], where: str) -> RPP:
     slot = _finite(t.get("slot_angle_deg", 90.0), f"{where} slot_angle_deg")
     if abs(math.sin(math.radians(slot))) < 1e-9:
         raise MechanismError(f"{where}: slot_angle_deg = {slot} makes the slot parallel to the guide; the group cannot move")
     return RPP(name, links, _name(t, "joint", where), _guide(t.get("guide"), where), math.radians(slot),
                _opt_name(t, "coincident"), _opt_name(t, "origin"))
+
+
+#: The dyads' TOML kinds → their parsers (the triad, with no ``links``, is read by `_triad`).
+_PARSERS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
 
 
 def _triad(t: dict, i: int) -> Triad:
@@ -427,13 +443,7 @@ def _new_points(g: Group) -> list[str]:
     """The point names a group brings, each once (a name given twice in one group is an error)."""
     from velplan.mechanism.structure import points_out
 
-    named = [("point", getattr(g, "point", None))]
-    co = getattr(g, "coincident", None)
-    named += [("coincident", c) for c in (co if isinstance(co, tuple) else (co,))]
-    named += [("origin", getattr(g, "origin_name", None) if isinstance(g, RPP) else None)]
-    if isinstance(g, Triad):
-        named = [("joint", j) for j in g.joints] + [("special point", g.special_name)]
-        named += [("coincident", lead.coincident) for lead in g.leads]
+    named = g.named_points()
     seen: dict[str, str] = {}
     for key, name in named:
         if not name:

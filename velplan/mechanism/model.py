@@ -32,8 +32,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from typing import Any, Iterator, Literal, Union
+from dataclasses import dataclass, field, replace
+from typing import Any, ClassVar, Iterator, Literal, TypeVar, Union
+
+from velplan.errors import MechanismError
 
 GROUND = "0"
 """Name of the frame (the fixed link)."""
@@ -104,8 +106,118 @@ class Guide:
     offset: float = 0.0
 
 
+FACTS = ("joints_in", "guide_lines", "points_out", "revolute_joints", "pairs", "slides", "coincident_names",
+         "inner_joints", "link_lines", "link_lengths", "sizes", "offsets", "output_slides", "output_joint",
+         "solved_point", "given_lengths", "named_points")
+"""The structural facts every group kind states (`AssurGroup`)."""
+
+
+class AssurGroup:
+    """What every Assur group kind states about its own structure; the layers above ask these
+    facts, never the kind's class (each layer's own work for a kind sits in one registry keyed
+    by the class, read through `kind_entry`).
+
+    A kind defines (`FACTS`): ``joints_in`` (known points it attaches to), ``guide_lines`` (guides it
+    slides on), ``points_out`` (points it determines → owner link), ``revolute_joints``
+    (joint centre → its links), ``pairs`` (its lower pairs), ``slides`` (its prismatic pairs),
+    ``coincident_names``, ``inner_joints`` (the joints it solves for), ``link_lines`` (the
+    main line of each link that is a line: its frame's two points), ``link_lengths``,
+    ``sizes`` and ``offsets`` (the sizes it is given), ``output_slides``, ``output_joint``,
+    ``solved_point``, ``given_lengths``, ``design_parameters`` and ``named_points``.
+    """
+
+    group_class: ClassVar[tuple[int, int]] = (2, 2)
+    """Assur's class and order."""
+    tracked: ClassVar[bool] = False
+    """True when its assembly is followed over the turn (no closed form picks the branch)."""
+
+    design_fields: ClassVar[tuple[str, ...]] = ()
+    """Its numbers a design study may vary: field paths (``guide.offset``, ``lengths.0``; a last
+    ``…_deg`` is its radian field in degrees)."""
+
+    def design_parameters(self) -> dict[str, float]:
+        """Each of ``design_fields`` → its value (m, or deg)."""
+        out = {}
+        for path in self.design_fields:
+            value: Any = self
+            for part in path.split("."):
+                value = value[int(part)] if isinstance(value, tuple) else getattr(value, part.removesuffix("_deg"))
+            out[path] = math.degrees(value) if path.endswith("_deg") else float(value)
+        return out
+
+    def slide_pair(self, slider: str, guide_link: str) -> str:
+        """Name of the prismatic pair of ``slider`` on ``guide_link``."""
+        return f"P:{slider}/{guide_link}"
+
+    def special_points(self) -> tuple[str, ...]:
+        """Assur's special points (construction points of a class III group's base link)."""
+        return ()
+
+    def construction_points(self) -> tuple[str, ...]:
+        """Points it determines only to construct others (an RPP runner's origin, a triad's
+        special point): no plan row, no trajectory of their own."""
+        return self.special_points()
+
+    def plates(self) -> tuple[tuple[str, tuple[str, ...]], ...]:
+        """Its ternary links: (link, its joints)."""
+        return ()
+
+    def track_point(self, point: str) -> str:
+        """The point whose positions are read for the output point ``point`` of this group."""
+        return point
+
+    def line_point(self, slider: str) -> str | None:
+        """The point the guide line of ``slider``'s prismatic pair is referred to, when not its
+        joint (an RPP runner's origin K)."""
+        return None
+
+    def shifted(self, dx: float, dy: float):
+        """The group with every absolute position it gives moved by (dx, dy) m."""
+        return self
+
+
+class Dyad(AssurGroup):
+    """A class II group of the second order: two links, three pairs, ``links = (a, b)``."""
+
+    def output_joint(self, link: str) -> str | None:
+        """The moving joint whose positions are numbered for the output link ``link``."""
+        return None
+
+    def given_lengths(self) -> tuple[float, ...]:
+        """The lengths it gives, m."""
+        return (0.0,)
+
+    def link_lengths(self) -> dict[str, float]:
+        """Link → its characteristic length given by the group, m."""
+        return {}
+
+    def sizes(self) -> tuple[tuple[tuple[str, str], float], ...]:
+        """((from, to), length in m) of every length it gives, as a drawing's data lists them."""
+        return ()
+
+    def link_lines(self) -> dict[str, tuple[str, str]]:
+        """Link → the two named points its main line runs between (links that are lines)."""
+        return {}
+
+    def inner_joints(self) -> tuple[str, ...]:
+        """The revolute joints it solves for (their paths are drawn)."""
+        return ()
+
+    def coincident_names(self) -> tuple[str, ...]:
+        """Its coincident points (points of a guide's link at a slider's joint)."""
+        return ()
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        """(link, e in m) of every non-zero guide offset it gives."""
+        return ()
+
+    def output_slides(self) -> dict[str, tuple[str, str]]:
+        """Point that may be the output slider → (slider link, its prismatic pair)."""
+        return {}
+
+
 @dataclass(frozen=True)
-class RRR:
+class RRR(Dyad):
     """Dyad of two rods: known joints A and D, unknown middle joint C.
 
     ``links = (AC, DC)``, ``lengths = (l_AC, l_DC)`` in m; ``branch = +1`` puts C to the left
@@ -119,10 +231,58 @@ class RRR:
     lengths: tuple[float, float]
     branch: int = 1
     kind: GroupKind = field(default="RRR", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("lengths.0", "lengths.1")
+
+    def joints_in(self) -> tuple[str, ...]:
+        return self.joints
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return ()
+
+    def points_out(self) -> dict[str, str]:
+        return {self.point: self.links[0]}
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        a, b = self.links
+        return {self.joints[0]: (a,), self.point: (a, b), self.joints[1]: (b,)}
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        return ()
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        (a, b), (A, D) = self.links, self.joints
+        return [Pair(A, "R", (a, owner[A]), A, self.name), Pair(self.point, "R", (a, b), self.point, self.name),
+                Pair(D, "R", (b, owner[D]), D, self.name)]
+
+    def inner_joints(self) -> tuple[str, ...]:
+        return (self.point,)
+
+    def link_lines(self) -> dict[str, tuple[str, str]]:
+        return {self.links[0]: (self.joints[0], self.point), self.links[1]: (self.joints[1], self.point)}
+
+    def link_lengths(self) -> dict[str, float]:
+        return dict(zip(self.links, self.lengths))
+
+    def sizes(self) -> tuple[tuple[tuple[str, str], float], ...]:
+        (a, d), (l1, l2) = self.joints, self.lengths
+        return (((a, self.point), l1), ((d, self.point), l2))
+
+    def output_joint(self, link: str) -> str | None:
+        return self.point if link in self.links else None
+
+    def solved_point(self) -> str:
+        return self.point
+
+    def given_lengths(self) -> tuple[float, ...]:
+        return tuple(self.lengths) + (0.0,)
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        return (("point", self.point),)
 
 
 @dataclass(frozen=True)
-class RRP:
+class RRP(Dyad):
     """Rod AC from a known joint A to a slider C that runs on a guide.
 
     ``links = (rod, slider)``; ``length`` = l_AC in m. ``branch = +1`` puts C ahead, along the
@@ -139,10 +299,70 @@ class RRP:
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RRP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("length", "guide.offset", "guide.angle_deg")
+
+    def joints_in(self) -> tuple[str, ...]:
+        return (self.joint, self.guide.through)
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return (self.guide,)
+
+    def points_out(self) -> dict[str, str]:
+        out = {self.point: self.links[0]}
+        if self.coincident:
+            out[self.coincident] = self.guide.link
+        return out
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        a, b = self.links
+        return {self.joint: (a,), self.point: (a, b)}
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        return ((self.links[1], self.guide.link, self.point),)
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        a, b = self.links
+        return [Pair(self.joint, "R", (a, owner[self.joint]), self.joint, self.name),
+                Pair(self.point, "R", (a, b), self.point, self.name),
+                Pair(self.slide_pair(b, self.guide.link), "P", (b, self.guide.link), self.point, self.name)]
+
+    def coincident_names(self) -> tuple[str, ...]:
+        return (self.coincident,) if self.coincident else ()
+
+    def inner_joints(self) -> tuple[str, ...]:
+        return (self.point,)
+
+    def link_lines(self) -> dict[str, tuple[str, str]]:
+        return {self.links[0]: (self.joint, self.point)}
+
+    def link_lengths(self) -> dict[str, float]:
+        return {self.links[0]: self.length}
+
+    def sizes(self) -> tuple[tuple[tuple[str, str], float], ...]:
+        return (((self.joint, self.point), self.length),)
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        return ((self.links[1], self.guide.offset),) if self.guide.offset else ()
+
+    def output_slides(self) -> dict[str, tuple[str, str]]:
+        return {self.point: (self.links[1], self.slide_pair(self.links[1], self.guide.link))}
+
+    def output_joint(self, link: str) -> str | None:
+        return self.point if link in self.links else None
+
+    def solved_point(self) -> str:
+        return self.point
+
+    def given_lengths(self) -> tuple[float, ...]:
+        return (self.length,)
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        return (("point", self.point), ("coincident", self.coincident))
 
 
 @dataclass(frozen=True)
-class RPR:
+class RPR(Dyad):
     """Block pivoted at a known joint A sliding on a bar pivoted at a known point O (a guide bar,
     "кулиса", 导杆).
 
@@ -159,10 +379,49 @@ class RPR:
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RPR", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("offset",)
+
+    def joints_in(self) -> tuple[str, ...]:
+        return (self.joint, self.pivot)
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return ()
+
+    def points_out(self) -> dict[str, str]:
+        return {self.coincident: self.links[1]} if self.coincident else {}
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        a, b = self.links
+        return {self.joint: (a,), self.pivot: (b,)}
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        return ((self.links[0], self.links[1], self.joint),)
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        a, b = self.links
+        return [Pair(self.joint, "R", (a, owner[self.joint]), self.joint, self.name),
+                Pair(self.slide_pair(a, b), "P", (a, b), self.joint, self.name),
+                Pair(self.pivot, "R", (b, owner[self.pivot]), self.pivot, self.name)]
+
+    def coincident_names(self) -> tuple[str, ...]:
+        return (self.coincident,) if self.coincident else ()
+
+    def link_lines(self) -> dict[str, tuple[str, str]]:
+        return {self.links[1]: (self.pivot, self.coincident or self.joint)}
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        return ((self.links[1], self.offset),) if self.offset else ()
+
+    def solved_point(self) -> str:
+        return self.coincident or self.joint
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        return (("coincident", self.coincident),)
 
 
 @dataclass(frozen=True)
-class PRP:
+class PRP(Dyad):
     """Two sliders joined by a revolute C, each running on its own guide.
 
     ``links = (slider on guide 1, slider on guide 2)``. C lies on both guide lines (their
@@ -175,10 +434,54 @@ class PRP:
     guides: tuple[Guide, Guide]
     coincident: tuple[str | None, str | None] = (None, None)
     kind: GroupKind = field(default="PRP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("guides.0.offset", "guides.0.angle_deg",
+                                                "guides.1.offset", "guides.1.angle_deg")
+
+    def joints_in(self) -> tuple[str, ...]:
+        return (self.guides[0].through, self.guides[1].through)
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return self.guides
+
+    def points_out(self) -> dict[str, str]:
+        out = {self.point: self.links[0]}
+        out.update({name: guide.link for guide, name in zip(self.guides, self.coincident) if name})
+        return out
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        return {self.point: self.links}
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        return tuple((k, gd.link, self.point) for k, gd in zip(self.links, self.guides))
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        (a, b), (g1, g2) = self.links, self.guides
+        return [Pair(self.slide_pair(a, g1.link), "P", (a, g1.link), self.point, self.name),
+                Pair(self.point, "R", (a, b), self.point, self.name),
+                Pair(self.slide_pair(b, g2.link), "P", (b, g2.link), self.point, self.name)]
+
+    def coincident_names(self) -> tuple[str, ...]:
+        return tuple(c for c in self.coincident if c)
+
+    def inner_joints(self) -> tuple[str, ...]:
+        return (self.point,)
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        return tuple((k, gd.offset) for k, gd in zip(self.links, self.guides) if gd.offset)
+
+    def output_slides(self) -> dict[str, tuple[str, str]]:
+        return {self.point: (self.links[0], self.slide_pair(self.links[0], self.guides[0].link))}
+
+    def solved_point(self) -> str:
+        return self.point
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        return (("point", self.point),) + tuple(("coincident", c) for c in self.coincident)
 
 
 @dataclass(frozen=True)
-class RPP:
+class RPP(Dyad):
     """A block pivoted at a known joint B slides in a slot of a runner that slides on a guide.
 
     ``links = (block, runner)``. The slot makes the angle ``slot_angle`` (rad) with the
@@ -194,11 +497,62 @@ class RPP:
     coincident: str | None = None
     origin: str | None = None
     kind: GroupKind = field(default="RPP", init=False)
+    design_fields: ClassVar[tuple[str, ...]] = ("guide.offset", "guide.angle_deg", "slot_angle_deg")
 
     @property
     def origin_name(self) -> str:
         """Name of K, the runner's origin (``origin`` or ``"K" + runner``)."""
         return self.origin or f"K{self.links[1]}"
+
+    def joints_in(self) -> tuple[str, ...]:
+        return (self.joint, self.guide.through)
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return (self.guide,)
+
+    def points_out(self) -> dict[str, str]:
+        out = {self.coincident: self.links[1]} if self.coincident else {}
+        out[self.origin_name] = self.links[1]
+        return out
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        return {self.joint: (self.links[0],)}
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        a, b = self.links
+        return ((a, b, self.joint), (b, self.guide.link, self.joint))
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        a, b = self.links
+        return [Pair(self.joint, "R", (a, owner[self.joint]), self.joint, self.name),
+                Pair(self.slide_pair(a, b), "P", (a, b), self.joint, self.name),
+                Pair(self.slide_pair(b, self.guide.link), "P", (b, self.guide.link), self.joint, self.name)]
+
+    def coincident_names(self) -> tuple[str, ...]:
+        return (self.coincident,) if self.coincident else ()
+
+    def construction_points(self) -> tuple[str, ...]:
+        return (self.origin_name,)
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        return ((self.links[1], self.guide.offset),) if self.guide.offset else ()
+
+    def output_slides(self) -> dict[str, tuple[str, str]]:
+        slide = (self.links[1], self.slide_pair(self.links[1], self.guide.link))
+        return {name: slide for name in (self.coincident, self.origin_name) if name}
+
+    def track_point(self, point: str) -> str:
+        return self.origin_name if point == self.coincident else point  # the runner's, on its guide
+
+    def line_point(self, slider: str) -> str | None:
+        return self.origin_name if slider == self.links[1] else None  # the runner's guide line passes K
+
+    def solved_point(self) -> str:
+        return self.coincident or self.joint
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        return (("coincident", self.coincident), ("origin", self.origin_name))
 
 
 @dataclass(frozen=True)
@@ -221,7 +575,7 @@ class Lead:
 
 
 @dataclass(frozen=True)
-class Triad:
+class Triad(AssurGroup):
     """Class III group of the third order (Assur's triad): a ternary base link with the inner
     joints B, C, D (``joints``) tied by three leads (``leads[i]`` ends at ``joints[i]``) to
     known links.
@@ -263,8 +617,117 @@ class Triad:
         across = math.sqrt(max(db * db - along * along, 0.0))
         return 0j, complex(bc, 0.0), complex(along, self.side * across)
 
+    group_class: ClassVar[tuple[int, int]] = (3, 3)
+    tracked: ClassVar[bool] = True
+
+    def joints_in(self) -> tuple[str, ...]:
+        return tuple(lead.guide.through if lead.slider else lead.joint for lead in self.leads)
+
+    def guide_lines(self) -> tuple[Guide, ...]:
+        return tuple(lead.guide for lead in self.leads if lead.slider)
+
+    def points_out(self) -> dict[str, str]:
+        out = {j: self.base for j in self.joints}
+        out[self.special_name] = self.base
+        out.update({lead.coincident: lead.guide.link for lead in self.leads if lead.slider and lead.coincident})
+        return out
+
+    def revolute_joints(self) -> dict[str, tuple[str, ...]]:
+        out = {j: (self.base, lead.link) for j, lead in zip(self.joints, self.leads)}
+        out.update({lead.joint: (lead.link,) for lead in self.leads if not lead.slider})
+        return out
+
+    def slides(self) -> tuple[tuple[str, str, str], ...]:
+        return tuple((lead.link, lead.guide.link, j) for j, lead in zip(self.joints, self.leads) if lead.slider)
+
+    def pairs(self, owner: Mapping[str, str]) -> list[Pair]:
+        """Its six pairs, lead by lead: the outer pair (R at the rod's outer joint, or P of the
+        block on its guide), then the inner R joining the lead to the base link."""
+        out = []
+        for j, lead in zip(self.joints, self.leads):
+            if lead.slider:
+                out.append(Pair(self.slide_pair(lead.link, lead.guide.link), "P", (lead.link, lead.guide.link), j,
+                                self.name))
+            else:
+                out.append(Pair(lead.joint, "R", (lead.link, owner[lead.joint]), lead.joint, self.name))
+            out.append(Pair(j, "R", (lead.link, self.base), j, self.name))
+        return out
+
+    def coincident_names(self) -> tuple[str, ...]:
+        """The special point too: a different point of the base link at each position."""
+        return tuple(n for n in (self.special_name,) + tuple(lead.coincident for lead in self.leads) if n)
+
+    def special_points(self) -> tuple[str, ...]:
+        return (self.special_name,)
+
+    def plates(self) -> tuple[tuple[str, tuple[str, ...]], ...]:
+        return ((self.base, self.joints),)
+
+    def inner_joints(self) -> tuple[str, ...]:
+        return self.joints
+
+    def link_lines(self) -> dict[str, tuple[str, str]]:
+        out = {self.base: (self.joints[0], self.joints[1])}
+        out.update({ld.link: (ld.joint, j) for ld, j in zip(self.leads, self.joints) if not ld.slider})
+        return out
+
+    def link_lengths(self) -> dict[str, float]:
+        out = {self.base: max(self.sides)}
+        out.update({lead.link: lead.length for lead in self.leads if not lead.slider})
+        return out
+
+    def sizes(self) -> tuple[tuple[tuple[str, str], float], ...]:
+        b, c, d = self.joints
+        out = tuple(zip(((b, c), (c, d), (d, b)), self.sides))
+        return out + tuple(((ld.joint, j), ld.length) for ld, j in zip(self.leads, self.joints) if not ld.slider)
+
+    def offsets(self) -> tuple[tuple[str, float], ...]:
+        return tuple((ld.link, ld.guide.offset) for ld in self.leads if ld.slider and ld.guide.offset)
+
+    def output_slides(self) -> dict[str, tuple[str, str]]:
+        out = {}
+        for j, lead in zip(self.joints, self.leads):
+            if lead.slider:
+                slide = (lead.link, self.slide_pair(lead.link, lead.guide.link))
+                out.update({name: slide for name in (j, lead.coincident) if name and name not in out})
+        return out
+
+    def output_joint(self, link: str) -> str | None:
+        """The inner joint of the output lead (B for the base link)."""
+        return self.joints[max(self.links.index(link) - 1, 0)] if link in self.links else None
+
+    def solved_point(self) -> str:
+        return self.joints[0]
+
+    def given_lengths(self) -> tuple[float, ...]:
+        return self.sides + tuple(lead.length for lead in self.leads)
+
+
+    def named_points(self) -> tuple[tuple[str, str | None], ...]:
+        named = [("joint", j) for j in self.joints] + [("special point", self.special_name)]
+        return tuple(named + [("coincident", lead.coincident) for lead in self.leads])
+
+    def shifted(self, dx: float, dy: float):
+        return replace(self, assembly=tuple((n, (x + dx, y + dy)) for n, (x, y) in self.assembly))
+
 
 Group = Union[RRR, RRP, RPR, PRP, RPP, Triad]
+
+KINDS: tuple[type, ...] = (RRR, RRP, RPR, PRP, RPP, Triad)
+"""Every group kind of the model (each layer's registry must hold every one)."""
+
+_T = TypeVar("_T")
+
+
+def kind_entry(registry: Mapping[type, _T], group: Any, where: str) -> _T:
+    """The entry of ``group``'s kind in a layer's registry (``where`` names it); a
+    `MechanismError` naming the kind and the registry for a kind it does not hold."""
+    try:
+        return registry[type(group)]
+    except (KeyError, TypeError):
+        known = ", ".join(k.__name__ for k in registry)
+        raise MechanismError(f"group {getattr(group, 'name', '?')!r}: kind {type(group).__name__} is not handled "
+                             f"by {where} (it knows {known})") from None
 
 
 class Table(Mapping):

@@ -11,74 +11,45 @@ from typing import Union
 from velplan.errors import MechanismError, deprecated
 from velplan.mechanism.model import (
     GROUND,
-    PRP,
-    RPP,
-    RPR,
-    RRP,
-    RRR,
+    FACTS,
+    AssurGroup,
     Crank,
     Group,
     Guide,
     LinkPoint,
     Mechanism,
     Pair,
-    Triad,
 )
 
 Item = Union[Crank, Group, LinkPoint]
 
 
+def facts(group) -> AssurGroup:
+    """``group`` itself, checked to be an Assur group kind that states its structure (an
+    `AssurGroup`); a `MechanismError` naming the kind otherwise."""
+    if not isinstance(group, AssurGroup):
+        raise MechanismError(f"group {getattr(group, 'name', '?')!r}: kind {type(group).__name__} is not an Assur "
+                             f"group kind (velplan.mechanism.model.AssurGroup): its structure is unknown")
+    missing = [f for f in FACTS if not hasattr(group, f)]
+    if missing:
+        raise MechanismError(f"group {group.name!r}: kind {type(group).__name__} does not state its "
+                             f"{', '.join(missing)}")
+    return group
+
+
 def joints_in(group: Group) -> tuple[str, ...]:
     """Known points a group attaches to (its outer joints and its guides' points)."""
-    if isinstance(group, Triad):
-        return tuple(lead.guide.through if lead.slider else lead.joint for lead in group.leads)
-    if isinstance(group, RRR):
-        return group.joints
-    if isinstance(group, RRP):
-        return (group.joint, group.guide.through)
-    if isinstance(group, RPR):
-        return (group.joint, group.pivot)
-    if isinstance(group, PRP):
-        return (group.guides[0].through, group.guides[1].through)
-    return (group.joint, group.guide.through)
+    return facts(group).joints_in()
 
 
 def guides_of(group: Group) -> tuple[Guide, ...]:
     """The guides a group slides on (empty for RRR and RPR)."""
-    if isinstance(group, Triad):
-        return tuple(lead.guide for lead in group.leads if lead.slider)
-    if isinstance(group, (RRP, RPP)):
-        return (group.guide,)
-    if isinstance(group, PRP):
-        return group.guides
-    return ()
+    return facts(group).guide_lines()
 
 
 def points_out(group: Group) -> dict[str, str]:
     """Points a group determines → the link that owns each of them."""
-    if isinstance(group, Triad):
-        out = {j: group.base for j in group.joints}
-        out[group.special_name] = group.base
-        out.update({lead.coincident: lead.guide.link for lead in group.leads if lead.slider and lead.coincident})
-        return out
-    a, b = group.links
-    out: dict[str, str] = {}
-    if isinstance(group, (RRR, RRP)):
-        out[group.point] = a
-    if isinstance(group, PRP):
-        out[group.point] = a
-        for guide, name in zip(group.guides, group.coincident):
-            if name:
-                out[name] = guide.link
-    elif isinstance(group, RRP) and group.coincident:
-        out[group.coincident] = group.guide.link
-    elif isinstance(group, RPR) and group.coincident:
-        out[group.coincident] = b
-    elif isinstance(group, RPP):
-        if group.coincident:
-            out[group.coincident] = b
-        out[group.origin_name] = b
-    return out
+    return facts(group).points_out()
 
 
 def revolute_joints(group: Group) -> dict[str, tuple[str, ...]]:
@@ -87,20 +58,7 @@ def revolute_joints(group: Group) -> dict[str, tuple[str, ...]]:
     A joint centre is a material point of every link it joins, so a guide or a later group
     may refer to it on either link.
     """
-    if isinstance(group, Triad):
-        out = {j: (group.base, lead.link) for j, lead in zip(group.joints, group.leads)}
-        out.update({lead.joint: (lead.link,) for lead in group.leads if not lead.slider})
-        return out
-    a, b = group.links
-    if isinstance(group, RRR):
-        return {group.joints[0]: (a,), group.point: (a, b), group.joints[1]: (b,)}
-    if isinstance(group, RRP):
-        return {group.joint: (a,), group.point: (a, b)}
-    if isinstance(group, RPR):
-        return {group.joint: (a,), group.pivot: (b,)}
-    if isinstance(group, PRP):
-        return {group.point: (a, b)}
-    return {group.joint: (a,)}
+    return facts(group).revolute_joints()
 
 
 def schedule(mech: Mechanism) -> tuple[Item, ...]:
@@ -197,12 +155,8 @@ def coincident_points(mech: Mechanism) -> dict[str, str]:
     the slider's joint now: a different material point at each position)."""
     out = {}
     for g in mech.groups:
-        if isinstance(g, Triad):  # the special point too: a different point of the base link each time
-            names = (g.special_name,) + tuple(lead.coincident for lead in g.leads)
-        else:
-            names = g.coincident if isinstance(g, PRP) else (getattr(g, "coincident", None),)
         owners = points_out(g)
-        out.update({n: owners[n] for n in names if n})
+        out.update({n: owners[n] for n in facts(g).coincident_names()})
     return out
 
 
@@ -238,42 +192,7 @@ def pairs(mech: Mechanism) -> tuple[Pair, ...]:
     c = mech.crank
     out = [Pair(c.pivot, "R", (c.link, GROUND), c.pivot, "crank")]
     for g in mech.groups:
-        if isinstance(g, Triad):
-            out += _triad_pairs(g, owner)
-            continue
-        a, b = g.links
-        if isinstance(g, RRR):
-            A, D = g.joints
-            out += [
-                Pair(A, "R", (a, owner[A]), A, g.name),
-                Pair(g.point, "R", (a, b), g.point, g.name),
-                Pair(D, "R", (b, owner[D]), D, g.name),
-            ]
-        elif isinstance(g, RRP):
-            out += [
-                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
-                Pair(g.point, "R", (a, b), g.point, g.name),
-                Pair(f"P:{b}/{g.guide.link}", "P", (b, g.guide.link), g.point, g.name),
-            ]
-        elif isinstance(g, RPR):
-            out += [
-                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
-                Pair(f"P:{a}/{b}", "P", (a, b), g.joint, g.name),
-                Pair(g.pivot, "R", (b, owner[g.pivot]), g.pivot, g.name),
-            ]
-        elif isinstance(g, PRP):
-            g1, g2 = g.guides
-            out += [
-                Pair(f"P:{a}/{g1.link}", "P", (a, g1.link), g.point, g.name),
-                Pair(g.point, "R", (a, b), g.point, g.name),
-                Pair(f"P:{b}/{g2.link}", "P", (b, g2.link), g.point, g.name),
-            ]
-        else:
-            out += [
-                Pair(g.joint, "R", (a, owner[g.joint]), g.joint, g.name),
-                Pair(f"P:{a}/{b}", "P", (a, b), g.joint, g.name),
-                Pair(f"P:{b}/{g.guide.link}", "P", (b, g.guide.link), g.joint, g.name),
-            ]
+        out += facts(g).pairs(owner)
     seen: set[str] = set()
     for k, p in enumerate(out):
         if p.name in seen:
@@ -282,22 +201,9 @@ def pairs(mech: Mechanism) -> tuple[Pair, ...]:
     return tuple(out)
 
 
-def _triad_pairs(g: Triad, owner: dict[str, str]) -> list[Pair]:
-    """A triad's six pairs, lead by lead: the outer pair (R at the rod's outer joint, or P of the
-    block on its guide), then the inner R joining the lead to the base link."""
-    out = []
-    for j, lead in zip(g.joints, g.leads):
-        if lead.slider:
-            out.append(Pair(f"P:{lead.link}/{lead.guide.link}", "P", (lead.link, lead.guide.link), j, g.name))
-        else:
-            out.append(Pair(lead.joint, "R", (lead.link, owner[lead.joint]), lead.joint, g.name))
-        out.append(Pair(j, "R", (lead.link, g.base), j, g.name))
-    return out
-
-
 def group_class(g: Group) -> tuple[int, int]:
     """Assur's class and order of a group: (2, 2) for a dyad, (3, 3) for a triad."""
-    return (3, 3) if isinstance(g, Triad) else (2, 2)
+    return facts(g).group_class
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad, kind_entry
 from velplan.mechanism.structure import coincident_points, material_points, schedule
 from velplan.plans.context import Figure
 from velplan.plans.steps import (
@@ -277,19 +277,23 @@ def construct(mech: Mechanism, *, tangential: bool | None = None) -> tuple[tuple
     """Steps of the velocity plan then the acceleration plan of ``mech``, with the image map
     ({"v"|"a": {point: target}}) and the link figures ({"v"|"a": {link: Figure | None}})."""
     b = _Builder(mech, mech.crank.epsilon != 0 if tangential is None else tangential)
-    handlers = {RRR: b.rrr, RRP: b.rrp, RPR: b.rpr, PRP: b.prp, RPP: b.rpp, Triad: lambda g: build_triad(b, g)}
     for item in schedule(mech):
         if isinstance(item, Crank):
             b.crank(item)
         elif isinstance(item, LinkPoint):
             b.point(item)
         else:
-            handlers[type(item)](item)
+            kind_entry(BUILDERS, item, "velplan.plans.build.BUILDERS")(b, item)
     for steps in b.steps.values():  # similarity whose ratio stays constant: points fixed to their links
         steps[:] = [replace(x, rigid=_rigid(x, b.fixed)) if isinstance(x, Similar) else x for x in steps]
     images = {"v": dict(b.v.images), "a": dict(b.a.images)}
     figures = {"v": dict(b.v.rotor), "a": dict(b.a.rotor)}
     return tuple(b.steps["v"] + b.steps["a"]), images, figures
+
+
+#: The plans' one lookup by group kind: kind → its steps, builder(b, g).
+BUILDERS = {RRR: _Builder.rrr, RRP: _Builder.rrp, RPR: _Builder.rpr, PRP: _Builder.prp, RPP: _Builder.rpp,
+            Triad: build_triad}
 
 
 def _fixed_points(mech: Mechanism) -> dict[str, set[str]]:

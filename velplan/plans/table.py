@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from velplan.mechanism.model import GROUND, RPP, Mechanism, Triad
+from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import coincident_points, pairs
 from velplan.plans.engine import PlanResult
 
@@ -54,8 +54,7 @@ def table_points(mech: Mechanism, names) -> list[str]:
     ground = set(mech.ground_points) | {n for n, link in coincident_points(mech).items() if link == GROUND}
     joints = {p.point for p in pairs(mech)}
     centres = {m.centre for m in mech.masses}
-    origins = {g.origin_name for g in mech.groups if isinstance(g, RPP)}
-    origins |= {g.special_name for g in mech.groups if isinstance(g, Triad)}  # Assur's point
+    origins = {p for g in mech.groups for p in g.construction_points()}  # RPP's K, Assur's point
     return [p for p in names
             if p not in ground and p not in origins and not ((p in centres or p.startswith("S")) and p not in joints)]
 

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Triad
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
 from velplan.views.base import View, digits_down, make_view, number, subscript, unit
@@ -18,15 +17,6 @@ def _l(a: str, b: str) -> str:
     return f"l{subscript(a)}{subscript(b)}"
 
 
-def _triad_lengths(g: Triad, lang: str) -> list[str]:
-    """The base link's sides (BC, CD, DB), then each rod lead (outer → inner joint)."""
-    m = unit("m", lang)
-    b, c, d = g.joints
-    out = [f"{_l(p, q)} = {number(x, lang)} {m}" for (p, q), x in zip(((b, c), (c, d), (d, b)), g.sides)]
-    return out + [f"{_l(ld.joint, j)} = {number(ld.length, lang)} {m}"
-                  for ld, j in zip(g.leads, g.joints) if not ld.slider]
-
-
 def data_lines(study, lang: str) -> list[str]:
     """The lines of the block (without its title), in the sheet's language."""
     mech = study.mechanism
@@ -35,22 +25,8 @@ def data_lines(study, lang: str) -> list[str]:
     lengths = [f"{_l(c.pivot, c.tip)} = {number(c.length, lang)} {m}"]
     offsets = []
     for g in mech.groups:
-        if isinstance(g, RRR):
-            (a, d), (l1, l2) = g.joints, g.lengths
-            lengths += [f"{_l(a, g.point)} = {number(l1, lang)} {m}", f"{_l(d, g.point)} = {number(l2, lang)} {m}"]
-        elif isinstance(g, RRP):
-            lengths.append(f"{_l(g.joint, g.point)} = {number(g.length, lang)} {m}")
-        if isinstance(g, (RRP, RPP)) and g.guide.offset:
-            offsets.append(f"e{digits_down(g.links[1])} = {number(g.guide.offset, lang)} {m}")
-        if isinstance(g, RPR) and g.offset:
-            offsets.append(f"e{digits_down(g.links[1])} = {number(g.offset, lang)} {m}")
-        if isinstance(g, PRP):
-            offsets += [f"e{digits_down(k)} = {number(gd.offset, lang)} {m}" for k, gd in zip(g.links, g.guides)
-                        if gd.offset]
-        if isinstance(g, Triad):
-            lengths += _triad_lengths(g, lang)
-            offsets += [f"e{digits_down(ld.link)} = {number(ld.guide.offset, lang)} {m}"
-                        for ld in g.leads if ld.slider and ld.guide.offset]
+        lengths += [f"{_l(p, q)} = {number(x, lang)} {m}" for (p, q), x in g.sizes()]
+        offsets += [f"e{digits_down(k)} = {number(e, lang)} {m}" for k, e in g.offsets()]
     ground = ", ".join(f"{subscript(n)} ({number(x, lang)}; {number(y, lang)})" for n, (x, y) in mech.ground)
     w1 = c.omega
     crank = f"ω{digits_down(c.link)} = {number(w1, lang)} {unit('rad/s', lang)} (n = {number(w1 * 30 / math.pi, lang)} "

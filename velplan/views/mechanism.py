@@ -15,14 +15,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Any, Callable, NamedTuple, Sequence
 
 import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad, kind_entry
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
@@ -101,23 +101,13 @@ class _Geometry:
         c = self.mech.crank
         out = {c.link: (c.pivot, c.tip)}
         for g in self.mech.groups:
-            if isinstance(g, RRR):
-                out[g.links[0]] = (g.joints[0], g.point)
-                out[g.links[1]] = (g.joints[1], g.point)
-            elif isinstance(g, RRP):
-                out[g.links[0]] = (g.joint, g.point)
-            elif isinstance(g, RPR):
-                out[g.links[1]] = (g.pivot, g.coincident or g.joint)
-            elif isinstance(g, Triad):
-                out[g.base] = (g.joints[0], g.joints[1])
-                out.update({ld.link: (ld.joint, j) for ld, j in zip(g.leads, g.joints)
-                            if not ld.slider})
+            out.update(g.link_lines())
         return out
 
     def plates(self, i: int) -> list[tuple[str, np.ndarray]]:
         """The ternary base links of the triads: (link, its joints B, C, D at position i, m)."""
-        return [(g.base, np.array([self.p(i, j) for j in g.joints]))
-                for g in self.mech.groups if isinstance(g, Triad)]
+        return [(link, np.array([self.p(i, j) for j in joints]))
+                for g in self.mech.groups for link, joints in g.plates()]
 
     def segments(self, i: int) -> list[Segment]:
         """Lines of every link at position i."""
@@ -125,29 +115,7 @@ class _Geometry:
         c = self.mech.crank
         segs.append(self._seg(c.link, c.pivot, c.tip, i))
         for g in self.mech.groups:
-            if isinstance(g, RRR):
-                segs.append(self._seg(g.links[0], g.joints[0], g.point, i))
-                segs.append(self._seg(g.links[1], g.joints[1], g.point, i))
-            elif isinstance(g, RRP):
-                segs.append(self._seg(g.links[0], g.joint, g.point, i))
-                if g.guide.link != GROUND:
-                    segs.extend(self._moving_guide(g.guide, self.p(i, g.point), i))
-            elif isinstance(g, RPR):
-                segs.extend(self._bar(g, i))
-            elif isinstance(g, PRP):
-                for guide in g.guides:
-                    if guide.link != GROUND:
-                        segs.extend(self._moving_guide(guide, self.p(i, g.point), i))
-            elif isinstance(g, RPP):
-                k = self.p(i, g.origin_name)
-                b = self.p(i, g.joint)
-                direction = b - k
-                length = float(np.hypot(*direction))
-                if length > 0:
-                    far = b + direction / length * 0.25 * max(length, 1e-9)
-                    segs.append(Segment(g.links[1], k, far, (False, False)))
-            elif isinstance(g, Triad):
-                segs.extend(self._triad(g, i))
+            segs.extend(drawing_of(g).segments(self, g, i))
         segs.extend(self._point_arms(i))
         return segs
 
@@ -231,42 +199,13 @@ class _Geometry:
         return [Segment(lp.link, corners[k], p, (True, joint)) for k in near]
 
     def blocks(self, i: int) -> list[Block]:
-        out = []
-        for g in self.mech.groups:
-            if isinstance(g, RRP):
-                out.append(Block(g.links[1], self.p(i, g.point),
-                                 self.theta(i, g.guide.link) + g.guide.angle))
-            elif isinstance(g, RPR):
-                out.append(Block(g.links[0], self.p(i, g.joint), self.theta(i, g.links[1])))
-            elif isinstance(g, PRP):
-                out.append(Block(g.links[0], self.p(i, g.point),
-                                 self.theta(i, g.guides[0].link) + g.guides[0].angle))
-            elif isinstance(g, RPP):
-                guide_angle = self.theta(i, g.guide.link) + g.guide.angle
-                out.append(Block(g.links[1], self.p(i, g.origin_name), guide_angle))
-                out.append(Block(g.links[0], self.p(i, g.joint), guide_angle + g.slot_angle))
-            elif isinstance(g, Triad):
-                out += [Block(ld.link, self.p(i, j), self.theta(i, ld.guide.link) + ld.guide.angle)
-                        for ld, j in zip(g.leads, g.joints) if ld.slider]
-        return out
+        return [b for g in self.mech.groups for b in drawing_of(g).blocks(self, g, i)]
 
     def tracks(self, fine: Kinematics) -> list[GuideTrack]:
         """Fixed guides with the range their blocks travel over a whole turn."""
         out = []
         for g in self.mech.groups:
-            if isinstance(g, RRP) and g.guide.link == GROUND:
-                guides = [(g.links[1], g.guide, g.point)]
-            elif isinstance(g, PRP):
-                guides = [(lk, gd, g.point) for lk, gd in zip(g.links, g.guides)
-                          if gd.link == GROUND]
-            elif isinstance(g, RPP) and g.guide.link == GROUND:
-                guides = [(g.links[1], g.guide, g.origin_name)]
-            elif isinstance(g, Triad):
-                guides = [(ld.link, ld.guide, j) for ld, j in zip(g.leads, g.joints)
-                          if ld.slider and ld.guide.link == GROUND]
-            else:
-                guides = []
-            for lk, gd, point in guides:
+            for lk, gd, point in drawing_of(g).tracks(g):
                 direction = _unit(gd.angle)
                 through = np.asarray(self.mech.ground_points[gd.through], float)
                 base = through + gd.offset * np.array([-direction[1], direction[0]])
@@ -277,10 +216,87 @@ class _Geometry:
         return out
 
 
+# ---- each group kind drawn: its lines, blocks, fixed guides --------------------------------
+
+
+class Drawing(NamedTuple):
+    """How a group kind is drawn: ``segments(geo, g, i)`` and ``blocks(geo, g, i)`` at position
+    i, ``tracks(g)`` its blocks on fixed guides (link, guide, the point that travels), and
+    ``lead_blocks(g)`` the joints of its block leads (their letters go beside the guide)."""
+
+    segments: Callable[[_Geometry, Any, int], list[Segment]]
+    blocks: Callable[[_Geometry, Any, int], list[Block]]
+    tracks: Callable[[Any], list[tuple]] = lambda g: []
+    lead_blocks: Callable[[Any], tuple[str, ...]] = lambda g: ()
+
+
+def _rrr_segments(geo: _Geometry, g: RRR, i: int) -> list[Segment]:
+    return [geo._seg(g.links[0], g.joints[0], g.point, i), geo._seg(g.links[1], g.joints[1], g.point, i)]
+
+
+def _rrp_segments(geo: _Geometry, g: RRP, i: int) -> list[Segment]:
+    segs = [geo._seg(g.links[0], g.joint, g.point, i)]
+    if g.guide.link != GROUND:
+        segs.extend(geo._moving_guide(g.guide, geo.p(i, g.point), i))
+    return segs
+
+
+def _prp_segments(geo: _Geometry, g: PRP, i: int) -> list[Segment]:
+    return [s for guide in g.guides if guide.link != GROUND for s in geo._moving_guide(guide, geo.p(i, g.point), i)]
+
+
+def _rpp_segments(geo: _Geometry, g: RPP, i: int) -> list[Segment]:
+    k = geo.p(i, g.origin_name)
+    b = geo.p(i, g.joint)
+    direction = b - k
+    length = float(np.hypot(*direction))
+    if length > 0:
+        far = b + direction / length * 0.25 * max(length, 1e-9)
+        return [Segment(g.links[1], k, far, (False, False))]
+    return []
+
+
+def _rpp_blocks(geo: _Geometry, g: RPP, i: int) -> list[Block]:
+    guide_angle = geo.theta(i, g.guide.link) + g.guide.angle
+    return [Block(g.links[1], geo.p(i, g.origin_name), guide_angle),
+            Block(g.links[0], geo.p(i, g.joint), guide_angle + g.slot_angle)]
+
+
+def _triad_blocks(geo: _Geometry, g: Triad, i: int) -> list[Block]:
+    return [Block(ld.link, geo.p(i, j), geo.theta(i, ld.guide.link) + ld.guide.angle)
+            for ld, j in zip(g.leads, g.joints) if ld.slider]
+
+
+#: The drawing's one lookup by group kind (`drawing_of`).
+DRAWINGS: dict[type, Drawing] = {
+    RRR: Drawing(_rrr_segments, lambda geo, g, i: []),
+    RRP: Drawing(_rrp_segments,
+                 lambda geo, g, i: [Block(g.links[1], geo.p(i, g.point), geo.theta(i, g.guide.link) + g.guide.angle)],
+                 lambda g: [(g.links[1], g.guide, g.point)] if g.guide.link == GROUND else []),
+    RPR: Drawing(lambda geo, g, i: geo._bar(g, i),
+                 lambda geo, g, i: [Block(g.links[0], geo.p(i, g.joint), geo.theta(i, g.links[1]))]),
+    PRP: Drawing(_prp_segments,
+                 lambda geo, g, i: [Block(g.links[0], geo.p(i, g.point),
+                                          geo.theta(i, g.guides[0].link) + g.guides[0].angle)],
+                 lambda g: [(lk, gd, g.point) for lk, gd in zip(g.links, g.guides) if gd.link == GROUND]),
+    RPP: Drawing(_rpp_segments, _rpp_blocks,
+                 lambda g: [(g.links[1], g.guide, g.origin_name)] if g.guide.link == GROUND else []),
+    Triad: Drawing(lambda geo, g, i: geo._triad(g, i), _triad_blocks,
+                   lambda g: [(ld.link, ld.guide, j) for ld, j in zip(g.leads, g.joints)
+                              if ld.slider and ld.guide.link == GROUND],
+                   lambda g: tuple(j for ld, j in zip(g.leads, g.joints) if ld.slider)),
+}
+
+
+def drawing_of(g) -> Drawing:
+    """How ``g``'s kind is drawn; a `MechanismError` naming a kind with no drawing."""
+    return kind_entry(DRAWINGS, g, "velplan.views.mechanism.DRAWINGS")
+
+
 def special_points(mech: Mechanism) -> set[str]:
     """Assur's special points of the triads: construction points of their base links, drawn
     only where the plan's construction is shown (they may lie far off, or at infinity)."""
-    return {g.special_name for g in mech.groups if isinstance(g, Triad)}
+    return {p for g in mech.groups for p in g.special_points()}
 
 
 def _drawn_xy(kin: Kinematics) -> np.ndarray:
@@ -303,14 +319,12 @@ def output_point(mech: Mechanism) -> str | None:
         return None
     if out.point:
         for g in mech.groups:
-            if isinstance(g, RPP) and out.point == g.coincident:
-                return g.origin_name  # the runner's positions are read on its guide
+            if g.track_point(out.point) != out.point:
+                return g.track_point(out.point)  # an RPP runner's positions are read on its guide
         return out.point
     for g in mech.groups:
-        if out.link in g.links and isinstance(g, (RRR, RRP)):
-            return g.point
-        if out.link in g.links and isinstance(g, Triad):  # the inner joint of the output lead
-            return g.joints[max(g.links.index(out.link) - 1, 0)]
+        if g.output_joint(out.link) is not None:
+            return g.output_joint(out.link)
     return None
 
 
@@ -321,10 +335,7 @@ def trajectory_points(mech: Mechanism) -> list[str]:
     ground = set(mech.ground_points)
     names = [mech.crank.tip]
     for g in mech.groups:
-        if isinstance(g, (RRR, RRP, PRP)):
-            names.append(g.point)
-        elif isinstance(g, Triad):
-            names += list(g.joints)
+        names += list(g.inner_joints())
     names += [p.name for p in mech.points]
     return [n for n in dict.fromkeys(names) if n not in ground and n in owner]
 
@@ -472,10 +483,7 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:
     """Whether the output point slides on a guide (its numbers go beside the guide)."""
-    return any(g.point == out for g in mech.groups if isinstance(g, (RRP, PRP))) or any(
-        out in (g.coincident, g.origin_name) for g in mech.groups if isinstance(g, RPP)) or any(
-        out == j and ld.slider for g in mech.groups if isinstance(g, Triad)
-        for ld, j in zip(g.leads, g.joints))
+    return any(out in g.output_slides() for g in mech.groups)
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
@@ -585,8 +593,7 @@ def _ground_direction(geo: _Geometry, name: str) -> float:
 
 def _lead_blocks(mech: Mechanism) -> set[str]:
     """Inner joints of the triads' block leads."""
-    return {j for g in mech.groups if isinstance(g, Triad)
-            for ld, j in zip(g.leads, g.joints) if ld.slider}
+    return {j for g in mech.groups for j in drawing_of(g).lead_blocks(g)}
 
 
 def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
@@ -825,9 +832,10 @@ def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primi
     out: list[Primitive] = []
     span = max(np.ptp(_drawn_xy(geo.kin), axis=0).max(), 1e-9)
     for g in geo.mech.groups:
-        if not isinstance(g, Triad) or g.special_name not in geo.kin.point_index:
+        special = g.special_points()
+        if not special or special[0] not in geo.kin.point_index:
             continue
-        k = geo.p(t, g.special_name)
+        k = geo.p(t, special[0])
         centre = _drawn_xy(geo.kin.take([t])).mean(axis=0)
         if not np.all(np.isfinite(k)) or np.hypot(*(k - centre)) > 3 * span:
             continue
@@ -856,6 +864,6 @@ def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primi
             out.append(Polyline([ends[0] + u * lo, ends[0] + u * hi], "mechanism", "axis"))
         at = mm(k)
         out.append(Circle(at, 0.6, "mechanism", "thin", "solid"))
-        out.append(Text(at + np.array([1.2, 1.2]), subscript(g.special_name), "labels", size,
+        out.append(Text(at + np.array([1.2, 1.2]), subscript(special[0]), "labels", size,
                         "start", "baseline"))
     return out
