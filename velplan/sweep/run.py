@@ -179,6 +179,12 @@ def chunks(values: Mapping[str, np.ndarray], size: int) -> list[dict[str, np.nda
     return [{k: v[a:a + size] for k, v in values.items()} for a in range(0, V, size)]
 
 
+def chunk_size(engine: str, positions: int) -> int:
+    """Variants solved at a time: `CHUNK` at up to 360 angles, fewer at more angles, so that a
+    chunk holds at most ``CHUNK[engine]·360`` variant-angles (bounded memory)."""
+    return max(1, min(CHUNK[engine], CHUNK[engine] * 360 // max(positions, 1)))
+
+
 def chunk_figures(mech: Mechanism, values: dict, positions: int, engine: str = "numpy", delta: float | None = None):
     """Figures of one chunk (a picklable task for a process pool or a Dask worker)."""
     return figures(mech, values, positions, engine, delta)
@@ -208,7 +214,7 @@ def sweep_chunks(mech: Mechanism, values: Mapping[str, np.ndarray], *, positions
                  engine: str = "numpy", delta: float | None = None) -> Iterator[tuple[dict, tuple]]:
     """(values, `chunk_figures`) of each chunk of variants in order, each as soon as it and those
     before it are computed (`run_sweep`'s work, for output written as it is computed)."""
-    parts = chunks(values, chunk or CHUNK[engine])
+    parts = chunks(values, chunk or chunk_size(engine, positions))
     if scheduler is not None:
         from velplan.sweep.cluster import map_chunks
 
