@@ -60,6 +60,9 @@ def _study(args) -> tuple[Study, list[int], list[int | None]]:
 
 
 def run_centres(args) -> int:
+    for option, v in (("--precision", args.precision), ("--angle-precision", args.angle_precision)):
+        if not (math.isfinite(v) and 0 < v <= 10.0):  # checked in either mode: never silently ignored
+            raise VelplanError(f"{option} must be > 0 and at most 10 (a draughtsman's precision), not {v:g}")
     drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.angle_precision)
     mu_l = None if args.scale_l is None else check_scale(args.scale_l, "--scale-l")
     study, idx, numbers = _study(args)
