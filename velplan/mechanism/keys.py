@@ -47,10 +47,6 @@ from velplan.errors import MechanismError
 from velplan.mechanism.loader import MAGNITUDE, SLOWEST, SMALLEST_LENGTH
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Mechanism, Table, Triad
 
-ARRAY = "array"
-"""Marks the keys the design solver takes as arrays (one value per element)."""
-
-
 @dataclass(frozen=True)
 class Entry:
     """One row of the table: the key's pattern (``{name}`` a name in the file, ``{i}`` an
@@ -246,25 +242,17 @@ def check_triangles(mech: Mechanism) -> None:
 
 
 def _match(pattern: list[str], parts: list[str]) -> dict | None:
+    """The captures of ``parts`` against a row's ``pattern`` (a last ``{field}`` takes the
+    rest of the key as a tuple), or None."""
     caps: dict = {}
-    if pattern[-1] == "{field}":
-        if len(parts) < len(pattern):
-            return None
-        head, caps["field"] = parts[:len(pattern) - 1], tuple(parts[len(pattern) - 1:])
-        pattern = pattern[:-1]
-    elif "{field}" in pattern:
-        if len(parts) != len(pattern):
-            return None
-        head = parts
-    else:
-        if len(parts) != len(pattern):
-            return None
-        head = parts
-    for p, x in zip(pattern, head):
-        if p == "{name}":
-            caps["name"] = x
-        elif p == "{field}":
-            caps["field"] = x
+    if pattern[-1] == "{field}" and len(pattern) >= 2 and pattern.count("{field}") == 1 and len(parts) >= len(pattern):
+        caps["field"] = tuple(parts[len(pattern) - 1:])
+        pattern, parts = pattern[:-1], parts[:len(pattern) - 1]
+    if len(parts) != len(pattern):
+        return None
+    for p, x in zip(pattern, parts):
+        if p in ("{name}", "{field}"):
+            caps[p[1:-1]] = x
         elif p == "{i}":
             if not x.isdigit():
                 return None
@@ -352,9 +340,9 @@ def _get(mech: Mechanism, steps: tuple, key: str = "", entry: Entry | None = Non
     for n, step in enumerate(steps):
         last = n == len(steps) - 1
         s = _child(obj, step, key, entry)
-        if not isinstance(s, int) and not isinstance(obj, Mapping) and not hasattr(obj, s) or obj is None:
-            where = ".".join(str(x) for x in key.split(".")[:n + 1]) if key else "?"
-            raise MechanismError(f"unknown key {key!r}: {where} holds no table (the file has no section here)")
+        if obj is None or (not isinstance(s, int) and not isinstance(obj, Mapping) and not hasattr(obj, s)):
+            where = ".".join(key.split(".")[:max(n, 1)]) if key else "?"
+            raise MechanismError(f"unknown key {key!r}: the file has no {where} to set")
         if isinstance(obj, Mapping) and not isinstance(s, int) and s not in obj:
             if last and s in OPTIONAL:
                 return None
