@@ -35,7 +35,6 @@ from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip
 from velplan.analysis.blocks import BLOCK, Outputs, about_pivot, solve_items
 from velplan.analysis.kinematics import Kinematics, group_lengths
 from velplan.analysis.solver import solve
-from velplan.errors import MechanismError
 from velplan.mechanism import keys
 from velplan.mechanism.model import GROUND, Mechanism, Triad
 from velplan.mechanism.structure import schedule

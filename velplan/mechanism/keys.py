@@ -429,14 +429,14 @@ def _group_keys(g, every: bool) -> list[str]:
         keys.append(f"{base}.length")
     elif isinstance(g, RPR):
         keys.append(f"{base}.offset")
-    guides = {"guide": g.guide} if isinstance(g, (RRP, RPP)) else {}
+    guides = ["guide"] if isinstance(g, (RRP, RPP)) else []
     if isinstance(g, PRP):
-        guides = {f"guides.{k}": gd for k, gd in enumerate(g.guides)}
+        guides = ["guides.0", "guides.1"]
     if isinstance(g, Triad) and every:
         keys += [f"{base}.sides.{j}" for j in range(3)]
         for j, lead in enumerate(g.leads):
             if lead.slider:
-                guides[f"leads.{j}.guide"] = lead.guide
+                guides.append(f"leads.{j}.guide")
             else:
                 keys.append(f"{base}.leads.{j}.length")
     for where in guides:
