@@ -68,6 +68,10 @@ MANY_ANGLES = ",".join(str(i) for i in range(20_000))
     (["sweep", "four-bar", "--vary", "crank.length=0.1:0.2:100000000000"], ["100000000000 values", "at most"]),
     (["batch", "--random", "100000000", "--base", "shaper", "--seed", "s", "--require", "K>=1.0"],
      ["--random 100000000", "at most 10000"]),
+    (["batch", "--random", "2", "--base", "shaper", "--seed", "s", "--students", ",".join(map(str, range(20_000)))],
+     ["--students: 20000 ids", "at most 10000"]),
+    (["sweep", "four-bar", "--vary", "crank.length=0.1:0.2:1000000", "--jobs", "1000000"], ["--jobs 1000000", "at most 256"]),
+    (["batch", "--random", "2", "--base", "shaper", "--seed", "s", "--jobs", "100000"], ["--jobs 100000", "at most 256"]),
 ])
 def test_every_count_is_bounded(tmp_path, capsys, argv, words):
     out = tmp_path / "out"

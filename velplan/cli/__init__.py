@@ -65,6 +65,10 @@ as CSV or JSON at 10⁶ rows, ≈ 1 GB; `centres` constructs every centre of eve
 a position; the note follows the sheets; `sweep` solves each variant at 0.01° at the finest)."""
 
 
+MAX_JOBS = 256
+"""Most worker processes a command starts (--jobs)."""
+
+
 def _check_common(args) -> None:
     """Options many commands share, checked once: an output name, a PNG resolution, the
     number of positions."""
@@ -84,6 +88,9 @@ def _check_common(args) -> None:
     if isinstance(angles, str) and most is not None and angles.count(",") + 1 > most:
         raise VelplanError(f"--angles: {angles.count(',') + 1} angles is more than velplan {args.command} "
                            f"draws or prints usefully (at most {most})")
+    jobs = getattr(args, "jobs", None)
+    if isinstance(jobs, int) and jobs > MAX_JOBS:
+        raise VelplanError(f"--jobs {jobs} is more worker processes than velplan starts (at most {MAX_JOBS})")
     out = getattr(args, "output", None)
     if out is not None and not str(out).strip():
         raise VelplanError("-o/--output: give a file name, not an empty string")
