@@ -79,7 +79,7 @@ def test_key_values_against_the_solver(course):
 @pytest.mark.parametrize("cell, message", [
     ({"crank.length": "abc"}, "crank.length: 'abc' is not a number"),
     ({"group.9-9.length": "0.2"}, "no group named '9-9'; known: 3-4, 5-6"),
-    ({"group.5-6.lengths.0": "0.2"}, "5-6 has no 'lengths'"),
+    ({"group.5-6.lengths.0": "0.2"}, "5-6 (RRP) has no 'lengths.0'"),
     ({"ground.O2.2": "0.3"}, "index 2 outside 0…1"),
     ({"link.2.mass": "3"}, "the base has no [link.2]"),
     ({"positions": "2.5"}, "positions: must be a whole number"),

@@ -1,24 +1,12 @@
 """Variant batches: a department's table of variants → per-variant sheets and an answer key.
 
 A variant table has one row per variant: a base mechanism (a bundled example, a catalogue
-name or a TOML path) and overrides of its numbers by dotted keys into the mechanism file:
-
-=========================  ==========================================================
-key                         what it sets
-=========================  ==========================================================
-``crank.length``            the crank's length, m (``crank.rpm`` / ``crank.omega`` its speed;
-                            giving one drops the other)
-``ground.O2.1``             a coordinate of a fixed point (0 = x, 1 = y), m
-``group.2-3.lengths.0``     an entry of a group's list (the group named ``2-3``)
-``group.4-5.length``        a group's number; ``group.4-5.guide.offset`` inside its guide
-``group.G.sides.1``         a side of the triad ``G`` (0 = BC, 1 = CD, 2 = DB), m
-``group.G.leads.2.*``       a triad lead's ``length`` (leads 0…2), a block lead's ``guide.offset``
-``point.B.along``           a point on a link
-``link.4.mass``             a link's mass (``inertia`` J_S)
-``load.Fc.force``           a number of the load named ``Fc`` (``load.P.p_max`` …)
-``dynamics.delta``          a number of the ``[dynamics]`` section
-``positions``               the number of positions of the variant (default 12)
-=========================  ==========================================================
+name or a TOML path) and overrides of its numbers by the dotted keys of the mechanism file
+(`velplan.mechanism.keys`, the one table of keys that ``velplan sweep --vary`` reads too:
+``crank.length``, ``group.2-3.lengths.0``, ``group.G.sides.1``, ``link.4.mass``,
+``load.Fc.force``, ``dynamics.delta`` …; ``crank.rpm`` or ``crank.omega`` sets the speed),
+each value checked as the file loader checks it, and ``positions``, the number of positions
+of the variant (default 12).
 
 CSV: a header ``variant,base,key,key,…`` (``variant`` optional: rows are numbered from 1;
 ``base`` optional when ``--base`` gives it); an empty cell keeps the base's value.
@@ -44,7 +32,6 @@ mechanism has masses or loads), and the stroke H and coefficient K.
 
 from __future__ import annotations
 
-import copy
 import csv
 import hashlib
 import io
@@ -203,11 +190,14 @@ def base_text(base: str) -> tuple[str, str]:
     raise VelplanError(f"unknown base mechanism {base!r}: not a bundled example, a catalogue name or a file")
 
 
-def apply_overrides(data: dict, overrides: dict[str, Any]) -> tuple[dict, int]:
-    """A copy of the parsed mechanism ``data`` with ``overrides`` applied, and the number of
-    positions; `VelplanError` naming the key for an unknown key or a value that is not a number."""
-    data = copy.deepcopy(data)
+def apply_overrides(mech, overrides: dict[str, Any]):
+    """(``mech`` with ``overrides`` applied, the number of positions): every key read and
+    checked by `velplan.mechanism.keys` as the file loader checks it; `VelplanError` naming
+    the key for an unknown key or a value that is not a number the file could hold."""
+    from velplan.mechanism import keys
+
     positions = DEFAULT_POSITIONS
+    values = {}
     for key, raw in overrides.items():
         if key == "\0extra":
             raise VelplanError(f"the row has {raw}")
@@ -217,8 +207,8 @@ def apply_overrides(data: dict, overrides: dict[str, Any]) -> tuple[dict, int]:
                 raise VelplanError(f"positions: must be a whole number ≥ 1, not {raw!r}")
             positions = int(value)
             continue
-        _set(data, key, value)
-    return data, positions
+        values[key] = value
+    return keys.apply(mech, values), positions
 
 
 def _number(key: str, raw: Any) -> float | int:
@@ -230,101 +220,32 @@ def _number(key: str, raw: Any) -> float | int:
         raise VelplanError(f"{key}: {raw!r} is not a number") from None
     if not math.isfinite(value):
         raise VelplanError(f"{key}: {raw!r} is not a finite number")
-    return int(value) if value.is_integer() and (key.endswith(("branch", "harmonics")) or key == "positions") else value
-
-
-_NAMED_LISTS = ("group", "point", "load")
-
-
-def _set(data: dict, key: str, value) -> None:
-    parts = key.split(".")
-    if len(parts) < 2 and parts[0] not in ("gravity", "reference_deg"):
-        raise VelplanError(f"unknown key {key!r}: use a dotted key such as crank.length or link.4.mass")
-    node: Any = data
-    trail = []
-    i = 0
-    while i < len(parts) - 1:
-        part = parts[i]
-        trail.append(part)
-        if isinstance(node, dict) and part in _NAMED_LISTS and node is data and i == 0:
-            items = node.get(part) or []
-            name = parts[i + 1] if i + 1 < len(parts) else ""
-            found = [t for t in items if isinstance(t, dict) and str(t.get("name", "")) == name]
-            if not found:
-                known = ", ".join(str(t.get("name", "?")) for t in items) or "none"
-                raise VelplanError(f"unknown key {key!r}: no {part} named {name!r}; known: {known}")
-            node = found[0]
-            trail.append(name)
-            i += 2
-            continue
-        if node is data and part == "link":
-            links = node.setdefault("link", {})
-            name = parts[i + 1] if i + 1 < len(parts) else ""
-            if name not in links:
-                known = ", ".join(links) or "none"
-                raise VelplanError(f"unknown key {key!r}: the base has no [link.{name}]; links with masses: {known}")
-            node = links[name]
-            trail.append(name)
-            i += 2
-            continue
-        node = _child(node, part, key, " ".join(trail[:-1]) or "the file")
-        i += 1
-    last = parts[-1]
-    if isinstance(node, list):
-        idx = _index(node, last, key)
-        if not isinstance(node[idx], (int, float)):
-            raise VelplanError(f"unknown key {key!r}: entry {idx} is not a number")
-        node[idx] = value
-        return
-    if not isinstance(node, dict):
-        raise VelplanError(f"unknown key {key!r}: {'.'.join(trail)} is not a table")
-    if last in ("rpm", "omega") and node is data.get("crank"):
-        node.pop("omega" if last == "rpm" else "rpm", None)
-        node[last] = value
-        return
-    if last not in node:
-        if last not in _OPTIONAL:
-            have = ", ".join(k for k, v in node.items() if isinstance(v, (int, float, list, dict))) or "none"
-            raise VelplanError(f"unknown key {key!r}: {' '.join(trail) or 'the file'} has no {last!r}; it has {have}")
-    elif not isinstance(node[last], (int, float)) or isinstance(node[last], bool):
-        raise VelplanError(f"unknown key {key!r}: {last!r} is not a number in the base (give an entry: {key}.0)")
-    node[last] = value
-
-
-_OPTIONAL = {"inertia", "offset", "epsilon", "along", "angle_deg", "gravity", "reference_deg", "delta", "fx", "fy"}
-"""Numeric keys an override may add where the base file leaves them at their defaults."""
-
-
-def _child(node, part: str, key: str, where: str):
-    if isinstance(node, dict):
-        if part not in node:
-            have = ", ".join(k for k, v in node.items() if not isinstance(v, str)) or "nothing to set"
-            raise VelplanError(f"unknown key {key!r}: {where} has no {part!r}; it has {have}")
-        return node[part]
-    if isinstance(node, list):
-        return node[_index(node, part, key)]
-    raise VelplanError(f"unknown key {key!r}: {part!r} is inside a number")
-
-
-def _index(node: list, part: str, key: str) -> int:
-    try:
-        idx = int(part)
-    except ValueError:
-        raise VelplanError(f"unknown key {key!r}: {part!r} is not an index of a list of {len(node)}") from None
-    if not 0 <= idx < len(node):
-        raise VelplanError(f"unknown key {key!r}: index {idx} outside 0…{len(node) - 1}")
-    return idx
+    return value
 
 
 def build_variant(v: Variant):
     """(mechanism, positions) of a variant; `VelplanError` for a bad key, value or file."""
-    from velplan.mechanism.loader import from_dict
+    from dataclasses import replace
 
-    name, text = base_text(v.base)
-    data = tomllib.loads(text)
-    data, n = apply_overrides(data, v.overrides)
-    data["name"] = f"{name}-{v.name}"
-    return from_dict(data, name=data["name"]), n
+    mech = base_mechanism(v.base)
+    mech, n = apply_overrides(mech, v.overrides)
+    return replace(mech, name=f"{mech.name}-{v.name}"), n
+
+
+def base_mechanism(base: str):
+    """The base mechanism ``base`` loaded (`base_text`): `VelplanError` for a bad file."""
+    from velplan.mechanism.loader import parse
+
+    from dataclasses import replace
+
+    from velplan.errors import MechanismError
+
+    name, text = base_text(base)
+    try:
+        mech = parse(text, name=name)
+    except MechanismError as exc:
+        raise MechanismError(f"base {base}: {exc}") from None
+    return replace(mech, name=name)
 
 
 # -- random variants --------------------------------------------------------------------------
@@ -402,13 +323,15 @@ def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
     assemble (``"not_assembled"``)."""
     from velplan.analysis.assembly import check_full_rotation
     from velplan.analysis.extremes import stroke
-    from velplan.mechanism.loader import from_dict
+    from velplan.mechanism.keys import value
 
     if not 0 < spread < 1:
         raise VelplanError(f"--spread must be between 0 and 100 %, not {spread * 100:g} %")
     name, text = base_text(base)
+    base_mech = base_mechanism(base)  # a base that does not load: one line, before any draw
     data = tomllib.loads(text)
     keys = _random_keys(data)
+    nominal = {k: value(base_mech, k) for k in keys}
     ids = list(students) if students else [str(i) for i in range(1, n + 1)]
     out, failures = [], []
     count = {"drawn": 0, "rejected": 0, "not_assembled": 0} if stats is None else stats
@@ -420,11 +343,10 @@ def random_variants(base: str, n: int, assignment: str, *, spread: float = 0.10,
             factors = rng.uniform(1 - spread, 1 + spread, size=len(keys))
             over = {}
             for k, f in zip(keys, factors):
-                over[k] = _round3(_get(data, k) * f)
+                over[k] = _round3(nominal[k] * f)
             count["drawn"] += 1
             try:
-                d, _n = apply_overrides(data, over)
-                mech = from_dict(d, name=f"{name}-{sid}")
+                mech, _n = apply_overrides(base_mech, over)
                 broken = _broken(mech, require) if require else ""
                 if broken:
                     count["rejected"] += 1
@@ -465,29 +387,6 @@ def figures_of(mech) -> dict[str, float]:
     out = {k: (float(v[0]) if math.isfinite(v[0]) else None) for k, v in figs.items()}
     out["gamma_group"] = group[0]
     return out
-
-
-def _get(data: dict, key: str) -> float:
-    d = copy.deepcopy(data)
-    marker = object()
-    # walk the same way `_set` does, reading instead of writing
-    parts = key.split(".")
-    node: Any = d
-    i = 0
-    while i < len(parts) - 1:
-        part = parts[i]
-        if node is d and part in _NAMED_LISTS:
-            node = next(t for t in node[part] if str(t.get("name")) == parts[i + 1])
-            i += 2
-        elif node is d and part == "link":
-            node = node["link"][parts[i + 1]]
-            i += 2
-        else:
-            node = node[int(part)] if isinstance(node, list) else node[part]
-            i += 1
-    last = parts[-1]
-    v = node[int(last)] if isinstance(node, list) else node.get(last, marker)
-    return float(v)
 
 
 def variants_csv(variants: list[Variant]) -> str:

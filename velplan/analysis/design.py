@@ -6,20 +6,12 @@ Variants × angles are flattened into the solver's positions axis, and every var
 array with one value per element: the closed forms of `velplan.analysis.groups` broadcast,
 so the numpy engine solves V·n elements exactly as it solves n angles of one mechanism.
 
-Parameters are named by the dotted keys of the mechanism file that `velplan batch` uses:
-
-==============================  =================================================
-key                             number (unit)
-==============================  =================================================
-``crank.length``                the crank's length (m); ``crank.rpm``, ``crank.omega``
-``ground.O2.0``, ``ground.O2.1``  x, y of a fixed point (m)
-``group.2-3.lengths.0``         an entry of a group's lengths (m)
-``group.5-6.length``            an RRP rod (m); ``group.3-4.offset`` an RPR bar's offset (m)
-``group.5-6.guide.offset``      a guide's offset (m); ``…guide.angle_deg`` its angle (deg)
-``group.N.guides.1.offset``     a PRP guide's offset or ``angle_deg``
-``group.N.slot_angle_deg``      an RPP slot's angle (deg)
-``point.B.along``               a point on a link (m); ``point.B.offset``
-==============================  =================================================
+Parameters are named by the dotted keys of the mechanism file, read and checked by
+`velplan.mechanism.keys` (the one table of keys, shared with `velplan batch`): every value
+passes the file loader's checks before any work. The keys the arrays carry (the crank's length
+and speed, fixed points, class II groups' lengths, offsets, guides and slots, points on links)
+are solved V·n at a time; any other key (a triad's sides or leads, a branch, a mass …) makes
+each variant be built as its file would be and solved alone.
 
 A class III group (`Triad`) is solved in the same arrays: its branch is followed over the turn
 in every variant together (`velplan.analysis.triad.tracks`: one batch of roots, the steps in
@@ -43,7 +35,7 @@ from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip
 from velplan.analysis.blocks import BLOCK, Outputs, about_pivot, solve_items
 from velplan.analysis.kinematics import Kinematics, group_lengths
 from velplan.analysis.solver import solve
-from velplan.errors import MechanismError
+from velplan.mechanism import keys
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import schedule
 
@@ -53,28 +45,13 @@ from velplan.mechanism.structure import schedule
 
 def design_keys(mech: Mechanism, *, speed: bool = False) -> dict[str, float]:
     """Every geometric key of ``mech`` with its nominal value (m or deg), in file order;
-    ``speed`` adds the crank's ``crank.omega`` (rad/s)."""
-    out = {}
-    for name, (x, y) in mech.ground:
-        out[f"ground.{name}.0"], out[f"ground.{name}.1"] = float(x), float(y)
-    out["crank.length"] = float(mech.crank.length)
-    if speed:
-        out["crank.omega"] = float(mech.crank.omega)
-    for g in mech.groups:
-        out.update({f"group.{g.name}.{k}": v for k, v in g.design_parameters().items()})
-    for p in mech.points:
-        out[f"point.{p.name}.along"], out[f"point.{p.name}.offset"] = float(p.along), float(p.offset)
-    return out
+    ``speed`` adds the crank's ``crank.omega`` (rad/s) (`velplan.mechanism.keys.keys_of`)."""
+    return keys.keys_of(mech, speed=speed)
 
 
 def nominal(mech: Mechanism, key: str) -> float:
     """The value of ``key`` in ``mech`` (m, deg, rpm or rad/s)."""
-    if key == "crank.rpm":
-        return float(mech.crank.rpm)
-    keys = design_keys(mech, speed=True)
-    if key not in keys:
-        raise MechanismError(f"unknown design key {key!r}; known: {', '.join(keys)}, crank.rpm")
-    return keys[key]
+    return keys.value(mech, key)
 
 
 def _with(obj, **fields):
@@ -86,84 +63,14 @@ def _with(obj, **fields):
     return new
 
 
-def _set_field(obj, path: list[str], value):
-    """``obj`` with the number at ``path`` (field names, tuple indices; a last ``…_deg``
-    field is set in radians) set to ``value``."""
-    head, rest = path[0], path[1:]
-    if isinstance(obj, tuple):
-        items = list(obj)
-        items[int(head)] = _set_field(items[int(head)], rest, value) if rest else value
-        return tuple(items)
-    if rest:
-        return _with(obj, **{head: _set_field(getattr(obj, head), rest, value)})
-    if head.endswith("_deg"):
-        return _with(obj, **{head[:-4]: np.radians(value)})
-    return _with(obj, **{head: value})
-
-
-def _set_group(g, rest: list[str], value, key: str):
-    params = g.design_fields
-    if not params:
-        raise MechanismError(f"design key {key!r}: group {g.name!r} is a class {'I' * g.group_class[0]} group, "
-                             "not varied here")
-    if ".".join(rest) in params:
-        return _set_field(g, rest, value)
-    raise MechanismError(f"unknown design key {key!r}: group {g.name!r} ({g.kind}) has no {'.'.join(rest)!r}")
-
-
 def _set(mech: Mechanism, key: str, value) -> Mechanism:
     """``mech`` with the number at ``key`` set to ``value`` (a float or an array), unchecked."""
-    parts = key.split(".")
-    head, rest = parts[0], parts[1:]
-    if head == "crank" and rest in (["length"], ["omega"], ["rpm"]):
-        field = "omega" if rest[0] == "rpm" else rest[0]
-        v = value * (math.pi / 30.0) if rest[0] == "rpm" else value
-        return _with(mech, crank=_with(mech.crank, **{field: v}))
-    if head == "ground" and len(rest) == 2 and rest[1] in ("0", "1"):
-        ground = dict(mech.ground)
-        if rest[0] not in ground:
-            raise MechanismError(f"unknown design key {key!r}: no ground point {rest[0]!r}; known: {', '.join(ground)}")
-        xy = list(ground[rest[0]])
-        xy[int(rest[1])] = value
-        return _with(mech, ground=tuple((n, tuple(xy) if n == rest[0] else p) for n, p in mech.ground))
-    if head == "group" and len(rest) >= 2:
-        names = [g.name for g in mech.groups]
-        if rest[0] not in names:
-            raise MechanismError(f"unknown design key {key!r}: no group {rest[0]!r}; known: {', '.join(names)}")
-        groups = tuple(_set_group(g, rest[1:], value, key) if g.name == rest[0] else g for g in mech.groups)
-        return _with(mech, groups=groups)
-    if head == "point" and len(rest) == 2 and rest[1] in ("along", "offset"):
-        names = [p.name for p in mech.points]
-        if rest[0] not in names:
-            raise MechanismError(f"unknown design key {key!r}: no point {rest[0]!r} on a link; known: {', '.join(names)}")
-        pts = tuple(_with(p, **{rest[1]: value}) if p.name == rest[0] else p for p in mech.points)
-        return _with(mech, points=pts)
-    raise MechanismError(f"unknown design key {key!r}: use crank.length, ground.P.0, group.N.length, "
-                         "group.N.lengths.0, group.N.guide.offset, point.P.along …")
-
-
-def check_closed(key: str, values: np.ndarray) -> None:
-    """Lengths must be > 0 and every number finite: one line naming the key, value, variant."""
-    bad = ~np.isfinite(values)
-    positive = key == "crank.length" or key.endswith((".length",)) or ".lengths." in key
-    if positive:
-        bad |= ~(values > 0)
-    if bad.any():
-        i = int(np.argmax(bad))
-        what = "must be a finite number > 0 m" if positive else "must be a finite number"
-        raise MechanismError(f"{key} {what}, not {values[i]:.6g} (variant {i + 1})")
+    return keys.resolve(mech, key).set(mech, value)
 
 
 def variant(mech: Mechanism, values: Mapping[str, float]) -> Mechanism:
     """``mech`` with the keys ``values`` set: one variant, checked like a loaded file."""
-    out = mech
-    for key, v in values.items():
-        check_closed(key, np.array([float(v)]))
-        out = _set(out, key, float(v))
-    # rebuild each value through its constructor, so that its own checks run
-    groups = tuple(replace(g) for g in out.groups)
-    return replace(out, crank=replace(out.crank), groups=groups, points=tuple(replace(p) for p in out.points),
-                   name=mech.name)
+    return keys.apply(mech, values)
 
 
 # ---- solving --------------------------------------------------------------------------------
@@ -265,15 +172,15 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
         varied ``crank.rpm``/``crank.omega``).
     """
     vals, V = _as_values(values)
-    for key, arr in vals.items():
-        check_closed(key, arr)
-        _set(mech, key, arr)  # an unknown key fails here, before any work
+    keys.check_values(mech, vals)  # an unknown key or a value the file could not hold fails here
     phi = np.asarray(phi, dtype=float)
     if phi.ndim not in (1, 2) or (phi.ndim == 2 and phi.shape[0] != V):
         raise ValueError(f"phi must have shape (n,) or ({V}, n), not {phi.shape}")
     phi2 = np.ascontiguousarray(np.broadcast_to(phi, (V, phi.shape[-1])))
     if engine not in ("numpy", "compiled"):
         raise ValueError(f"engine must be 'numpy' or 'compiled', not {engine!r}")
+    if not all(keys.resolve(mech, k).array for k in vals):
+        return _each_variant(mech, vals, phi2, order, engine)
     tracks = _triad_tracks(mech, vals, V)
     if engine == "compiled" and not tracks:
         return _solve_compiled(mech, vals, phi2, order)
@@ -296,6 +203,26 @@ def solve_design(mech: Mechanism, values: Mapping[str, object], phi, *, order: i
         out.write(st, conditions, where)
     kin = out.kinematics(mech, flat_phi, w1, float(mech.crank.epsilon) if order >= 2 else 0.0, st)
     return DesignKinematics(mech, vals, phi2, replace(kin, positions=kin.positions + shift[:, None, :]))
+
+
+def _each_variant(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int, engine: str) -> DesignKinematics:
+    """Variants that differ in a number the arrays do not carry (a triad's sides or leads, a
+    branch …): each built as a file would be (`variant`) and solved alone, then joined."""
+    parts = [solve_design(variant(mech, {k: float(a[v]) for k, a in vals.items()}), {}, phi2[v], order=order,
+                          engine=engine).flat for v in range(phi2.shape[0])]
+    return DesignKinematics(mech, vals, phi2, _join(parts))
+
+
+def _join(parts: list[Kinematics]) -> Kinematics:
+    """Solutions of the same structure, one after another along the positions axis."""
+    cat = lambda f: None if getattr(parts[0], f) is None else np.concatenate([getattr(k, f) for k in parts])  # noqa: E731
+    rates = {}
+    for f in ("omega1", "epsilon1"):
+        each = [np.broadcast_to(np.asarray(getattr(k, f), float), (len(k),)) for k in parts]
+        rates[f] = float(each[0][0]) if all(np.all(e == each[0][0]) for e in each) else np.concatenate(each)
+    fields = ("phi", "positions", "velocities", "accelerations", "angles", "omegas", "epsilons", "slides",
+              "condition", "valid")
+    return replace(parts[0], **rates, **{f: cat(f) for f in fields})
 
 
 def _solve_compiled(mech: Mechanism, vals: dict, phi2: np.ndarray, order: int) -> DesignKinematics:

@@ -57,10 +57,16 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 
 
 POSITION_LIMITS = {"analyze": 1_000_000, "sheet": 72, "diagrams": 720, "steps": 360, "plan": 3600,
-                   "compare": 3600, "forces": 36_000, "dynamics": 3600, "batch": 72}
-"""Most --positions each command accepts: beyond them a drawing or a table is unreadable (and
-`analyze` as a table stops at 360 columns; `analyze`, `forces` and `dynamics` as CSV or JSON at
-10⁶ rows, ≈ 1 GB)."""
+                   "compare": 3600, "forces": 36_000, "dynamics": 3600, "batch": 72, "centres": 360,
+                   "note": 72, "sweep": 36_000}
+"""Most --positions (and --angles) each command accepts: beyond them a drawing or a table is
+unreadable (and `analyze` as a table stops at 360 columns; `analyze`, `forces` and `dynamics`
+as CSV or JSON at 10⁶ rows, ≈ 1 GB; `centres` constructs every centre of every position, ≈ 1.5 ms
+a position; the note follows the sheets; `sweep` solves each variant at 0.01° at the finest)."""
+
+
+MAX_JOBS = 256
+"""Most worker processes a command starts (--jobs)."""
 
 
 def _check_common(args) -> None:
@@ -78,6 +84,13 @@ def _check_common(args) -> None:
     if isinstance(n, int) and most is not None and n > most:
         raise VelplanError(f"--positions {n} is more than velplan {args.command} draws or prints usefully "
                            f"(at most {most})")
+    angles = getattr(args, "angles", None)
+    if isinstance(angles, str) and most is not None and angles.count(",") + 1 > most:
+        raise VelplanError(f"--angles: {angles.count(',') + 1} angles is more than velplan {args.command} "
+                           f"draws or prints usefully (at most {most})")
+    jobs = getattr(args, "jobs", None)
+    if isinstance(jobs, int) and jobs > MAX_JOBS:
+        raise VelplanError(f"--jobs {jobs} is more worker processes than velplan starts (at most {MAX_JOBS})")
     out = getattr(args, "output", None)
     if out is not None and not str(out).strip():
         raise VelplanError("-o/--output: give a file name, not an empty string")

@@ -46,30 +46,62 @@ def _spread(text: str) -> float:
     return value
 
 
-def run_batch_cmd(args) -> int:
-    from velplan import batch
+MAX_RANDOM = 10_000
+"""Most random variants (--random N or --students) one batch draws: each is a sheet."""
 
+
+def _check(args):
+    """Every argument checked before the output directory is made: (constraints, students, spread)."""
     if (args.table is None) == (args.random is None):
         raise VelplanError("give a variant table or --random N (one of them)")
     require = None
-    if args.require:
+    if args.require is not None:
         if args.random is None:
             raise VelplanError("--require needs --random N (it constrains random draws)")
         from velplan.sweep.require import parse_require
 
         require = parse_require(args.require)
+    students, spread = None, None
+    if args.random is not None:
+        if not args.base or args.seed is None:
+            raise VelplanError("--random needs --base MECH and --seed TEXT (the assignment)")
+        if args.random > MAX_RANDOM:
+            raise VelplanError(f"--random {args.random} is more than a batch draws (at most {MAX_RANDOM})")
+        if args.students is not None:
+            students = [s.strip() for s in args.students.split(",") if s.strip()]
+            if not students:
+                raise VelplanError("--students: give at least one student id")
+            if len(students) > MAX_RANDOM:
+                raise VelplanError(f"--students: {len(students)} ids is more than a batch draws (at most {MAX_RANDOM})")
+        spread = _spread(args.spread)
+        if not 0 < spread < 1:
+            raise VelplanError(f"--spread must be between 0 and 100 %, not {spread * 100:g} %")
+    return require, students, spread
+
+
+def run_batch_cmd(args) -> int:
+    require, students, spread = _check(args)
     out = Path(args.output)
+    made = False
     if not out.is_dir():
         if not (out.parent if str(out.parent) else Path(".")).is_dir():
             raise VelplanError(f"cannot write {out}: directory {out.parent} does not exist")
         out.mkdir()
+        made = True
+    try:
+        return _run(args, out, require, students, spread)
+    except BaseException:
+        if made and not any(out.iterdir()):  # refused before anything was written: leave nothing
+            out.rmdir()
+        raise
+
+
+def _run(args, out: Path, require, students, spread) -> int:
+    from velplan import batch
+
     failures: list = []
     extra: dict = {}
     if args.random is not None:
-        if not args.base or args.seed is None:
-            raise VelplanError("--random needs --base MECH and --seed TEXT (the assignment)")
-        students = [s.strip() for s in args.students.split(",") if s.strip()] if args.students else None
-        spread = _spread(args.spread)
         stats: dict = {}
         variants, failures = batch.random_variants(args.base, args.random, args.seed, spread=spread,
                                                    students=students, require=require, stats=stats)

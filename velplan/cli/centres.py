@@ -14,7 +14,7 @@ from velplan.cli.common import add_mechanism, add_output, default_language, emit
 from velplan.errors import VelplanError
 from velplan.plans import EXACT, Drafting
 from velplan.plans.centres import Construction, centre_name, construct_centres, velocities_by_centres
-from velplan.plans.scale import check_scale
+from velplan.plans.scale import check_scale, check_scheme_scale
 from velplan.plans.text import LANGS
 from velplan.study import Study
 
@@ -60,9 +60,14 @@ def _study(args) -> tuple[Study, list[int], list[int | None]]:
 
 
 def run_centres(args) -> int:
+    for option, v in (("--precision", args.precision), ("--angle-precision", args.angle_precision)):
+        if not (math.isfinite(v) and 0 < v <= 10.0):  # checked in either mode: never silently ignored
+            raise VelplanError(f"{option} must be > 0 and at most 10 (a draughtsman's precision), not {v:g}")
     drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.angle_precision)
     mu_l = None if args.scale_l is None else check_scale(args.scale_l, "--scale-l")
     study, idx, numbers = _study(args)
+    if mu_l is not None:
+        check_scheme_scale(mu_l, length_scale(study.mechanism), "--scale-l")
     study.require_assembled([i + 1 for i in idx])
     kin = study.kinematics
     exact = instant_centres(kin)

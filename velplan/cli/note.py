@@ -52,6 +52,8 @@ def run_note(args) -> int:
     if args.delta is not None and not (0 < args.delta < 1):
         raise VelplanError(f"--delta must be between 0 and 1, not {args.delta:g}")
     parts = None if args.parts is None else tuple(x.strip() for x in args.parts.split(",") if x.strip())
+    if parts == ():
+        raise VelplanError("--parts: give at least one of kinematics, forces, dynamics")
     study = Study(args.mechanism, n=args.positions, delta=args.delta)
     fields = {k: getattr(args, k) for k, _ in FIELDS if getattr(args, k)}
     note = build_note(study, plans=parse_plans(args.plans, args.positions), parts=parts, lang=args.lang,

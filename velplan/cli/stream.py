@@ -224,13 +224,21 @@ def text_pieces(chunks: Iterable[tuple[dict, dict | None]], fmt: str) -> Iterato
 
 def write_rows(output, fmt: str, chunks: Iterable[tuple[dict, dict | None]], head=None) -> None:
     """Write ``chunks`` to ``output`` (None: standard output) as they come: CSV, JSON lines,
-    Parquet, or with ``head`` (a callable giving `json_document`'s head) one JSON document."""
+    Parquet, or with ``head`` (a callable giving `json_document`'s head) one JSON document.
+    The head and the first chunk are computed before a byte is written: a refusal leaves no
+    half document on standard output."""
+    import itertools
+
+    chunks = iter(chunks)
+    top = head() if fmt == "json" else None
+    first = list(itertools.islice(chunks, 1))
+    chunks = itertools.chain(first, chunks)
     with open_output(output, binary=True) as out:
         if fmt == "parquet":
             write_parquet(out, (tree for tree, _ in chunks))
             return
         pieces = text_pieces(chunks, fmt)
-        for piece in json_document(head(), "positions", pieces) if fmt == "json" else pieces:
+        for piece in json_document(top, "positions", pieces) if fmt == "json" else pieces:
             out.write(piece)
 
 

@@ -9,6 +9,9 @@ from velplan.cli.common import add_mechanism, add_output, positive_int
 from velplan.errors import VelplanError
 
 MAX_VARIANTS = 10_000_000
+"""Most variants of a --vary grid."""
+MAX_SAMPLES = 1_000_000
+"""Most Monte Carlo draws: every toleranced key's values and every figure are kept (≈ 0.3 GB)."""
 
 
 def register(sub) -> None:
@@ -46,18 +49,24 @@ def register(sub) -> None:
 
 
 def _values(args, mech):
+    from velplan.mechanism.keys import check_values
     from velplan.sweep import run
 
     if bool(args.vary) == bool(args.tolerance):
         raise VelplanError("give --vary KEY=FROM:TO:N (a grid) or --tolerance T (Monte Carlo), one of them")
     if args.vary:
-        axes = dict(run.parse_vary(v) for v in args.vary)
+        axes = run.parse_axes(args.vary)
         if run.combos(axes) > MAX_VARIANTS:
             raise VelplanError(f"--vary: {run.combos(axes)} variants is more than {MAX_VARIANTS}")
-        return "grid", run.grid(mech, axes), {"axes": {k: [float(x) for x in v] for k, v in axes.items()}}
+        values = run.grid(mech, axes)
+        check_values(mech, values)
+        return "grid", values, {"axes": {k: [float(x) for x in v] for k, v in axes.items()}}
+    if args.samples > MAX_SAMPLES:
+        raise VelplanError(f"--samples {args.samples} is more than a sweep keeps (at most {MAX_SAMPLES})")
     length, angle, per = run.parse_tolerance(args.tolerance)
     tol = run.tolerances(mech, length, angle, per)
     values = run.monte_carlo(mech, tol, args.samples, args.seed, args.distribution)
+    check_values(mech, values)
     meta = {"seed": args.seed, "samples": args.samples, "distribution": args.distribution,
             "tolerance": {k: float(t) for k, t in tol.items()}}
     return "monte-carlo", values, meta

@@ -161,8 +161,7 @@ def _crank(t: dict) -> Crank:
     if ("omega" in t) == ("rpm" in t):
         raise MechanismError("[crank] needs exactly one of omega (rad/s) or rpm (rev/min), sign = sense (+ counter-clockwise)")
     omega = _finite(t["omega"], "crank omega") if "omega" in t else _finite(t["rpm"], "crank rpm") * math.pi / 30
-    if 0 < abs(omega) < 1e-9:
-        raise MechanismError(f"crank speed {omega:g} rad/s is below 1e-9 rad/s: give 0 or a real speed")
+    check_speed(omega, "crank omega" if "omega" in t else "crank rpm", t.get("omega", t.get("rpm")))
     return Crank(
         link=_name(t, "link", "[crank]"),
         pivot=_name(t, "pivot", "[crank]"),
@@ -514,6 +513,20 @@ def _finite(v: Any, what: str) -> float:
     if abs(v) > MAGNITUDE:
         raise MechanismError(f"{what} = {v:g} is out of range (at most {MAGNITUDE:g} in magnitude)")
     return v
+
+
+SLOWEST = 1e-9
+"""Smallest crank speed |ω1|, rad/s: velocities, accelerations, transfer functions and forces
+are all per the crank's speed, so a crank at rest (ω1 = 0) is refused where the file is read."""
+
+
+def check_speed(omega: float, what: str, given: Any = None) -> float:
+    """``omega`` (rad/s) if the crank turns (|ω1| ≥ `SLOWEST`); one line naming ``what``."""
+    if not abs(omega) >= SLOWEST:
+        shown = omega if given is None else given
+        raise MechanismError(f"{what} = {shown:g}: the crank must turn (|ω1| ≥ {SLOWEST:g} rad/s); "
+                             "velocities, accelerations and forces are all per its speed")
+    return omega
 
 
 def _positive(v: float, what: str) -> float:

@@ -35,6 +35,18 @@ DRAWABLE_MM = (5.0, 5000.0)
 drafting precisions long): shorter, its readings are drafting noise; longer, no sheet holds it."""
 
 
+def check_scheme_scale(mu: float, size: float, what: str) -> float:
+    """Refuse a user-given scheme scale ``mu`` (m/mm) that draws the mechanism, ``size`` m
+    across, shorter or longer than `DRAWABLE_MM`: one line naming the option and the value."""
+    mu = check_scale(mu, what)
+    across = size / mu
+    if not (DRAWABLE_MM[0] <= across <= DRAWABLE_MM[1]):
+        raise ScaleError(f"{what} {mu:g} draws the mechanism ({size:.3g} m) {across:.3g} mm across, outside "
+                         f"{DRAWABLE_MM[0]:g}…{DRAWABLE_MM[1]:g} mm: use {what} between "
+                         f"{size / DRAWABLE_MM[1]:.3g} and {size / DRAWABLE_MM[0]:.3g} m/mm")
+    return mu
+
+
 def check_drawable(kin, sel, mu: float, kind: str, drafting) -> None:
     """Refuse to draft a plan at ``mu`` whose longest vector (positions ``sel``) is too short to
     read at the drafting precision or too long for any sheet (`DRAWABLE_MM`); exact plans pass."""

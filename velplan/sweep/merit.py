@@ -14,8 +14,9 @@ import math
 
 import numpy as np
 
-from velplan.analysis.design import DesignKinematics, solve_design
+from velplan.analysis.design import DesignKinematics, solve_design, variant
 from velplan.analysis.extremes import output_quantity, reference_angle
+from velplan.mechanism.keys import resolve
 from velplan.mechanism.model import RPR, Mechanism, turning_sense
 from velplan.sweep import dynamic
 
@@ -60,6 +61,8 @@ def figures(mech: Mechanism, values: dict, n: int = 360, engine: str = "numpy",
     gamma_group : list of str, length V
         The group whose transmission angle is γ_min.
     """
+    if values and not all(resolve(mech, k).array for k in values):
+        return _each_variant(mech, values, n, engine, delta)
     phi = grid_angles(n)
     dk = solve_design(mech, values, phi, engine=engine)
     failures = dk.failures()
@@ -79,6 +82,18 @@ def figures(mech: Mechanism, values: dict, n: int = 360, engine: str = "numpy",
     for k, arr in out.items():
         out[k] = np.where(ok, arr, np.nan)
     return {k: out[k] for k in FIGURES if k in out}, failures, group
+
+
+def _each_variant(mech: Mechanism, values: dict, n: int, engine: str, delta: float | None):
+    """`figures` of variants that differ in a number the arrays do not carry (a triad's sides,
+    a mass, a load …): each built as its file would be (`variant`) and studied alone."""
+    cols = {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in values.items()}
+    V = max(len(c) for c in cols.values())
+    rows = [figures(variant(mech, {k: float(c[v if len(c) > 1 else 0]) for k, c in cols.items()}), {}, n, engine,
+                    delta) for v in range(V)]
+    names = [k for k in FIGURES if any(k in r[0] for r in rows)]
+    figs = {k: np.array([r[0][k][0] if k in r[0] else np.nan for r in rows]) for k in names}
+    return figs, [r[1][0] for r in rows], [r[2][0] for r in rows]
 
 
 def _dynamic(mech: Mechanism, dk: DesignKinematics, ends, delta: float | None, engine: str) -> dict[str, np.ndarray]:

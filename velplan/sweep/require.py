@@ -82,7 +82,37 @@ def parse_require(text: str) -> list[Constraint]:
         out.append(Constraint(item.strip(), name, lo, hi, op in (">", "<"), deg))
     if not out:
         raise VelplanError("--require: give at least one constraint, e.g. 'K>=1.4, gamma_min>=40deg'")
+    feasible(out)
     return out
+
+
+RANGES = {"K": (1.0, math.inf, False, "K = (180° + θ)/(180° − θ) is at least 1"),
+          "theta_deg": (0.0, 180.0, True, "θ lies in 0° ≤ θ < 180°"),
+          "gamma_min_deg": (0.0, 90.0, False, "a transmission angle lies in 0°…90°"),
+          "H": (0.0, math.inf, False, "a stroke is ≥ 0"), "v_max": (0.0, math.inf, False, "a peak |v| is ≥ 0"),
+          "a_max": (0.0, math.inf, False, "a peak |a| is ≥ 0"), "Mb_max": (0.0, math.inf, False, "a peak |M_b| is ≥ 0")}
+"""Every value a figure can take: (lowest, highest, the highest excluded, why)."""
+
+
+def feasible(constraints: list[Constraint]) -> None:
+    """Refuse, naming them, constraints no value can meet: one outside the figure's range
+    (`RANGES`: ``K<=0``, ``theta>=400deg``) or two on one figure that exclude each other
+    (``K>=1, K<=0.5``); a stroke in degrees and one in metres are not compared."""
+    bounds: dict = {}
+    for c in constraints:
+        lo0, hi0, open_hi, why = RANGES[c.figure]
+        key = (c.figure, c.degrees and c.figure == "H")
+        lo, lo_open, lo_by, hi, hi_open, hi_by = bounds.get(key, (lo0, False, None, hi0, open_hi, None))
+        if c.lo > lo or (c.lo == lo and c.strict):
+            lo, lo_open, lo_by = c.lo, c.strict, c
+        if c.hi < hi or (c.hi == hi and c.strict):
+            hi, hi_open, hi_by = c.hi, c.strict, c
+        if lo > hi or (lo == hi and (lo_open or hi_open)):
+            both = [x.text for x in (lo_by, hi_by) if x is not None]
+            if len(both) == 2 and both[0] != both[1]:
+                raise VelplanError(f"--require {both[0]!r} and {both[1]!r}: no value of {c.figure} meets both")
+            raise VelplanError(f"--require {c.text!r}: no variant can meet it ({why})")
+        bounds[key] = (lo, lo_open, lo_by, hi, hi_open, hi_by)
 
 
 def check(figures: dict[str, np.ndarray], constraints: list[Constraint], *, angular: bool = False) -> list[str]:

@@ -21,6 +21,7 @@ import numpy as np
 from velplan.analysis.design import design_keys, nominal
 from velplan.analysis.extremes import output_quantity
 from velplan.errors import VelplanError
+from velplan.mechanism.keys import resolve
 from velplan.mechanism.model import Mechanism
 from velplan.sweep.merit import FIGURES, figures
 
@@ -83,17 +84,33 @@ def parse_vary(text: str) -> tuple[str, np.ndarray]:
     try:
         if ":" in spec:
             lo, hi, count = spec.split(":")
-            n = int(count)
+            ends, n = [float(lo), float(hi)], int(count)
             if n < 1:
                 raise ValueError
-            vals = np.linspace(float(lo), float(hi), n)
         else:
-            vals = np.array([float(x) for x in spec.split(",")])
+            ends, n = [float(x) for x in spec.split(",")], 0
     except ValueError:
         raise VelplanError(f"--vary {text!r}: {spec!r} is not FROM:TO:COUNT or a list of numbers") from None
-    if not np.isfinite(vals).all():
+    if not all(math.isfinite(x) for x in ends):
         raise VelplanError(f"--vary {text!r}: values must be finite")
-    return key, vals
+    if n > MAX_AXIS:
+        raise VelplanError(f"--vary {text!r}: {n} values on one axis is more than a sweep takes (at most {MAX_AXIS})")
+    return key, (np.linspace(ends[0], ends[1], n) if n else np.array(ends))
+
+
+MAX_AXIS = 10_000_000
+"""Most values of one ``--vary`` axis."""
+
+
+def parse_axes(texts: list[str]) -> dict[str, np.ndarray]:
+    """Every ``--vary`` text (`parse_vary`) → key → values; a key given twice is refused."""
+    axes: dict[str, np.ndarray] = {}
+    for text in texts:
+        key, vals = parse_vary(text)
+        if key in axes:
+            raise VelplanError(f"--vary {key} is given twice: give its values once (KEY=A,B,C)")
+        axes[key] = vals
+    return axes
 
 
 def grid(mech: Mechanism, axes: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -140,7 +157,7 @@ def tolerances(mech: Mechanism, length: float, angle: float, per: Mapping[str, f
     keys = design_keys(mech)
     for k in per or {}:
         if k not in keys:
-            raise VelplanError(f"--tolerance: unknown key {k!r}; known: {', '.join(keys)}")
+            resolve(mech, k)  # any key of the file may be toleranced by name; unknown: one line
     out = {k: (angle if k.endswith("_deg") else length) for k in keys}
     out.update(per or {})
     return out
@@ -179,6 +196,12 @@ def chunks(values: Mapping[str, np.ndarray], size: int) -> list[dict[str, np.nda
     return [{k: v[a:a + size] for k, v in values.items()} for a in range(0, V, size)]
 
 
+def chunk_size(engine: str, positions: int) -> int:
+    """Variants solved at a time: `CHUNK` at up to 360 angles, fewer at more angles, so that a
+    chunk holds at most ``CHUNK[engine]·360`` variant-angles (bounded memory)."""
+    return max(1, min(CHUNK[engine], CHUNK[engine] * 360 // max(positions, 1)))
+
+
 def chunk_figures(mech: Mechanism, values: dict, positions: int, engine: str = "numpy", delta: float | None = None):
     """Figures of one chunk (a picklable task for a process pool or a Dask worker)."""
     return figures(mech, values, positions, engine, delta)
@@ -208,7 +231,7 @@ def sweep_chunks(mech: Mechanism, values: Mapping[str, np.ndarray], *, positions
                  engine: str = "numpy", delta: float | None = None) -> Iterator[tuple[dict, tuple]]:
     """(values, `chunk_figures`) of each chunk of variants in order, each as soon as it and those
     before it are computed (`run_sweep`'s work, for output written as it is computed)."""
-    parts = chunks(values, chunk or CHUNK[engine])
+    parts = chunks(values, chunk or chunk_size(engine, positions))
     if scheduler is not None:
         from velplan.sweep.cluster import map_chunks
 
