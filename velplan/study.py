@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from functools import cached_property
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -40,6 +40,10 @@ from velplan.options import PlanKind as Kind
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.engine import Plan, PlanResult
 from velplan.plans.table import TransferTable, transfer_table
+
+if TYPE_CHECKING:
+    from velplan.forces.curve import MomentCurve
+    from velplan.plans.centres import Construction
 
 Motion = Literal["constant", "dynamic"]
 
@@ -86,6 +90,7 @@ class Study:
         self.delta = delta
         self._plans: dict = {}
         self._forces: dict = {}
+        self._centres: dict = {}
         if check_assembly:
             self.check_assembly()
 
@@ -239,6 +244,21 @@ class Study:
                 positions=None if pos is None else list(pos), only=only, on_failure=on_failure)
         return res
 
+    def centres(self, position: int, *, mu_l: float | None = None, drafting: Drafting = EXACT) -> Construction:
+        """The instant centres at position number ``position`` (1…n) found by Kennedy lines
+        (`velplan.plans.centres.construct_centres`), at the scheme's scale ``mu_l`` (m/mm; a
+        standard one by default) and ``drafting`` precision; `MechanismError` where the mechanism
+        is not assembled."""
+        i = self._indices(position)[0]
+        key = (i, mu_l, drafting)
+        con = self._centres.get(key)
+        if con is None:
+            from velplan.plans.centres import construct_centres
+
+            con = self._centres[key] = construct_centres(self.kinematics, position_number(i), mu_l=mu_l,
+                                                         drafting=drafting)
+        return con
+
     # -- tables and diagrams -----------------------------------------------------------------
 
     @cached_property
@@ -276,6 +296,14 @@ class Study:
                                  mu_v=mu_v)
             self._forces[key] = res
         return res
+
+    @cached_property
+    def moment_curve(self) -> MomentCurve:
+        """M_b by kinetostatics over a revolution from position 1 (`turn_forces`), its values at
+        the n positions (`forces`) and its mean over the turn."""
+        from velplan.forces.curve import moment_curve
+
+        return moment_curve(self.turn_forces(), self.forces(), self.sense)
 
     def turn_forces(self, *, gravity: bool = True, inertia: bool = True):
         """The force analysis over the fine turn (every third step: 241 angles), at the file's

@@ -10,10 +10,11 @@ import numpy as np
 
 from velplan.analysis.centres import instant_centres
 from velplan.analysis.solver import length_scale
+from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 from velplan.plans import EXACT, Drafting
-from velplan.plans.centres import Construction, centre_name, construct_centres, velocities_by_centres
+from velplan.plans.centres import Construction, centre_name, velocities_by_centres
 from velplan.plans.scale import check_scale
 from velplan.plans.text import LANGS
 from velplan.study import Study
@@ -54,21 +55,21 @@ def _study(args) -> tuple[Study, list[int], list[int | None]]:
     if args.position is not None:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
-        return study, [args.position - 1], [args.position]
+        return study, [position_index(args.position, args.positions)], [args.position]
     idx = list(range(args.positions))
-    return study, idx, [i + 1 for i in idx]
+    return study, idx, [position_number(i) for i in idx]
 
 
 def run_centres(args) -> int:
     drafting = EXACT if args.mode == "exact" else Drafting(args.precision, args.angle_precision)
     mu_l = None if args.scale_l is None else check_scale(args.scale_l, "--scale-l")
     study, idx, numbers = _study(args)
-    study.require_assembled([i + 1 for i in idx])
+    study.require_assembled([position_number(i) for i in idx])
     kin = study.kinematics
     exact = instant_centres(kin)
     if args.svg is not None and not str(args.svg).strip():
         raise VelplanError("--svg: give a file name, not an empty string")
-    cons = [construct_centres(kin, i + 1, drafting=drafting, mu_l=mu_l) for i in idx]
+    cons = [study.centres(position_number(i), drafting=drafting, mu_l=mu_l) for i in idx]
     if args.format == "json":
         doc = {"mechanism": study.mechanism.name,
                "positions": [{"phi_deg": round(float(kin.phi_deg[i]), 9), "centres": exact.records(i)} for i in idx]}
@@ -88,7 +89,7 @@ def _plan(study: Study, drafting: Drafting, i: int):
     """The velocity plan at position index ``i`` (exact: the study's own), or None when the
     mechanism's plan cannot be constructed (its column then reads —)."""
     try:
-        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[i + 1])
+        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[position_number(i)])
     except VelplanError:
         return None
 

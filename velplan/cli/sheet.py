@@ -251,11 +251,10 @@ def run_steps(args) -> int:
         raise VelplanError(f"--position {args.position} is outside 1…{study.n}")
     kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
     if args.kind == "centres":
-        from velplan.plans.centres import construct_centres
         from velplan.views.centres import centre_step_figures
 
         study.require_assembled([args.position])
-        figures = centre_step_figures(construct_centres(study.kinematics, args.position),
+        figures = centre_step_figures(study.centres(args.position),
                                       fine=study.turn, number=args.position, lang=args.lang)
     else:
         figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},

@@ -45,12 +45,12 @@ SMALLEST_FRAME_MM = 110.0
 PHI_DECIMALS = 2
 
 
-def _centre_marks(kin, i: int, view, mu_l: float) -> list:
-    """The instant centres of position ``i`` found by Kennedy lines, on the scheme ``view``."""
-    from velplan.plans.centres import construct_centres
+def _centre_marks(study: Study, i: int, view, mu_l: float) -> list:
+    """The instant centres of position ``i`` found by Kennedy lines (`Study.centres`), on the
+    scheme ``view``."""
     from velplan.views.centres import centre_marks
 
-    return centre_marks(construct_centres(kin, position_number(i), mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
+    return centre_marks(study.centres(position_number(i), mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
 
 
 def scheme_scale(study: Study) -> float:
@@ -83,7 +83,7 @@ def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool =
         idx = sorted(set(reference) | {i})
         view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)), lang=lang,
                               kin=kin.take(idx), fine=fine, single=True, title=False)
-        marks = _centre_marks(kin, i, view, mu_l) if centres else []
+        marks = _centre_marks(study, i, view, mu_l) if centres else []
         per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
     # a record drawn at two positions or more is stored once
     count: dict[str, int] = {}

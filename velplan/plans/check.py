@@ -20,6 +20,7 @@ import numpy as np
 from velplan.analysis.extremes import positions
 from velplan.analysis.solver import solve
 from velplan.errors import TableError
+from velplan.io import finite_number
 from velplan.mechanism.model import Mechanism
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import Plan, auto_scale
@@ -99,13 +100,7 @@ def read_table(source: str | Path) -> tuple[list[str], dict[str, list[float | No
             if cell in ("", "-", "—"):
                 vals.append(None)
                 continue
-            try:
-                value = float(cell)
-            except ValueError:
-                raise TableError(f"table {path}: row {name!r}: {cell!r} is not a number") from None
-            if not math.isfinite(value):
-                raise TableError(f"table {path}: row {name!r}: {cell!r} is not a finite number")
-            vals.append(value)
+            vals.append(finite_number(cell, f"table {path}: row {name!r}", error=TableError))
         out[name] = vals
     return head[1:], out
 

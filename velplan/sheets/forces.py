@@ -41,7 +41,7 @@ from velplan.sheets.solver import Trials, largest_fitting, widest_first
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, fixed, make_view, ratio_text
 from velplan.views.forces import (
-    ForceSizes, MomentCurve, group_extent_m, group_view, lever_extent, lever_view,
+    ForceSizes, group_extent_m, group_view, lever_extent, lever_view,
     moment_diagram_view, moments_table_view, polygon_extent, polygon_view, slug)
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
@@ -205,32 +205,12 @@ def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
     return band_top
 
 
-def moment_curve(study: Study) -> MomentCurve:
-    """M_b by kinetostatics over a revolution from position 1, on the study's fine turn."""
-    turn = study.turn_forces()
-    rot = study.sense * (turn.kinematics.phi - turn.kinematics.phi[0])
-    mom = np.asarray(turn.balancing_moments["kinetostatics"], float)
-    return MomentCurve(rot, mom, np.asarray(study.forces().kinetostatics.balancing_moment, float),
-                       turn_mean(mom))
-
-
-def turn_mean(moment: np.ndarray) -> float:
-    """Mean (N·m) of a moment sampled over a closed turn (the last sample repeats the first):
-    0 where it is round-off of a moment whose work over the turn is nil."""
-    ok = moment[np.isfinite(moment)]
-    if ok.size < 2:
-        return float("nan")
-    mean = float(np.mean(ok[:-1]))
-    span = max(float(ok.max()), 0.0) - min(float(ok.min()), 0.0)
-    return 0.0 if abs(mean) < 1e-9 * max(span, 1e-12) else mean
-
-
 def _fit_diagram(req: Request, region) -> View:
     """The diagram M_b(φ) in `region`: the longest φ axis that fits, then the tallest
     ordinates (at most half the axis)."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    curve = moment_curve(req.study)
+    curve = req.study.moment_curve
     sizes = req.sizes.diagram
     draw = Trials(lambda length, height: moment_diagram_view(
         curve, length_mm=length, height_mm=height, lang=req.lang, label_mm=sizes.label_mm,
@@ -474,4 +454,4 @@ force_sheet_text = sheet_text
 """Every text of the force sheet, one per line."""
 
 __all__ = ["ForceSheet", "build_force_sheet", "default_force_positions", "default_force_title",
-           "force_sheet_text", "has_forces", "moment_curve", "solving_order", "slug"]
+           "force_sheet_text", "has_forces", "solving_order", "slug"]

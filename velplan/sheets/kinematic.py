@@ -47,7 +47,7 @@ from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import extent_mm, plan_view
-from velplan.views.table import sheet_table, table_view
+from velplan.views.table import table_view
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
 """The plan kinds of the kinematic sheet."""
@@ -276,7 +276,7 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
     study = req.study
     tview = None
     if table:
-        data = sheet_table(study.plan("velocity"))
+        data = study.table
         tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
                                                   title_mm=req.sizes.table_title),
                           req, what=f"table of transfer functions ({study.n} positions)")
@@ -392,14 +392,13 @@ def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
 
 
 def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> list:
-    """The instant centres of the chosen positions, on the scheme."""
-    from velplan.plans.centres import construct_centres
+    """The instant centres of the chosen positions (`Study.centres`), on the scheme."""
     from velplan.views.centres import centre_marks
 
-    kin = study.kinematics
+    valid = study.kinematics.valid
     items = []
     for k in centres:
-        con = construct_centres(kin, k, mu_l=mu_l) if kin.valid[k - 1] else None
+        con = study.centres(k, mu_l=mu_l) if valid[position_index(k, study.n)] else None
         tag = f" ({k})" if len(centres) > 1 else ""
         items += centre_marks(con, scheme, tag=tag) if con else ()
     return items

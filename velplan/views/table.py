@@ -14,8 +14,7 @@ import numpy as np
 
 from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import Mechanism
-from velplan.plans.engine import PlanResult
-from velplan.plans.table import TransferTable, table_points, transfer_table
+from velplan.plans.table import TransferTable
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
@@ -25,14 +24,6 @@ _ROW_PITCH = 2.0  # row height over text height
 _PAD = 1.0  # cell padding each side, mm
 # Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
 _WIDE = 1.3
-
-
-
-
-def sheet_table(res: PlanResult) -> TransferTable:
-    """The transfer-function table read off the velocity plan ``res``, with the sheet's rows."""
-    mech = res.plan.mechanism
-    return transfer_table(res, points=table_points(mech, list(res.kin.point_index)))
 
 
 def _row_label(name: str, crank: str, lang: str) -> str:
@@ -79,7 +70,7 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: str = "ru",
     Parameters
     ----------
     table : TransferTable
-        From :func:`sheet_table` or `velplan.plans.table.transfer_table`.
+        The study's table (`velplan.Study.table`).
     mech : Mechanism
         For the crank's name (ω1 is the crank's ω).
     size_mm, title_mm : float

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.forces.curve import MomentCurve
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, scale_text, unit
@@ -16,18 +16,6 @@ from velplan.views.forces.common import newton_metre
 
 #: Layers of the diagram: the axes and curves, and the text.
 LAYER, TEXT_LAYER = "mb-diagram", "mb-diagram-labels"
-
-
-@dataclass(frozen=True)
-class MomentCurve:
-    """M_b over a revolution from position 1: turn angles (rad, 0…2π) and moments (N·m) of a
-    fine grid, the values at the n positions, and the mean over the turn (N·m; 0 where its
-    work over the turn is round-off, NaN with fewer than two finite values)."""
-
-    turn: np.ndarray
-    moment: np.ndarray
-    at_positions: np.ndarray
-    mean: float
 
 
 def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
