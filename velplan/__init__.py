@@ -79,22 +79,9 @@ def sheet(study, kind: SheetKind = "both", **options):
     `velplan.sheets.dynamics.build_dynamics_sheet`). The sheet's ``.svg()`` is its text and
     ``.save(path, png=…, pdf=…)`` saves it.
     """
-    from velplan.options import KINEMATIC_SHEET_KINDS
+    from velplan.sheets.kinds import build
 
-    if kind in KINEMATIC_SHEET_KINDS:
-        from velplan.sheets.kinematic import build_sheet
-
-        return build_sheet(study, kind=kind, **options)
-    if kind == "forces":
-        from velplan.sheets.forces import build_force_sheet
-
-        return build_force_sheet(study, **options)
-    if kind == "dynamics":
-        from velplan.sheets.dynamics import build_dynamics_sheet
-
-        return build_dynamics_sheet(study, **options)
-    known = KINEMATIC_SHEET_KINDS + ("forces", "dynamics")
-    raise VelplanError(f"unknown sheet kind {kind!r}; known kinds: {', '.join(known)}")
+    return build(study, kind, **options)
 
 
 def __getattr__(name: str):

@@ -88,7 +88,7 @@ class SvgDrawing:
         """The drawing rasterised to PNG (needs cairosvg: ``pip install velplan[export]``)."""
         from velplan.render import export
 
-        return export._convert("svg2png", self.svg, dpi=dpi, background_color="white")
+        return export.svg_to_png(self.svg, dpi=dpi)
 
     def save(self, path: str | os.PathLike, *, dpi: float = 150.0) -> Path:
         """Write the drawing to `path`, atomically: SVG, or PNG / PDF by the suffix.

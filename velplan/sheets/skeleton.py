@@ -14,11 +14,8 @@ Examples
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from typing import Callable, Iterable, Mapping, Sequence
-
-import numpy as np
 
 from velplan.analysis.numbering import position_index
 from velplan.errors import ScaleError, VelplanError
@@ -122,11 +119,7 @@ def sheet_request(mech: Study | Mechanism | str, *, n: int = 12, fmt: str = "A1"
 def _check_assembled(study: Study) -> None:
     if study.n < 3:
         raise VelplanError(f"a sheet needs at least 3 positions, not {study.n}")
-    kin = study.kinematics
-    bad = np.flatnonzero(~kin.valid)
-    if bad.size:
-        raise VelplanError(f"{study.mechanism.name} cannot be assembled at position {bad[0] + 1} "
-                           f"(crank angle {math.degrees(kin.phi[bad[0]]):.6g}°)")
+    study.require_assembled()
 
 
 def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
