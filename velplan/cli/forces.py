@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_indices
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 
@@ -132,7 +133,7 @@ def to_table(res, numbers: list[int], load_names: list[str]) -> str:
     """M_b by the three methods and |R| of every pair, one column per position ``numbers``
     (1-based) of ``res``."""
     kin, ks = res.kinematics, res.kinetostatics
-    idx = [k - 1 for k in numbers] if len(numbers) < len(kin) else list(range(len(kin)))
+    idx = position_indices(numbers, len(kin)).tolist() if len(numbers) < len(kin) else list(range(len(kin)))
     bm = res.balancing_moments
     from velplan.forces.agreement import lever_difference_percent
 

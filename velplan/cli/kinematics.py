@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
@@ -256,6 +257,6 @@ def to_table(kin: Kinematics) -> str:
         bad = ", ".join(f"{i + 1} (condition {kin.min_condition()[i]:.2g})" for i in np.flatnonzero(singular))
         lines.append(f"singular (a group at a toggle, velocities undetermined) at positions: {bad}")
     if (~kin.valid & ~singular).any():
-        bad = ", ".join(str(i + 1) for i in np.flatnonzero(~kin.valid & ~singular))
+        bad = ", ".join(str(position_number(i)) for i in np.flatnonzero(~kin.valid & ~singular))
         lines.append(f"not assembled at positions: {bad}")
     return "\n".join(lines)

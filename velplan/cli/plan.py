@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 from velplan.plans import EXACT, Drafting
@@ -197,7 +198,7 @@ def compare_rows(res: PlanResult) -> list[dict]:
     for name, got, exact in quantities:
         for i, j in enumerate(res.index):
             if not kin.valid[j]:  # nothing to compare: say why
-                rows.append({"quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                rows.append({"quantity": name, "position": position_number(i), "phi_deg": float(kin.phi_deg[j]),
                              "graphical": None, "analytic": None, "abs_error": None, "rel_error": None,
                              "flag": "singular" if singular[j] else "not assembled"})
                 continue
@@ -207,7 +208,7 @@ def compare_rows(res: PlanResult) -> list[dict]:
             if mine:
                 flag = "refused" if any(f.refused for f in mine) else "flagged"
             rows.append({
-                "quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                "quantity": name, "position": position_number(i), "phi_deg": float(kin.phi_deg[j]),
                 "graphical": _f(got[i]), "analytic": _f(exact[i]), "abs_error": _f(err),
                 "rel_error": _f(err / abs(exact[i])) if abs(exact[i]) > 1e-12 * max(1.0, np.nanmax(np.abs(exact))) else None,
                 "flag": flag,

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.analysis.extremes import positions
 from velplan.analysis.solver import solve
 from velplan.errors import TableError
@@ -178,7 +179,7 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
             cause = ""
             if abs(g - ex) > t:
                 cause = causes.get(j) or _entry_cause(mech, phi, j, g, exact[name], t, quantities[name], w1, dev_mm)
-            entries.append(Entry(name, j + 1, float(np.degrees(phi[j]) % 360), g, ex, t, float(dev_mm), cause))
+            entries.append(Entry(name, position_number(j), float(np.degrees(phi[j]) % 360), g, ex, t, float(dev_mm), cause))
     return CheckReport(mech.name, mu, tuple(entries))
 
 
@@ -255,7 +256,7 @@ def _entry_cause(mech, phi, j, g, row, t, q, w1, dev_mm) -> str:
     others = [k for k in range(len(row)) if k != j and abs(g - row[k]) <= t]
     if others:
         k = min(others, key=lambda k: abs(g - row[k]))
-        return f"equals the exact value at position {k + 1} ({np.degrees(phi[k]) % 360:.0f}°): entered in the wrong column?"
+        return f"equals the exact value at position {position_number(k)} ({np.degrees(phi[k]) % 360:.0f}°): entered in the wrong column?"
     fine = np.radians(np.arange(-45.0, 45.0001, 0.25))
     sense = mech.crank.sense
     near = np.abs(_analytic(q, solve(mech, phi[j] + sense * fine), w1) - g) <= t

@@ -26,6 +26,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.plans import standard_scale
@@ -91,14 +92,14 @@ def default_force_positions(fa) -> tuple[int, ...]:
     best = int(np.argmax(mb))
     loads = [f for f in fa.actions.forces if f.source == "load"]
     if not loads:
-        return (best + 1,)
+        return (position_number(best),)
     acting = np.zeros(len(mb), bool)
     for f in loads:
         acting |= np.abs(np.asarray(f.vector)) > 0
     if acting[best] or not acting.any():
-        return (best + 1,)
+        return (position_number(best),)
     working = int(np.argmax(np.where(acting, mb, -1.0)))
-    return (working + 1, best + 1)
+    return (position_number(working), position_number(best))
 
 
 def default_force_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
@@ -181,7 +182,7 @@ def _check_regular(fa, chosen) -> None:
     """Refuse a chosen position where a group has no unique reactions."""
     for k in chosen:
         for name, poly in fa.kinetostatics.polygons.items():
-            if not np.all(np.isfinite(poly.vertices()[k - 1])):
+            if not np.all(np.isfinite(poly.vertices()[position_index(k, len(fa.kinematics))])):
                 raise VelplanError(f"position {k} is singular for the force analysis (group "
                                    f"{name} has no unique reactions there); choose another "
                                    f"with --plans")
@@ -443,7 +444,7 @@ def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
 
 def _heading(fa, k: int, lang: str, fsizes: ForceSizes) -> View:
     """The row's heading: the position, its crank angle, and that forces are not to scale."""
-    deg = math.degrees(float(fa.kinematics.phi[k - 1])) % 360.0
+    deg = math.degrees(float(fa.kinematics.phi[position_index(k, len(fa.kinematics))])) % 360.0
     text = (f"{label('position', lang)} {k}: φ = {fixed(deg, lang, 1)}°; "
             f"{label('forces_not_to_scale', lang)}")
     return make_view(f"heading-{k}", [Text((0.0, 0.0), text, "fheading", fsizes.title_mm)],

@@ -29,7 +29,7 @@ from typing import Mapping, Sequence
 import numpy as np
 import shapely
 
-from velplan.analysis.numbering import position_index
+from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.options import KINEMATIC_SHEET_KINDS, Format, SheetKind
@@ -116,7 +116,7 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
         quarter = (lo + hi) / 2.0
         best = max(range(lo, hi),
                    key=lambda i: (round(scores[i], 6), -abs(i - quarter), -i))
-        picks.append(best + 1)
+        picks.append(position_number(best))
     return tuple(picks)
 
 
@@ -573,7 +573,7 @@ def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
         res = study.plan(kd)
         ew, eh = extent_mm(res, k)
         mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
-        worst = min(worst, _peak(res, k - 1) / mu)
+        worst = min(worst, _peak(res, position_index(k, len(res.kin))) / mu)
     return worst
 
 

@@ -17,6 +17,7 @@ from typing import Literal
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.analysis.chord import Diagrams
 from velplan.errors import ScaleError
 from velplan.plans.scale import standard_scale
@@ -159,7 +160,7 @@ def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *,
         x = k * length / n
         items.append(Polyline([(x, -1.0), (x, 1.0)], layer, "thin"))
         if k % every == 0:
-            items.append(Text((x, -1.8), str(k % n + 1), text_layer, tick_mm, "middle", "top"))
+            items.append(Text((x, -1.8), str(position_number(k % n)), text_layer, tick_mm, "middle", "top"))
     return items
 
 
