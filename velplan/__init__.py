@@ -22,7 +22,7 @@ stays light.
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal, Sequence, overload
 
 from velplan.errors import (
     AssemblyError,
@@ -32,9 +32,11 @@ from velplan.errors import (
     TableError,
     VelplanError,
 )
-from velplan.options import LANGUAGES, Language, PlanKind, SheetKind
+from velplan.options import LANGUAGES, Format, FrameStyle, Language, PlanKind, SheetKind
 
 if TYPE_CHECKING:  # the lazy names below, as type checkers should see them
+    from pathlib import Path
+
     from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
     from velplan.analysis.solver import Kinematics, solve, transfer_functions
     from velplan.html.page import Page
@@ -42,6 +44,11 @@ if TYPE_CHECKING:  # the lazy names below, as type checkers should see them
     from velplan.mechanism.model import Mechanism
     from velplan.mechanism.structure import structure
     from velplan.note.build import build_note as explanatory_note
+    from velplan.render.style import SheetStyle
+    from velplan.sheets.dynamics import DynamicsSheet
+    from velplan.sheets.forces import ForceSheet
+    from velplan.sheets.frame import TitleInfo
+    from velplan.sheets.kinematic import Sheet as KinematicSheet
     from velplan.study import Study
 
 __all__ = [
@@ -69,6 +76,21 @@ _LAZY = {
 _DEPRECATED = {"analyse": "structure", "loads": "parse"}
 
 
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["velocity", "acceleration", "both"] = "both", *,
+          n: int = 12, plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",
+          frame_style: FrameStyle | None = None, info: TitleInfo | None = None, diagrams: bool | None = None,
+          table: bool = True, style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
+          scale_per_plan: bool = False) -> KinematicSheet: ...
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["forces"], *, n: int = 12,
+          plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",
+          frame_style: FrameStyle | None = None, info: TitleInfo | None = None, diagrams: bool | None = None,
+          table: bool = True, style: SheetStyle | None = None) -> ForceSheet: ...
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["dynamics"], *, n: int = 12, fmt: Format = "A1",
+          lang: Language = "ru", frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
+          style: SheetStyle | None = None) -> DynamicsSheet: ...
 def sheet(study, kind: SheetKind = "both", **options):
     """The sheet of ``study`` (a `Study`, a `Mechanism`, an example name or a TOML path), as
     ``velplan sheet --kind`` draws it: the kinematic sheet (``"velocity"``, ``"acceleration"``
@@ -76,8 +98,21 @@ def sheet(study, kind: SheetKind = "both", **options):
 
     ``options`` go to the sheet's builder (``fmt``, ``lang``, ``plans``, ``n``, …: see
     `velplan.sheets.kinematic.build_sheet`, `velplan.sheets.forces.build_force_sheet`,
-    `velplan.sheets.dynamics.build_dynamics_sheet`). The sheet's ``.svg()`` is its text and
-    ``.save(path, png=…, pdf=…)`` saves it.
+    `velplan.sheets.dynamics.build_dynamics_sheet`; the overloads spell them out per kind).
+    The sheet's ``.svg()`` is its text and ``.save(path)`` saves it, the suffix choosing the
+    writer (.svg, .png, .pdf, .dxf).
+
+    >>> s = sheet("four-bar", fmt="A2", lang="en", plans=[3])
+    >>> s.positions, s.fmt, s.svg().startswith("<?xml")
+    ((3,), 'A2', True)
+    >>> sheet("four-bar", "forces")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: four-bar declares no masses and no loads: there are no forces to draw; add [link.N] masses or [[load]] tables
+    >>> sheet("four-bar", "plans")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: unknown sheet kind 'plans'; known kinds: velocity, acceleration, both, forces, dynamics
     """
     from velplan.sheets.kinds import build
 

@@ -36,12 +36,15 @@ from velplan.analysis.solver import Kinematics, group_point, solve
 from velplan.errors import AssemblyError, MechanismError, VelplanError
 from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
+from velplan.options import Engine
 from velplan.options import PlanKind as Kind
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.engine import Plan, PlanResult
 from velplan.plans.table import TransferTable, transfer_table
 
 if TYPE_CHECKING:
+    from velplan.dynamics.analysis import Dynamics
+    from velplan.forces.agreement import ForceAnalysis
     from velplan.forces.curve import MomentCurve
     from velplan.plans.centres import Construction
 
@@ -76,7 +79,7 @@ class Study:
     """
 
     def __init__(self, mechanism: Mechanism | str | Path, *, n: int = 12, angles=None,
-                 motion: Motion = "constant", engine: str = "numpy", check_assembly: bool = True,
+                 motion: Motion = "constant", engine: Engine = "numpy", check_assembly: bool = True,
                  delta: float | None = None):
         self.mechanism = load(mechanism) if isinstance(mechanism, (str, Path)) else mechanism
         if motion not in ("constant", "dynamic"):
@@ -84,7 +87,7 @@ class Study:
         if angles is None and n < 1:
             raise MechanismError(f"number of positions must be ≥ 1, not {n}")
         self._angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
-        self.n = n if angles is None else len(self._angles)
+        self.n = n if self._angles is None else len(self._angles)
         self.motion = motion
         self.engine = engine
         self.delta = delta
@@ -283,7 +286,7 @@ class Study:
         return parse_loads(self.mechanism)
 
     def forces(self, *, drafting: Drafting = EXACT, mu_v: float | None = None, gravity: bool = True,
-               inertia: bool = True):
+               inertia: bool = True) -> ForceAnalysis:
         """Kinetostatics, Zhukovsky's lever and the power method at every position
         (`velplan.forces.ForceAnalysis`), at the study's motion."""
         key = (drafting, mu_v, gravity, inertia)
@@ -305,7 +308,7 @@ class Study:
 
         return moment_curve(self.turn_forces(), self.forces(), self.sense)
 
-    def turn_forces(self, *, gravity: bool = True, inertia: bool = True):
+    def turn_forces(self, *, gravity: bool = True, inertia: bool = True) -> ForceAnalysis:
         """The force analysis over the fine turn (every third step: 241 angles), at the file's
         constant ω1 or at the computed motion."""
         key = ("turn", gravity, inertia)
@@ -367,7 +370,7 @@ class Study:
     # -- dynamics ----------------------------------------------------------------------------
 
     @cached_property
-    def dynamics(self):
+    def dynamics(self) -> Dynamics:
         """The machine dynamics of the ``[dynamics]`` section (`velplan.dynamics`)."""
         from velplan.dynamics import dynamics_analysis
 

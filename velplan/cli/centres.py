@@ -13,6 +13,7 @@ from velplan.analysis.solver import length_scale
 from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
+from velplan.options import Language
 from velplan.plans import EXACT, Drafting
 from velplan.plans.centres import Construction, centre_name, velocities_by_centres
 from velplan.plans.scale import check_scale
@@ -168,7 +169,7 @@ def _velocity_rows(con: Construction, res, i: int) -> list[str]:
     return rows
 
 
-def table(con: Construction, exact, res, number: int | None, *, lang: str = "en", steps: bool = False) -> str:
+def table(con: Construction, exact, res, number: int | None, *, lang: Language = "en", steps: bool = False) -> str:
     """One position: every centre (constructed beside exact), what was not reached and why, the
     velocities by centres beside the plan's and the analytic ones (m/s, rad/s)."""
     kin, i = con.kin, con.index

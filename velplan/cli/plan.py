@@ -11,6 +11,7 @@ import numpy as np
 from velplan.analysis.numbering import position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
+from velplan.options import Language
 from velplan.plans import EXACT, Drafting
 from velplan.plans.check import check_table
 from velplan.plans.engine import PlanResult
@@ -129,7 +130,7 @@ def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
     return doc
 
 
-def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
+def plan_text(res: PlanResult, doc: dict, lang: Language) -> str:
     from velplan.render.i18n import label
 
     unit = "(m/s²)/mm" if res.kind == "acceleration" else "(m/s)/mm"

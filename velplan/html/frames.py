@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 from velplan.analysis.numbering import position_number
+from velplan.options import Language
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import PlanResult
 from velplan.plans.steps import Intersect, LayOff, Similar
@@ -60,7 +61,7 @@ def scheme_scale(study: Study) -> float:
     return next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM), eskd_scales()[-1])
 
 
-def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool = False) -> dict:
+def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False) -> dict:
     """The scheme at every position: ``under`` (trajectories, drawn first), ``shared`` records,
     ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``; with
     ``centres``, each position's instant centres found by Kennedy lines marked on it."""
@@ -178,7 +179,7 @@ def _quantized(x: float, quantum: float, digits: int) -> float | None:
     return round_sig(round(x / quantum) * quantum, digits)
 
 
-def plan_frames(study: Study, kind: str, lang: str, style: SheetStyle, *, scale_v: float,
+def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, scale_v: float,
                 scale_a: float, drafting: Drafting) -> dict:
     """One plan at every position, drawn at μv = `scale_v` ((m/s)/mm) and μa = `scale_a`
     ((m/s²)/mm): its records (each tagged with the construction step that draws it), the
@@ -235,7 +236,7 @@ def plan_frames(study: Study, kind: str, lang: str, style: SheetStyle, *, scale_
     }
 
 
-def _plan_records(res: PlanResult, i: int, lang: str, style: SheetStyle) -> tuple[list, list[str]]:
+def _plan_records(res: PlanResult, i: int, lang: Language, style: SheetStyle) -> tuple[list, list[str]]:
     """The plan at position index `i`: records ``[step, *record]`` (letters with the step that
     fixes their first image) and the sentence of each step, written as by hand."""
     drawings = plan_steps(res, position_number(i), lang=lang)

@@ -34,6 +34,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Iterator, Literal, Union
+from velplan.options import Language
 
 GROUND = "0"
 """Name of the frame (the fixed link)."""
@@ -422,7 +423,7 @@ class Mechanism:
         if self.dynamics is not None:
             object.__setattr__(self, "dynamics", freeze(self.dynamics))
 
-    def name_in(self, lang: str) -> str:
+    def name_in(self, lang: Language) -> str:
         """The mechanism's name in ``lang`` (``[names]``), else its ``name``."""
         return dict(self.names).get(lang) or self.name
 

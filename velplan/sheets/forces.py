@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping, Sequence
 
@@ -28,7 +29,9 @@ import numpy as np
 
 from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
+from velplan.forces.agreement import ForceAnalysis
 from velplan.mechanism.model import Mechanism
+from velplan.options import Format, FrameStyle, Language
 from velplan.plans import standard_scale
 from velplan.render.i18n import label
 from velplan.render.scene import Text
@@ -84,7 +87,7 @@ def has_forces(mech: Mechanism) -> bool:
     return bool(mech.masses) or bool(mech.loads)
 
 
-def default_force_positions(fa) -> tuple[int, ...]:
+def default_force_positions(fa: ForceAnalysis) -> tuple[int, ...]:
     """The position of the largest |M_b|; when the useful load does not act there, first the
     position of the largest |M_b| under the load (a working-stroke position)."""
     mb = np.abs(np.asarray(fa.kinetostatics.balancing_moment, float))
@@ -102,7 +105,7 @@ def default_force_positions(fa) -> tuple[int, ...]:
     return (position_number(working), position_number(best))
 
 
-def default_force_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
+def default_force_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the force sheet: the second document of the course work."""
     return course_title(mech, lang, "force_analysis", 2, scale)
 
@@ -112,8 +115,8 @@ def solving_order(mech: Mechanism) -> tuple[str, ...]:
     return tuple(g.name for g in reversed(mech.groups)) + ("crank",)
 
 
-def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
-                      fmt: str = "A1", lang: str = "ru", frame_style: str | None = None,
+def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
+                      fmt: Format = "A1", lang: Language = "ru", frame_style: FrameStyle | None = None,
                       info: TitleInfo | None = None, diagrams: bool | None = None,
                       table: bool = True, style: SheetStyle | None = None) -> ForceSheet:
     """Compose the force-analysis sheet of `mech`.
@@ -178,7 +181,7 @@ def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequ
                       chosen, study.n)
 
 
-def _check_regular(fa, chosen) -> None:
+def _check_regular(fa: ForceAnalysis, chosen) -> None:
     """Refuse a chosen position where a group has no unique reactions."""
     for k in chosen:
         for name, poly in fa.kinetostatics.polygons.items():
@@ -234,17 +237,17 @@ class _ForceDrawings:
     ``view(kind, position, group, μ)`` of a group (μl, m/mm), a polygon (μF, N/mm) or a lever
     (μv, (m/s)/mm; group None)."""
 
-    def __init__(self, fa, lang: str, fsizes: ForceSizes):
+    def __init__(self, fa: ForceAnalysis, lang: Language, fsizes: ForceSizes):
         self.fa, self.lang, self.fsizes = fa, lang, fsizes
         self.view = Trials(self._draw)
 
     def _draw(self, kind: str, k: int, grp: str | None, mu: float) -> View:
-        fa, kw = self.fa, {"lang": self.lang, "sizes": self.fsizes}
-        if kind == "group":
-            return group_view(fa, grp, k, mu_l=mu, **kw)
-        if kind == "poly":
-            return polygon_view(fa, grp, k, mu_f=mu, **kw)
-        return lever_view(fa, k, mu_v=mu, **kw)
+        fa, lang, sizes = self.fa, self.lang, self.fsizes
+        if kind == "group" and grp is not None:
+            return group_view(fa, grp, k, mu_l=mu, lang=lang, sizes=sizes)
+        if kind == "poly" and grp is not None:
+            return polygon_view(fa, grp, k, mu_f=mu, lang=lang, sizes=sizes)
+        return lever_view(fa, k, mu_v=mu, lang=lang, sizes=sizes)
 
 
 def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
@@ -264,7 +267,7 @@ def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
         if best is None or rows.score() > best.score() + 1e-9:
             best = rows
     if best is None:
-        raise failure
+        raise failure if failure is not None else ScaleError(f"the force views do not fit {req.fmt}")
     return best.place()
 
 
@@ -424,7 +427,7 @@ class _Rows:
                 x += v.width_mm + self.gap
 
 
-def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
+def _spans_and_scales(fa: ForceAnalysis, chosen, order, row_h: float) -> tuple[dict, dict]:
     """The drawings' spans (m, N, m/s: the larger side) and their starting scales, each
     drawing as tall as a row (the groups: the largest ESKD scale)."""
     ks = fa.kinetostatics
@@ -442,7 +445,7 @@ def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
     return span, scale
 
 
-def _heading(fa, k: int, lang: str, fsizes: ForceSizes) -> View:
+def _heading(fa: ForceAnalysis, k: int, lang: Language, fsizes: ForceSizes) -> View:
     """The row's heading: the position, its crank angle, and that forces are not to scale."""
     deg = math.degrees(float(fa.kinematics.phi[position_index(k, len(fa.kinematics))])) % 360.0
     text = (f"{label('position', lang)} {k}: φ = {fixed(deg, lang, 1)}°; "

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from itertools import islice
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping, Sequence
 
@@ -32,7 +33,7 @@ import shapely
 from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
-from velplan.options import KINEMATIC_SHEET_KINDS, Format, SheetKind
+from velplan.options import Format, FrameStyle, KINEMATIC_SHEET_KINDS, Language, PlanKind, SheetKind
 from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
 from velplan.render.style import SheetStyle
@@ -44,7 +45,7 @@ from velplan.sheets.skeleton import (
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import diagram_view
+from velplan.views.diagram import Arrangement, diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import extent_mm, plan_view
 from velplan.views.table import table_view
@@ -120,7 +121,7 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
     return tuple(picks)
 
 
-def default_title(mech, lang: str, fmt: str, scale: str, frame_style: str) -> TitleInfo:
+def default_title(mech, lang: Language, fmt: str, scale: str, frame_style: str) -> TitleInfo:
     """Title block of the kinematic sheet: the first document of the course work."""
     return course_title(mech, lang, "kinematic_analysis", 1, scale)
 
@@ -145,20 +146,20 @@ class _Drawings:
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
                               extreme=study.other_extreme, bold=self.bold)
 
-    def _plan(self, kind: str, number: int, mu: float):
+    def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
         res = self.req.study.plan(kind).at_scale(mu)
         return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan)
 
-    def _diagrams(self, arrangement: str, length: float, height: float) -> View:
+    def _diagrams(self, arrangement: Arrangement, length: float, height: float) -> View:
         study = self.req.study
         return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
                             omega=study.mechanism.crank.omega, arrangement=arrangement,
                             sizes=self.req.sizes.diagram)
 
 
-def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
-                kind: SheetKind = "both", fmt: Format = "A1", lang: str = "ru",
-                frame_style: str | None = None, info: TitleInfo | None = None,
+def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
+                kind: SheetKind = "both", fmt: Format = "A1", lang: Language = "ru",
+                frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
                 style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
                 scale_per_plan: bool = False) -> Sheet:
@@ -396,7 +397,7 @@ def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> lis
     from velplan.views.centres import centre_marks
 
     valid = study.kinematics.valid
-    items = []
+    items: list = []
     for k in centres:
         con = study.centres(k, mu_l=mu_l) if valid[position_index(k, study.n)] else None
         tag = f" ({k})" if len(centres) > 1 else ""

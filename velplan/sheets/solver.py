@@ -16,7 +16,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import Callable, Hashable, Iterable
+from typing import Callable, Generic, Hashable, Iterable, TypeVar
 
 from velplan.views.base import View
 
@@ -29,15 +29,17 @@ def fits(view: View, w: float, h: float) -> bool:
     return view.width_mm <= w + EPS_MM and view.height_mm <= h + EPS_MM
 
 
-class Trials:
+T = TypeVar("T")
+
+class Trials(Generic[T]):
     """A view drawn at trial parameters, memoised: ``trials(*key)`` draws ``draw(*key)`` the
     first time and returns the same view afterwards. ``drawn`` counts the drawings made."""
 
-    def __init__(self, draw: Callable[..., View]):
+    def __init__(self, draw: Callable[..., T]):
         self._draw = draw
-        self._views: dict[Hashable, View] = {}
+        self._views: dict[Hashable, T] = {}
 
-    def __call__(self, *key) -> View:
+    def __call__(self, *key) -> T:
         if key not in self._views:
             self._views[key] = self._draw(*key)
         return self._views[key]

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Triad
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
 from velplan.views.base import View, digits_down, make_view, number, subscript, unit
@@ -18,7 +19,7 @@ def _l(a: str, b: str) -> str:
     return f"l{subscript(a)}{subscript(b)}"
 
 
-def _triad_lengths(g: Triad, lang: str) -> list[str]:
+def _triad_lengths(g: Triad, lang: Language) -> list[str]:
     """The base link's sides (BC, CD, DB), then each rod lead (outer → inner joint)."""
     m = unit("m", lang)
     b, c, d = g.joints
@@ -27,7 +28,7 @@ def _triad_lengths(g: Triad, lang: str) -> list[str]:
                   for ld, j in zip(g.leads, g.joints) if not ld.slider]
 
 
-def data_lines(study, lang: str) -> list[str]:
+def data_lines(study, lang: Language) -> list[str]:
     """The lines of the block (without its title), in the sheet's language."""
     mech = study.mechanism
     m = unit("m", lang)
@@ -86,7 +87,7 @@ def data_lines(study, lang: str) -> list[str]:
     return lines
 
 
-def data_view(study, *, lang: str, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
+def data_view(study, *, lang: Language, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The block: its title, then one text line per `data_lines` entry."""
     lines = data_lines(study, lang)
     items: list[Primitive] = [Text((0.0, 0.0), label("input_data", lang), "data", title_mm)]

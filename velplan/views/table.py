@@ -14,6 +14,7 @@ import numpy as np
 
 from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import Mechanism
+from velplan.options import Language
 from velplan.plans.table import TransferTable
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
@@ -26,7 +27,7 @@ _PAD = 1.0  # cell padding each side, mm
 _WIDE = 1.3
 
 
-def _row_label(name: str, crank: str, lang: str) -> str:
+def _row_label(name: str, crank: str, lang: Language) -> str:
     w1 = "ω" + digits_down(crank)
     if name.startswith("w_"):
         return f"ω{digits_down(name[2:])}/{w1}"
@@ -63,7 +64,7 @@ def grid_table(grid: list[list[str]], size_mm: float) -> tuple[list[Primitive], 
     return items, total_w, total_h
 
 
-def table_view(table: TransferTable, mech: Mechanism, *, lang: str = "ru",
+def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
                size_mm: float = 2.5, title_mm: float = 3.5, decimals: int = 3) -> View:
     """The table as a view, its title above it.
 

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from velplan.forces.curve import MomentCurve
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, scale_text, unit
@@ -19,7 +20,7 @@ LAYER, TEXT_LAYER = "mb-diagram", "mb-diagram-labels"
 
 
 def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
-                        height_mm: float = 60.0, lang: str = "ru",
+                        height_mm: float = 60.0, lang: Language = "ru",
                         label_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The diagram M_b(φ) over a revolution: the curve (thick), the n positions marked on
     the φ axis with their values as dots, the mean as a dash-dot line, the scales.
@@ -66,7 +67,7 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
                      meta={"mu_m": mu_m, "mu_phi": mu_phi, "mean": mean})
 
 
-def _mean_line(y: float, mean: float, length: float, lang: str, size: float) -> list[Primitive]:
+def _mean_line(y: float, mean: float, length: float, lang: Language, size: float) -> list[Primitive]:
     """The mean `mean` (N·m) as a dash-dot line at height `y` (mm) and its value, written
     above a mean over the axis, below one under it (clear of the axis's φ)."""
     at, v_anchor = (y + 1.0, "baseline") if y >= 0 else (min(y - 1.0, -1.0 - size - 1.0), "top")

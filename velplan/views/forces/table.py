@@ -8,6 +8,8 @@ import math
 import numpy as np
 
 from velplan.analysis.numbering import position_number
+from velplan.forces.agreement import ForceAnalysis
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, unit
@@ -25,7 +27,7 @@ def moment_decimals(values) -> int:
     return int(min(4, max(0, 3 - math.floor(math.log10(top)))))
 
 
-def moments_table_view(fa, *, lang: str = "ru", size_mm: float = 2.5,
+def moments_table_view(fa: ForceAnalysis, *, lang: Language = "ru", size_mm: float = 2.5,
                        title_mm: float = 3.5) -> View:
     """The three balancing moments (kinetostatics, lever, power) at every position, N·m."""
     n = len(fa.kinematics)
