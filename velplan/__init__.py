@@ -17,6 +17,56 @@ The product at the front door: a study of a mechanism, its sheets, its page and 
 
 Every name but the errors and the option types is imported on first use, so ``import velplan``
 stays light.
+
+A mechanism, its positions and its motion, one function at a time::
+
+    >>> mech = velplan.load("four-bar")                 # a bundled example, or a TOML path
+    >>> isinstance(mech, velplan.Mechanism), "four-bar" in velplan.example_names()
+    (True, True)
+    >>> phi = velplan.positions(mech, 4)                # position 1 is the reference position
+    >>> bool(abs(phi[0] - velplan.reference_angle(mech)) < 1e-12)
+    True
+    >>> kin = velplan.solve(mech, phi, omega1=10.0)
+    >>> isinstance(kin, velplan.Kinematics), kin.velocity("B").shape
+    (True, (4, 2))
+    >>> sorted(velplan.transfer_functions(kin))[:3]
+    ['V_A', 'V_B', 'V_D']
+    >>> st = velplan.stroke(mech)                       # the rocker's swing (rad) and K
+    >>> round(st.H, 6), round(st.K, 4)
+    (1.047762, 1.0175)
+    >>> sorted(velplan.extremes(mech))
+    ['link 2', 'link 3']
+    >>> note = velplan.explanatory_note("four-bar", parts=["kinematics"], lang="en")
+    >>> note.title
+    'Explanatory note: four-bar linkage'
+    >>> velplan.Page(velplan.Study("four-bar", n=4), lang="en").html.startswith("<!DOCTYPE html>")
+    True
+
+Bad input is refused in one line by a `VelplanError` (`AssemblyError`, `MechanismError`,
+`ScaleError`, `SingularPositionError`, `TableError` are its kinds)::
+
+    >>> from importlib.resources import files
+    >>> toml = files("velplan.examples").joinpath("four-bar.toml").read_text("utf-8")
+    >>> velplan.Study(velplan.parse(toml.replace("length = 0.10", "length = 0.30")))
+    Traceback (most recent call last):
+    ...
+    velplan.errors.AssemblyError: group '2-3' (RRR) cannot be assembled for crank angles -9.6°…9.6°, 97.2°…262.8°: point 'B' has no position there
+    >>> velplan.parse("name = 'no frame'")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.MechanismError: missing [ground] section
+    >>> errors = (velplan.AssemblyError, velplan.MechanismError, velplan.ScaleError,
+    ...           velplan.SingularPositionError, velplan.TableError)
+    >>> all(issubclass(e, velplan.VelplanError) for e in errors)
+    True
+
+The option types, for type checkers and for the values they allow::
+
+    >>> from typing import get_args
+    >>> get_args(velplan.PlanKind), get_args(velplan.SheetKind)[-1]
+    (('velocity', 'acceleration'), 'dynamics')
+    >>> get_args(velplan.Language) == velplan.LANGUAGES == ('en', 'ru', 'uk', 'zh')
+    True
 """
 
 from __future__ import annotations

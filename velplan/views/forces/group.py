@@ -10,6 +10,7 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_index
+from velplan.errors import VelplanError
 from velplan.forces.agreement import ForceAnalysis
 from velplan.forces.kinetostatics import reaction_label
 from velplan.mechanism.structure import material_points, pairs
@@ -80,7 +81,11 @@ def group_links(mech, group: str) -> tuple[str, ...]:
     """The links of group `group`, or the crank's link for ``"crank"``."""
     if group == "crank":
         return (mech.crank.link,)
-    return tuple(next(g for g in mech.groups if g.name == group).links)
+    found = next((g for g in mech.groups if g.name == group), None)
+    if found is None:
+        known = ", ".join([g.name for g in mech.groups] + ["crank"])
+        raise VelplanError(f"{mech.name} has no group {group!r}; its groups: {known}")
+    return tuple(found.links)
 
 
 def group_extent_m(fa: ForceAnalysis, group: str, position: int) -> tuple[float, float]:
