@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from velplan.analysis.numbering import position_number
+from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 from velplan.options import Language
@@ -78,10 +78,11 @@ def run_plan(args) -> int:
     else:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
-        study, index, number = Study(args.mechanism, n=args.positions), args.position - 1, args.position
-    study.require_assembled([index + 1])
+        study, index, number = (Study(args.mechanism, n=args.positions),
+                                 position_index(args.position, args.positions), args.position)
+    study.require_assembled([position_number(index)])
     only = [x.strip() for x in args.only.split(",")] if args.only else None
-    res = study.plan(args.kind, positions=[index + 1], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+    res = study.plan(args.kind, positions=[position_number(index)], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
                      drafting=_drafting(args))
     doc = plan_json(res, number)
     emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),

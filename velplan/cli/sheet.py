@@ -109,7 +109,9 @@ def parse_plans(text: str | None, n: int | None = None) -> tuple[int, ...] | Non
     if text.strip().lower() == "all":
         if n is None:
             raise VelplanError("--plans all needs the number of positions")
-        return tuple(range(1, n + 1))
+        from velplan.analysis.numbering import position_numbers
+
+        return tuple(position_numbers(range(n)).tolist())
     out = []
     for item in text.split(","):
         item = item.strip()

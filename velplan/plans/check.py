@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from velplan.analysis.numbering import position_number
+from velplan.analysis.numbering import position_number, position_numbers
 from velplan.analysis.extremes import positions
 from velplan.analysis.solver import solve
 from velplan.errors import TableError
@@ -132,7 +132,7 @@ def position_count(head: list[str]) -> int:
         numbers = [int(float(c)) for c in head[:n]]
     except ValueError:
         raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
-    if numbers != list(range(1, n + 1)):
+    if numbers != position_numbers(range(n)).tolist():
         raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
     return n
 

@@ -41,7 +41,7 @@ from velplan.sheets.layout import MIN_CRANK_MM, MIN_DIAGRAM_MM
 from velplan.sheets.skeleton import (
     ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
-from velplan.sheets.solver import Trials, largest_fitting, widest_first
+from velplan.sheets.solver import ShrinkingRows, Trials, largest_fitting, widest_first
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, fixed, make_view, ratio_text
 from velplan.views.forces import (
@@ -271,28 +271,26 @@ def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
     return best.place()
 
 
-class _Rows:
+class _Rows(ShrinkingRows):
     """One arrangement of :func:`_fit_top` (``mode``: a group's polygon beside it, "row", or
-    under it, "stack"). Each drawing starts at the largest standard scale that fits the
-    row's height; while a row is too wide, the drawing that makes it so (the groups
-    together, which share μl, or one polygon, or the lever; the widest view first) goes one
-    standard scale smaller. The score is the sum over the views of the logarithm of their
-    drawings' sizes."""
+    under it, "stack"), shrunk by `velplan.sheets.solver.ShrinkingRows`: each drawing starts
+    at the largest standard scale that fits the row's height; the groups together share μl
+    (an ESKD scale), each polygon and each lever has its own standard scale."""
 
     def __init__(self, draw: _ForceDrawings, chosen, region, req: Request, *, mode: str):
         fa = draw.fa
-        self.draw, self.chosen, self.region, self.mode, self.fmt = draw, chosen, region, mode, req.fmt
-        self.gap, self.least = req.gap, MIN_TARGET_MM[req.fmt]
+        self.draw, self.chosen, self.fmt = draw, chosen, req.fmt
+        self.least = MIN_TARGET_MM[req.fmt]
         self.mech = fa.kinetostatics.mechanism
         x0, y0, x1, y1 = region
         count = len(chosen)
         self.head_h = 1.6 * draw.fsizes.title_mm + 2.0
-        self.row_h = (y1 - y0 - req.gap * (count - 1)) / count - self.head_h - req.gap / 2
+        row_h = (y1 - y0 - req.gap * (count - 1)) / count - self.head_h - req.gap / 2
         order = solving_order(self.mech)
-        self.layout = [[[("group", k, grp), ("poly", k, grp)] for grp in order] + [[("lever", k, None)]]
-                       for k in chosen]
-        self.span, self.scale = _spans_and_scales(fa, chosen, order, self.row_h)
-        self.stuck: set = set()
+        layout = [[[("group", k, grp), ("poly", k, grp)] for grp in order] + [[("lever", k, None)]]
+                  for k in chosen]
+        span, scale = _spans_and_scales(fa, chosen, order, row_h)
+        super().__init__(layout, region, req.gap, row_h, mode, span, scale)
 
     def fail(self, why: str) -> ScaleError:
         x0, y0, x1, y1 = self.region
@@ -303,6 +301,10 @@ class _Rows:
             f"drawings of at least {self.least:.0f} mm ({x1 - x0:.0f} × {y1 - y0:.0f} mm free, "
             f"{why}); use fewer --plans or a larger --format")
 
+    def records(self, ref) -> bool:
+        """The polygons' and levers' scales are recorded by view; the groups' is μl."""
+        return ref[0] != "group"
+
     @staticmethod
     def entity(ref):
         """What a drawing's scale belongs to: all the groups, one polygon, one lever."""
@@ -311,15 +313,6 @@ class _Rows:
 
     def view(self, ref) -> View:
         return self.draw.view(*ref, self.scale[self.entity(ref)])
-
-    def unit_size(self, unit) -> tuple[float, float]:
-        vs = [self.view(r) for r in unit]
-        if self.mode == "stack" or len(vs) == 1:
-            return max(v.width_mm for v in vs), sum(v.height_mm for v in vs) + self.gap * (len(vs) - 1)
-        return sum(v.width_mm for v in vs) + self.gap * (len(vs) - 1), max(v.height_mm for v in vs)
-
-    def row_width(self, units) -> float:
-        return sum(self.unit_size(u)[0] for u in units) + self.gap * (len(units) - 1)
 
     def smaller(self, entity) -> float | None:
         """The next smaller drawing of `entity`, or None below the legible size."""
@@ -335,61 +328,6 @@ class _Rows:
         if self.span["groups"] / nxt < self.least or self.mech.crank.length / nxt < MIN_CRANK_MM:
             return None
         return nxt
-
-    def score(self) -> float:
-        return sum(math.log(self.span[self.entity(r)] / self.scale[self.entity(r)])
-                   for units in self.layout for unit in units for r in unit)
-
-    def solve(self, floor: float | None = None) -> bool:
-        """Shrink until every row fits; False as soon as the score falls to `floor`."""
-        if self.row_h < self.least:
-            raise self.fail(f"rows of {max(self.row_h, 0):.0f} mm")
-        for _ in range(400):
-            if floor is not None and self.score() <= floor:
-                return False
-            if not (self.shrink_tall() or self.shrink_wide()):
-                return True
-        raise self.fail("no layout found")
-
-    def shrink_tall(self) -> bool:
-        """The tallest drawing of the first unit taller than a row one scale smaller (one at
-        its least: the next tallest); False when no unit is too tall."""
-        unit = next((u for units in self.layout for u in units
-                     if self.unit_size(u)[1] > self.row_h + 1e-6), None)
-        if unit is None:
-            return False
-        by_height = sorted(unit, key=lambda r: -self.view(r).height_mm)
-        shrink = [r for r in by_height if self.smaller(self.entity(r)) is not None]
-        if not shrink:
-            tall = self.view(by_height[0])
-            raise self.fail(f"{tall.name} is {tall.height_mm:.0f} mm tall")
-        self.scale[self.entity(shrink[0])] = self.smaller(self.entity(shrink[0]))
-        return True
-
-    def shrink_wide(self) -> bool:
-        """The widest drawing of the widest row one scale smaller (kept, and marked stuck,
-        when that does not narrow the row); False when every row fits."""
-        widths = [self.row_width(units) for units in self.layout]
-        worst = int(np.argmax(widths))
-        if widths[worst] <= self.region[2] - self.region[0] + 1e-6:
-            return False
-        share: dict = {}
-        for unit in self.layout[worst]:
-            vs = [self.view(r) for r in unit]
-            for r, v in zip(unit, vs):
-                if self.mode == "row" or v.width_mm >= max(w.width_mm for w in vs) - 1e-9:
-                    share[self.entity(r)] = max(share.get(self.entity(r), 0.0), v.width_mm)
-        candidates = sorted((e for e in share if e not in self.stuck and self.smaller(e) is not None),
-                            key=lambda e: (-share[e], str(e)))
-        if not candidates:
-            raise self.fail(f"a row {widths[worst]:.0f} mm wide")
-        entity = candidates[0]
-        old = self.scale[entity]
-        self.scale[entity] = self.smaller(entity)
-        if self.row_width(self.layout[worst]) > widths[worst] - 0.5:
-            self.scale[entity] = old  # its width is its text's: a smaller drawing gains nothing
-            self.stuck.add(entity)
-        return True
 
     def place(self):
         """(placed views, scales): the rows from the top, the spare height shared out between
@@ -413,18 +351,6 @@ class _Rows:
                 x += self.unit_size(unit)[0] + gap + extra
             y -= height + gap + spare
         return placed, scales
-
-    def place_unit(self, unit, x: float, y: float, placed: dict, scales: dict) -> None:
-        """A unit's views from its upper left corner (x, y): side by side, or stacked."""
-        for ref in unit:
-            v = self.view(ref)
-            placed[v.name] = v.at(x, y - v.height_mm)
-            if ref[0] != "group":
-                scales[v.name] = self.scale[self.entity(ref)]
-            if self.mode == "stack":
-                y -= v.height_mm + self.gap
-            else:
-                x += v.width_mm + self.gap
 
 
 def _spans_and_scales(fa: ForceAnalysis, chosen, order, row_h: float) -> tuple[dict, dict]:
