@@ -16,7 +16,9 @@ Results are computed on first use and cached:
 `plan(kind)`           the velocity / acceleration plan at every position (the acceleration
                        plan drawn on the velocity plan); μ is a view parameter
 `table`, `diagrams`    transfer functions read off the plans; chord-method diagrams
+`centres(k)`           the instant centres at position k by Kennedy lines, at a scheme's μl
 `loads`, `forces()`    the declared loads; kinetostatics, Zhukovsky's lever and power method
+`moment_curve`         M_b(φ) over a turn from position 1, its values at the positions, its mean
 `dynamics`             reduction, steady state or run, flywheel (`velplan.dynamics`)
 =====================  =====================================================================
 """
