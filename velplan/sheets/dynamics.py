@@ -31,7 +31,7 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import MIN_DIAGRAM_MM
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, compose, course_title, fit_table, sheet_request, title_with_scale)
+    ComposedSheet, Request, compose, fit_table, sheet_request, title_with_scale)
 from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, number, ratio_text, scale_mark, unit
@@ -65,7 +65,9 @@ class DynamicsSheet(ComposedSheet):
 
 def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the dynamics sheet: the third document of the course work."""
-    return course_title(mech, lang, "dynamic_analysis", 3, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("dynamics", mech, lang, scale)
 
 
 def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:

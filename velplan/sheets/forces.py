@@ -39,7 +39,7 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import MIN_CRANK_MM, MIN_DIAGRAM_MM
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
+    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
 from velplan.sheets.solver import ShrinkingRows, Trials, largest_fitting, widest_first
 from velplan.study import Study
@@ -107,7 +107,9 @@ def default_force_positions(fa: ForceAnalysis) -> tuple[int, ...]:
 
 def default_force_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the force sheet: the second document of the course work."""
-    return course_title(mech, lang, "force_analysis", 2, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("forces", mech, lang, scale)
 
 
 def solving_order(mech: Mechanism) -> tuple[str, ...]:

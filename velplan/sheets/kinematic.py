@@ -40,7 +40,7 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, write_outputs
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
+    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
@@ -123,7 +123,9 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
 
 def default_title(mech, lang: Language, fmt: str, scale: str, frame_style: str) -> TitleInfo:
     """Title block of the kinematic sheet: the first document of the course work."""
-    return course_title(mech, lang, "kinematic_analysis", 1, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("both", mech, lang, scale)
 
 
 class _Drawings:
