@@ -6,11 +6,16 @@ import doctest
 import importlib
 import inspect
 import re
+from pathlib import Path
 
 import pytest
 
-PACKAGES = ["velplan", "velplan.dynamics", "velplan.forces", "velplan.html", "velplan.note", "velplan.plans",
-            "velplan.render", "velplan.views.forces"]
+import velplan
+
+_ROOT = Path(velplan.__file__).resolve().parent
+#: The front door and every subpackage that declares ``__all__``.
+PACKAGES = sorted(".".join(("velplan",) + init.parent.relative_to(_ROOT).parts)
+                  for init in _ROOT.rglob("__init__.py") if "\n__all__" in init.read_text("utf-8"))
 _SKIP = doctest.OPTIONFLAGS_BY_NAME["SKIP"]
 
 
@@ -43,6 +48,10 @@ def missing(package: str) -> list[str]:
 @pytest.mark.parametrize("package", PACKAGES)
 def test_every_public_name_has_a_running_example(package):
     assert missing(package) == []
+
+
+def test_the_packages_are_found():
+    assert {"velplan", "velplan.forces", "velplan.views.forces", "velplan.render"} <= set(PACKAGES)
 
 
 def test_the_check_sees_a_name_without_an_example():
