@@ -85,9 +85,74 @@ def test_the_check_sees_a_violation(tmp_path):
     assert LAYERS[_part("velplan.sheets.kinematic")] > LAYERS["analysis"]
 
 
-def test_views_and_sheets_never_solve():
-    """Views and sheets draw results: neither calls the solver nor constructs a plan."""
+#: What the drawing parts import but never call: the solver and its engines, the constructions
+#: of plans, centres, tables, diagrams, curves and force analyses. They read these results off
+#: a `velplan.Study`.
+COMPUTES = (
+    "velplan.analysis.solver.solve", "velplan.analysis.blocks", "velplan.analysis.compiled",
+    "velplan.analysis.chord.kinematic_diagrams", "velplan.plans.centres.construct_centres",
+    "velplan.plans.table.transfer_table", "velplan.forces.curve.moment_curve",
+    "velplan.forces.curve.turn_mean", "velplan.forces.agreement.force_analysis",
+)
+#: The parts that draw (and the products that only print what a study computed).
+DRAWING_PARTS = ("views", "sheets", "html", "note", "render")
+
+
+def _resolved(source: str, module: str) -> list[tuple[str, int]]:
+    """Every velplan name imported by ``source`` (the text of module ``module``), resolved to
+    its defining module: ``from velplan.analysis.solver import Kinematics, solve`` gives
+    ``velplan.analysis.solver.Kinematics`` and ``velplan.analysis.solver.solve``; a relative
+    import is resolved against ``module``; a lazy front-door name to where it lives."""
+    out = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parent = module.split(".")[:-node.level]
+                base = ".".join(parent + ([base] if base else []))
+            for a in node.names:
+                if base == "velplan" and a.name in velplan._LAZY:
+                    where, attr = velplan._LAZY[a.name]
+                    out.append((f"{where}.{attr}", node.lineno))
+                elif base == "velplan" or base.startswith("velplan."):
+                    out.append((f"{base}.{a.name}", node.lineno))
+        elif isinstance(node, ast.Import):
+            out += [(a.name, node.lineno) for a in node.names if a.name.startswith("velplan")]
+    return out
+
+
+def _computing(source: str, module: str) -> list[str]:
+    """The computing imports and calls of a drawing module: ``module:line name``."""
+    found = [f"{module}:{line} imports {name}" for name, line in _resolved(source, module)
+             if any(name == c or name.startswith(c + ".") for c in COMPUTES)]
+    if ".evaluate(" in source:
+        found.append(f"{module} constructs a plan (.evaluate)")
+    return found
+
+
+def test_the_resolver_sees_a_solver_among_other_names():
+    source = "from velplan.analysis.solver import Kinematics, solve\n"
+    assert _resolved(source, "velplan.views.x") == [
+        ("velplan.analysis.solver.Kinematics", 1), ("velplan.analysis.solver.solve", 1)]
+    assert _computing(source, "velplan.views.x") == ["velplan.views.x:1 imports velplan.analysis.solver.solve"]
+    assert _computing("def f():\n    from ..analysis.solver import Kinematics, solve\n", "velplan.views.x")
+    assert _computing("from velplan import solve as s\n", "velplan.sheets.x")
+    assert _computing("import velplan.analysis.blocks\n", "velplan.sheets.x")
+    assert _computing("from velplan.plans.centres import construct_centres\n", "velplan.html.x")
+    assert not _computing("from velplan.analysis.solver import Kinematics\n", "velplan.views.x")
+    assert not _computing("from velplan.plans.table import TransferTable  # solve\n", "velplan.views.x")
+
+
+@pytest.mark.parametrize("path", [p for p in MODULES if _part(_name(p)) in DRAWING_PARTS], ids=_name)
+def test_views_sheets_page_and_note_never_compute(path):
+    """They draw the results of a `velplan.Study`: no solver, no construction of a plan, of
+    instant centres, of a table or of a curve."""
+    assert _computing(path.read_text("utf-8"), _name(path)) == []
+
+
+def test_the_cli_and_the_notebook_never_solve():
     for path in MODULES:
-        if _part(_name(path)) in ("views", "sheets", "html", "cli", "notebook", "render"):
-            text = path.read_text("utf-8")
-            assert "import solve" not in text and ".evaluate(" not in text, _name(path)
+        if _part(_name(path)) in ("cli", "notebook"):
+            source = path.read_text("utf-8")
+            solver = [n for n, _ in _resolved(source, _name(path)) if n == "velplan.analysis.solver.solve"]
+            assert not solver and ".evaluate(" not in source, _name(path)

@@ -17,12 +17,62 @@ The product at the front door: a study of a mechanism, its sheets, its page and 
 
 Every name but the errors and the option types is imported on first use, so ``import velplan``
 stays light.
+
+A mechanism, its positions and its motion, one function at a time::
+
+    >>> mech = velplan.load("four-bar")                 # a bundled example, or a TOML path
+    >>> isinstance(mech, velplan.Mechanism), "four-bar" in velplan.example_names()
+    (True, True)
+    >>> phi = velplan.positions(mech, 4)                # position 1 is the reference position
+    >>> bool(abs(phi[0] - velplan.reference_angle(mech)) < 1e-12)
+    True
+    >>> kin = velplan.solve(mech, phi, omega1=10.0)
+    >>> isinstance(kin, velplan.Kinematics), kin.velocity("B").shape
+    (True, (4, 2))
+    >>> sorted(velplan.transfer_functions(kin))[:3]
+    ['V_A', 'V_B', 'V_D']
+    >>> st = velplan.stroke(mech)                       # the rocker's swing (rad) and K
+    >>> round(st.H, 6), round(st.K, 4)
+    (1.047762, 1.0175)
+    >>> sorted(velplan.extremes(mech))
+    ['link 2', 'link 3']
+    >>> note = velplan.explanatory_note("four-bar", parts=["kinematics"], lang="en")
+    >>> note.title
+    'Explanatory note: four-bar linkage'
+    >>> velplan.Page(velplan.Study("four-bar", n=4), lang="en").html.startswith("<!DOCTYPE html>")
+    True
+
+Bad input is refused in one line by a `VelplanError` (`AssemblyError`, `MechanismError`,
+`ScaleError`, `SingularPositionError`, `TableError` are its kinds)::
+
+    >>> from importlib.resources import files
+    >>> toml = files("velplan.examples").joinpath("four-bar.toml").read_text("utf-8")
+    >>> velplan.Study(velplan.parse(toml.replace("length = 0.10", "length = 0.30")))
+    Traceback (most recent call last):
+    ...
+    velplan.errors.AssemblyError: group '2-3' (RRR) cannot be assembled for crank angles -9.6°…9.6°, 97.2°…262.8°: point 'B' has no position there
+    >>> velplan.parse("name = 'no frame'")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.MechanismError: missing [ground] section
+    >>> errors = (velplan.AssemblyError, velplan.MechanismError, velplan.ScaleError,
+    ...           velplan.SingularPositionError, velplan.TableError)
+    >>> all(issubclass(e, velplan.VelplanError) for e in errors)
+    True
+
+The option types, for type checkers and for the values they allow::
+
+    >>> from typing import get_args
+    >>> get_args(velplan.PlanKind), get_args(velplan.SheetKind)[-1]
+    (('velocity', 'acceleration'), 'dynamics')
+    >>> get_args(velplan.Language) == velplan.LANGUAGES == ('en', 'ru', 'uk', 'zh')
+    True
 """
 
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal, Sequence, overload
 
 from velplan.errors import (
     AssemblyError,
@@ -32,9 +82,11 @@ from velplan.errors import (
     TableError,
     VelplanError,
 )
-from velplan.options import LANGUAGES, Language, PlanKind, SheetKind
+from velplan.options import LANGUAGES, Format, FrameStyle, Language, PlanKind, SheetKind
 
 if TYPE_CHECKING:  # the lazy names below, as type checkers should see them
+    from pathlib import Path
+
     from velplan.analysis.extremes import extremes, positions, reference_angle, stroke
     from velplan.analysis.solver import Kinematics, solve, transfer_functions
     from velplan.html.page import Page
@@ -42,6 +94,11 @@ if TYPE_CHECKING:  # the lazy names below, as type checkers should see them
     from velplan.mechanism.model import Mechanism
     from velplan.mechanism.structure import structure
     from velplan.note.build import build_note as explanatory_note
+    from velplan.render.style import SheetStyle
+    from velplan.sheets.dynamics import DynamicsSheet
+    from velplan.sheets.forces import ForceSheet
+    from velplan.sheets.frame import TitleInfo
+    from velplan.sheets.kinematic import Sheet as KinematicSheet
     from velplan.study import Study
 
 __all__ = [
@@ -69,6 +126,21 @@ _LAZY = {
 _DEPRECATED = {"analyse": "structure", "loads": "parse"}
 
 
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["velocity", "acceleration", "both"] = "both", *,
+          n: int = 12, plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",
+          frame_style: FrameStyle | None = None, info: TitleInfo | None = None, diagrams: bool | None = None,
+          table: bool = True, style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
+          scale_per_plan: bool = False) -> KinematicSheet: ...
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["forces"], *, n: int = 12,
+          plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",
+          frame_style: FrameStyle | None = None, info: TitleInfo | None = None, diagrams: bool | None = None,
+          table: bool = True, style: SheetStyle | None = None) -> ForceSheet: ...
+@overload
+def sheet(study: Study | Mechanism | str | Path, kind: Literal["dynamics"], *, n: int = 12, fmt: Format = "A1",
+          lang: Language = "ru", frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
+          style: SheetStyle | None = None) -> DynamicsSheet: ...
 def sheet(study, kind: SheetKind = "both", **options):
     """The sheet of ``study`` (a `Study`, a `Mechanism`, an example name or a TOML path), as
     ``velplan sheet --kind`` draws it: the kinematic sheet (``"velocity"``, ``"acceleration"``
@@ -76,25 +148,25 @@ def sheet(study, kind: SheetKind = "both", **options):
 
     ``options`` go to the sheet's builder (``fmt``, ``lang``, ``plans``, ``n``, …: see
     `velplan.sheets.kinematic.build_sheet`, `velplan.sheets.forces.build_force_sheet`,
-    `velplan.sheets.dynamics.build_dynamics_sheet`). The sheet's ``.svg()`` is its text and
-    ``.save(path, png=…, pdf=…)`` saves it.
+    `velplan.sheets.dynamics.build_dynamics_sheet`; the overloads spell them out per kind).
+    The sheet's ``.svg()`` is its text and ``.save(path)`` saves it, the suffix choosing the
+    writer (.svg, .png, .pdf, .dxf).
+
+    >>> s = sheet("four-bar", fmt="A2", lang="en", plans=[3])
+    >>> s.positions, s.fmt, s.svg().startswith("<?xml")
+    ((3,), 'A2', True)
+    >>> sheet("four-bar", "forces")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: four-bar declares no masses and no loads: there are no forces to draw; add [link.N] masses or [[load]] tables
+    >>> sheet("four-bar", "plans")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: unknown sheet kind 'plans'; known kinds: velocity, acceleration, both, forces, dynamics
     """
-    from velplan.options import KINEMATIC_SHEET_KINDS
+    from velplan.sheets.kinds import build
 
-    if kind in KINEMATIC_SHEET_KINDS:
-        from velplan.sheets.kinematic import build_sheet
-
-        return build_sheet(study, kind=kind, **options)
-    if kind == "forces":
-        from velplan.sheets.forces import build_force_sheet
-
-        return build_force_sheet(study, **options)
-    if kind == "dynamics":
-        from velplan.sheets.dynamics import build_dynamics_sheet
-
-        return build_dynamics_sheet(study, **options)
-    known = KINEMATIC_SHEET_KINDS + ("forces", "dynamics")
-    raise VelplanError(f"unknown sheet kind {kind!r}; known kinds: {', '.join(known)}")
+    return build(study, kind, **options)
 
 
 def __getattr__(name: str):

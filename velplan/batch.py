@@ -49,7 +49,7 @@ from typing import Any, Callable
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.io import write_atomic
+from velplan.io import finite_number, write_atomic  # noqa: F401  (finite_number: for _number)
 
 MAX_TRIES = 50
 """Draws per random variant before it is reported as failed."""

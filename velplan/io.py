@@ -1,12 +1,45 @@
-"""Atomic file output: a file is either written whole or not at all."""
+"""Input and output at the edge: a file is either written whole or not at all
+(`write_atomic`), and a number read from a file or a command line is finite
+(`finite_number`, the one parser of the CSV tables, the variants of a batch and the CLI).
+
+>>> finite_number(" 2.5 ", "crank.length")
+2.5
+>>> finite_number("inf", "crank.length")
+Traceback (most recent call last):
+...
+velplan.errors.VelplanError: crank.length: 'inf' is not a finite number
+"""
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
 from pathlib import Path
 
 from velplan.errors import VelplanError
+
+
+def finite_number(raw: object, what: str, *, error: type[VelplanError] = VelplanError,
+                  noun: str = "number") -> float:
+    """``raw`` (a number or its text) as a finite float; otherwise ``error`` (a `VelplanError`
+    subclass) with one line naming ``what`` and the value: "``what``: 'x' is not a ``noun``" or
+    "is not a finite ``noun``". A boolean is not a number.
+
+    >>> finite_number(True, "positions")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: positions: True is not a number
+    """
+    if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
+        raise error(f"{what}: {raw!r} is not a {noun}")
+    try:
+        value = float(raw)
+    except ValueError:
+        raise error(f"{what}: {raw!r} is not a {noun}") from None
+    if not math.isfinite(value):
+        raise error(f"{what}: {raw!r} is not a finite {noun}")
+    return value
 
 
 def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:

@@ -88,7 +88,7 @@ class SvgDrawing:
         """The drawing rasterised to PNG (needs cairosvg: ``pip install velplan[export]``)."""
         from velplan.render import export
 
-        return export._convert("svg2png", self.svg, dpi=dpi, background_color="white")
+        return export.svg_to_png(self.svg, dpi=dpi)
 
     def save(self, path: str | os.PathLike, *, dpi: float = 150.0) -> Path:
         """Write the drawing to `path`, atomically: SVG, or PNG / PDF by the suffix.
@@ -114,7 +114,7 @@ class SvgDrawing:
         return export.write_svg(self.svg, target)
 
 
-def _drawing(view, lang: str) -> SvgDrawing:
+def _drawing(view, lang: Language) -> SvgDrawing:
     from velplan.render.scene import Scene
 
     return SvgDrawing.from_scene(Scene(view.primitives, view.width_mm, view.height_mm), lang=lang)
@@ -178,7 +178,7 @@ def _position(res, position: int | None) -> int:
     return position
 
 
-def _partial_plans(res, position: int, lang: str, upto: Sequence[int]) -> list[tuple[str, SvgDrawing]]:
+def _partial_plans(res, position: int, lang: Language, upto: Sequence[int]) -> list[tuple[str, SvgDrawing]]:
     """(sentence of step k, the plan as far as step k) for k in `upto` (1-based).
 
     Every partial plan has the full plan's box and pole, so the figures can be flipped

@@ -5,6 +5,10 @@
 (('velocity', 'acceleration'), ('forces', 'dynamics'))
 >>> LANGUAGES
 ('en', 'ru', 'uk', 'zh')
+>>> get_args(Format), get_args(FrameStyle), get_args(Engine)
+(('A1', 'A2', 'A3'), ('eskd', 'iso'), ('numpy', 'compiled', 'auto'))
+>>> KINEMATIC_SHEET_KINDS
+('velocity', 'acceleration', 'both')
 """
 
 from __future__ import annotations
@@ -30,4 +34,10 @@ LANGUAGES: tuple[str, ...] = get_args(Language)
 Format = Literal["A1", "A2", "A3"]
 """A sheet format (landscape)."""
 
-__all__ = ["Format", "KINEMATIC_SHEET_KINDS", "LANGUAGES", "Language", "PlanKind", "SheetKind"]
+FrameStyle = Literal["eskd", "iso"]
+"""A title block: ESKD form 1 or the captioned ISO-style block."""
+
+Engine = Literal["numpy", "compiled", "auto"]
+"""The solver's engine (`velplan.solve`)."""
+
+__all__ = ["Engine", "Format", "FrameStyle", "KINEMATIC_SHEET_KINDS", "LANGUAGES", "Language", "PlanKind", "SheetKind"]

@@ -16,7 +16,9 @@ Results are computed on first use and cached:
 `plan(kind)`           the velocity / acceleration plan at every position (the acceleration
                        plan drawn on the velocity plan); μ is a view parameter
 `table`, `diagrams`    transfer functions read off the plans; chord-method diagrams
+`centres(k)`           the instant centres at position k by Kennedy lines, at a scheme's μl
 `loads`, `forces()`    the declared loads; kinetostatics, Zhukovsky's lever and power method
+`moment_curve`         M_b(φ) over a turn from position 1, its values at the positions, its mean
 `dynamics`             reduction, steady state or run, flywheel (`velplan.dynamics`)
 =====================  =====================================================================
 """
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 from functools import cached_property
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -36,10 +38,17 @@ from velplan.analysis.solver import Kinematics, group_point, solve
 from velplan.errors import AssemblyError, MechanismError, VelplanError
 from velplan.mechanism.loader import load
 from velplan.mechanism.model import Mechanism
+from velplan.options import Engine
 from velplan.options import PlanKind as Kind
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.engine import Plan, PlanResult
 from velplan.plans.table import TransferTable, transfer_table
+
+if TYPE_CHECKING:
+    from velplan.dynamics.analysis import Dynamics
+    from velplan.forces.agreement import ForceAnalysis
+    from velplan.forces.curve import MomentCurve
+    from velplan.plans.centres import Construction
 
 Motion = Literal["constant", "dynamic"]
 
@@ -72,7 +81,7 @@ class Study:
     """
 
     def __init__(self, mechanism: Mechanism | str | Path, *, n: int = 12, angles=None,
-                 motion: Motion = "constant", engine: str = "numpy", check_assembly: bool = True,
+                 motion: Motion = "constant", engine: Engine = "numpy", check_assembly: bool = True,
                  delta: float | None = None):
         self.mechanism = load(mechanism) if isinstance(mechanism, (str, Path)) else mechanism
         if motion not in ("constant", "dynamic"):
@@ -80,12 +89,13 @@ class Study:
         if angles is None and n < 1:
             raise MechanismError(f"number of positions must be ≥ 1, not {n}")
         self._angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
-        self.n = n if angles is None else len(self._angles)
+        self.n = n if self._angles is None else len(self._angles)
         self.motion = motion
         self.engine = engine
         self.delta = delta
         self._plans: dict = {}
         self._forces: dict = {}
+        self._centres: dict = {}
         if check_assembly:
             self.check_assembly()
 
@@ -239,6 +249,21 @@ class Study:
                 positions=None if pos is None else list(pos), only=only, on_failure=on_failure)
         return res
 
+    def centres(self, position: int, *, mu_l: float | None = None, drafting: Drafting = EXACT) -> Construction:
+        """The instant centres at position number ``position`` (1…n) found by Kennedy lines
+        (`velplan.plans.centres.construct_centres`), at the scheme's scale ``mu_l`` (m/mm; a
+        standard one by default) and ``drafting`` precision; `MechanismError` where the mechanism
+        is not assembled."""
+        i = self._indices(position)[0]
+        key = (i, mu_l, drafting)
+        con = self._centres.get(key)
+        if con is None:
+            from velplan.plans.centres import construct_centres
+
+            con = self._centres[key] = construct_centres(self.kinematics, position_number(i), mu_l=mu_l,
+                                                         drafting=drafting)
+        return con
+
     # -- tables and diagrams -----------------------------------------------------------------
 
     @cached_property
@@ -263,7 +288,7 @@ class Study:
         return parse_loads(self.mechanism)
 
     def forces(self, *, drafting: Drafting = EXACT, mu_v: float | None = None, gravity: bool = True,
-               inertia: bool = True):
+               inertia: bool = True) -> ForceAnalysis:
         """Kinetostatics, Zhukovsky's lever and the power method at every position
         (`velplan.forces.ForceAnalysis`), at the study's motion."""
         key = (drafting, mu_v, gravity, inertia)
@@ -277,7 +302,15 @@ class Study:
             self._forces[key] = res
         return res
 
-    def turn_forces(self, *, gravity: bool = True, inertia: bool = True):
+    @cached_property
+    def moment_curve(self) -> MomentCurve:
+        """M_b by kinetostatics over a revolution from position 1 (`turn_forces`), its values at
+        the n positions (`forces`) and its mean over the turn."""
+        from velplan.forces.curve import moment_curve
+
+        return moment_curve(self.turn_forces(), self.forces(), self.sense)
+
+    def turn_forces(self, *, gravity: bool = True, inertia: bool = True) -> ForceAnalysis:
         """The force analysis over the fine turn (every third step: 241 angles), at the file's
         constant ω1 or at the computed motion."""
         key = ("turn", gravity, inertia)
@@ -339,7 +372,7 @@ class Study:
     # -- dynamics ----------------------------------------------------------------------------
 
     @cached_property
-    def dynamics(self):
+    def dynamics(self) -> Dynamics:
         """The machine dynamics of the ``[dynamics]`` section (`velplan.dynamics`)."""
         from velplan.dynamics import dynamics_analysis
 

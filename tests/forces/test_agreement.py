@@ -64,8 +64,8 @@ def test_lever_is_independent_of_the_scale_and_takes_xy_images():
     ref = vf.kinetostatics(mech, kin, acts).balancing_moment
     for i in range(12):
         for mu_v in (0.002, 0.01):
-            images = {k: (v.real, v.imag) for k, v in vf.images_from_kinematics(kin, i, mu_v).items()}
-            lv = vf.zhukovsky_lever(mech, vf.positions_from_kinematics(kin, i), images, mu_v, acts.at(i))
+            images = {k: (v.real, v.imag) for k, v in vf.images_from_kinematics(kin, i + 1, mu_v).items()}
+            lv = vf.zhukovsky_lever(mech, vf.positions_from_kinematics(kin, i + 1), images, mu_v, acts.at(i))
             assert lv.balancing_moment[0] == pytest.approx(ref[i], rel=1e-9, abs=1e-9)
             # M_b = F_b·l_OA with F_b ⊥ the crank at the tip image
             assert lv.balancing_force[0] * 0.1605 == pytest.approx(lv.balancing_moment[0], rel=1e-12, abs=1e-12)
@@ -95,9 +95,9 @@ def test_lever_needs_the_images_it_uses():
     mech = velplan.load("shaper")
     kin = velplan.solve(mech, [1.0])
     acts = vf.mechanism_actions(mech, kin)
-    images = vf.images_from_kinematics(kin, 0, 0.01)
+    images = vf.images_from_kinematics(kin, 1, 0.01)
     del images["S4"]
     with pytest.raises(velplan.VelplanError, match=r"^the velocity plan has no point 'S4' \(needed for force 'G4'\)$"):
-        vf.zhukovsky_lever(mech, vf.positions_from_kinematics(kin, 0), images, 0.01, acts.at(0))
+        vf.zhukovsky_lever(mech, vf.positions_from_kinematics(kin, 1), images, 0.01, acts.at(0))
     with pytest.raises(velplan.VelplanError, match=r"^velocity scale μv must be > 0 \(m/s\)/mm, not 0$"):
-        vf.images_from_kinematics(kin, 0, 0)
+        vf.images_from_kinematics(kin, 1, 0)

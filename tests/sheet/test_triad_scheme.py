@@ -96,7 +96,6 @@ def test_a_block_lead_rides_on_its_hatched_guide():
 def test_data_table_and_readings_of_a_triad(rocker):
     from velplan.views.data import data_lines
     from velplan.views.readings import readings
-    from velplan.views.table import sheet_table
 
     text = "\n".join(data_lines(rocker, "en"))
     (g,) = rocker.mechanism.groups
@@ -104,7 +103,7 @@ def test_data_table_and_readings_of_a_triad(rocker):
                           ("lAB", g.leads[0].length), ("lEC", g.leads[1].length),
                           ("lFD", g.leads[2].length)):
         assert f"{symbol} = {value:g} m" in text
-    rows = sheet_table(rocker.plan("velocity")).rows
+    rows = rocker.table.rows
     assert {"V_B", "V_C", "V_D"} <= set(rows) and "V_K3" not in rows
     res = rocker.plan("velocity")
     assert "K3" in res.vectors  # constructed, but not read off as a result

@@ -52,3 +52,13 @@ def position_indices(numbers_, n: int) -> np.ndarray:
 def position_number(index: int) -> int:
     """The position number (1…n) of the array index ``index`` (0…n−1)."""
     return int(index) + 1
+
+
+def position_numbers(indices) -> np.ndarray:
+    """(k,) position numbers of the array indices ``indices`` (0…n−1; one or several, e.g. a
+    ``range``), in one pass over an array.
+
+    >>> position_numbers(range(3)), position_numbers(range(10, 12))
+    (array([1, 2, 3]), array([11, 12]))
+    """
+    return np.atleast_1d(np.asarray(indices, dtype=int)) + 1

@@ -19,11 +19,12 @@ from velplan.errors import VelplanError
 from velplan.io import write_atomic
 from velplan.mechanism.loader import catalogue_names
 from velplan.mechanism.structure import structure
+from velplan.options import Language
 from velplan.plans.text import LANGS
 from velplan.study import Study
 
 
-def write_gallery(outdir: str | Path, *, names=None, png: bool = False, lang: str = "en",
+def write_gallery(outdir: str | Path, *, names=None, png: bool = False, lang: Language = "en",
                   fmt: str = "A1", progress=None) -> Path:
     """Draw the sheet of each catalogue mechanism (``names``: a subset) into ``outdir`` and
     write its ``index.md``; returns the index's path."""

@@ -10,10 +10,12 @@ import numpy as np
 
 from velplan.analysis.centres import instant_centres
 from velplan.analysis.solver import length_scale
+from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
+from velplan.options import Language
 from velplan.plans import EXACT, Drafting
-from velplan.plans.centres import Construction, centre_name, construct_centres, velocities_by_centres
+from velplan.plans.centres import Construction, centre_name, velocities_by_centres
 from velplan.plans.scale import check_scale, check_scheme_scale
 from velplan.plans.text import LANGS
 from velplan.study import Study
@@ -54,9 +56,9 @@ def _study(args) -> tuple[Study, list[int], list[int | None]]:
     if args.position is not None:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
-        return study, [args.position - 1], [args.position]
+        return study, [position_index(args.position, args.positions)], [args.position]
     idx = list(range(args.positions))
-    return study, idx, [i + 1 for i in idx]
+    return study, idx, [position_number(i) for i in idx]
 
 
 def run_centres(args) -> int:
@@ -68,12 +70,12 @@ def run_centres(args) -> int:
     study, idx, numbers = _study(args)
     if mu_l is not None:
         check_scheme_scale(mu_l, length_scale(study.mechanism), "--scale-l")
-    study.require_assembled([i + 1 for i in idx])
+    study.require_assembled([position_number(i) for i in idx])
     kin = study.kinematics
     exact = instant_centres(kin)
     if args.svg is not None and not str(args.svg).strip():
         raise VelplanError("--svg: give a file name, not an empty string")
-    cons = [construct_centres(kin, i + 1, drafting=drafting, mu_l=mu_l) for i in idx]
+    cons = [study.centres(position_number(i), drafting=drafting, mu_l=mu_l) for i in idx]
     if args.format == "json":
         doc = {"mechanism": study.mechanism.name,
                "positions": [{"phi_deg": round(float(kin.phi_deg[i]), 9), "centres": exact.records(i)} for i in idx]}
@@ -93,7 +95,7 @@ def _plan(study: Study, drafting: Drafting, i: int):
     """The velocity plan at position index ``i`` (exact: the study's own), or None when the
     mechanism's plan cannot be constructed (its column then reads —)."""
     try:
-        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[i + 1])
+        return study.plan("velocity") if drafting.exact else study.plan("velocity", drafting=drafting, positions=[position_number(i)])
     except VelplanError:
         return None
 
@@ -172,7 +174,7 @@ def _velocity_rows(con: Construction, res, i: int) -> list[str]:
     return rows
 
 
-def table(con: Construction, exact, res, number: int | None, *, lang: str = "en", steps: bool = False) -> str:
+def table(con: Construction, exact, res, number: int | None, *, lang: Language = "en", steps: bool = False) -> str:
     """One position: every centre (constructed beside exact), what was not reached and why, the
     velocities by centres beside the plan's and the analytic ones (m/s, rad/s)."""
     kin, i = con.kin, con.index

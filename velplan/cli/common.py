@@ -9,7 +9,7 @@ import sys
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.io import write_atomic
+from velplan.io import finite_number, write_atomic
 
 
 def add_mechanism(p: argparse.ArgumentParser, *, optional: bool = False) -> None:
@@ -40,13 +40,7 @@ def parse_angles(text: str) -> np.ndarray:
         raise VelplanError("--angles: give at least one angle in degrees, e.g. --angles 0,90,200")
     out = []
     for item in text.split(","):
-        item = item.strip()
-        try:
-            value = float(item)
-        except ValueError:
-            raise VelplanError(f"--angles: {item!r} is not a number of degrees") from None
-        if not math.isfinite(value):
-            raise VelplanError(f"--angles: {item!r} is not a finite angle")
+        value = finite_number(item.strip(), "--angles", noun="number of degrees")
         out.append(math.fmod(value, 360.0))
     return np.radians(out)
 

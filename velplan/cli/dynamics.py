@@ -7,6 +7,7 @@ import json
 
 import numpy as np
 
+from velplan.analysis.numbering import position_numbers
 from velplan.cli.common import add_mechanism, add_output, emit, positive_int
 
 
@@ -90,7 +91,7 @@ def chunks(d, n: int = 12, chunk: int = CHUNK):
     for a in range(0, len(travels), chunk):
         rows = d.table_at(travels[a:a + chunk])
         extra = [k for k in rows if k.startswith("M_") and k not in POSITION_KEYS]
-        yield {"position": np.arange(a + 1, a + len(rows["omega"]) + 1),
+        yield {"position": position_numbers(range(a, a + len(rows["omega"]))),
                **{k: rows[k] for k in (*POSITION_KEYS, *extra)}}, None
 
 

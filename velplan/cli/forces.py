@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_indices, position_numbers
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 
@@ -56,7 +57,7 @@ def run_forces(args) -> int:
     study = Study(args.mechanism, n=n, angles=angles, motion=args.motion)
     options = {"drafting": EXACT if args.mode == "exact" else Drafting(args.precision, args.precision),
                "mu_v": args.scale_v, "gravity": not args.no_gravity, "inertia": not args.no_inertia}
-    numbers = [args.position] if args.position is not None else list(range(1, study.n + 1))
+    numbers = [args.position] if args.position is not None else position_numbers(range(study.n)).tolist()
     text = None
     if args.format == "table":  # a few positions, side by side
         text = to_table(study.forces(**options), numbers, [ld.name for ld in study.loads])
@@ -132,7 +133,7 @@ def to_table(res, numbers: list[int], load_names: list[str]) -> str:
     """M_b by the three methods and |R| of every pair, one column per position ``numbers``
     (1-based) of ``res``."""
     kin, ks = res.kinematics, res.kinetostatics
-    idx = [k - 1 for k in numbers] if len(numbers) < len(kin) else list(range(len(kin)))
+    idx = position_indices(numbers, len(kin)).tolist() if len(numbers) < len(kin) else list(range(len(kin)))
     bm = res.balancing_moments
     from velplan.forces.agreement import lever_difference_percent
 

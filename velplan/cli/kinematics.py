@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number, position_numbers
 from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
@@ -182,7 +183,7 @@ def chunks(study: Study, fmt: str, chunk: int = STREAM_CHUNK):
 def _columns(kin: Kinematics, first: int = 0) -> tuple[list[str], list[np.ndarray]]:
     """CSV header and columns of `to_csv`, positions numbered from ``first`` + 1."""
     head = ["position", "phi_deg"]
-    cols = [np.arange(first + 1, first + len(kin) + 1), kin.phi_deg]
+    cols = [position_numbers(range(first, first + len(kin))), kin.phi_deg]
     for k, j in kin.point_index.items():
         for q, arr in (("x", kin.positions[:, j, 0]), ("y", kin.positions[:, j, 1]),
                        ("vx", kin.velocities[:, j, 0]), ("vy", kin.velocities[:, j, 1]),
@@ -206,7 +207,7 @@ def _entries(kin: Kinematics, first: int) -> tuple[dict, dict]:
     rate = (lambda a: a) if not reasons else (lambda a: np.where(ok, a, np.nan))  # noqa: E731 (never a wrong number)
     P, V, A = kin.positions, kin.velocities, kin.accelerations
     marks = point_marks(kin.mechanism)
-    tree = {"position": np.arange(first + 1, first + len(kin) + 1), "phi_deg": kin.phi_deg, "valid": ok,
+    tree = {"position": position_numbers(range(first, first + len(kin))), "phi_deg": kin.phi_deg, "valid": ok,
             "points": {k: {"x": P[:, j, 0], "y": P[:, j, 1], "vx": rate(V[:, j, 0]), "vy": rate(V[:, j, 1]),
                            "ax": rate(A[:, j, 0]), "ay": rate(A[:, j, 1]), **marks.get(k, {})}
                        for k, j in kin.point_index.items()},
@@ -234,7 +235,7 @@ def to_table(kin: Kinematics) -> str:
     """Transfer functions |V|/ω1 (m) and ω/ω1 per position, then |V| and |a| of every point."""
     tf = transfer_functions(kin) if kin.omega1 else {}
     n = len(kin)
-    head = f"{'quantity':<14}" + "".join(f"{i + 1:>11}" for i in range(n))
+    head = f"{'quantity':<14}" + "".join(f"{k:>11}" for k in position_numbers(range(n)))
     lines = [f"{kin.mechanism.name}: ω1 = {kin.omega1:+.6g} rad/s", head,
              f"{'φ, deg':<14}" + "".join(f"{x:>11.2f}" for x in kin.phi_deg)]
 
@@ -267,9 +268,9 @@ def to_table(kin: Kinematics) -> str:
         lines.append(row(f"ε{k}, rad/s²", kin.epsilons[:, j]))
     singular = kin.singular
     if singular.any():
-        bad = ", ".join(f"{i + 1} (condition {kin.min_condition()[i]:.2g})" for i in np.flatnonzero(singular))
+        bad = ", ".join(f"{position_number(i)} (condition {kin.min_condition()[i]:.2g})" for i in np.flatnonzero(singular))
         lines.append(f"singular (a group at a toggle, velocities undetermined) at positions: {bad}")
     if (~kin.valid & ~singular).any():
-        bad = ", ".join(str(i + 1) for i in np.flatnonzero(~kin.valid & ~singular))
+        bad = ", ".join(str(position_number(i)) for i in np.flatnonzero(~kin.valid & ~singular))
         lines.append(f"not assembled at positions: {bad}")
     return "\n".join(lines)

@@ -8,8 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
+from velplan.options import Language
 from velplan.plans import EXACT, Drafting
 from velplan.plans.check import check_table
 from velplan.plans.engine import PlanResult
@@ -76,10 +78,11 @@ def run_plan(args) -> int:
     else:
         if args.position > args.positions:
             raise VelplanError(f"--position {args.position} is outside 1…{args.positions}")
-        study, index, number = Study(args.mechanism, n=args.positions), args.position - 1, args.position
-    study.require_assembled([index + 1])
+        study, index, number = (Study(args.mechanism, n=args.positions),
+                                 position_index(args.position, args.positions), args.position)
+    study.require_assembled([position_number(index)])
     only = [x.strip() for x in args.only.split(",")] if args.only else None
-    res = study.plan(args.kind, positions=[index + 1], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+    res = study.plan(args.kind, positions=[position_number(index)], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
                      drafting=_drafting(args))
     doc = plan_json(res, number)
     emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),
@@ -128,7 +131,7 @@ def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
     return doc
 
 
-def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
+def plan_text(res: PlanResult, doc: dict, lang: Language) -> str:
     from velplan.render.i18n import label
 
     unit = "(m/s²)/mm" if res.kind == "acceleration" else "(m/s)/mm"
@@ -197,7 +200,7 @@ def compare_rows(res: PlanResult) -> list[dict]:
     for name, got, exact in quantities:
         for i, j in enumerate(res.index):
             if not kin.valid[j]:  # nothing to compare: say why
-                rows.append({"quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                rows.append({"quantity": name, "position": position_number(i), "phi_deg": float(kin.phi_deg[j]),
                              "graphical": None, "analytic": None, "abs_error": None, "rel_error": None,
                              "flag": "singular" if singular[j] else "not assembled"})
                 continue
@@ -207,7 +210,7 @@ def compare_rows(res: PlanResult) -> list[dict]:
             if mine:
                 flag = "refused" if any(f.refused for f in mine) else "flagged"
             rows.append({
-                "quantity": name, "position": int(i + 1), "phi_deg": float(kin.phi_deg[j]),
+                "quantity": name, "position": position_number(i), "phi_deg": float(kin.phi_deg[j]),
                 "graphical": _f(got[i]), "analytic": _f(exact[i]), "abs_error": _f(err),
                 "rel_error": _f(err / abs(exact[i])) if abs(exact[i]) > 1e-12 * max(1.0, np.nanmax(np.abs(exact))) else None,
                 "flag": flag,

@@ -109,7 +109,9 @@ def parse_plans(text: str | None, n: int | None = None) -> tuple[int, ...] | Non
     if text.strip().lower() == "all":
         if n is None:
             raise VelplanError("--plans all needs the number of positions")
-        return tuple(range(1, n + 1))
+        from velplan.analysis.numbering import position_numbers
+
+        return tuple(position_numbers(range(n)).tolist())
     out = []
     for item in text.split(","):
         item = item.strip()
@@ -122,23 +124,11 @@ def parse_plans(text: str | None, n: int | None = None) -> tuple[int, ...] | Non
 
 def _write(svg: str, scene, style, path, args) -> list[Path]:
     """Write a drawing's SVG to `path` (a .png, .pdf or .dxf name: beside it) and the PNG, PDF
-    and DXF asked for; the DXF is made before any file is written."""
-    from velplan.sheets.layout import write_outputs
+    and DXF asked for (`velplan.render.export.save_drawing`)."""
+    from velplan.render.export import save_drawing
 
-    target = Path(path)
-    dxf = None
-    if args.dxf or target.suffix.lower() == ".dxf":
-        from velplan.render.dxf import to_dxf
-
-        dxf = to_dxf(scene, style)
-        if target.suffix.lower() == ".dxf":
-            target = target.with_suffix(".svg")
-    written = write_outputs(svg, target, png=args.png, pdf=args.pdf, dpi=args.dpi)
-    if dxf is not None:
-        from velplan.render.export import write_dxf
-
-        written.append(write_dxf(dxf, target.with_suffix(".dxf")))
-    return written
+    return save_drawing(svg, path, scene=scene, style=style, png=args.png, pdf=args.pdf, dxf=args.dxf,
+                        dpi=args.dpi)
 
 
 def _report(paths) -> None:
@@ -147,70 +137,34 @@ def _report(paths) -> None:
 
 
 def run_sheet(args) -> int:
+    from velplan.options import KINEMATIC_SHEET_KINDS
     from velplan.sheets.frame import TitleInfo
-    from velplan.sheets.kinematic import build_sheet, default_title
+    from velplan.sheets.kinds import build, default_title_of, file_stem
     from velplan.study import Study
 
     plans = parse_plans(args.plans, args.positions)
     if args.delta is not None and args.kind != "dynamics":
         raise VelplanError("--delta belongs to --kind dynamics")
+    if plans is not None and args.kind == "dynamics":
+        raise VelplanError("--plans has no meaning for the dynamics sheet (it draws the whole cycle)")
     study = Study(args.mechanism, n=args.positions, delta=args.delta)
     mech = study.mechanism
     fields = {k: getattr(args, k) for k in ("title", "designation", "author", "checker",
                                              "approved", "organisation", "date")
               if getattr(args, k)}
-    if args.kind == "forces":
-        return _run_force_sheet(args, study, plans, fields)
-    if args.kind == "dynamics":
-        return _run_dynamics_sheet(args, study, plans, fields)
     info = None
     if fields:
-        frame = args.frame or ("eskd" if args.lang in ("ru", "uk") else "iso")
-        base = default_title(mech, args.lang, args.format, "", frame)
-        info = TitleInfo(**{**{f: getattr(base, f) for f in ("title", "designation")},
-                            **{("checker" if k == "checker" else k): v
-                               for k, v in fields.items()}})
-    sheet = build_sheet(study, plans=plans, kind=args.kind, fmt=args.format,
-                        lang=args.lang, frame_style=args.frame, info=info,
-                        diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
-                        table=not args.no_table, scale_per_plan=args.scale_per_plan,
-                        centres=parse_plans(args.centres, study.n) if args.centres else ())
-    output = args.output or f"{mech.name}-sheet.svg"
-    _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
-    return 0
-
-
-def _run_force_sheet(args, study, plans, fields) -> int:
-    from velplan.sheets.forces import build_force_sheet, default_force_title
-    from velplan.sheets.frame import TitleInfo
-
-    mech = study.mechanism
-    info = None
-    if fields:
-        base = default_force_title(mech, args.lang, "")
+        base = default_title_of(args.kind, mech, args.lang)
         info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
-    sheet = build_force_sheet(study, plans=plans, fmt=args.format,
-                              lang=args.lang, frame_style=args.frame, info=info,
-                              diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
-                              table=not args.no_table)
-    output = args.output or f"{mech.name}-forces.svg"
-    _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
-    return 0
-
-
-def _run_dynamics_sheet(args, study, plans, fields) -> int:
-    from velplan.sheets.dynamics import build_dynamics_sheet, default_dynamics_title
-    from velplan.sheets.frame import TitleInfo
-
-    if plans is not None:
-        raise VelplanError("--plans has no meaning for the dynamics sheet (it draws the whole cycle)")
-    mech = study.mechanism
-    info = None
-    if fields:
-        base = default_dynamics_title(mech, args.lang, "")
-        info = TitleInfo(**{"title": base.title, "designation": base.designation, **fields})
-    sheet = build_dynamics_sheet(study, fmt=args.format, lang=args.lang, frame_style=args.frame, info=info)
-    output = args.output or f"{mech.name}-dynamics.svg"
+    options: dict = {"fmt": args.format, "lang": args.lang, "frame_style": args.frame, "info": info}
+    if args.kind != "dynamics":
+        options.update(plans=plans, diagrams={"auto": None, "yes": True, "no": False}[args.diagrams],
+                       table=not args.no_table)
+    if args.kind in KINEMATIC_SHEET_KINDS:
+        options.update(scale_per_plan=args.scale_per_plan,
+                       centres=parse_plans(args.centres, study.n) if args.centres else ())
+    sheet = build(study, args.kind, **options)
+    output = args.output or f"{mech.name}-{file_stem(args.kind)}.svg"
     _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))
     return 0
 
@@ -251,11 +205,10 @@ def run_steps(args) -> int:
         raise VelplanError(f"--position {args.position} is outside 1…{study.n}")
     kinds = ("velocity", "acceleration") if args.kind == "both" else (args.kind,)
     if args.kind == "centres":
-        from velplan.plans.centres import construct_centres
         from velplan.views.centres import centre_step_figures
 
         study.require_assembled([args.position])
-        figures = centre_step_figures(construct_centres(study.kinematics, args.position),
+        figures = centre_step_figures(study.centres(args.position),
                                       fine=study.turn, number=args.position, lang=args.lang)
     else:
         figures = step_figures(study.mechanism, study.kinematics, {k: study.plan(k) for k in kinds},

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.dynamics.analysis import Dynamics
 
 POSITION_KEYS = ("phi_deg", "travel_deg", "omega", "epsilon", "t", "J_red", "J_red_prime", "J_total",
@@ -78,7 +79,7 @@ def to_dict(d: Dynamics, n: int = 12, drive=None) -> dict:
         doc["drive"] = {k: (_num(v) if isinstance(v, float) else v) for k, v in drive.to_dict().items()}
     tb = d.table(n)
     extra = [k for k in tb if k.startswith("M_") and k not in POSITION_KEYS]
-    doc["positions"] = [{"position": i + 1, **{k: _num(tb[k][i]) for k in (*POSITION_KEYS, *extra)}}
+    doc["positions"] = [{"position": position_number(i), **{k: _num(tb[k][i]) for k in (*POSITION_KEYS, *extra)}}
                         for i in range(len(tb["omega"]))]
     return doc
 

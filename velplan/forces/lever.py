@@ -13,6 +13,7 @@ from typing import Mapping
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.forces.actions import Actions
@@ -20,34 +21,54 @@ from velplan.forces.common import as_complex, cross, material_points, rotation_c
 from velplan.mechanism.model import GROUND, Mechanism
 
 
-def images_from_kinematics(kin: Kinematics, i: int | None, mu_v: float) -> dict[str, complex | np.ndarray]:
+def images_from_kinematics(kin: Kinematics, position: int | None, mu_v: float) -> dict[str, complex | np.ndarray]:
     """Velocity images of every point, mm from the pole: V/μv.
 
     Parameters
     ----------
     kin : Kinematics
-    i : int or None
-        Position index; None gives (n,) arrays over all positions.
+    position : int or None
+        Position number 1…n of ``kin``; None gives (n,) arrays over all positions.
     mu_v : float
         Scale of the plan, (m/s)/mm.
+
+    >>> import velplan
+    >>> kin = velplan.solve(velplan.load("four-bar"), [0.0, 1.0], omega1=10.0)
+    >>> images_from_kinematics(kin, 2, 0.01)["B"] == complex(*kin.velocity("B")[1]) / 0.01
+    True
+    >>> images_from_kinematics(kin, 0, 0.01)
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: position 0 is outside 1…2 (positions are numbered from 1)
     """
     if not mu_v > 0:
         raise VelplanError(f"velocity scale μv must be > 0 (m/s)/mm, not {mu_v}")
+    i = None if position is None else position_index(position, len(kin))
     z = as_complex(kin.velocities) / mu_v
     return {k: (z[:, j] if i is None else complex(z[i, j])) for k, j in kin.point_index.items()}
 
 
-def images_from_plan(res, i: int | None = None) -> dict[str, complex | np.ndarray]:
+def images_from_plan(res, position: int | None = None) -> dict[str, complex | np.ndarray]:
     """Velocity images of every point as constructed on a velocity plan (`velplan.plans.PlanResult`),
-    mm from the pole — exact or drafted, as the plan was built."""
+    mm from the pole — exact or drafted, as the plan was built — at its ``position``-th position
+    (1…; None: (n,) arrays)."""
     if res.kind != "velocity":
         raise VelplanError(f"Zhukovsky's lever is the velocity plan turned by 90°, not the {res.kind} plan")
+    i = None if position is None else position_index(position, len(res.index))
     z = {k: v[:, 0] + 1j * v[:, 1] for k, v in res.images.items() if k in res.plan.images["v"]}
     return {k: (v if i is None else complex(v[i])) for k, v in z.items()}
 
 
-def positions_from_kinematics(kin: Kinematics, i: int | None) -> dict[str, complex | np.ndarray]:
-    """Positions of every point (complex, m) at position ``i`` (None: (n,) arrays)."""
+def positions_from_kinematics(kin: Kinematics, position: int | None) -> dict[str, complex | np.ndarray]:
+    """Positions of every point (complex, m) at position number ``position`` (1…n of ``kin``;
+    None: (n,) arrays).
+
+    >>> import velplan
+    >>> kin = velplan.solve(velplan.load("four-bar"), [0.0, 1.0])
+    >>> positions_from_kinematics(kin, 1)["A"] == complex(*kin.position("A")[0])
+    True
+    """
+    i = None if position is None else position_index(position, len(kin))
     z = as_complex(kin.positions)
     return {k: (z[:, j] if i is None else complex(z[i, j])) for k, j in kin.point_index.items()}
 

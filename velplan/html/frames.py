@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 from velplan.analysis.numbering import position_number
+from velplan.options import Language
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import PlanResult
 from velplan.plans.steps import Intersect, LayOff, Similar
@@ -45,12 +46,12 @@ SMALLEST_FRAME_MM = 110.0
 PHI_DECIMALS = 2
 
 
-def _centre_marks(kin, i: int, view, mu_l: float) -> list:
-    """The instant centres of position ``i`` found by Kennedy lines, on the scheme ``view``."""
-    from velplan.plans.centres import construct_centres
+def _centre_marks(study: Study, i: int, view, mu_l: float) -> list:
+    """The instant centres of position ``i`` found by Kennedy lines (`Study.centres`), on the
+    scheme ``view``."""
     from velplan.views.centres import centre_marks
 
-    return centre_marks(construct_centres(kin, position_number(i), mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
+    return centre_marks(study.centres(position_number(i), mu_l=mu_l), view.at(0.0, 0.0), top_mm=2.0)
 
 
 def scheme_scale(study: Study) -> float:
@@ -60,7 +61,7 @@ def scheme_scale(study: Study) -> float:
     return next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM), eskd_scales()[-1])
 
 
-def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool = False) -> dict:
+def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False) -> dict:
     """The scheme at every position: ``under`` (trajectories, drawn first), ``shared`` records,
     ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``; with
     ``centres``, each position's instant centres found by Kennedy lines marked on it."""
@@ -83,7 +84,7 @@ def scheme_frames(study: Study, lang: str, style: SheetStyle, *, centres: bool =
         idx = sorted(set(reference) | {i})
         view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)), lang=lang,
                               kin=kin.take(idx), fine=fine, single=True, title=False)
-        marks = _centre_marks(kin, i, view, mu_l) if centres else []
+        marks = _centre_marks(study, i, view, mu_l) if centres else []
         per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
     # a record drawn at two positions or more is stored once
     count: dict[str, int] = {}
@@ -178,7 +179,7 @@ def _quantized(x: float, quantum: float, digits: int) -> float | None:
     return round_sig(round(x / quantum) * quantum, digits)
 
 
-def plan_frames(study: Study, kind: str, lang: str, style: SheetStyle, *, scale_v: float,
+def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, scale_v: float,
                 scale_a: float, drafting: Drafting) -> dict:
     """One plan at every position, drawn at μv = `scale_v` ((m/s)/mm) and μa = `scale_a`
     ((m/s²)/mm): its records (each tagged with the construction step that draws it), the
@@ -235,7 +236,7 @@ def plan_frames(study: Study, kind: str, lang: str, style: SheetStyle, *, scale_
     }
 
 
-def _plan_records(res: PlanResult, i: int, lang: str, style: SheetStyle) -> tuple[list, list[str]]:
+def _plan_records(res: PlanResult, i: int, lang: Language, style: SheetStyle) -> tuple[list, list[str]]:
     """The plan at position index `i`: records ``[step, *record]`` (letters with the step that
     fixes their first image) and the sentence of each step, written as by hand."""
     drawings = plan_steps(res, position_number(i), lang=lang)

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
+from velplan.options import Language
 from velplan.plans.drafting import Drafting
 from velplan.render.i18n import LANGUAGES, label
 from velplan.render.style import LINE_TYPES, SheetStyle
@@ -45,7 +46,7 @@ def _stroke_css(style: SheetStyle) -> str:
     return "svg " + "\nsvg ".join(rules)
 
 
-def build_data(study: Study, lang: str, *, scale_v: float | None = None, scale_a: float | None = None,
+def build_data(study: Study, lang: Language, *, scale_v: float | None = None, scale_a: float | None = None,
                drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> dict:
     """Everything the page's script draws and writes, as a JSON-ready dict."""
     style = SheetStyle(language=lang)
@@ -65,7 +66,7 @@ def build_data(study: Study, lang: str, *, scale_v: float | None = None, scale_a
     }
 
 
-def page_html(study: Study, lang: str = "en", *, scale_v: float | None = None, scale_a: float | None = None,
+def page_html(study: Study, lang: Language = "en", *, scale_v: float | None = None, scale_a: float | None = None,
               drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> str:
     """The whole page of `study` in `lang`: a self-contained HTML document.
 
@@ -178,7 +179,7 @@ class Page:
     True
     """
 
-    def __init__(self, study: Study | str | Path, *, positions: int = 72, lang: str = "en",
+    def __init__(self, study: Study | str | Path, *, positions: int = 72, lang: Language = "en",
                  scale_v: float | None = None, scale_a: float | None = None,
                  drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False):
         if not isinstance(study, Study):

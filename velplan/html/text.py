@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from velplan.options import Language
 from velplan.render.i18n import label
 
 #: Words of the page that the drawing labels (`velplan.render.i18n`) do not have.
@@ -42,12 +43,12 @@ _WORDS: dict[str, dict[str, str]] = {
 }
 
 
-def word(key: str, lang: str) -> str:
+def word(key: str, lang: Language) -> str:
     """A word of the page in `lang` (en, ru, uk, zh)."""
     return _WORDS[key][lang]
 
 
-def page_words(lang: str) -> dict[str, str]:
+def page_words(lang: Language) -> dict[str, str]:
     """Every word the page's script writes, in `lang`: its own and the drawing labels."""
     out = {key: word(key, lang) for key in _WORDS}
     for key in ("velocity_plan", "acceleration_plan", "title_mechanism", "position", "step",

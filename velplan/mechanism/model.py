@@ -36,6 +36,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any, ClassVar, Iterator, Literal, TypeVar, Union
 
 from velplan.errors import MechanismError
+from velplan.options import Language
 
 GROUND = "0"
 """Name of the frame (the fixed link)."""
@@ -885,7 +886,7 @@ class Mechanism:
         if self.dynamics is not None:
             object.__setattr__(self, "dynamics", freeze(self.dynamics))
 
-    def name_in(self, lang: str) -> str:
+    def name_in(self, lang: Language) -> str:
         """The mechanism's name in ``lang`` (``[names]``), else its ``name``."""
         return dict(self.names).get(lang) or self.name
 

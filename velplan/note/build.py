@@ -8,11 +8,12 @@ import sys
 from velplan.errors import ScaleError, VelplanError
 from velplan.note.model import Heading, Note
 from velplan.note.text import p
+from velplan.options import Format, Language
 
 PARTS = ("kinematics", "forces", "dynamics")
 
 
-def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: str = "ru", fmt: str = "A1",
+def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "ru", fmt: Format = "A1",
                delta: float | None = None, fields: dict | None = None) -> Note:
     """The explanatory note of ``mech`` (a `Study`, a mechanism, a name or a TOML path).
 

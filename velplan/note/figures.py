@@ -19,7 +19,7 @@ GAP_MM = 6.0
 def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     """PNG of `views` (placed or bare `View` objects) side by side, and the width (mm) it takes
     on the page: its size on the sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
-    from velplan.render.export import _convert
+    from velplan.render.export import svg_to_png
 
     items, x = [], 0.0
     height = max(_view(v).height_mm for v in views)
@@ -30,7 +30,7 @@ def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     width = x - GAP_MM
     printed = min(width, TEXT_WIDTH_MM, width * FIGURE_HEIGHT_MM / height)
     svg = to_svg(Scene(tuple(items), width, height), style)
-    png = _convert("svg2png", svg, dpi=dpi * printed / width, background_color="white")
+    png = svg_to_png(svg, dpi=dpi * printed / width)
     return png, printed
 
 

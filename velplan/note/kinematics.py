@@ -110,10 +110,10 @@ def _results_table(note, res, i: int, kind: str, number_k: int, fig: int) -> Non
 
 def analogues_section(note, study, sheet) -> None:
     """The table of transfer functions of the sheet, positions as rows."""
-    from velplan.views.table import _row_label, sheet_table
+    from velplan.views.table import _row_label
 
     lang = note.lang
-    table = sheet_table(study.plan("velocity"))
+    table = study.table
     mech = study.mechanism
     note.add(Heading(p("sec_analogues", lang), 2), Para.of(p("analogues_text", lang)))
     head = [label("position_short", lang), f"φ, {unit('deg', lang)}"] + [

@@ -12,13 +12,14 @@ from dataclasses import dataclass, field
 
 from velplan.note.blocks import (  # noqa: F401  (the blocks, re-exported)
     Block, Contents, Equation, Figure, Heading, Math, PageBreak, Para, Table, TitlePage)
+from velplan.options import Language
 
 
 @dataclass
 class Note:
     """The note: its language, title and blocks; `figure` and `table` number them."""
 
-    lang: str
+    lang: Language
     title: str
     blocks: list = field(default_factory=list)
     figures: int = 0

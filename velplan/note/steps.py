@@ -10,16 +10,17 @@ from __future__ import annotations
 import numpy as np
 
 from velplan.note.formulas import chain, name, seg, symbol, txt, vec
+from velplan.options import Language
 from velplan.plans import text as T
 from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Perpendicular, Pole, Rotation, Similar
 from velplan.views.base import number
 
 
-def num(x: float, lang: str) -> str:
+def num(x: float, lang: Language) -> str:
     return txt(T.num(float(x), lang))
 
 
-def mm(x: float, lang: str) -> str:
+def mm(x: float, lang: Language) -> str:
     """A length on the plan, 0.1 mm, without its unit (as in the step sentences)."""
     return txt(T.mm(float(x), lang).rsplit(" ", 1)[0])
 
@@ -32,7 +33,7 @@ def letter(plan: str) -> str:
     return "V" if plan == "v" else "a"
 
 
-def step_equations(res, step, i: int, lang: str) -> list[str]:
+def step_equations(res, step, i: int, lang: Language) -> list[str]:
     """TeX equations of ``step`` of the plan ``res`` at its position index ``i``."""
     for kind, fn in ((Pole, _pole), (LayOff, _lay_off), (Line, _line), (Intersect, _intersect),
                      (Similar, _similar)):
@@ -107,7 +108,7 @@ def absolute(res, target: str) -> list[str]:
     return [seg("p" if target[0] == "v" else "π", T.label_of(target))]
 
 
-def _reading(res, comp: str, i: int, lang: str) -> str:
+def _reading(res, comp: str, i: int, lang: Language) -> str:
     """A component read off the plan: its segment times μ."""
     label, value = res.components[comp]
     plan = res.ctx.segment_plans[label]
@@ -124,7 +125,7 @@ def _label_tex(label: str) -> str:
     return " ".join(name(p) for p in re.findall(r"[^\d]\d*", label))
 
 
-def _point_value(res, point: str, target: str, i: int, lang: str) -> str:
+def _point_value(res, point: str, target: str, i: int, lang: Language) -> str:
     k = target[0]
     z = res.values[target][i]
     length = abs(z)
@@ -170,7 +171,7 @@ def _similar(res, step, i, lang):
     return out
 
 
-def rate_equation(res, link: str, i: int, lang: str) -> str | None:
+def rate_equation(res, link: str, i: int, lang: Language) -> str | None:
     """ω (velocity plan) or ε (acceleration plan) of ``link`` with its numbers, TeX."""
     k = res.kind[0]
     fig = res.plan.figures[k].get(link)

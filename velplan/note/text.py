@@ -3,6 +3,7 @@ units come from the sheets themselves: `velplan.plans.text`, `velplan.render.i18
 
 from __future__ import annotations
 
+from velplan.options import Language
 from velplan.plans.text import check_lang
 
 LANG_INDEX = {"en": 0, "ru": 1, "uk": 2, "zh": 3}
@@ -223,11 +224,11 @@ _P: dict[str, tuple[str, str, str, str]] = {
 }
 
 
-def p(key: str, lang: str, *args) -> str:
+def p(key: str, lang: Language, *args) -> str:
     """The phrase ``key`` in ``lang``, formatted with ``args``."""
     return _P[key][LANG_INDEX[check_lang(lang)]].format(*args)
 
 
-def direction(value: float, lang: str) -> str:
+def direction(value: float, lang: Language) -> str:
     """The sense of a rotation: counter-clockwise for a positive value."""
     return p("ccw" if value > 0 else "cw", lang)

@@ -28,6 +28,7 @@ from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND
 from velplan.mechanism.structure import pairs as lower_pairs
 from velplan.mechanism.structure import material_points, point_owners
+from velplan.options import Language
 from velplan.plans import text as T
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.scale import standard_scale
@@ -128,7 +129,7 @@ class Construction:
     def unreached(self) -> tuple[CentreStep, ...]:
         return tuple(s for s in self.steps if s.how == "unreached")
 
-    def describe(self, lang: str = "en") -> list[str]:
+    def describe(self, lang: Language = "en") -> list[str]:
         """One sentence per step, in ``lang`` (en, ru, uk, zh)."""
         return [sentence(s, self, lang) for s in self.steps]
 
@@ -540,7 +541,7 @@ def centre_name(pair: tuple[str, str]) -> str:
     return f"P{a}{b}" if len(a) == 1 and len(b) == 1 else f"P{a},{b}"
 
 
-def sentence(s: CentreStep, con: Construction, lang: str) -> str:
+def sentence(s: CentreStep, con: Construction, lang: Language) -> str:
     """The worked-solution sentence of step ``s`` in ``lang``."""
     lang = T.check_lang(lang)
     name = centre_name(s.pair)

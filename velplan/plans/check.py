@@ -17,9 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number, position_numbers
 from velplan.analysis.extremes import positions
 from velplan.analysis.solver import solve
 from velplan.errors import TableError
+from velplan.io import finite_number
 from velplan.mechanism.model import Mechanism
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import Plan, auto_scale
@@ -99,13 +101,7 @@ def read_table(source: str | Path) -> tuple[list[str], dict[str, list[float | No
             if cell in ("", "-", "—"):
                 vals.append(None)
                 continue
-            try:
-                value = float(cell)
-            except ValueError:
-                raise TableError(f"table {path}: row {name!r}: {cell!r} is not a number") from None
-            if not math.isfinite(value):
-                raise TableError(f"table {path}: row {name!r}: {cell!r} is not a finite number")
-            vals.append(value)
+            vals.append(finite_number(cell, f"table {path}: row {name!r}", error=TableError))
         out[name] = vals
     return head[1:], out
 
@@ -136,7 +132,7 @@ def position_count(head: list[str]) -> int:
         numbers = [int(float(c)) for c in head[:n]]
     except ValueError:
         raise TableError(f"position headers must be numbers 1…N, not {head[:n]}") from None
-    if numbers != list(range(1, n + 1)):
+    if numbers != position_numbers(range(n)).tolist():
         raise TableError(f"position headers must be 1…{n} in order, not {numbers}")
     return n
 
@@ -183,7 +179,7 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
             cause = ""
             if abs(g - ex) > t:
                 cause = causes.get(j) or _entry_cause(mech, phi, j, g, exact[name], t, quantities[name], w1, dev_mm)
-            entries.append(Entry(name, j + 1, float(np.degrees(phi[j]) % 360), g, ex, t, float(dev_mm), cause))
+            entries.append(Entry(name, position_number(j), float(np.degrees(phi[j]) % 360), g, ex, t, float(dev_mm), cause))
     return CheckReport(mech.name, mu, tuple(entries))
 
 
@@ -260,7 +256,7 @@ def _entry_cause(mech, phi, j, g, row, t, q, w1, dev_mm) -> str:
     others = [k for k in range(len(row)) if k != j and abs(g - row[k]) <= t]
     if others:
         k = min(others, key=lambda k: abs(g - row[k]))
-        return f"equals the exact value at position {k + 1} ({np.degrees(phi[k]) % 360:.0f}°): entered in the wrong column?"
+        return f"equals the exact value at position {position_number(k)} ({np.degrees(phi[k]) % 360:.0f}°): entered in the wrong column?"
     fine = np.radians(np.arange(-45.0, 45.0001, 0.25))
     sense = mech.crank.sense
     near = np.abs(_analytic(q, solve(mech, phi[j] + sense * fine), w1) - g) <= t

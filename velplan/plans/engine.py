@@ -21,7 +21,7 @@ from velplan.plans.context import Context, Figure, Lazy
 from velplan.plans.drafting import EXACT, Drafting
 from velplan.plans.scale import check_drawable, check_scale, standard_scale
 from velplan.plans.steps import Intersect, Step
-from velplan.options import PlanKind as Kind
+from velplan.options import Language, PlanKind as Kind
 
 TARGET_MM = {"velocity": 100.0, "acceleration": 120.0}
 """Default length (mm) of the longest vector when the scale is chosen automatically."""
@@ -402,7 +402,7 @@ class PlanResult:
             raise VelplanError(f"position {position} is not in this plan (its positions: {have})")
         return int(hit[0])
 
-    def describe(self, position: int | None = None, lang: str = "en") -> list[str]:
+    def describe(self, position: int | None = None, lang: Language = "en") -> list[str]:
         """The worked solution at position number ``position`` (1…n; the first position of this
         result by default), one sentence per step."""
         T.check_lang(lang)

@@ -14,6 +14,7 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+from velplan.analysis.numbering import position_number
 from velplan.errors import TableError
 from velplan.plans.check import _LINK, _POINT, _decimals, position_count, read_table
 
@@ -92,7 +93,7 @@ def grade_table(table: str | Path, key: str | Path, variant: str, *, tolerance: 
             if g is None:
                 continue
             k = ref[j] if signed else abs(ref[j])
-            entries.append(Graded(name, j + 1, g, k, tol))
+            entries.append(Graded(name, position_number(j), g, k, tol))
     return GradeReport(str(variant), tolerance, tuple(entries))
 
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from velplan.analysis.groups import cis
 from velplan.mechanism.model import GROUND, Guide
+from velplan.options import Language
 from velplan.plans.context import Context, Figure
 from velplan.plans import text as T
 
@@ -39,7 +40,7 @@ class Rotation:
     def symbol(self) -> str:
         return f"V_{self.point}"
 
-    def direction_text(self, lang: str) -> str:
+    def direction_text(self, lang: Language) -> str:
         return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ω{self.link}")
 
 
@@ -67,7 +68,7 @@ class Normal:
     def symbol(self) -> str:
         return f"aⁿ_{self.name or self.point}{self.centre}"
 
-    def direction_text(self, lang: str) -> str:
+    def direction_text(self, lang: Language) -> str:
         return T.phrase("along_to", lang, T.seg(self.point, self.centre), self.point, self.centre)
 
 
@@ -88,7 +89,7 @@ class Tangential:
     def symbol(self) -> str:
         return f"aᵗ_{self.point}{self.centre}"
 
-    def direction_text(self, lang: str) -> str:
+    def direction_text(self, lang: Language) -> str:
         return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ε{self.link}")
 
 
@@ -115,7 +116,7 @@ class Coriolis:
     def symbol(self) -> str:
         return f"aᵏ_{self.name}"
 
-    def direction_text(self, lang: str) -> str:
+    def direction_text(self, lang: Language) -> str:
         return T.phrase("coriolis_dir", lang, f"ω{self.frame.link}")
 
 
@@ -138,7 +139,7 @@ class Perpendicular:
             d *= 1.0 / np.abs(d)
         return d * 1j
 
-    def text(self, lang: str) -> str:
+    def text(self, lang: Language) -> str:
         return T.phrase("perp", lang, T.seg(self.a, self.b))
 
 
@@ -156,7 +157,7 @@ class Parallel:
             return np.full(ctx.n, cis(self.angle))
         return ctx.memo(self, lambda: cis(ctx.theta(self.link) + self.angle))
 
-    def text(self, lang: str) -> str:
+    def text(self, lang: Language) -> str:
         if self.along == "slot":
             along = T.phrase("slot", lang)
         elif self.along.startswith("guide:"):

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import coincident_points, pairs
 from velplan.plans.engine import PlanResult
@@ -28,7 +29,7 @@ class TransferTable:
         """The table as text; ``close`` repeats position 1 at the end, as course works do."""
         n = len(self.phi)
         cols = list(range(n)) + ([0] if close else [])
-        head = "position     " + "".join(f"{i + 1:>8}" for i in cols)
+        head = "position     " + "".join(f"{position_number(i):>8}" for i in cols)
         phi = "φ, deg       " + "".join(f"{math.degrees(self.phi[i]) % 360:>8.1f}" for i in cols)
         lines = [head, phi]
         for name, vals in self.rows.items():
@@ -40,7 +41,7 @@ class TransferTable:
     def csv(self) -> str:
         """quantity,1,2,…,n (the layout `velplan check` reads)."""
         n = len(self.phi)
-        out = ["quantity," + ",".join(str(i + 1) for i in range(n))]
+        out = ["quantity," + ",".join(str(position_number(i)) for i in range(n))]
         for name, vals in self.rows.items():
             out.append(f"{name}," + ",".join(f"{v:.6g}" for v in vals))
         return "\n".join(out) + "\n"

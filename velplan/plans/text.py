@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+from typing import cast
 
 from velplan.errors import VelplanError
+from velplan.options import Language
 
 LANGS = ("en", "ru", "uk", "zh")
 
@@ -112,17 +114,17 @@ _UNITS = {
 }
 
 
-def check_lang(lang: str) -> str:
+def check_lang(lang: str) -> Language:
     if lang not in LANGS:
         raise VelplanError(f"unknown language {lang!r}; known languages: {', '.join(LANGS)}")
-    return lang
+    return cast(Language, lang)
 
 
-def phrase(key: str, lang: str, *args) -> str:
+def phrase(key: str, lang: Language, *args) -> str:
     return _PHRASES[key][check_lang(lang)].format(*args)
 
 
-def num(x: float, lang: str, digits: int = 4) -> str:
+def num(x: float, lang: Language, digits: int = 4) -> str:
     """A number to ``digits`` significant figures, with a decimal comma in ru and uk."""
     if not math.isfinite(x):
         return "—"
@@ -130,7 +132,7 @@ def num(x: float, lang: str, digits: int = 4) -> str:
     return s.replace(".", ",") if lang in ("ru", "uk") else s
 
 
-def mm(x: float, lang: str) -> str:
+def mm(x: float, lang: Language) -> str:
     """A length on the drawing, mm to 0.1 mm."""
     if not math.isfinite(x):
         return "—"
@@ -138,7 +140,7 @@ def mm(x: float, lang: str) -> str:
     return (s.replace(".", ",") if lang in ("ru", "uk") else s) + " " + _UNITS["mm"][lang]
 
 
-def unit(plan: str, lang: str) -> str:
+def unit(plan: str, lang: Language) -> str:
     return _UNITS[plan][lang]
 
 

@@ -24,11 +24,12 @@ from dataclasses import dataclass
 
 from velplan.analysis.solver import special_pair
 from velplan.mechanism.model import GROUND, Triad
+from velplan.options import Language
 from velplan.plans import text as T
 from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Parallel, Perpendicular, Similar, guide_text
 
 
-def _join(lang: str, *sentences: str | None) -> str:
+def _join(lang: Language, *sentences: str | None) -> str:
     """Sentences one after another (no space after a full stop in Chinese)."""
     return ("" if lang == "zh" else " ").join(x for x in sentences if x is not None)
 
@@ -57,7 +58,7 @@ class Said:
     block: str = ""
     """The joint of a block lead: its line is the guide's normal through that joint."""
 
-    def text(self, lang: str) -> str:
+    def text(self, lang: Language) -> str:
         """The sentences said before the step's own (ending in a separator)."""
         out = [T.phrase("triad_special", lang, *self.intro)] if self.intro else []
         if self.joint:

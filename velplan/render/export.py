@@ -107,6 +107,60 @@ def write_pdf(svg_text: str, path: str | os.PathLike) -> Path:
     return write_atomic(path, _convert("svg2pdf", svg_text))
 
 
+def svg_to_png(svg_text: str, *, dpi: float = 150.0, background: str = "white") -> bytes:
+    """The PNG of an SVG document (sized in mm) at ``dpi`` (needs cairosvg)."""
+    if not dpi > 0:
+        raise VelplanError(f"PNG resolution must be positive, got dpi={dpi!r}")
+    return _convert("svg2png", svg_text, dpi=dpi, background_color=background)
+
+
+def svg_to_pdf(svg_text: str) -> bytes:
+    """The vector PDF of an SVG document (sized in mm), of the same size (needs cairosvg)."""
+    return _convert("svg2pdf", svg_text)
+
+
+#: The files a drawing saves to, by suffix (the SVG is always written).
+SUFFIXES = (".svg", ".png", ".pdf", ".dxf")
+
+
+def save_drawing(svg_text: str, path: str | os.PathLike, *, scene=None, style=None, png: bool = False,
+                 pdf: bool = False, dxf: bool = False, dpi: float = 150.0) -> list[Path]:
+    """Save a drawing, its writer chosen by the suffix of ``path`` as matplotlib's ``savefig``
+    chooses: the SVG always (at ``path``, or beside a ``.png``, ``.pdf`` or ``.dxf`` name), and
+    the PNG, PDF and DXF that the suffix or ``png``, ``pdf``, ``dxf`` ask for, beside it. The
+    DXF needs the drawing's ``scene`` and ``style``. Every conversion runs before anything is
+    written, so a failure leaves no file behind. Returns the files written, the SVG first.
+
+    >>> save_drawing("<svg/>", "sheet.dxf")
+    Traceback (most recent call last):
+    ...
+    velplan.errors.VelplanError: cannot write sheet.dxf: a DXF needs the drawing's scene and style
+    """
+    target = Path(path)
+    suffix = target.suffix.lower()
+    png, pdf, dxf = png or suffix == ".png", pdf or suffix == ".pdf", dxf or suffix == ".dxf"
+    if suffix in (".png", ".pdf", ".dxf"):
+        target = target.with_suffix(".svg")
+    if dxf and (scene is None or style is None):
+        raise VelplanError(f"cannot write {target.with_suffix('.dxf')}: a DXF needs the drawing's scene and style")
+    if not target.parent.is_dir():
+        raise VelplanError(f"cannot write {target}: directory {target.parent} does not exist")
+    blobs: list[tuple[bytes | str, Path]] = []
+    if dxf:
+        from velplan.render.dxf import to_dxf
+
+        blobs.append((to_dxf(scene, style), target.with_suffix(".dxf")))
+    if png:
+        blobs.append((svg_to_png(svg_text, dpi=dpi), target.with_suffix(".png")))
+    if pdf:
+        blobs.append((svg_to_pdf(svg_text), target.with_suffix(".pdf")))
+    written = [write_svg(svg_text, target)]
+    blobs = blobs[1:] + blobs[:1] if dxf else blobs  # PNG, PDF, then DXF
+    for data, where in blobs:
+        written.append(write_dxf(data, where) if where.suffix == ".dxf" else write_atomic(where, data))
+    return written
+
+
 def _cairosvg():
     try:
         return importlib.import_module("cairosvg")

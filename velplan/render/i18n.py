@@ -14,10 +14,10 @@ Examples
 from __future__ import annotations
 
 from types import MappingProxyType
-from typing import Mapping
+from typing import Mapping, cast
 
 from velplan.errors import VelplanError
-from velplan.options import LANGUAGES
+from velplan.options import Language, LANGUAGES
 
 
 
@@ -178,7 +178,7 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
 })
 
 
-def check_language(lang: str) -> str:
+def check_language(lang: str) -> Language:
     """Return `lang` if velplan has labels for it, else raise.
 
     Parameters
@@ -194,10 +194,10 @@ def check_language(lang: str) -> str:
     if lang not in LANGUAGES:
         raise VelplanError(
             f"unknown language {lang!r}; known languages: {', '.join(LANGUAGES)}")
-    return lang
+    return cast(Language, lang)
 
 
-def label(key: str, lang: str) -> str:
+def label(key: str, lang: Language) -> str:
     """Return the drawing label `key` in language `lang`.
 
     Parameters

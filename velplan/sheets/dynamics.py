@@ -17,18 +17,21 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
 from velplan.errors import ScaleError
 from velplan.mechanism.model import Mechanism
+from velplan.options import Format, FrameStyle, Language
 from velplan.render.i18n import label
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import MIN_DIAGRAM_MM
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, compose, course_title, fit_table, sheet_request, title_with_scale)
+    ComposedSheet, Request, compose, fit_table, sheet_request, title_with_scale)
 from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, number, ratio_text, scale_mark, unit
@@ -60,16 +63,19 @@ class DynamicsSheet(ComposedSheet):
     wittenbauer: object
 
 
-def default_dynamics_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
+def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the dynamics sheet: the third document of the course work."""
-    return course_title(mech, lang, "dynamic_analysis", 3, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("dynamics", mech, lang, scale)
 
 
-def _panels(d, c, lang: str, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
+def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
     """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`)."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
-    kw = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang, sizes=sizes)
+    kw: dict[str, Any] = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang,
+                              sizes=sizes)
     nm, joule = unit("N·m", lang), unit("J", lang)
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
     loads = [Series(c[f"M_{k}"], "thin", f"M {k}" if k != "gravity" else "M G") for k in d.profile.labels]
@@ -102,12 +108,12 @@ def _panels(d, c, lang: str, length: float, height: float, sizes: DynamicsSizes,
     return views
 
 
-def _n(x: float, lang: str) -> str:
+def _n(x: float, lang: Language) -> str:
     return number(x, lang, 5)
 
 
-def build_dynamics_sheet(mech: Study | Mechanism | str, *, n: int = 12, fmt: str = "A1", lang: str = "ru",
-                         frame_style: str | None = None, info: TitleInfo | None = None,
+def build_dynamics_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, fmt: Format = "A1",
+                         lang: Language = "ru", frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
                          style: SheetStyle | None = None) -> DynamicsSheet:
     """Compose the dynamics sheet of ``mech`` (its ``[dynamics]`` section).
 
@@ -196,7 +202,9 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
 def _place_flywheel(req: Request, views: dict, scales: dict, region) -> float:
     """The flywheel's section beside the table (or, without room there, above it); the top
     of the bottom band, mm."""
-    dims = req.study.dynamics.flywheel.dimensions
+    flywheel = req.study.dynamics.flywheel
+    assert flywheel is not None  # placed only when there is one to size
+    dims = flywheel.dimensions
     band_top = region[3]
     fw = _fit_flywheel(dims, req.lang, _sizes(req), region)
     if fw is None:  # beside the table there is no room: above it

@@ -21,13 +21,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping, Sequence
 
 import numpy as np
 
+from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
+from velplan.forces.agreement import ForceAnalysis
 from velplan.mechanism.model import Mechanism
+from velplan.options import Format, FrameStyle, Language
 from velplan.plans import standard_scale
 from velplan.render.i18n import label
 from velplan.render.scene import Text
@@ -35,13 +39,13 @@ from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import MIN_CRANK_MM, MIN_DIAGRAM_MM
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
+    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
-from velplan.sheets.solver import Trials, largest_fitting, widest_first
+from velplan.sheets.solver import ShrinkingRows, Trials, largest_fitting, widest_first
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, fixed, make_view, ratio_text
 from velplan.views.forces import (
-    ForceSizes, MomentCurve, group_extent_m, group_view, lever_extent, lever_view,
+    ForceSizes, group_extent_m, group_view, lever_extent, lever_view,
     moment_diagram_view, moments_table_view, polygon_extent, polygon_view, slug)
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
@@ -83,7 +87,7 @@ def has_forces(mech: Mechanism) -> bool:
     return bool(mech.masses) or bool(mech.loads)
 
 
-def default_force_positions(fa) -> tuple[int, ...]:
+def default_force_positions(fa: ForceAnalysis) -> tuple[int, ...]:
     """The position of the largest |M_b|; when the useful load does not act there, first the
     position of the largest |M_b| under the load (a working-stroke position)."""
     mb = np.abs(np.asarray(fa.kinetostatics.balancing_moment, float))
@@ -91,19 +95,21 @@ def default_force_positions(fa) -> tuple[int, ...]:
     best = int(np.argmax(mb))
     loads = [f for f in fa.actions.forces if f.source == "load"]
     if not loads:
-        return (best + 1,)
+        return (position_number(best),)
     acting = np.zeros(len(mb), bool)
     for f in loads:
         acting |= np.abs(np.asarray(f.vector)) > 0
     if acting[best] or not acting.any():
-        return (best + 1,)
+        return (position_number(best),)
     working = int(np.argmax(np.where(acting, mb, -1.0)))
-    return (working + 1, best + 1)
+    return (position_number(working), position_number(best))
 
 
-def default_force_title(mech: Mechanism, lang: str, scale: str) -> TitleInfo:
+def default_force_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the force sheet: the second document of the course work."""
-    return course_title(mech, lang, "force_analysis", 2, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("forces", mech, lang, scale)
 
 
 def solving_order(mech: Mechanism) -> tuple[str, ...]:
@@ -111,8 +117,8 @@ def solving_order(mech: Mechanism) -> tuple[str, ...]:
     return tuple(g.name for g in reversed(mech.groups)) + ("crank",)
 
 
-def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
-                      fmt: str = "A1", lang: str = "ru", frame_style: str | None = None,
+def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
+                      fmt: Format = "A1", lang: Language = "ru", frame_style: FrameStyle | None = None,
                       info: TitleInfo | None = None, diagrams: bool | None = None,
                       table: bool = True, style: SheetStyle | None = None) -> ForceSheet:
     """Compose the force-analysis sheet of `mech`.
@@ -177,11 +183,11 @@ def build_force_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequ
                       chosen, study.n)
 
 
-def _check_regular(fa, chosen) -> None:
+def _check_regular(fa: ForceAnalysis, chosen) -> None:
     """Refuse a chosen position where a group has no unique reactions."""
     for k in chosen:
         for name, poly in fa.kinetostatics.polygons.items():
-            if not np.all(np.isfinite(poly.vertices()[k - 1])):
+            if not np.all(np.isfinite(poly.vertices()[position_index(k, len(fa.kinematics))])):
                 raise VelplanError(f"position {k} is singular for the force analysis (group "
                                    f"{name} has no unique reactions there); choose another "
                                    f"with --plans")
@@ -205,32 +211,12 @@ def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
     return band_top
 
 
-def moment_curve(study: Study) -> MomentCurve:
-    """M_b by kinetostatics over a revolution from position 1, on the study's fine turn."""
-    turn = study.turn_forces()
-    rot = study.sense * (turn.kinematics.phi - turn.kinematics.phi[0])
-    mom = np.asarray(turn.balancing_moments["kinetostatics"], float)
-    return MomentCurve(rot, mom, np.asarray(study.forces().kinetostatics.balancing_moment, float),
-                       turn_mean(mom))
-
-
-def turn_mean(moment: np.ndarray) -> float:
-    """Mean (N·m) of a moment sampled over a closed turn (the last sample repeats the first):
-    0 where it is round-off of a moment whose work over the turn is nil."""
-    ok = moment[np.isfinite(moment)]
-    if ok.size < 2:
-        return float("nan")
-    mean = float(np.mean(ok[:-1]))
-    span = max(float(ok.max()), 0.0) - min(float(ok.min()), 0.0)
-    return 0.0 if abs(mean) < 1e-9 * max(span, 1e-12) else mean
-
-
 def _fit_diagram(req: Request, region) -> View:
     """The diagram M_b(φ) in `region`: the longest φ axis that fits, then the tallest
     ordinates (at most half the axis)."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    curve = moment_curve(req.study)
+    curve = req.study.moment_curve
     sizes = req.sizes.diagram
     draw = Trials(lambda length, height: moment_diagram_view(
         curve, length_mm=length, height_mm=height, lang=req.lang, label_mm=sizes.label_mm,
@@ -253,17 +239,17 @@ class _ForceDrawings:
     ``view(kind, position, group, μ)`` of a group (μl, m/mm), a polygon (μF, N/mm) or a lever
     (μv, (m/s)/mm; group None)."""
 
-    def __init__(self, fa, lang: str, fsizes: ForceSizes):
+    def __init__(self, fa: ForceAnalysis, lang: Language, fsizes: ForceSizes):
         self.fa, self.lang, self.fsizes = fa, lang, fsizes
         self.view = Trials(self._draw)
 
     def _draw(self, kind: str, k: int, grp: str | None, mu: float) -> View:
-        fa, kw = self.fa, {"lang": self.lang, "sizes": self.fsizes}
-        if kind == "group":
-            return group_view(fa, grp, k, mu_l=mu, **kw)
-        if kind == "poly":
-            return polygon_view(fa, grp, k, mu_f=mu, **kw)
-        return lever_view(fa, k, mu_v=mu, **kw)
+        fa, lang, sizes = self.fa, self.lang, self.fsizes
+        if kind == "group" and grp is not None:
+            return group_view(fa, grp, k, mu_l=mu, lang=lang, sizes=sizes)
+        if kind == "poly" and grp is not None:
+            return polygon_view(fa, grp, k, mu_f=mu, lang=lang, sizes=sizes)
+        return lever_view(fa, k, mu_v=mu, lang=lang, sizes=sizes)
 
 
 def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
@@ -283,32 +269,30 @@ def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
         if best is None or rows.score() > best.score() + 1e-9:
             best = rows
     if best is None:
-        raise failure
+        raise failure if failure is not None else ScaleError(f"the force views do not fit {req.fmt}")
     return best.place()
 
 
-class _Rows:
+class _Rows(ShrinkingRows):
     """One arrangement of :func:`_fit_top` (``mode``: a group's polygon beside it, "row", or
-    under it, "stack"). Each drawing starts at the largest standard scale that fits the
-    row's height; while a row is too wide, the drawing that makes it so (the groups
-    together, which share μl, or one polygon, or the lever; the widest view first) goes one
-    standard scale smaller. The score is the sum over the views of the logarithm of their
-    drawings' sizes."""
+    under it, "stack"), shrunk by `velplan.sheets.solver.ShrinkingRows`: each drawing starts
+    at the largest standard scale that fits the row's height; the groups together share μl
+    (an ESKD scale), each polygon and each lever has its own standard scale."""
 
     def __init__(self, draw: _ForceDrawings, chosen, region, req: Request, *, mode: str):
         fa = draw.fa
-        self.draw, self.chosen, self.region, self.mode, self.fmt = draw, chosen, region, mode, req.fmt
-        self.gap, self.least = req.gap, MIN_TARGET_MM[req.fmt]
+        self.draw, self.chosen, self.fmt = draw, chosen, req.fmt
+        self.least = MIN_TARGET_MM[req.fmt]
         self.mech = fa.kinetostatics.mechanism
         x0, y0, x1, y1 = region
         count = len(chosen)
         self.head_h = 1.6 * draw.fsizes.title_mm + 2.0
-        self.row_h = (y1 - y0 - req.gap * (count - 1)) / count - self.head_h - req.gap / 2
+        row_h = (y1 - y0 - req.gap * (count - 1)) / count - self.head_h - req.gap / 2
         order = solving_order(self.mech)
-        self.layout = [[[("group", k, grp), ("poly", k, grp)] for grp in order] + [[("lever", k, None)]]
-                       for k in chosen]
-        self.span, self.scale = _spans_and_scales(fa, chosen, order, self.row_h)
-        self.stuck: set = set()
+        layout = [[[("group", k, grp), ("poly", k, grp)] for grp in order] + [[("lever", k, None)]]
+                  for k in chosen]
+        span, scale = _spans_and_scales(fa, chosen, order, row_h)
+        super().__init__(layout, region, req.gap, row_h, mode, span, scale)
 
     def fail(self, why: str) -> ScaleError:
         x0, y0, x1, y1 = self.region
@@ -319,6 +303,10 @@ class _Rows:
             f"drawings of at least {self.least:.0f} mm ({x1 - x0:.0f} × {y1 - y0:.0f} mm free, "
             f"{why}); use fewer --plans or a larger --format")
 
+    def records(self, ref) -> bool:
+        """The polygons' and levers' scales are recorded by view; the groups' is μl."""
+        return ref[0] != "group"
+
     @staticmethod
     def entity(ref):
         """What a drawing's scale belongs to: all the groups, one polygon, one lever."""
@@ -327,15 +315,6 @@ class _Rows:
 
     def view(self, ref) -> View:
         return self.draw.view(*ref, self.scale[self.entity(ref)])
-
-    def unit_size(self, unit) -> tuple[float, float]:
-        vs = [self.view(r) for r in unit]
-        if self.mode == "stack" or len(vs) == 1:
-            return max(v.width_mm for v in vs), sum(v.height_mm for v in vs) + self.gap * (len(vs) - 1)
-        return sum(v.width_mm for v in vs) + self.gap * (len(vs) - 1), max(v.height_mm for v in vs)
-
-    def row_width(self, units) -> float:
-        return sum(self.unit_size(u)[0] for u in units) + self.gap * (len(units) - 1)
 
     def smaller(self, entity) -> float | None:
         """The next smaller drawing of `entity`, or None below the legible size."""
@@ -351,61 +330,6 @@ class _Rows:
         if self.span["groups"] / nxt < self.least or self.mech.crank.length / nxt < MIN_CRANK_MM:
             return None
         return nxt
-
-    def score(self) -> float:
-        return sum(math.log(self.span[self.entity(r)] / self.scale[self.entity(r)])
-                   for units in self.layout for unit in units for r in unit)
-
-    def solve(self, floor: float | None = None) -> bool:
-        """Shrink until every row fits; False as soon as the score falls to `floor`."""
-        if self.row_h < self.least:
-            raise self.fail(f"rows of {max(self.row_h, 0):.0f} mm")
-        for _ in range(400):
-            if floor is not None and self.score() <= floor:
-                return False
-            if not (self.shrink_tall() or self.shrink_wide()):
-                return True
-        raise self.fail("no layout found")
-
-    def shrink_tall(self) -> bool:
-        """The tallest drawing of the first unit taller than a row one scale smaller (one at
-        its least: the next tallest); False when no unit is too tall."""
-        unit = next((u for units in self.layout for u in units
-                     if self.unit_size(u)[1] > self.row_h + 1e-6), None)
-        if unit is None:
-            return False
-        by_height = sorted(unit, key=lambda r: -self.view(r).height_mm)
-        shrink = [r for r in by_height if self.smaller(self.entity(r)) is not None]
-        if not shrink:
-            tall = self.view(by_height[0])
-            raise self.fail(f"{tall.name} is {tall.height_mm:.0f} mm tall")
-        self.scale[self.entity(shrink[0])] = self.smaller(self.entity(shrink[0]))
-        return True
-
-    def shrink_wide(self) -> bool:
-        """The widest drawing of the widest row one scale smaller (kept, and marked stuck,
-        when that does not narrow the row); False when every row fits."""
-        widths = [self.row_width(units) for units in self.layout]
-        worst = int(np.argmax(widths))
-        if widths[worst] <= self.region[2] - self.region[0] + 1e-6:
-            return False
-        share: dict = {}
-        for unit in self.layout[worst]:
-            vs = [self.view(r) for r in unit]
-            for r, v in zip(unit, vs):
-                if self.mode == "row" or v.width_mm >= max(w.width_mm for w in vs) - 1e-9:
-                    share[self.entity(r)] = max(share.get(self.entity(r), 0.0), v.width_mm)
-        candidates = sorted((e for e in share if e not in self.stuck and self.smaller(e) is not None),
-                            key=lambda e: (-share[e], str(e)))
-        if not candidates:
-            raise self.fail(f"a row {widths[worst]:.0f} mm wide")
-        entity = candidates[0]
-        old = self.scale[entity]
-        self.scale[entity] = self.smaller(entity)
-        if self.row_width(self.layout[worst]) > widths[worst] - 0.5:
-            self.scale[entity] = old  # its width is its text's: a smaller drawing gains nothing
-            self.stuck.add(entity)
-        return True
 
     def place(self):
         """(placed views, scales): the rows from the top, the spare height shared out between
@@ -430,20 +354,8 @@ class _Rows:
             y -= height + gap + spare
         return placed, scales
 
-    def place_unit(self, unit, x: float, y: float, placed: dict, scales: dict) -> None:
-        """A unit's views from its upper left corner (x, y): side by side, or stacked."""
-        for ref in unit:
-            v = self.view(ref)
-            placed[v.name] = v.at(x, y - v.height_mm)
-            if ref[0] != "group":
-                scales[v.name] = self.scale[self.entity(ref)]
-            if self.mode == "stack":
-                y -= v.height_mm + self.gap
-            else:
-                x += v.width_mm + self.gap
 
-
-def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
+def _spans_and_scales(fa: ForceAnalysis, chosen, order, row_h: float) -> tuple[dict, dict]:
     """The drawings' spans (m, N, m/s: the larger side) and their starting scales, each
     drawing as tall as a row (the groups: the largest ESKD scale)."""
     ks = fa.kinetostatics
@@ -461,9 +373,9 @@ def _spans_and_scales(fa, chosen, order, row_h: float) -> tuple[dict, dict]:
     return span, scale
 
 
-def _heading(fa, k: int, lang: str, fsizes: ForceSizes) -> View:
+def _heading(fa: ForceAnalysis, k: int, lang: Language, fsizes: ForceSizes) -> View:
     """The row's heading: the position, its crank angle, and that forces are not to scale."""
-    deg = math.degrees(float(fa.kinematics.phi[k - 1])) % 360.0
+    deg = math.degrees(float(fa.kinematics.phi[position_index(k, len(fa.kinematics))])) % 360.0
     text = (f"{label('position', lang)} {k}: φ = {fixed(deg, lang, 1)}°; "
             f"{label('forces_not_to_scale', lang)}")
     return make_view(f"heading-{k}", [Text((0.0, 0.0), text, "fheading", fsizes.title_mm)],
@@ -474,4 +386,4 @@ force_sheet_text = sheet_text
 """Every text of the force sheet, one per line."""
 
 __all__ = ["ForceSheet", "build_force_sheet", "default_force_positions", "default_force_title",
-           "force_sheet_text", "has_forces", "moment_curve", "solving_order", "slug"]
+           "force_sheet_text", "has_forces", "solving_order", "slug"]

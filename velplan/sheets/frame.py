@@ -22,6 +22,7 @@ from typing import Literal, Mapping
 import shapely
 
 from velplan.errors import VelplanError
+from velplan.options import Language
 from velplan.render.i18n import check_language, label
 from velplan.render.layout import fit_text
 from velplan.render.scene import Bounds, Polygon, Polyline, Primitive, Scene, Text
@@ -207,7 +208,7 @@ _ESKD_CAPTIONS: tuple[tuple[str, Bounds], ...] = (
 )
 
 
-def _eskd_values(info: TitleInfo, lang: str) -> tuple[tuple[str, Bounds, float, str], ...]:
+def _eskd_values(info: TitleInfo, lang: Language) -> tuple[tuple[str, Bounds, float, str], ...]:
     """(text, local cell, preferred height mm, anchor) of the filled-in graphs."""
     return (
         (info.designation, (65, 40, 185, 55), 7.0, "middle"),
@@ -231,7 +232,7 @@ def _shift(cell: Bounds, origin: tuple[float, float]) -> Bounds:
     return (cell[0] + x, cell[1] + y, cell[2] + x, cell[3] + y)
 
 
-def _eskd_block(info: TitleInfo, origin: tuple[float, float], lang: str):
+def _eskd_block(info: TitleInfo, origin: tuple[float, float], lang: Language):
     x, y = origin
     items: list[Primitive] = [_rect((x, y, x + 185.0, y + 55.0), "title", "thick")]
     items += [Polyline([(x + x0, y + y0), (x + x1, y + y1)], "title", line)
@@ -261,7 +262,7 @@ _ISO_CELLS: tuple[tuple[str, Bounds, float, str], ...] = (
 _ISO_CAPTION_MM = 1.8
 
 
-def _iso_block(info: TitleInfo, origin: tuple[float, float], lang: str):
+def _iso_block(info: TitleInfo, origin: tuple[float, float], lang: Language):
     x, y = origin
     items: list[Primitive] = []
     for key, cell, size, field in _ISO_CELLS:
@@ -277,7 +278,7 @@ def _iso_block(info: TitleInfo, origin: tuple[float, float], lang: str):
 
 
 def title_block(info: TitleInfo, fmt: FormatName | SheetFormat = "A1", *,
-                frame_style: FrameStyle = "eskd", lang: str = "ru") -> tuple[Primitive, ...]:
+                frame_style: FrameStyle = "eskd", lang: Language = "ru") -> tuple[Primitive, ...]:
     """The title block's lines and texts, layer ``"title"``, in the frame's corner.
 
     Parameters
@@ -302,7 +303,7 @@ def title_block(info: TitleInfo, fmt: FormatName | SheetFormat = "A1", *,
 
 
 def sheet_scene(info: TitleInfo, fmt: FormatName | SheetFormat = "A1", *,
-                frame_style: FrameStyle = "eskd", lang: str = "ru") -> Scene:
+                frame_style: FrameStyle = "eskd", lang: Language = "ru") -> Scene:
     """A blank sheet: trim line, frame and filled title block, ready to :meth:`Scene.extend`."""
     f = sheet_format(fmt)
     return Scene(frame(f) + title_block(info, f, frame_style=frame_style, lang=lang),

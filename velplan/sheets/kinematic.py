@@ -23,31 +23,32 @@ from __future__ import annotations
 import math
 from itertools import islice
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping, Sequence
 
 import numpy as np
 import shapely
 
-from velplan.analysis.numbering import position_index
+from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
-from velplan.options import KINEMATIC_SHEET_KINDS, Format, SheetKind
+from velplan.options import Format, FrameStyle, KINEMATIC_SHEET_KINDS, Language, PlanKind, SheetKind
 from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, write_outputs
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, course_title, fill_bottom_band, fit_table,
+    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import diagram_view
+from velplan.views.diagram import Arrangement, diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import extent_mm, plan_view
-from velplan.views.table import sheet_table, table_view
+from velplan.views.table import table_view
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
 """The plan kinds of the kinematic sheet."""
@@ -116,13 +117,15 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
         quarter = (lo + hi) / 2.0
         best = max(range(lo, hi),
                    key=lambda i: (round(scores[i], 6), -abs(i - quarter), -i))
-        picks.append(best + 1)
+        picks.append(position_number(best))
     return tuple(picks)
 
 
-def default_title(mech, lang: str, fmt: str, scale: str, frame_style: str) -> TitleInfo:
+def default_title(mech, lang: Language, fmt: str, scale: str, frame_style: str) -> TitleInfo:
     """Title block of the kinematic sheet: the first document of the course work."""
-    return course_title(mech, lang, "kinematic_analysis", 1, scale)
+    from velplan.sheets.kinds import default_title_of
+
+    return default_title_of("both", mech, lang, scale)
 
 
 class _Drawings:
@@ -145,20 +148,20 @@ class _Drawings:
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
                               extreme=study.other_extreme, bold=self.bold)
 
-    def _plan(self, kind: str, number: int, mu: float):
+    def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
         res = self.req.study.plan(kind).at_scale(mu)
         return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan)
 
-    def _diagrams(self, arrangement: str, length: float, height: float) -> View:
+    def _diagrams(self, arrangement: Arrangement, length: float, height: float) -> View:
         study = self.req.study
         return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
                             omega=study.mechanism.crank.omega, arrangement=arrangement,
                             sizes=self.req.sizes.diagram)
 
 
-def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[int] | None = None,
-                kind: SheetKind = "both", fmt: Format = "A1", lang: str = "ru",
-                frame_style: str | None = None, info: TitleInfo | None = None,
+def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
+                kind: SheetKind = "both", fmt: Format = "A1", lang: Language = "ru",
+                frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
                 style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
                 scale_per_plan: bool = False) -> Sheet:
@@ -276,7 +279,7 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
     study = req.study
     tview = None
     if table:
-        data = sheet_table(study.plan("velocity"))
+        data = study.table
         tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
                                                   title_mm=req.sizes.table_title),
                           req, what=f"table of transfer functions ({study.n} positions)")
@@ -392,14 +395,13 @@ def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
 
 
 def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> list:
-    """The instant centres of the chosen positions, on the scheme."""
-    from velplan.plans.centres import construct_centres
+    """The instant centres of the chosen positions (`Study.centres`), on the scheme."""
     from velplan.views.centres import centre_marks
 
-    kin = study.kinematics
-    items = []
+    valid = study.kinematics.valid
+    items: list = []
     for k in centres:
-        con = construct_centres(kin, k, mu_l=mu_l) if kin.valid[k - 1] else None
+        con = study.centres(k, mu_l=mu_l) if valid[position_index(k, study.n)] else None
         tag = f" ({k})" if len(centres) > 1 else ""
         items += centre_marks(con, scheme, tag=tag) if con else ()
     return items
@@ -574,7 +576,7 @@ def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
         res = study.plan(kd)
         ew, eh = extent_mm(res, k)
         mu = standard_scale(res.scale * max(ew / (cw - 24), eh / (ch - 38), 1e-9))
-        worst = min(worst, _peak(res, k - 1) / mu)
+        worst = min(worst, _peak(res, position_index(k, len(res.kin))) / mu)
     return worst
 
 

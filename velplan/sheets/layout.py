@@ -12,7 +12,6 @@ from typing import Mapping
 import shapely
 
 from velplan.errors import ScaleError, VelplanError, deprecated
-from velplan.io import write_atomic
 from velplan.sheets.frame import free_area, frame_bounds, title_block_bounds
 from velplan.views.base import PlacedView
 from velplan.views.diagram import DiagramSizes
@@ -72,39 +71,29 @@ class SheetOutput:
 
         return to_svg(self.scene, self.style, precision=precision)
 
-    def save(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
+    def save(self, path: str | os.PathLike, *, png: bool = False, pdf: bool = False, dxf: bool = False,
              dpi: float = 150.0) -> list[Path]:
-        """Save the SVG to `path` (and a PNG / PDF beside it), atomically; returns the files.
+        """Save the sheet, the writer chosen by the suffix of `path`: the SVG (always), and the
+        PNG, PDF or DXF of a ``.png``, ``.pdf`` or ``.dxf`` name (or asked for) beside it,
+        atomically; returns the files written, the SVG first.
 
         Conversions run before anything is written, so a failure leaves no file behind.
         """
-        return write_outputs(self.svg(), path, png=png, pdf=pdf, dpi=dpi)
+        from velplan.render.export import save_drawing
+
+        return save_drawing(self.svg(), path, scene=self.scene, style=self.style, png=png, pdf=pdf,
+                            dxf=dxf, dpi=dpi)
 
     write = deprecated(save, "SheetOutput.write", "SheetOutput.save")
 
 
 def write_outputs(svg: str, path: str | os.PathLike, *, png: bool = False, pdf: bool = False,
                   dpi: float = 150.0) -> list[Path]:
-    """Write an SVG document to `path` and, when asked, its PNG and PDF beside it."""
-    from velplan.render import export
+    """Write an SVG document to `path` and, when asked, its PNG and PDF beside it
+    (`velplan.render.export.save_drawing`)."""
+    from velplan.render.export import save_drawing
 
-    target = Path(path)
-    if target.suffix.lower() in (".png", ".pdf"):
-        png = png or target.suffix.lower() == ".png"
-        pdf = pdf or target.suffix.lower() == ".pdf"
-        target = target.with_suffix(".svg")
-    if not target.parent.is_dir():
-        raise VelplanError(f"cannot write {target}: directory {target.parent} does not exist")
-    blobs: list[tuple[bytes, Path]] = []
-    if png:
-        blobs.append((export._convert("svg2png", svg, dpi=dpi, background_color="white"),
-                      target.with_suffix(".png")))
-    if pdf:
-        blobs.append((export._convert("svg2pdf", svg), target.with_suffix(".pdf")))
-    written = [export.write_svg(svg, target)]
-    for data, where in blobs:
-        written.append(write_atomic(where, data))
-    return written
+    return save_drawing(svg, path, png=png, pdf=pdf, dpi=dpi)
 
 
 def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) -> None:

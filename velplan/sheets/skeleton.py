@@ -14,15 +14,14 @@ Examples
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Callable, Iterable, Mapping, Sequence
-
-import numpy as np
 
 from velplan.analysis.numbering import position_index
 from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
+from velplan.options import Format, FrameStyle, Language
 from velplan.render.i18n import check_language, label
 from velplan.render.scene import Bounds, Scene, Text
 from velplan.render.style import SheetStyle
@@ -57,7 +56,7 @@ class ComposedSheet(SheetOutput):
     views: Mapping[str, PlacedView]
     scales: Mapping[str, float]
     fmt: str
-    lang: str
+    lang: Language
     frame_style: str
     style: SheetStyle
     info: TitleInfo
@@ -70,7 +69,7 @@ class Request:
 
     study: Study
     fmt: str
-    lang: str
+    lang: Language
     frame_style: str
     style: SheetStyle
     sizes: Sizes
@@ -92,8 +91,8 @@ class Request:
         return self.area[2] - self.area[0]
 
 
-def sheet_request(mech: Study | Mechanism | str, *, n: int = 12, fmt: str = "A1",
-                  lang: str = "ru", frame_style: str | None = None,
+def sheet_request(mech: Study | Mechanism | str | Path, *, n: int = 12, fmt: Format = "A1",
+                  lang: Language = "ru", frame_style: FrameStyle | None = None,
                   style: SheetStyle | None = None, assembled: bool = True) -> Request:
     """Check a sheet's options and study `mech` (a study passes through).
 
@@ -122,11 +121,7 @@ def sheet_request(mech: Study | Mechanism | str, *, n: int = 12, fmt: str = "A1"
 def _check_assembled(study: Study) -> None:
     if study.n < 3:
         raise VelplanError(f"a sheet needs at least 3 positions, not {study.n}")
-    kin = study.kinematics
-    bad = np.flatnonzero(~kin.valid)
-    if bad.size:
-        raise VelplanError(f"{study.mechanism.name} cannot be assembled at position {bad[0] + 1} "
-                           f"(crank angle {math.degrees(kin.phi[bad[0]]):.6g}°)")
+    study.require_assembled()
 
 
 def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
@@ -191,7 +186,7 @@ def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_
     return max(band_top, fy0 + dview.height_mm), dview
 
 
-def course_title(mech: Mechanism, lang: str, what: str, number: int, scale: str) -> TitleInfo:
+def course_title(mech: Mechanism, lang: Language, what: str, number: int, scale: str) -> TitleInfo:
     """The title block of document `number` of a course work: `what` (a label key) of the
     mechanism, its designation and scale; no date (velplan never reads the clock)."""
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"

@@ -18,6 +18,7 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
+from velplan.options import Language
 from velplan.render.scene import Arrow, Bounds, Circle, Polygon, Polyline, Primitive
 
 
@@ -160,7 +161,7 @@ def subscript(name: str) -> str:
     return head + name[len(head):].translate(_SUB) if head else name
 
 
-def number(x: float, lang: str, digits: int = 4) -> str:
+def number(x: float, lang: Language, digits: int = 4) -> str:
     """`x` to `digits` significant figures, decimal comma in ru and uk, no exponent."""
     if not math.isfinite(x):
         return "—"
@@ -176,7 +177,7 @@ def number(x: float, lang: str, digits: int = 4) -> str:
     return text.replace(".", ",") if lang in ("ru", "uk") else text
 
 
-def fixed(x: float, lang: str, decimals: int = 3) -> str:
+def fixed(x: float, lang: Language, decimals: int = 3) -> str:
     """`x` with a fixed number of decimals (a table cell), decimal comma in ru and uk."""
     if not math.isfinite(x):
         return "—"
@@ -217,12 +218,12 @@ _UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({
 })
 
 
-def unit(key: str, lang: str) -> str:
+def unit(key: str, lang: Language) -> str:
     """A unit written in the sheet's language (``"(m/s)/mm"`` → ``"(м/с)/мм"`` in ru)."""
     return _UNITS[key][lang]
 
 
-def scale_text(symbol: str, value: float, unit_key: str, lang: str) -> str:
+def scale_text(symbol: str, value: float, unit_key: str, lang: Language) -> str:
     """A scale label as course sheets write it: ``"μv = 0,02 (м/с)/мм"``."""
     return f"{symbol} = {number(value, lang)} {unit(unit_key, lang)}"
 
@@ -238,7 +239,7 @@ def eskd_scales() -> tuple[float, ...]:
     return tuple(0.001 * b / a for a, b in ESKD_RATIOS)
 
 
-def ratio_text(mu_l: float, lang: str = "ru") -> str:
+def ratio_text(mu_l: float, lang: Language = "ru") -> str:
     """The ESKD scale of μl (m/mm) as written in the title block: ``0.0025`` → ``"1:2,5"``
     (a decimal comma in ru and uk, a point otherwise)."""
     comma = lang in ("ru", "uk")
@@ -250,7 +251,7 @@ def ratio_text(mu_l: float, lang: str = "ru") -> str:
     return text.replace(".", ",") if comma else text
 
 
-def scale_mark(mu_l: float, lang: str) -> str:
+def scale_mark(mu_l: float, lang: Language) -> str:
     """The scale as a drawing writes it: ``"М 1:2,5"`` (Cyrillic М in ru, uk), ``"M 1:2.5"``."""
     return f"{'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l, lang)}"
 

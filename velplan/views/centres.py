@@ -14,6 +14,7 @@ import shapely
 
 from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics
+from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift
@@ -40,7 +41,7 @@ _LABELS = {
 }
 
 
-def _t(key: str, lang: str, *args) -> str:
+def _t(key: str, lang: Language, *args) -> str:
     return _LABELS[key][lang].format(*args)
 
 
@@ -73,7 +74,7 @@ def _kennedy_lines(con: Construction, s: CentreStep, to_mm, box, line: str = "co
     return out
 
 
-def _markers(con: Construction, to_mm, box, size: float, lang: str) -> tuple[list, list, list[str]]:
+def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tuple[list, list, list[str]]:
     """Centre marks with their names, and notes for centres at infinity or off the drawing."""
     items, labels, notes = [], [], []
     for s in con.steps:
@@ -94,7 +95,7 @@ def _markers(con: Construction, to_mm, box, size: float, lang: str) -> tuple[lis
     return items, labels, notes
 
 
-def circle_diagram(con: Construction, *, lang: str = "en", radius_mm: float = CIRCLE_MM,
+def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float = CIRCLE_MM,
                    size_mm: float = 3.5) -> list[Primitive]:
     """The circle diagram around (0, 0) mm: links on a circle, a chord per centre (thick:
     obvious, thin: by Kennedy lines, dashed: not reached), and its title."""
@@ -117,7 +118,7 @@ def circle_diagram(con: Construction, *, lang: str = "en", radius_mm: float = CI
     return items
 
 
-def centres_view(con: Construction, *, fine: Kinematics, number: int | None = None, lang: str = "en",
+def centres_view(con: Construction, *, fine: Kinematics, number: int | None = None, lang: Language = "en",
                  sizes: MechanismSizes = MechanismSizes(), emphasis: int | None = None) -> View:
     """The scheme at the construction's position and scale with every centre, the Kennedy lines
     used, notes for the centres at infinity, off the drawing or not reached, and the circle
@@ -170,7 +171,7 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
                      meta={"centres": len(marks), "position": position_number(con.index)})
 
 
-def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: str = "en",
+def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: Language = "en",
                         margin_mm: float = 10.0, sentence_mm: float = 26.0) -> list:
     """One figure per step of the construction (`velplan.views.steps.StepFigure`, kind "c"):
     the centres found so far, the step's centre and Kennedy lines drawn thick, the circle

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
 from velplan.views.base import View, digits_down, make_view, number, subscript, unit
@@ -17,7 +18,7 @@ def _l(a: str, b: str) -> str:
     return f"l{subscript(a)}{subscript(b)}"
 
 
-def data_lines(study, lang: str) -> list[str]:
+def data_lines(study, lang: Language) -> list[str]:
     """The lines of the block (without its title), in the sheet's language."""
     mech = study.mechanism
     m = unit("m", lang)
@@ -62,7 +63,7 @@ def data_lines(study, lang: str) -> list[str]:
     return lines
 
 
-def data_view(study, *, lang: str, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
+def data_view(study, *, lang: Language, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The block: its title, then one text line per `data_lines` entry."""
     lines = data_lines(study, lang)
     items: list[Primitive] = [Text((0.0, 0.0), label("input_data", lang), "data", title_mm)]

@@ -17,8 +17,10 @@ from typing import Literal
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
 from velplan.analysis.chord import Diagrams
 from velplan.errors import ScaleError
+from velplan.options import Language
 from velplan.plans.scale import standard_scale
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
@@ -94,7 +96,7 @@ class DiagramSizes:
     label_mm: float = 2.5
 
 
-def _names(d: Diagrams, lang: str, timed: bool) -> tuple[str, str, str, str, str, str]:
+def _names(d: Diagrams, lang: Language, timed: bool) -> tuple[str, str, str, str, str, str]:
     """Ordinate symbols of s, v, a and their units: velocities and accelerations in time at a
     constant crank speed (``timed``), else the analogues."""
     if d.angular:
@@ -123,7 +125,7 @@ class _Curve:
     title: str
 
 
-def _curve(kind: str, d: Diagrams, sc: DiagramScales, lang: str, timed: bool) -> _Curve:
+def _curve(kind: str, d: Diagrams, sc: DiagramScales, lang: Language, timed: bool) -> _Curve:
     """The data of diagram `kind` ("s", "v" or "a")."""
     sym_s, sym_v, sym_a, u, u_v, u_a = _names(d, lang, timed)
     exact = {"s": d.s_exact, "v": d.v_exact, "a": d.a_exact}[kind]
@@ -159,11 +161,11 @@ def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *,
         x = k * length / n
         items.append(Polyline([(x, -1.0), (x, 1.0)], layer, "thin"))
         if k % every == 0:
-            items.append(Text((x, -1.8), str(k % n + 1), text_layer, tick_mm, "middle", "top"))
+            items.append(Text((x, -1.8), str(position_number(k % n)), text_layer, tick_mm, "middle", "top"))
     return items
 
 
-def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: str, sizes: DiagramSizes,
+def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: DiagramSizes,
           text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
     """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
     ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
@@ -211,7 +213,7 @@ def _pole_rays(kind: str, d: Diagrams, sc: DiagramScales, H: float, size: float)
     return items
 
 
-def _scale_lines(kind: str, d: Diagrams, sc: DiagramScales, c: _Curve, lang: str,
+def _scale_lines(kind: str, d: Diagrams, sc: DiagramScales, c: _Curve, lang: Language,
                  w: float) -> list[str]:
     """The lines written above a diagram: its scales (in time at the crank speed `w` rad/s
     when ≠ 0), and the error of the chord method for V and a."""
@@ -249,7 +251,7 @@ def _tops(d: Diagrams, sc: DiagramScales) -> list[float]:
             _span(d.a_exact, d.a_chord, sc.mu_a)[0]]
 
 
-def _legend(x: float, y: float, lang: str, size: float) -> list[Primitive]:
+def _legend(x: float, y: float, lang: Language, size: float) -> list[Primitive]:
     return [Polyline([(x, y), (x + 10.0, y)], "diagram", "thick"),
             Text((x + 12.0, y), label("chord_method", lang), "diagram-labels", size, "start",
                  "middle"),
@@ -259,7 +261,7 @@ def _legend(x: float, y: float, lang: str, size: float) -> list[Primitive]:
 
 
 def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40.0,
-                 lang: str = "ru", arrangement: Arrangement = "column",
+                 lang: Language = "ru", arrangement: Arrangement = "column",
                  sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0,
                  omega: float = 0.0) -> View:
     """The three diagrams of `d` as one view.

@@ -18,6 +18,7 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_number
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
@@ -64,7 +65,7 @@ def _ticks(lo: float, hi: float, step: float) -> np.ndarray:
 
 def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycle: float,
                 positions: int, length_mm: float, height_mm: float, title: str,
-                ordinate: str, unit_text: str, lang: str, sizes: DynamicsSizes = DynamicsSizes(),
+                ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = ()
                 ) -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
@@ -154,7 +155,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
 
 
 def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequence[tuple[float, float]], *,
-                     omega_mean: float, delta: float, lang: str, sizes: DynamicsSizes = DynamicsSizes()) -> View:
+                     omega_mean: float, delta: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes()) -> View:
     """Wittenbauer's energy–mass diagram: ΔT against the variable inertia J at the scales of
     ``w`` (a `velplan.dynamics.flywheel.Wittenbauer`), the positions numbered on the curve,
     the tangents at ψ_max and ψ_min to the ΔT axis, the segment kl they cut and J_I from it.
@@ -230,7 +231,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
                                                              "segment_mm": w.segment_drawn_mm})
 
 
-def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = DynamicsSizes(),
+def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                   scale_text: str = "") -> View:
     """The flywheel's axial section at ``scale`` (m per mm): a disc, or a rim on a web and a
     hub, hatched, with its axis and the dimensions ⌀D (⌀D₁, ⌀D₂) and b; mass and inertia.
@@ -291,7 +292,7 @@ def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = Dynam
     return make_view("flywheel", items, pad_mm=2.0, mu=scale, meta={"scale": scale})
 
 
-def bound(x: float, lang: str) -> str:
+def bound(x: float, lang: Language) -> str:
     """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``, ``±2e-11``
     (the sheets' fonts have no superscript minus)."""
     if not (math.isfinite(x) and x > 0):
@@ -305,7 +306,7 @@ def bound(x: float, lang: str) -> str:
     return f"±{m}e{k}"
 
 
-def error_rows(d, lang: str) -> list[tuple[str, str, str]]:
+def error_rows(d, lang: Language) -> list[tuple[str, str, str]]:
     """(quantity, bound, unit) rows of the estimated errors of the main results
     (`velplan.dynamics.Dynamics.errors`)."""
     e = d.errors
@@ -316,14 +317,14 @@ def error_rows(d, lang: str) -> list[tuple[str, str, str]]:
             if k in e and e[k] and not (k == "driving_moment" and (d.run or d.periodic) is not None)]
 
 
-def results_rows(d, w, lang: str, errors: bool = True) -> list[tuple[str, str, str]]:
+def results_rows(d, w, lang: Language, errors: bool = True) -> list[tuple[str, str, str]]:
     """(quantity, value, unit) rows of the dynamics' results, then (``errors``) the estimated
     errors of the main ones; ``w`` the drawn `Wittenbauer` (or None)."""
     rows = _result_rows(d, w, lang)
     return rows + (error_rows(d, lang) if errors else [])
 
 
-def _result_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
+def _result_rows(d, w, lang: Language) -> list[tuple[str, str, str]]:
     deg = unit("deg", lang)
     rads = unit("rad/s", lang)
     if d.run is not None:
@@ -373,7 +374,7 @@ def _result_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
     return rows
 
 
-def results_view(rows: Sequence[tuple[str, str, str]], *, lang: str, size_mm: float = 2.5,
+def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_mm: float = 2.5,
                  title_mm: float = 3.5) -> View:
     """The results as a ruled table of three columns under its title."""
     grid = [[label("quantity", lang), label("value", lang), label("unit", lang)]] + [list(r) for r in rows]

@@ -24,6 +24,7 @@ from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad, kind_entry
 from velplan.mechanism.structure import pairs, point_owners
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
@@ -350,7 +351,7 @@ class MechanismSizes:
 
 
 def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
-                   thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
+                   thick: int = 1, lang: Language = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
                    extreme: Kinematics | None = None, special: bool = False,
                    bold: Sequence[int] = ()) -> View:
@@ -513,7 +514,7 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
     return labels
 
 
-def _title(items: list, thick: int, single: bool, mu_l: float, lang: str,
+def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
            sizes: MechanismSizes) -> list[Text]:
     """The view's title and scale, above `items`."""
     x0, _, _, y1 = bounds_of(items)

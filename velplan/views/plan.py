@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from velplan.options import Language
 from velplan.plans.steps import Intersect, LayOff, Line, Pole, Similar
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
@@ -86,7 +87,7 @@ def _image(res, target: str, i: int) -> complex:
     return complex(res.values[target][i])
 
 
-def plan_steps(res, position: int, *, lang: str = "ru") -> list[StepDrawing]:
+def plan_steps(res, position: int, *, lang: Language = "ru") -> list[StepDrawing]:
     """The plan of `res` at position `position`, step by step, in the plan's mm.
 
     Parameters
@@ -227,7 +228,7 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
     return list(place_labels(texts, obstacles, rings=8))
 
 
-def plan_title(res, number: int, lang: str) -> tuple[str, str]:
+def plan_title(res, number: int, lang: Language) -> tuple[str, str]:
     """(title, scale) lines: ``"План скоростей (пол. 4)"``, ``"μv = 0,02 (м/с)/мм"``."""
     k = _kind(res)
     name = label("velocity_plan" if k == "v" else "acceleration_plan", lang)
@@ -236,7 +237,7 @@ def plan_title(res, number: int, lang: str) -> tuple[str, str]:
             scale_text(symbol, res.scale, unit_key, lang))
 
 
-def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSizes(),
+def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = PlanSizes(),
               title: bool = True) -> View:
     """The plan of `res` at position number `position` as a view.
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, number, subscript, unit
@@ -39,7 +40,7 @@ def readings(res, position: int, precision: float = PRECISION_MM) -> list[tuple[
     return out
 
 
-def readings_view(plans: dict, *, lang: str = "ru", size_mm: float = 2.5, title_mm: float = 3.5) -> View:
+def readings_view(plans: dict, *, lang: Language = "ru", size_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The table for ``plans`` (view name → (PlanResult, position number 1…n)): a row per point, for each
     plan (velocity plans first) the value read off it and its difference from the analytic
     value in per cent ("—" where the vector is shorter than two drafting steps, 1 mm)."""

@@ -18,6 +18,7 @@ from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
+from velplan.options import Language
 from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
 from velplan.render.i18n import label
@@ -43,7 +44,7 @@ class StepFigure:
 
 
 def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResult], position: int, *,
-                 kind: str = "both", lang: str = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
+                 kind: str = "both", lang: Language = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
     """Figures of every construction step of the plans at `position` (1-based).
 
     Parameters
@@ -113,7 +114,7 @@ def readable(sentence: str) -> str:
     return _INDEX.sub(lambda m: digits_down(m.group(1)), text)
 
 
-def partial_plan(res, position: int, k: int, *, full, drawings, lang: str) -> list:
+def partial_plan(res, position: int, k: int, *, full, drawings, lang: Language) -> list:
     """The plan at position number ``position`` as far as construction step ``k`` (1-based),
     in the coordinates of the full plan view ``full``: the step's own vectors and line thick,
     earlier ones thin, the image letters placed so far, and the plan's title. ``drawings`` are

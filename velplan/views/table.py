@@ -14,8 +14,8 @@ import numpy as np
 
 from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import Mechanism
-from velplan.plans.engine import PlanResult
-from velplan.plans.table import TransferTable, table_points, transfer_table
+from velplan.options import Language
+from velplan.plans.table import TransferTable
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
@@ -27,15 +27,7 @@ _PAD = 1.0  # cell padding each side, mm
 _WIDE = 1.3
 
 
-
-
-def sheet_table(res: PlanResult) -> TransferTable:
-    """The transfer-function table read off the velocity plan ``res``, with the sheet's rows."""
-    mech = res.plan.mechanism
-    return transfer_table(res, points=table_points(mech, list(res.kin.point_index)))
-
-
-def _row_label(name: str, crank: str, lang: str) -> str:
+def _row_label(name: str, crank: str, lang: Language) -> str:
     w1 = "ω" + digits_down(crank)
     if name.startswith("w_"):
         return f"ω{digits_down(name[2:])}/{w1}"
@@ -72,14 +64,14 @@ def grid_table(grid: list[list[str]], size_mm: float) -> tuple[list[Primitive], 
     return items, total_w, total_h
 
 
-def table_view(table: TransferTable, mech: Mechanism, *, lang: str = "ru",
+def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
                size_mm: float = 2.5, title_mm: float = 3.5, decimals: int = 3) -> View:
     """The table as a view, its title above it.
 
     Parameters
     ----------
     table : TransferTable
-        From :func:`sheet_table` or `velplan.plans.table.transfer_table`.
+        The study's table (`velplan.Study.table`).
     mech : Mechanism
         For the crank's name (ω1 is the crank's ω).
     size_mm, title_mm : float

@@ -30,6 +30,51 @@ position K; ``fpoly-K-G``, ``fpoly-K-G-lines``, ``fpoly-K-G-labels`` for its pol
 ``lever-K``, ``lever-K-forces``, ``lever-K-labels``; ``table``; ``mb-diagram``,
 ``mb-diagram-labels``. A group's name is written in layer names with characters outside
 ``[a-z0-9-]`` replaced by ``-``.
+
+Every view of the slider press's force sheet at position 2, from its study's results:
+
+>>> import velplan
+>>> from velplan.views.forces import *
+>>> study = velplan.Study("slider-press", n=4)
+>>> fa = study.forces()
+>>> group_links(study.mechanism, "2-3"), group_links(study.mechanism, "crank")
+(('2', '3'), ('1',))
+>>> [name for name, _, _ in group_forces(fa, "2-3", 2)]
+['R12τ', 'G2', 'Φ2', 'G3', 'Φ3', 'R12n', 'R03']
+>>> [round(x, 4) for x in group_extent_m(fa, "2-3", 2)]          # m
+[0.05, 0.1936]
+>>> group_view(fa, "2-3", 2, mu_l=0.004, lang="en", sizes=ForceSizes()).name
+'group-2-2-3'
+>>> [round(x, 3) for x in polygon_extent(fa.kinetostatics.polygons["2-3"], 2)]   # N
+[114.219, 409.574]
+>>> polygon_view(fa, "2-3", 2, mu_f=50.0, lang="en").name
+'polygon-2-2-3'
+>>> round(lever_extent(fa, 2)[0], 6), lever_view(fa, 2, mu_v=0.02, lang="en").name
+(0.314159, 'lever-2')
+>>> lever_balance(fa, 0.02)[1].balancing_moment.shape
+(4,)
+>>> moments_table_view(fa, lang="en").name, moment_decimals(fa.kinetostatics.balancing_moment)
+('table', 2)
+>>> curve = study.moment_curve
+>>> isinstance(curve, MomentCurve), moment_diagram_view(curve, lang="en").meta["mu_m"]
+(True, 20.0)
+>>> group_layers(2, "2-3"), lever_layers(2)
+(('fgroup-2-2-3', 'fgroup-2-2-3-forces', 'fgroup-2-2-3-labels'), ('lever-2', 'lever-2-forces', 'lever-2-labels'))
+>>> polygon_layers(2, "2-3")
+('fpoly-2-2-3', 'fpoly-2-2-3-lines', 'fpoly-2-2-3-labels')
+>>> force_text("R12τ"), force_text("MΦ4@B"), slug("Crank A")
+('R₁₂τ', 'F(MΦ₄)', 'crank-a')
+>>> newton("ru"), newton_metre("en"), number_text(1234.5678, "ru")
+('Н', 'N·m', '1235')
+>>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter vectors share a label, mm
+(8.0, 2.5)
+>>> (start, end, text), = place_arrows([((0.0, 0.0), (1.0, 0.0), "F")], 16.0)
+>>> end.tolist(), text.text
+([16.0, 0.0], 'F')
+>>> group_view(fa, "9-9", 2, mu_l=0.004)
+Traceback (most recent call last):
+...
+velplan.errors.VelplanError: slider-press has no group '9-9'; its groups: 2-3, crank
 """
 
 from velplan.views.forces.arrows import place_arrows

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import bounds_of, digits_down
@@ -73,17 +74,17 @@ def force_text(name: str) -> str:
     return digits_down(name)
 
 
-def newton(lang: str) -> str:
+def newton(lang: Language) -> str:
     """The unit N as written in `lang`."""
     return label("unit_newton", lang)
 
 
-def newton_metre(lang: str) -> str:
+def newton_metre(lang: Language) -> str:
     """The unit N·m as written in `lang`."""
     return label("unit_newton_metre", lang)
 
 
-def number_text(x: float, lang: str) -> str:
+def number_text(x: float, lang: Language) -> str:
     """A scale value as written (``0.25`` → ``"0,25"`` in ru)."""
     return _num(x, lang)
 

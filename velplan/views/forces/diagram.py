@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.forces.curve import MomentCurve
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, scale_text, unit
@@ -18,20 +19,8 @@ from velplan.views.forces.common import newton_metre
 LAYER, TEXT_LAYER = "mb-diagram", "mb-diagram-labels"
 
 
-@dataclass(frozen=True)
-class MomentCurve:
-    """M_b over a revolution from position 1: turn angles (rad, 0…2π) and moments (N·m) of a
-    fine grid, the values at the n positions, and the mean over the turn (N·m; 0 where its
-    work over the turn is round-off, NaN with fewer than two finite values)."""
-
-    turn: np.ndarray
-    moment: np.ndarray
-    at_positions: np.ndarray
-    mean: float
-
-
 def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
-                        height_mm: float = 60.0, lang: str = "ru",
+                        height_mm: float = 60.0, lang: Language = "ru",
                         label_mm: float = 2.5, title_mm: float = 3.5) -> View:
     """The diagram M_b(φ) over a revolution: the curve (thick), the n positions marked on
     the φ axis with their values as dots, the mean as a dash-dot line, the scales.
@@ -78,7 +67,7 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
                      meta={"mu_m": mu_m, "mu_phi": mu_phi, "mean": mean})
 
 
-def _mean_line(y: float, mean: float, length: float, lang: str, size: float) -> list[Primitive]:
+def _mean_line(y: float, mean: float, length: float, lang: Language, size: float) -> list[Primitive]:
     """The mean `mean` (N·m) as a dash-dot line at height `y` (mm) and its value, written
     above a mean over the axis, below one under it (clear of the axis's φ)."""
     at, v_anchor = (y + 1.0, "baseline") if y >= 0 else (min(y - 1.0, -1.0 - size - 1.0), "top")

@@ -10,8 +10,11 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_index
+from velplan.errors import VelplanError
+from velplan.forces.agreement import ForceAnalysis
 from velplan.forces.kinetostatics import reaction_label
 from velplan.mechanism.structure import material_points, pairs
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
@@ -30,7 +33,7 @@ _SUFFIXES = "τn∥⊥"
 # -- where each force acts ---------------------------------------------------------------
 
 
-def _application_points(fa, i: int) -> dict[str, complex]:
+def _application_points(fa: ForceAnalysis, i: int) -> dict[str, complex]:
     """Label of every force of the analysis → its point of application at position index
     `i`, m (complex): loads, gravity and inertia at their points, a reaction (either sense)
     at its joint or, for a prismatic pair, where its resultant crosses the guide line."""
@@ -57,7 +60,7 @@ def _point_of(points: dict[str, complex], name: str) -> complex:
     raise KeyError(name)
 
 
-def group_forces(fa, group: str, position: int) -> list[tuple[str, complex, complex]]:
+def group_forces(fa: ForceAnalysis, group: str, position: int) -> list[tuple[str, complex, complex]]:
     """(label, point m, force N) of every force on the group `group` (or ``"crank"``) at
     position number ``position`` (1…n), in the order of its polygon; zero forces left out."""
     i = position_index(position, len(fa.kinematics))
@@ -78,10 +81,14 @@ def group_links(mech, group: str) -> tuple[str, ...]:
     """The links of group `group`, or the crank's link for ``"crank"``."""
     if group == "crank":
         return (mech.crank.link,)
-    return tuple(next(g for g in mech.groups if g.name == group).links)
+    found = next((g for g in mech.groups if g.name == group), None)
+    if found is None:
+        known = ", ".join([g.name for g in mech.groups] + ["crank"])
+        raise VelplanError(f"{mech.name} has no group {group!r}; its groups: {known}")
+    return tuple(found.links)
 
 
-def group_extent_m(fa, group: str, position: int) -> tuple[float, float]:
+def group_extent_m(fa: ForceAnalysis, group: str, position: int) -> tuple[float, float]:
     """Width and height of the group's points and points of application at position number
     ``position`` (1…n), m."""
     mech, kin = fa.kinetostatics.mechanism, fa.kinematics
@@ -97,7 +104,7 @@ def group_extent_m(fa, group: str, position: int) -> tuple[float, float]:
 # -- the view ----------------------------------------------------------------------------
 
 
-def group_view(fa, group: str, position: int, *, mu_l: float, lang: str = "ru",
+def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lang: Language = "ru",
                sizes: ForceSizes = ForceSizes()) -> View:
     """One Assur group (or ``"crank"``, the initial link) with every force on it.
 
@@ -266,7 +273,7 @@ def _draw_forces(sk: Sketch, forces, marks, letters, mm, layer: str, text_layer:
     return labels
 
 
-def _couples(fa, group: str, links, i: int, mm, lang: str) -> list[tuple[str, np.ndarray, float]]:
+def _couples(fa: ForceAnalysis, group: str, links, i: int, mm, lang: Language) -> list[tuple[str, np.ndarray, float]]:
     """(label, centre in content mm, moment N·m) of the couples on the group: the inertia
     moments at the centres of mass, and the balancing moment at the crank's pivot."""
     mech, kin = fa.kinetostatics.mechanism, fa.kinematics

@@ -11,6 +11,8 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_index
+from velplan.forces.agreement import ForceAnalysis
+from velplan.options import Language
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
@@ -27,7 +29,7 @@ from velplan.views.plan import plan_steps
 TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
 
 
-def lever_extent(fa, position: int) -> tuple[float, float]:
+def lever_extent(fa: ForceAnalysis, position: int) -> tuple[float, float]:
     """Width and height of the turned velocity plan at position number ``position`` (1…n) at
     μv = 1 (m/s)/mm, i.e. m/s."""
     v = fa.kinematics.velocities[position_index(position, len(fa.kinematics))]
@@ -37,14 +39,14 @@ def lever_extent(fa, position: int) -> tuple[float, float]:
     return float(span[1]), float(span[0])
 
 
-def lever_balance(fa, mu_v: float):
+def lever_balance(fa: ForceAnalysis, mu_v: float):
     """(velocity plan at μv, lever at μv): the force analysis' plan and Zhukovsky's lever
     (`ForceAnalysis.lever`, every position) read at the scale μv ((m/s)/mm) of a drawing."""
     res = fa.plan.at_scale(mu_v)
     return res, fa.lever.at_scale(res.scale)
 
 
-def lever_view(fa, position: int, *, mu_v: float, lang: str = "ru",
+def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language = "ru",
                sizes: ForceSizes = ForceSizes()) -> View:
     """Zhukovsky's lever at position number ``position`` (1…n): the velocity plan at μv
     turned by 90°.
@@ -140,7 +142,7 @@ def _image_letter(p, names, lines, layer: str, size: float) -> Text:
     return Text(p + away * (1.2 + 0.45 * size), text, layer, size, anchor_of(away), "middle")
 
 
-def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: str,
+def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: Language,
                  sizes: ForceSizes, layer: str, text_layer: str) -> list[Text]:
     """The forces at their images and the balancing force (thick) at the crank tip's image,
     drawn first so that it keeps its place there. Returns their labels."""
@@ -164,7 +166,7 @@ def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: st
 
 
 def _balance_lines(mech, mb_lever: float, mb_kin: float, pct: float, fb: float,
-                   lang: str) -> list[str]:
+                   lang: Language) -> list[str]:
     """The two lines written under the lever: F_b and M_b = F_b·l_OA, then M_b by the lever
     against M_b by kinetostatics and their difference, %."""
     nm = newton_metre(lang)

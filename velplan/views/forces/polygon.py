@@ -9,6 +9,8 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_index
+from velplan.forces.agreement import ForceAnalysis
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.views.base import View, make_view, place_labels, unit
@@ -33,7 +35,7 @@ def polygon_extent(poly, position: int) -> tuple[float, float]:
     return float(np.ptp(z.real)), float(np.ptp(z.imag))
 
 
-def polygon_view(fa, group: str, position: int, *, mu_f: float, lang: str = "ru",
+def polygon_view(fa: ForceAnalysis, group: str, position: int, *, mu_f: float, lang: Language = "ru",
                  sizes: ForceSizes = ForceSizes()) -> View:
     """The force polygon of `group` (or ``"crank"``) at position number ``position`` (1…n), at
     μF (N/mm).
@@ -143,7 +145,7 @@ def _run_label(run, centre, layer: str, size: float) -> Text:
                 layer, size, anchor_of(away), "middle")
 
 
-def _results(ks, group: str, i: int, lang: str) -> list[str]:
+def _results(ks, group: str, i: int, lang: Language) -> list[str]:
     """The results read off the polygon: every reaction of the group, M_b for the crank."""
     results = []
     for rc in ks.reactions.values():

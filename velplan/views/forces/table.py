@@ -7,6 +7,9 @@ import math
 
 import numpy as np
 
+from velplan.analysis.numbering import position_number
+from velplan.forces.agreement import ForceAnalysis
+from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, unit
@@ -24,14 +27,14 @@ def moment_decimals(values) -> int:
     return int(min(4, max(0, 3 - math.floor(math.log10(top)))))
 
 
-def moments_table_view(fa, *, lang: str = "ru", size_mm: float = 2.5,
+def moments_table_view(fa: ForceAnalysis, *, lang: Language = "ru", size_mm: float = 2.5,
                        title_mm: float = 3.5) -> View:
     """The three balancing moments (kinetostatics, lever, power) at every position, N·m."""
     n = len(fa.kinematics)
     moments = fa.balancing_moments
     decimals = moment_decimals(moments["kinetostatics"])
     mb = label("symbol_balancing_moment", lang)
-    head = [label("position", lang)] + [str(k + 1) for k in range(n)]
+    head = [label("position", lang)] + [str(position_number(k)) for k in range(n)]
     rows = [[f"φ, {unit('deg', lang)}"] +
             [fixed(math.degrees(p) % 360.0, lang, 1) for p in fa.kinematics.phi]]
     for key in ("kinetostatics", "lever", "power"):
