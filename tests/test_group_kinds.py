@@ -395,7 +395,6 @@ def test_the_facts_of_each_kind_equal_the_old_switches(name):
         joints = {k: g.output_joint(k) for k in g.links}
         assert (g.solved_point(), g.given_lengths(), g.inner_joints(), g.special_points(), g.construction_points(),
                 joints, g.group_class) == _old_misc(g)
-        assert g.design_parameters() == _old_design_keys(g)
         assert [(k, n) for k, n in g.named_points() if n] == _old_named(g)
     assert coincident_points(mech) == {n: owner[n] for g in mech.groups for n in _old_coincident(g)}
     keys = design_keys(mech)

@@ -124,27 +124,13 @@ class AssurGroup:
     ``coincident_names``, ``inner_joints`` (the joints it solves for), ``link_lines`` (the
     main line of each link that is a line: its frame's two points), ``link_lengths``,
     ``sizes`` and ``offsets`` (the sizes it is given), ``output_slides``, ``output_joint``,
-    ``solved_point``, ``given_lengths``, ``design_parameters`` and ``named_points``.
+    ``solved_point``, ``given_lengths`` and ``named_points``.
     """
 
     group_class: ClassVar[tuple[int, int]] = (2, 2)
     """Assur's class and order."""
     tracked: ClassVar[bool] = False
     """True when its assembly is followed over the turn (no closed form picks the branch)."""
-
-    design_fields: ClassVar[tuple[str, ...]] = ()
-    """Its numbers a design study may vary: field paths (``guide.offset``, ``lengths.0``; a last
-    ``…_deg`` is its radian field in degrees)."""
-
-    def design_parameters(self) -> dict[str, float]:
-        """Each of ``design_fields`` → its value (m, or deg)."""
-        out = {}
-        for path in self.design_fields:
-            value: Any = self
-            for part in path.split("."):
-                value = value[int(part)] if isinstance(value, tuple) else getattr(value, part.removesuffix("_deg"))
-            out[path] = math.degrees(value) if path.endswith("_deg") else float(value)
-        return out
 
     def slide_pair(self, slider: str, guide_link: str) -> str:
         """Name of the prismatic pair of ``slider`` on ``guide_link``."""
@@ -232,7 +218,6 @@ class RRR(Dyad):
     lengths: tuple[float, float]
     branch: int = 1
     kind: GroupKind = field(default="RRR", init=False)
-    design_fields: ClassVar[tuple[str, ...]] = ("lengths.0", "lengths.1")
 
     def joints_in(self) -> tuple[str, ...]:
         return self.joints
@@ -300,7 +285,6 @@ class RRP(Dyad):
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RRP", init=False)
-    design_fields: ClassVar[tuple[str, ...]] = ("length", "guide.offset", "guide.angle_deg")
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.joint, self.guide.through)
@@ -380,7 +364,6 @@ class RPR(Dyad):
     branch: int = 1
     coincident: str | None = None
     kind: GroupKind = field(default="RPR", init=False)
-    design_fields: ClassVar[tuple[str, ...]] = ("offset",)
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.joint, self.pivot)
@@ -435,8 +418,6 @@ class PRP(Dyad):
     guides: tuple[Guide, Guide]
     coincident: tuple[str | None, str | None] = (None, None)
     kind: GroupKind = field(default="PRP", init=False)
-    design_fields: ClassVar[tuple[str, ...]] = ("guides.0.offset", "guides.0.angle_deg",
-                                                "guides.1.offset", "guides.1.angle_deg")
 
     def joints_in(self) -> tuple[str, ...]:
         return (self.guides[0].through, self.guides[1].through)
@@ -498,7 +479,6 @@ class RPP(Dyad):
     coincident: str | None = None
     origin: str | None = None
     kind: GroupKind = field(default="RPP", init=False)
-    design_fields: ClassVar[tuple[str, ...]] = ("guide.offset", "guide.angle_deg", "slot_angle_deg")
 
     @property
     def origin_name(self) -> str:
