@@ -421,28 +421,4 @@ def keys_of(mech: Mechanism, *, speed: bool = False, every: bool = False) -> dic
 
 
 def _group_keys(g, every: bool) -> list[str]:
-    base = f"group.{g.name}"
-    keys = []
-    if isinstance(g, RRR):
-        keys += [f"{base}.lengths.0", f"{base}.lengths.1"]
-    elif isinstance(g, RRP):
-        keys.append(f"{base}.length")
-    elif isinstance(g, RPR):
-        keys.append(f"{base}.offset")
-    guides = ["guide"] if isinstance(g, (RRP, RPP)) else []
-    if isinstance(g, PRP):
-        guides = ["guides.0", "guides.1"]
-    if isinstance(g, Triad) and every:
-        keys += [f"{base}.sides.{j}" for j in range(3)]
-        for j, lead in enumerate(g.leads):
-            if lead.slider:
-                guides.append(f"leads.{j}.guide")
-            else:
-                keys.append(f"{base}.leads.{j}.length")
-    for where in guides:
-        keys += [f"{base}.{where}.offset", f"{base}.{where}.angle_deg"]
-    if isinstance(g, RPP):
-        keys.append(f"{base}.slot_angle_deg")
-    if every and isinstance(g, (RRR, RRP, RPR)):
-        keys.append(f"{base}.branch")
-    return keys
+    return [f"group.{g.name}.{k}" for k in g.design_keys(every)]

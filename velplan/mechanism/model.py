@@ -162,6 +162,12 @@ class AssurGroup:
         """The group with every absolute position it gives moved by (dx, dy) m."""
         return self
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        """The numbers a design study varies, as dotted paths below ``group.NAME`` (m; deg
+        for ``…_deg``) in the file's order; ``every`` adds those solved one variant at a
+        time (an assembly's branch, a triad's sides and leads)."""
+        return ()
+
 
 class Dyad(AssurGroup):
     """A class II group of the second order: two links, three pairs, ``links = (a, b)``."""
@@ -262,6 +268,8 @@ class RRR(Dyad):
     def given_lengths(self) -> tuple[float, ...]:
         return tuple(self.lengths) + (0.0,)
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        return ("lengths.0", "lengths.1") + (("branch",) if every else ())
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point),)
@@ -341,6 +349,8 @@ class RRP(Dyad):
     def given_lengths(self) -> tuple[float, ...]:
         return (self.length,)
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        return ("length", "guide.offset", "guide.angle_deg") + (("branch",) if every else ())
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point), ("coincident", self.coincident))
@@ -399,6 +409,8 @@ class RPR(Dyad):
     def solved_point(self) -> str:
         return self.coincident or self.joint
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        return ("offset",) + (("branch",) if every else ())
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("coincident", self.coincident),)
@@ -457,6 +469,8 @@ class PRP(Dyad):
     def solved_point(self) -> str:
         return self.point
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        return ("guides.0.offset", "guides.0.angle_deg", "guides.1.offset", "guides.1.angle_deg")
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("point", self.point),) + tuple(("coincident", c) for c in self.coincident)
@@ -531,6 +545,8 @@ class RPP(Dyad):
     def solved_point(self) -> str:
         return self.coincident or self.joint
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        return ("guide.offset", "guide.angle_deg", "slot_angle_deg")
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         return (("coincident", self.coincident), ("origin", self.origin_name))
@@ -683,6 +699,13 @@ class Triad(AssurGroup):
     def given_lengths(self) -> tuple[float, ...]:
         return self.sides + tuple(lead.length for lead in self.leads)
 
+    def design_keys(self, every: bool = False) -> tuple[str, ...]:
+        if not every:
+            return ()
+        rods = tuple(f"leads.{j}.length" for j, lead in enumerate(self.leads) if not lead.slider)
+        guides = tuple(f"leads.{j}.guide.{f}" for j, lead in enumerate(self.leads) if lead.slider
+                       for f in ("offset", "angle_deg"))
+        return tuple(f"sides.{j}" for j in range(3)) + rods + guides
 
     def named_points(self) -> tuple[tuple[str, str | None], ...]:
         named = [("joint", j) for j in self.joints] + [("special point", self.special_name)]
