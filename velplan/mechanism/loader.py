@@ -35,7 +35,7 @@ from velplan.options import LANGUAGES
 
 _TOP_KEYS = {
     "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
-    "point", "link", "gravity", "load", "dynamics", "names",
+    "point", "link", "gravity", "load", "dynamics", "names", "joint", "special",
 }
 
 
@@ -108,8 +108,15 @@ loads = deprecated(parse, "velplan.mechanism.loader.loads")
 
 
 def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
-    """Build a `Mechanism` from parsed TOML data (structure and values validated)."""
+    """Build a `Mechanism` from parsed TOML data (structure and values validated); a drawn
+    file (``[[joint]]`` tables) is first decomposed into groups (`velplan.mechanism.drawn`)."""
     _no_unknown(data, _TOP_KEYS, "the file")
+    if "joint" in data:
+        from velplan.mechanism.drawn import explicit
+
+        data = explicit(data, name)
+    elif "special" in data:
+        raise MechanismError("[[special]] belongs to a drawn file (one with [[joint]] tables)")
     for key, most in SIZE_LIMITS.items():
         count = len(data.get(key) or ())
         if count > most:
