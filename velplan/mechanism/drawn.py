@@ -334,7 +334,7 @@ class _Builder:
         else:
             origin, angle = self.frames[link]
             local = (at - origin) * cmath.rect(1.0, -angle)
-            self.points.append({"name": name, "link": link, "along": local.real, "offset": local.imag})
+            self.points.append({"name": name, "link": link, "along": local.real, "offset": self.snap(local.imag)})
         self.mark(name, link, at=at)
 
     def guide(self, link: str, through: complex, u: complex) -> dict:
@@ -344,8 +344,12 @@ class _Builder:
             raise MechanismError(f"link {link} carries a guide but has no joint to place it by")
         ref = names[0]
         origin, angle = self.frames[link]
-        offset = ((through - self.at[ref]) / u).imag
+        offset = self.snap(((through - self.at[ref]) / u).imag)
         return {"link": link, "through": ref, "angle_deg": _deg(cmath.phase(u) - angle), "offset": offset}
+
+    def snap(self, length: float) -> float:
+        """A drawn length, 0 where it is round-off of the drawing's size."""
+        return 0.0 if abs(length) < 1e-12 * self.scale else length
 
     def frame(self, link: str, origin: complex, toward: complex | float) -> None:
         angle = toward if isinstance(toward, float) else cmath.phase(toward - origin)
@@ -383,8 +387,8 @@ def explicit(data: dict, name: str = "mechanism") -> dict:
                              f"links: {_links_text(chain.links)}")
     w = chain.mobility()
     if w != 1:
-        raise MechanismError(f"the joints give W = 3·{len(chain.links)} − 2·{chain.p5} = {w}, not 1 "
-                             f"(links {_links_text(chain.links)}): velplan drives a mechanism of one crank")
+        raise MechanismError(f"the joints give W = {w} (3·{len(chain.links)} − 2·{chain.p5}), not 1, for links "
+                             f"{_links_text(chain.links)}: velplan drives a mechanism of one crank")
     groups = decompose(chain, crank)
     build = _Builder(chain, crank_t, _scale(chain))
     tables = dict(data)
@@ -487,7 +491,7 @@ def _rpr(build: _Builder, oa: _Pair, mid: _Pair, ob: _Pair) -> dict:
     A, O, u = block.at, bar.at, s.u
     w = (A - O) / u
     out = {"kind": "RPR", "links": [block.link, bar.link], "joint": build.known_point(block.name, block.outer),
-           "pivot": build.known_point(bar.name, bar.outer), "offset": w.imag,
+           "pivot": build.known_point(bar.name, bar.outer), "offset": build.snap(w.imag),
            "branch": _sign(w.real, f"joint {block.name} (links {block.link}, {bar.link})")}
     if s.coincident and s.slot == bar.link:
         out["coincident"] = s.coincident

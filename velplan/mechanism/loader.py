@@ -60,6 +60,8 @@ def load(source: str | Path) -> Mechanism:
     `velplan.study.Study` that studies it.
     """
     path = Path(source)
+    if path.suffix.lower() == ".pmks":
+        return load_pmks(path)
     bundled = path.suffix.lower() != ".toml"
     if bundled and str(source) in example_names():
         text = resources.files("velplan.examples").joinpath(f"{source}.toml").read_text("utf-8")
@@ -79,6 +81,20 @@ def load(source: str | Path) -> Mechanism:
             "nor a catalogue name (velplan examples --all) and no such file"
         )
     return parse(text, name=name)
+
+
+def load_pmks(path: str | Path, **options) -> Mechanism:
+    """Load a pyslvs/PMKS expression file (`velplan.mechanism.pmks.drawn_data` gives the
+    ``options``: ``unit`` (default mm), ``pair`` (the input pair), ``omega`` or ``rpm``
+    (default 1 rad/s), ``names``)."""
+    from velplan.mechanism.pmks import drawn_data
+
+    path = Path(path)
+    try:
+        text = path.read_text("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MechanismError(f"cannot read {path}: {exc}") from None
+    return from_dict(drawn_data(text, name=path.stem, **options), name=path.stem)
 
 
 def parse(text: str, *, name: str = "mechanism") -> Mechanism:

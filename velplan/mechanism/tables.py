@@ -136,7 +136,13 @@ def _table_of_tables(v: Any) -> bool:
     return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
 
 
+_ORDER = ("ground", "crank", "joint", "group", "point", "special", "link", "load", "dynamics", "names")
+"""The order of a file's sections."""
+
+
 def _section(lines: list[str], path: str, table: dict) -> None:
+    if not path:
+        table = dict(sorted(table.items(), key=lambda kv: _ORDER.index(kv[0]) if kv[0] in _ORDER else -1))
     plain = {k: v for k, v in table.items() if not isinstance(v, dict) and not _table_of_tables(v)}
     if path and (plain or not table):
         lines += ["", f"[{path}]"]
