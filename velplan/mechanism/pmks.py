@@ -55,7 +55,8 @@ class _Tokens:
         k, v, at = self.peek()
         if (value is not None and v != value) or (kind is not None and k != kind):
             where = "at the end" if at < 0 else f"at character {at}"
-            raise MechanismError(f"malformed expression {where}: expected {value or kind}, found {v!r}")
+            wanted = repr(value) if value else kind
+            raise MechanismError(f"malformed expression {where}: expected {wanted}, found {v!r}")
         self.i += 1
         return v
 
