@@ -81,26 +81,12 @@ def read(args):
 
 
 def pose(mech, deg: float | None = None):
-    """Positions (m, complex) and link angles (rad) at the drawn pose."""
-    import numpy as np
+    """Positions (m, complex) and link angles (rad) at the drawn pose (`velplan.analysis.pose`)."""
+    from velplan.analysis.pose import pose as at_pose
 
-    from velplan.analysis.solver import solve
-
-    if deg is not None:
-        if not math.isfinite(deg):
-            raise VelplanError(f"--pose must be a finite angle in degrees, not {deg}")
-        phi = math.radians(deg)
-    else:
-        phis = np.radians(np.arange(0.0, 360.0, 5.0))
-        k = solve(mech, phis, order=0)
-        cond = k.condition.min(axis=1) if k.condition.shape[1] else np.ones(len(phis))
-        score = np.where(k.valid, cond, -1.0)
-        phi = float(phis[int(np.argmax(score))])
-    k = solve(mech, phi, order=0)
-    if not k.valid[0]:
-        raise VelplanError(f"{mech.name} does not assemble at the crank angle {math.degrees(phi):g}°")
-    at = {n: complex(*k.positions[0, i]) for n, i in k.point_index.items()}
-    return at, {n: float(k.angles[0, i]) for n, i in k.link_index.items()}
+    if deg is not None and not math.isfinite(deg):
+        raise VelplanError(f"--pose must be a finite angle in degrees, not {deg}")
+    return at_pose(mech, deg)
 
 
 def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = None) -> str:
