@@ -130,7 +130,9 @@ class _Chain:
             self.ground[name] = [at.real, at.imag]
             self.add_joint(name, at, ["0"])
             return name
-        return rnd.choice([p for p in self.points if any(p in v for k, v in self.on.items() if k != "0")])
+        slides = {j["name"] for j in self.joints if j.get("kind") == "P"}  # a P joint joins two links
+        return rnd.choice([p for p in self.points if p not in slides and any(p in v for k, v in self.on.items()
+                                                                            if k != "0")])
 
     def near(self, p: str) -> complex:
         return self.points[p] + cmath.rect(self.rnd.uniform(1.0, 2.0), self.rnd.uniform(-math.pi, math.pi))
@@ -174,9 +176,7 @@ class _Chain:
 
     def rpr(self):
         block, bar = self.new_link(), self.new_link()
-        A = self.known()
-        while any(j["name"] == A and j.get("kind") == "RP" for j in self.joints):  # a pin holds one block
-            A = self.known()
+        A = self._pin()
         O = self.known()
         while O == A:
             O = self.known()
@@ -192,6 +192,50 @@ class _Chain:
         self.on.setdefault(bar, []).append(A)
         self.groups.append({"kind": "RPR", "links": [block, bar], "joint": A, "pivot": O, "offset": w.imag,
                             "branch": 1 if w.real > 0 else -1})
+
+    def _pin(self, avoid=()) -> str:
+        """A known point that is a plain R joint (a pin can hold one block)."""
+        p = self.known()
+        while p in avoid or any(j["name"] == p and j.get("kind") == "RP" for j in self.joints):
+            p = self.known()
+        return p
+
+    def _guide_on(self, link: str, through: complex, angle_deg: float) -> dict:
+        """The explicit guide of ``link`` along ``angle_deg`` (absolute) through ``through``."""
+        origin, theta = self._frames()[link] if link != "0" else (0j, 0.0)
+        ref = "O" if link == "0" else next(p for p in self.on[link] if p in self.points)
+        u = cmath.rect(1.0, math.radians(angle_deg))
+        return {"link": link, "through": ref, "angle_deg": angle_deg - math.degrees(theta),
+                "offset": ((through - self.points[ref]) / u).imag}
+
+    def prp(self):
+        a, b = self.new_link(), self.new_link()
+        g2 = self.rnd.choice(["0"] + [k for k in self.on if k not in ("0",) and k in self._frames()])
+        C = complex(self.rnd.uniform(-3, 3), self.rnd.uniform(-3, 3))
+        a1 = self.rnd.uniform(-180, 180)
+        a2 = a1 + self.rnd.choice([-1, 1]) * self.rnd.uniform(30, 150)
+        name = f"C{a}"
+        guides = [self._guide_on("0", C, a1), self._guide_on(g2, C, a2)]
+        self.add_joint(f"P{a}", C, ["0", a], kind="P", angle_deg=a1)
+        self.add_joint(name, C, [g2, a], kind="RP", angle_deg=a2, block=b)
+        self.on.setdefault(b, []).append(name)
+        self.groups.append({"kind": "PRP", "links": [a, b], "point": name, "guides": guides})
+
+    def rpp(self):
+        block, runner = self.new_link(), self.new_link()
+        B = self._pin()
+        pb = self.points[B]
+        ag = self.rnd.uniform(-180, 180)
+        slot = self.rnd.choice([-1, 1]) * self.rnd.uniform(30, 150)
+        u, v = cmath.rect(1.0, math.radians(ag)), cmath.rect(1.0, math.radians(ag + slot))
+        K = pb + self.rnd.uniform(-2, 2) * v  # the slot's line through B meets the guide here
+        for j in self.joints:
+            if j["name"] == B:
+                j["links"] = [runner] + j["links"]
+                j |= {"kind": "RP", "angle_deg": ag + slot, "block": block}
+        self.add_joint(f"K{runner}", K, ["0", runner], kind="P", angle_deg=ag)
+        self.groups.append({"kind": "RPP", "links": [block, runner], "joint": B, "origin": f"K{runner}",
+                            "guide": self._guide_on("0", K, ag), "slot_angle_deg": slot})
 
     def triad(self):
         base = self.new_link()
@@ -226,13 +270,13 @@ class _Chain:
         """Points that groups join at but no group places (a second point on a known link)."""
         placed = {"O", "A"} | set(self.ground)
         for g in self.groups:
-            placed |= {g.get("point")} | set(g.get("joints", ())) if g["kind"] == "triad" else {g.get("point")}
+            placed |= {g.get("point"), g.get("origin")} | (set(g["joints"]) if g["kind"] == "triad" else set())
         out = []
         frames = self._frames()
         for j in self.joints:
             if j["name"] in placed or j["name"] in self.ground:
                 continue
-            link = j["links"][0] if j.get("kind") != "RP" else j["links"][1]
+            link = j["links"][1] if j.get("kind") in ("RP", "P") else j["links"][0]
             origin, angle = frames[link]
             local = (self.points[j["name"]] - origin) * cmath.rect(1.0, -angle)
             out.append({"name": j["name"], "link": link, "along": local.real, "offset": local.imag})
@@ -256,6 +300,14 @@ class _Chain:
                     complex(g["branch"] * math.sqrt(abs(w) ** 2 - g["offset"] ** 2), g["offset"]))
                 frames[g["links"][0]] = (P[g["joint"]], theta)
                 frames[g["links"][1]] = (P[g["pivot"]], theta)
+            elif g["kind"] == "PRP":
+                for k, guide in zip(g["links"], g["guides"]):
+                    theta = 0.0 if guide["link"] == "0" else frames[guide["link"]][1]
+                    frames[k] = (P[g["point"]], theta + math.radians(guide["angle_deg"]))
+            elif g["kind"] == "RPP":
+                ag = math.radians(g["guide"]["angle_deg"])
+                frames[g["links"][0]] = (P[g["joint"]], ag + math.radians(g["slot_angle_deg"]))
+                frames[g["links"][1]] = (P[g["origin"]], ag)
             else:
                 B, C = (P[n] for n in g["joints"][:2])
                 frames[g["base"]] = (B, cmath.phase(C - B))
@@ -270,7 +322,8 @@ class _Chain:
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.lists(st.sampled_from(["RRR", "RRP", "RPR", "triad"]), min_size=1, max_size=4))
+@given(st.integers(0, 2**32 - 1), st.lists(st.sampled_from(["RRR", "RRP", "RPR", "PRP", "RPP", "triad"]),
+                                                  min_size=1, max_size=4))
 def test_random_chains_given_as_joints_decompose_into_their_groups(seed, kinds):
     chain = _Chain(random.Random(seed))
     for kind in kinds:

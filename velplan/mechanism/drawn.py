@@ -122,6 +122,7 @@ class Chain:
         self.marks: dict[str, tuple[complex, str]] = {}  # P joints: a point of the slider
         self.blocks: dict[str, str] = {}  # block link → its RP joint
         names = {j.name for j in joints}
+        used = {k for j in joints for k in j.links}
         order: list[str] = []
         for j in joints:
             at = complex(*j.at)
@@ -134,10 +135,13 @@ class Chain:
                 self.slides.append(_Slide(j.name, j.links[0], j.links[1], cmath.rect(1.0, j.angle), at, j.coincident))
                 self.marks[j.name] = (at, j.links[1])
             else:
-                block = j.block or _fresh(f"b{j.name}", set(order) | names)
-                if block in order or block in self.blocks:
-                    raise MechanismError(f"joint {j.name!r}: block {block!r} is already a link of another joint")
-                order.append(block)
+                block = j.block or _fresh(f"b{j.name}", used | names)
+                if block in self.blocks or block in j.links:
+                    other = self.blocks.get(block, j.name)
+                    raise MechanismError(f"joint {j.name!r}: block {block!r} is already the block of joint {other!r} "
+                                         "or one of its links")
+                if block not in order:
+                    order.append(block)
                 self.blocks[block] = j.name
                 self.hinges[j.name] = (at, j.links[1:] + (block,))
                 self.slides.append(_Slide(j.name, j.links[0], block, cmath.rect(1.0, j.angle), at, j.coincident))
