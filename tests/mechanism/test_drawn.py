@@ -333,7 +333,10 @@ def test_random_chains_given_as_joints_decompose_into_their_groups(seed, kinds):
     assert sorted(map(canonical_key, found.groups)) == sorted(map(canonical_key, made.groups))
     # near the drawn pose, where both assemble on the drawn branch, away from singular positions
     phis = chain.phi + ANGLES[:5] * 0.02
-    k = velplan.solve(made, phis, order=0)
+    try:
+        k = velplan.solve(made, phis, order=0)
+    except MechanismError:  # a triad that comes back in another assembly after a turn
+        assume(False)
     assume(k.valid.all() and k.condition.min() > 0.05)
     assert same_motion(made, found, phis=phis, tol=1e-9) >= len(chain.points)
 
