@@ -152,3 +152,16 @@ links = ["1", "5"]
     assert code == 2 and text == ""
     assert err.startswith("velplan: error: ") and message in err and err.count("\n") == 1
     assert "Traceback" not in err and not out.exists()
+
+
+def test_colours_and_names_survive_pmks_to_drawn_and_back(tmp_path, capsys):
+    src, drawn, again = tmp_path / "j.pmks", tmp_path / "j.toml", tmp_path / "j2.pmks"
+    src.write_text(EXAMPLES["Jansen's linkage (Single)"]["expression"], "utf-8")
+    assert _run(capsys, "convert", src, "--form", "drawn", "--names", "O,A,B,C,D,E,F,G", "-o", drawn)[0] == 0
+    assert _run(capsys, "convert", drawn, "-o", again)[0] == 0
+    first, _ = pmks.parse(src.read_text("utf-8"), names=list("OABCDEFG"))
+    second, _ = pmks.parse(again.read_text("utf-8"))
+    assert [(j.name, j.color, j.links) for j in second] == [(j.name, j.color, j.links) for j in first]
+    assert [j.color for j in second].count("Blue") == 1
+    for a, b in zip(first, second):
+        assert b.at == pytest.approx(a.at, rel=1e-15, abs=1e-18)

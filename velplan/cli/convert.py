@@ -62,22 +62,32 @@ def pmks_options(args) -> dict:
 
 
 def read(args):
-    """The mechanism of ``args.mechanism`` (a .pmks file read with the options) and its form."""
-    from velplan.mechanism.loader import load, load_pmks
+    """The mechanism of ``args.mechanism`` (a .pmks file read with the options), its form, and
+    for a drawn or .pmks input its drawn tables as given (their joints' colours kept)."""
+    from velplan.mechanism.loader import from_dict, load
 
     source = str(args.mechanism)
     if source.lower().endswith(".pmks"):
-        return load_pmks(source, **pmks_options(args)), "pmks"
+        from velplan.mechanism.pmks import drawn_data
+
+        path = Path(source)
+        try:
+            text = path.read_text("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise VelplanError(f"cannot read {path}: {exc}") from None
+        data = drawn_data(text, name=path.stem, **pmks_options(args))
+        return from_dict(dict(data), name=path.stem), "pmks", data
     path = Path(source)
-    form = "explicit"
     if path.suffix.lower() == ".toml" and path.is_file():
         import tomllib
 
         try:
-            form = "drawn" if "joint" in tomllib.loads(path.read_text("utf-8")) else "explicit"
+            data = tomllib.loads(path.read_text("utf-8"))
         except (tomllib.TOMLDecodeError, OSError, UnicodeDecodeError):
-            pass  # load says what is wrong
-    return load(source), form
+            data = {}  # load says what is wrong
+        if "joint" in data:
+            return load(source), "drawn", data
+    return load(source), "explicit", None
 
 
 def pose(mech, deg: float | None = None):
@@ -89,15 +99,17 @@ def pose(mech, deg: float | None = None):
     return at_pose(mech, deg)
 
 
-def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = None) -> str:
-    """``mech`` written in ``form``."""
+def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = None,
+                 drawn: dict | None = None) -> str:
+    """``mech`` written in ``form``; ``drawn``: its drawn tables as read, written as they are
+    (colours kept) unless another pose is asked for."""
     from velplan.mechanism import pmks
     from velplan.mechanism.drawn import drawn_tables
     from velplan.mechanism.tables import dumps, explicit_tables
 
     if form == "explicit":
         return dumps(explicit_tables(mech))
-    tables = drawn_tables(mech, *pose(mech, pose_deg))
+    tables = drawn if drawn is not None and pose_deg is None else drawn_tables(mech, *pose(mech, pose_deg))
     if form == "drawn":
         return dumps(tables)
     joints = list(tables["joint"])
@@ -110,7 +122,7 @@ def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = 
 def run_convert(args) -> int:
     from velplan.cli.common import emit
 
-    mech, form_in = read(args)
+    mech, form_in, drawn = read(args)
     out = args.output
     form = args.form
     if form is None:
@@ -122,5 +134,5 @@ def run_convert(args) -> int:
         raise VelplanError(f"-o {out}: a PMKS expression is written to a .pmks file")
     if out and form != "pmks" and not out.lower().endswith(".toml"):
         raise VelplanError(f"-o {out}: a {form} mechanism file is a .toml file")
-    emit(convert_text(mech, form, unit=args.unit, pose_deg=args.pose), out)
+    emit(convert_text(mech, form, unit=args.unit, pose_deg=args.pose, drawn=drawn), out)
     return 0

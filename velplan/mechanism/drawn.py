@@ -311,6 +311,7 @@ class _Builder:
         self.points: list[dict] = []
         self.defined: set[str] = set()
         self.at: dict[str, complex] = {}
+        self.phi = 0.0  # the drawn crank angle, rad
         self.groups: list[dict] = []
         self.crank = crank
 
