@@ -69,7 +69,7 @@ def test_every_command_takes_a_pmks_file(tmp_path, capsys):
     src.write_text(EXAMPLES["Crank rocker"]["expression"], "utf-8")
     code, text, err = _run(capsys, "info", src)
     assert code == 0 and err == ""
-    assert "W = 3·3 − 2·4 − 0 = 1" in text and "I(0, 1) → II(2, 3)" in text
+    assert "W = 3·3 − 2·4 − 0 = 1" in text and "I(0, 1) → II(2, 3)" in text and "outer pairs P1, P4" in text
     code, text, err = _run(capsys, "analyze", src, "--angles", "0", "--format", "csv")
     assert code == 0 and text.startswith("position,phi_deg")
 

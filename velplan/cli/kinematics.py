@@ -11,7 +11,7 @@ import numpy as np
 from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
-from velplan.mechanism.structure import joints_in, structure
+from velplan.mechanism.structure import pairs, structure
 from velplan.study import Study
 
 
@@ -74,9 +74,10 @@ def run_info(args) -> int:
     out.append(f"moving links n = {st.n_links}, lower pairs p5 = {st.p5}, higher pairs p4 = {st.p4}")
     out.append(f"mobility (Chebyshev): {st.formula()}")
     out.append("groups (Assur's, in solving order):")
-    for g, (name, kind, cls, order, links) in zip(mech.groups, st.groups):
-        outer = ", ".join(dict.fromkeys(joints_in(g)))
-        out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}; attached at {outer}")
+    lower = pairs(mech)
+    for name, kind, cls, order, links in st.groups:
+        outer = ", ".join(p.name for p in lower if p.group == name and not set(p.links) <= set(links))
+        out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}; outer pairs {outer}")
     out.append(f"mechanism of class {st.mechanism_class}; structure: {st.structure_formula(c.link)}")
     out.append("extreme positions (crank angle → value):")
     for q, roots in study.extremes.items():
