@@ -90,7 +90,9 @@ def test_convert_round_trip_through_the_three_forms(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["convert", "{arm}", "--input", "0,1"], "W = 2 ("),
-    (["convert", "{steph}", "--input", "0,1"], "form a class IV group"),
+    (["convert", "{steph}", "--input", "0,1"], "form a class IV group (a closed contour of four links); velplan "
+                                                "solves the dyads of class II and the class III triad; driven by "
+                                                "link 3 (--input 5,4) it decomposes"),
     (["convert", "{bad}"], "malformed expression"),
     (["convert", "{kind}"], "unknown joint kind 'X'"),
     (["convert", "{rocker}", "--input", "0"], "--input must be two joint numbers B,D"),
@@ -165,3 +167,17 @@ def test_colours_and_names_survive_pmks_to_drawn_and_back(tmp_path, capsys):
     assert [j.color for j in second].count("Blue") == 1
     for a, b in zip(first, second):
         assert b.at == pytest.approx(a.at, rel=1e-15, abs=1e-18)
+
+
+def test_stephenson_two_converts_when_driven_as_the_refusal_says(tmp_path, capsys):
+    src, out = tmp_path / "s.pmks", tmp_path / "s.toml"
+    src.write_text(EXAMPLES["Stephenson II"]["expression"], "utf-8")
+    assert _run(capsys, "convert", src, "--input", "5,4", "--omega", "10", "-o", out)[0] == 0
+    mech = velplan.load(out)
+    assert [g.kind for g in mech.groups] == ["triad"]
+    # its rocker does not turn fully, but the drawn pose solves, through every drawn joint
+    joints, _ = pmks.parse(src.read_text("utf-8"))
+    pivot, tip = complex(*joints[5].at), complex(*joints[4].at)
+    k = velplan.solve(mech, math.atan2((tip - pivot).imag, (tip - pivot).real), order=0)
+    for j in joints:
+        assert tuple(k.positions[0, k.point_index[j.name]]) == pytest.approx(j.at, abs=1e-12)

@@ -64,19 +64,14 @@ def pmks_options(args) -> dict:
 def read(args):
     """The mechanism of ``args.mechanism`` (a .pmks file read with the options), its form, and
     for a drawn or .pmks input its drawn tables as given (their joints' colours kept)."""
-    from velplan.mechanism.loader import from_dict, load
+    from velplan.mechanism.loader import load
 
     source = str(args.mechanism)
     if source.lower().endswith(".pmks"):
-        from velplan.mechanism.pmks import drawn_data
+        from velplan.mechanism.loader import read_pmks
 
-        path = Path(source)
-        try:
-            text = path.read_text("utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            raise VelplanError(f"cannot read {path}: {exc}") from None
-        data = drawn_data(text, name=path.stem, **pmks_options(args))
-        return from_dict(dict(data), name=path.stem), "pmks", data
+        mech, data = read_pmks(source, **pmks_options(args))
+        return mech, "pmks", data
     path = Path(source)
     if path.suffix.lower() == ".toml" and path.is_file():
         import tomllib

@@ -87,14 +87,32 @@ def load_pmks(path: str | Path, **options) -> Mechanism:
     """Load a pyslvs/PMKS expression file (`velplan.mechanism.pmks.drawn_data` gives the
     ``options``: ``unit`` (default mm), ``pair`` (the input pair), ``omega`` or ``rpm``
     (default 1 rad/s), ``names``)."""
-    from velplan.mechanism.pmks import drawn_data
+    return read_pmks(path, **options)[0]
+
+
+def read_pmks(path: str | Path, **options) -> tuple[Mechanism, dict]:
+    """The mechanism of a .pmks file and its drawn tables (`load_pmks`). A group velplan does
+    not solve is refused naming an input pair that avoids it, where one does."""
+    from velplan.mechanism.pmks import drawn_data, other_inputs
 
     path = Path(path)
     try:
         text = path.read_text("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise MechanismError(f"cannot read {path}: {exc}") from None
-    return from_dict(drawn_data(text, name=path.stem, **options), name=path.stem)
+    data = drawn_data(text, name=path.stem, **options)
+    try:
+        return from_dict(dict(data), name=path.stem), data
+    except MechanismError as exc:
+        if "velplan solves the dyads" not in str(exc):
+            raise
+        for pair, link in other_inputs(text, options):
+            try:
+                from_dict(drawn_data(text, **(options | {"pair": pair})))
+            except MechanismError:
+                continue
+            raise MechanismError(f"{exc}; driven by link {link} (--input {pair[0]},{pair[1]}) it decomposes") from None
+        raise
 
 
 def parse(text: str, *, name: str = "mechanism") -> Mechanism:

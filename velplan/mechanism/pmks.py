@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 from velplan.errors import MechanismError
 from velplan.mechanism.drawn import FRAME_NAMES, Joint
@@ -227,6 +227,21 @@ def input_pair(joints: Sequence[Joint], pair: tuple[int, int] | None) -> tuple[s
     if jb.kind != "R" or GROUND not in jb.links:
         raise MechanismError(f"--input {b},{d}: joint {jb.name} is not an R joint of the frame; the crank turns about one")
     return shared[0], jb.name
+
+
+def other_inputs(text: str, options: Mapping[str, Any]) -> list[tuple[tuple[int, int], str]]:
+    """Every input pair (B, D) of an expression: a moving link on an R joint B of the frame,
+    and another joint D of that link; with the link."""
+    joints, _ = parse(text, unit=options.get("unit", "mm"), names=options.get("names"))
+    out = []
+    for b, jb in enumerate(joints):
+        if jb.kind != "R" or GROUND not in jb.links:
+            continue
+        for link in (k for k in jb.links if k != GROUND):
+            d = next((i for i, j in enumerate(joints) if i != b and link in j.links), None)
+            if d is not None and (b, d) != options.get("pair"):
+                out.append(((b, d), link))
+    return out
 
 
 def drawn_data(text: str, *, name: str = "mechanism", unit: str = "mm", pair: tuple[int, int] | None = None,
