@@ -110,8 +110,9 @@ def _add_joint(panel: _Panel, j: Mapping) -> None:
         panel.marks.append((j["name"], at))
 
 
-def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en") -> Scene:
-    """The figure of the structural analysis (mm, y up) from the drawn joints of ``mech``."""
+def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True) -> Scene:
+    """The figure of the structural analysis (mm, y up) from the drawn joints of ``mech``;
+    ``title``: with its heading, W and the formula of structure above it."""
     panels = _panels(mech, joints, lang)
     spans = [np.ptp(p.points(), axis=0) for p in panels]
     widest = max(max(float(s[0]), float(s[1])) for s in spans) or 1.0
@@ -138,9 +139,12 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     width = x - GAP_MM + MARGIN_MM
     st = structure(mech)
     top = high + 8.0
-    items += [Text((MARGIN_MM, top + 2.2 * TEXT_MM), label("structural_analysis", lang), "labels", 5.0),
-              Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
-                   f"{st.structure_formula(mech.crank.link)}", "labels", TEXT_MM)]
+    if title:
+        items += [Text((MARGIN_MM, top + 2.2 * TEXT_MM), label("structural_analysis", lang), "labels", 5.0),
+                  Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
+                        f"{st.structure_formula(mech.crank.link)}", "labels", TEXT_MM)]
+    else:
+        top = high - 4 * TEXT_MM + 2.0
     legend = np.array([MARGIN_MM + RING_MM, low - 6.0 - 2 * TEXT_MM * 1.6 - 2 * RING_MM])
     shift_up = MARGIN_MM - (legend[1] - RING_MM)
     items = [_moved(p, shift_up) for p in items]
