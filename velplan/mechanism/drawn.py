@@ -215,13 +215,37 @@ def decompose(chain: Chain, crank: str) -> list[frozenset]:
     return out
 
 
+def _neighbours(chain: Chain, links: set[str]) -> dict[str, set[str]]:
+    """Each of ``links`` → those of ``links`` it shares a joint with."""
+    out: dict[str, set[str]] = {k: set() for k in links}
+    groups = [ls for _, ls in chain.hinges.values()] + [(s.slot, s.slider) for s in chain.slides]
+    for ls in groups:
+        mine = [k for k in ls if k in links]
+        for k in mine:
+            out[k].update(x for x in mine if x != k)
+    return out
+
+
 def _next_group(chain: Chain, left: list[str], known: frozenset) -> frozenset | None:
-    for size in (2, 4):
-        for combo in combinations(left, size):
-            group = frozenset(combo)
-            if chain.freedom(group, known) == 0 and not _smaller(chain, combo, known):
-                return group
+    """The first dyad (in the order of the links), else the first triad (a base link and three
+    of its neighbours) of W = 0 on the known links."""
+    index = {k: i for i, k in enumerate(left)}
+    near = _neighbours(chain, set(left))
+    for i, a in enumerate(left):
+        for b in sorted(near[a], key=index.__getitem__):
+            if index[b] > i and _is_group(chain, (a, b), known):
+                return frozenset((a, b))
+    stars = sorted({tuple(sorted((base, *leads), key=index.__getitem__))
+                    for base in left for leads in combinations(sorted(near[base], key=index.__getitem__), 3)},
+                   key=lambda combo: [index[k] for k in combo])
+    for combo in stars:
+        if _is_group(chain, combo, known):
+            return frozenset(combo)
     return None
+
+
+def _is_group(chain: Chain, combo: tuple, known: frozenset) -> bool:
+    return chain.freedom(frozenset(combo), known) == 0 and not _smaller(chain, combo, known)
 
 
 def _smaller(chain: Chain, combo: tuple, known: frozenset) -> bool:
@@ -230,22 +254,39 @@ def _smaller(chain: Chain, combo: tuple, known: frozenset) -> bool:
                for r in range(1, len(combo)) for part in combinations(combo, r))
 
 
+SEARCH_LIMIT = 20000
+"""Most connected sets of links a refusal looks through for the one to name."""
+
+
+def _connected_sets(chain: Chain, left: list[str], most: int) -> list[tuple[str, ...]]:
+    """Connected sets of 2…``most`` of the links ``left``, smallest first, in the links' order."""
+    index = {k: i for i, k in enumerate(left)}
+    near = _neighbours(chain, set(left))
+    layer = {frozenset((k,)) for k in left}
+    out: list[tuple[str, ...]] = []
+    for _ in range(most - 1):
+        layer = {s | {n} for s in layer for k in s for n in near[k] if n not in s}
+        out += sorted((tuple(sorted(s, key=index.__getitem__)) for s in layer),
+                      key=lambda c: [index[k] for k in c])
+        if len(out) > SEARCH_LIMIT or not layer:
+            break
+    return out
+
+
 def _refuse(chain: Chain, left: list[str], known: frozenset) -> None:
     """Raise the most telling error for links that form no dyad or triad."""
-    most = min(len(left), 8)
-    for size in range(2, most + 1):
-        for combo in combinations(left, size):
-            if chain.freedom(frozenset(combo), known) < 0:
-                raise MechanismError(f"links {_links_text(combo)} form a locked sub-chain (W = "
-                                     f"{chain.freedom(frozenset(combo), known)} on the links before them)")
-    for size in range(4, most + 1):
-        for combo in combinations(left, size):
-            if chain.freedom(frozenset(combo), known) == 0:
-                inner = _inner_count(chain, frozenset(combo), known)
-                kind = "a class IV group (a closed contour of four links)" if size == 4 and inner == 4 \
-                    else f"a group of {size} links of a class above III or an order above 3"
-                raise MechanismError(f"links {_links_text(combo)} form {kind}; velplan solves the dyads of "
-                                     "class II and the class III triad")
+    sets = _connected_sets(chain, left, 8)
+    for combo in sets:
+        w = chain.freedom(frozenset(combo), known)
+        if w < 0:
+            raise MechanismError(f"links {_links_text(combo)} form a locked sub-chain (W = {w} on the links before them)")
+    for combo in sets:
+        if len(combo) >= 4 and chain.freedom(frozenset(combo), known) == 0:
+            inner = _inner_count(chain, frozenset(combo), known)
+            kind = "a class IV group (a closed contour of four links)" if len(combo) == 4 and inner == 4 \
+                else f"a group of {len(combo)} links of a class above III or an order above 3"
+            raise MechanismError(f"links {_links_text(combo)} form {kind}; velplan solves the dyads of "
+                                 "class II and the class III triad")
     raise MechanismError(f"links {_links_text(left)} cannot be split into Assur groups on links "
                          f"{_links_text(sorted(known))}")
 

@@ -498,7 +498,7 @@ def _opt_name(t: dict, key: str) -> str | None:
 
 SHEET_LANGUAGES = LANGUAGES
 """Languages a ``[names]`` table may give (those of the sheets)."""
-SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100}
+SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100, "joint": 400}
 """Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""
 MAGNITUDE = 1e9
 """Largest magnitude of any number in a mechanism file (m, rad/s, rpm, kg, kg·m², °): beyond it
