@@ -14,7 +14,8 @@ import math
 import re
 from typing import Any
 
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Guide, Mechanism, Triad, thaw
+from velplan.errors import MechanismError
+from velplan.mechanism.model import Guide, Mechanism, thaw
 
 
 def meta_tables(mech: Mechanism) -> dict[str, Any]:
@@ -67,38 +68,51 @@ def guide_table(g: Guide) -> dict[str, Any]:
     return {"link": g.link, "through": g.through, "angle_deg": math.degrees(g.angle), "offset": g.offset}
 
 
+def _triad_table(g) -> dict[str, Any]:
+    out = {"base": g.base, "joints": list(g.joints), "sides": list(g.sides), "side": g.side,
+           "leads": [{"link": ld.link, "guide": guide_table(ld.guide)} | (
+               {"coincident": ld.coincident} if ld.coincident else {}) if ld.slider else
+               {"link": ld.link, "joint": ld.joint, "length": ld.length} for ld in g.leads],
+           "assembly": {"phi_deg": math.degrees(g.assembly_phi)} | {j: list(xy) for j, xy in g.assembly}}
+    if g.special:
+        out["special"] = g.special
+    if g.pair is not None:
+        out["pair"] = [g.pair[0] + 1, g.pair[1] + 1]
+    return out
+
+
+def _prp_table(g) -> dict[str, Any]:
+    out = {"links": list(g.links), "point": g.point, "guides": [guide_table(x) for x in g.guides]}
+    if any(g.coincident):
+        out["coincident"] = [c or "" for c in g.coincident]
+    return out
+
+
+def _rpp_table(g) -> dict[str, Any]:
+    out = {"links": list(g.links), "joint": g.joint, "guide": guide_table(g.guide),
+           "slot_angle_deg": math.degrees(g.slot_angle)}
+    return out | ({"origin": g.origin} if g.origin else {})
+
+
+TABLES = {
+    "RRR": lambda g: {"links": list(g.links), "joints": list(g.joints), "point": g.point,
+                      "lengths": list(g.lengths), "branch": g.branch},
+    "RRP": lambda g: {"links": list(g.links), "joint": g.joint, "point": g.point, "length": g.length,
+                      "guide": guide_table(g.guide), "branch": g.branch},
+    "RPR": lambda g: {"links": list(g.links), "joint": g.joint, "pivot": g.pivot, "offset": g.offset,
+                      "branch": g.branch},
+    "PRP": _prp_table,
+    "RPP": _rpp_table,
+    "triad": _triad_table,
+}
+"""Group kind → its ``[[group]]`` table's keys (the loader's inverse)."""
+
+
 def group_table(g) -> dict[str, Any]:
     """One ``[[group]]`` table."""
-    out: dict[str, Any] = {"kind": g.kind, "name": g.name}
-    if isinstance(g, Triad):
-        out |= {"base": g.base, "joints": list(g.joints), "sides": list(g.sides), "side": g.side,
-                "leads": [{"link": ld.link, "guide": guide_table(ld.guide)} | (
-                    {"coincident": ld.coincident} if ld.coincident else {}) if ld.slider else
-                    {"link": ld.link, "joint": ld.joint, "length": ld.length} for ld in g.leads],
-                "assembly": {"phi_deg": math.degrees(g.assembly_phi)} | {j: list(xy) for j, xy in g.assembly}}
-        if g.special:
-            out["special"] = g.special
-        if g.pair is not None:
-            out["pair"] = [g.pair[0] + 1, g.pair[1] + 1]
-        return out
-    out["links"] = list(g.links)
-    if isinstance(g, RRR):
-        out |= {"joints": list(g.joints), "point": g.point, "lengths": list(g.lengths), "branch": g.branch}
-    elif isinstance(g, RRP):
-        out |= {"joint": g.joint, "point": g.point, "length": g.length, "guide": guide_table(g.guide),
-                "branch": g.branch}
-    elif isinstance(g, RPR):
-        out |= {"joint": g.joint, "pivot": g.pivot, "offset": g.offset, "branch": g.branch}
-    elif isinstance(g, PRP):
-        out |= {"point": g.point, "guides": [guide_table(x) for x in g.guides]}
-        if any(g.coincident):
-            out["coincident"] = [c or "" for c in g.coincident]
-    elif isinstance(g, RPP):
-        out |= {"joint": g.joint, "guide": guide_table(g.guide), "slot_angle_deg": math.degrees(g.slot_angle)}
-        if g.origin:
-            out["origin"] = g.origin
-    else:
-        raise TypeError(f"unknown group kind {type(g).__name__}")
+    if g.kind not in TABLES:
+        raise MechanismError(f"group {g.name!r}: kind {g.kind!r} has no table; known kinds: {', '.join(TABLES)}")
+    out: dict[str, Any] = {"kind": g.kind, "name": g.name} | TABLES[g.kind](g)
     co = getattr(g, "coincident", None)
     if isinstance(co, str) and co:
         out["coincident"] = co
