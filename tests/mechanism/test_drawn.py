@@ -226,7 +226,7 @@ class _Chain:
         pb = self.points[B]
         ag = self.rnd.uniform(-180, 180)
         slot = self.rnd.choice([-1, 1]) * self.rnd.uniform(30, 150)
-        u, v = cmath.rect(1.0, math.radians(ag)), cmath.rect(1.0, math.radians(ag + slot))
+        v = cmath.rect(1.0, math.radians(ag + slot))
         K = pb + self.rnd.uniform(-2, 2) * v  # the slot's line through B meets the guide here
         for j in self.joints:
             if j["name"] == B:

@@ -9,7 +9,7 @@ import pytest
 import velplan
 from velplan.cli import main
 from velplan.cli.convert import pose
-from velplan.mechanism.drawn import drawn_tables
+from velplan.mechanism.drawn_write import drawn_tables
 from velplan.mechanism.loader import catalogue_names, example_names
 from velplan.render.scene import Circle, Text
 from velplan.views.structure import structure_view

@@ -99,7 +99,7 @@ def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = 
     """``mech`` written in ``form``; ``drawn``: its drawn tables as read, written as they are
     (colours kept) unless another pose is asked for."""
     from velplan.mechanism import pmks
-    from velplan.mechanism.drawn import drawn_tables
+    from velplan.mechanism.drawn_write import drawn_tables
     from velplan.mechanism.tables import dumps, explicit_tables
 
     if form == "explicit":

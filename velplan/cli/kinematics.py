@@ -109,7 +109,7 @@ def save_structure(mech, path: str, lang: str | None) -> str:
     from velplan.cli.common import default_language
     from velplan.cli.convert import pose
     from velplan.errors import VelplanError
-    from velplan.mechanism.drawn import drawn_tables
+    from velplan.mechanism.drawn_write import drawn_tables
     from velplan.render import export
     from velplan.render.svg import to_svg
     from velplan.views.structure import structure_view

@@ -61,7 +61,7 @@ def structure_section(note, study) -> None:
 def _structure_figure(note, mech) -> None:
     """The initial mechanism and each group drawn apart, their outer pairs ringed."""
     from velplan.analysis.pose import pose
-    from velplan.mechanism.drawn import drawn_tables
+    from velplan.mechanism.drawn_write import drawn_tables
     from velplan.note.figures import views_png
     from velplan.render.i18n import label
     from velplan.views.structure import structure_view

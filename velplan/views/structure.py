@@ -3,7 +3,7 @@ crank, class I) and each Assur group drawn apart, in solving order, at one scale
 pairs of each group marked with a dashed ring; its class, order and kind written under it; the
 mobility and the formula of structure under the title.
 
-The view takes the mechanism as drawn (`velplan.mechanism.drawn.drawn_tables`: every joint
+The view takes the mechanism as drawn (`velplan.mechanism.drawn_write.drawn_tables`: every joint
 with its links, each sliding pair with its guide's direction), so it never solves.
 """
 
