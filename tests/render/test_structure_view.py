@@ -60,3 +60,18 @@ def test_info_refuses_a_figure_it_cannot_write(tmp_path, capsys):
     assert main(["info", "shaper", "--svg", str(tmp_path / "x.gif")]) == 2
     err = capsys.readouterr().err
     assert err == f"velplan: error: --svg {tmp_path / 'x.gif'}: write a .svg, .png or .pdf file\n"
+
+
+def test_the_notes_structural_section_shows_the_figure():
+    from velplan.note.front import _structure_figure
+
+    class Note:
+        lang, figures = "ru", []
+
+        def figure(self, caption, png, width_mm):
+            self.figures.append((caption, png, width_mm))
+
+    note = Note()
+    _structure_figure(note, velplan.load("whitworth"))
+    ((caption, png, width),) = note.figures
+    assert caption == "Структурный анализ механизма" and png.startswith(b"\x89PNG") and 0 < width <= 170.0
