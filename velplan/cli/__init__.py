@@ -12,14 +12,14 @@ from importlib import import_module
 
 from velplan.errors import VelplanError
 
-COMMANDS = ("kinematics", "plan", "sheet", "forces", "dynamics", "batch", "html", "centres", "sweep", "note")
+COMMANDS = ("kinematics", "plan", "sheet", "forces", "dynamics", "batch", "html", "centres", "sweep", "note", "convert")
 """Modules of `velplan.cli` that register subcommands (a missing one is skipped)."""
 SUBCOMMANDS = {
     "examples": "kinematics", "info": "kinematics", "analyze": "kinematics",
     "plan": "plan", "compare": "plan", "check": "plan",
     "sheet": "sheet", "diagrams": "sheet", "steps": "sheet",
     "forces": "forces", "dynamics": "dynamics", "batch": "batch", "html": "html",
-    "centres": "centres", "sweep": "sweep", "note": "note",
+    "centres": "centres", "sweep": "sweep", "note": "note", "convert": "convert",
 }
 """Subcommand → the module that registers it: a command imports only its own module (a test
 checks this table against what the modules register)."""

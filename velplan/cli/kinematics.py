@@ -12,7 +12,7 @@ from velplan.analysis.numbering import position_number, position_numbers
 from velplan.analysis.solver import Kinematics, transfer_functions
 from velplan.cli.common import add_mechanism, add_output, emit, parse_angles, positive_int
 from velplan.mechanism.loader import example_names, load
-from velplan.mechanism.structure import structure
+from velplan.mechanism.structure import pairs, structure
 from velplan.study import Study
 
 
@@ -24,6 +24,10 @@ def register(sub) -> None:
 
     p = sub.add_parser("info", help="structure, mobility, groups, extreme positions, stroke, K")
     add_mechanism(p)
+    p.add_argument("--svg", metavar="FILE", help="also draw the structural analysis (the initial mechanism and "
+                                                 "each group apart) to FILE.svg (or .png, .pdf)")
+    p.add_argument("--lang", choices=("en", "ru", "uk", "zh"), default=None,
+                   help="language of the drawing (default: the locale's, else en)")
     p.set_defaults(run=run_info)
 
     p = sub.add_parser("analyze", help="positions, velocities, accelerations at crank angles")
@@ -70,9 +74,11 @@ def run_info(args) -> int:
     out.append(f"crank {c.link}: {c.pivot}{c.tip} = {c.length:g} m, ω1 = {c.omega:+.6g} rad/s ({c.rpm:+.4g} rpm)")
     out.append(f"moving links n = {st.n_links}, lower pairs p5 = {st.p5}, higher pairs p4 = {st.p4}")
     out.append(f"mobility (Chebyshev): {st.formula()}")
-    out.append("groups:")
+    out.append("groups (Assur's, in solving order):")
+    lower = pairs(mech)
     for name, kind, cls, order, links in st.groups:
-        out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}")
+        outer = ", ".join(p.name for p in lower if p.group == name and not set(p.links) <= set(links))
+        out.append(f"  {name:<8} {kind}  class {cls}, order {order}, links {', '.join(links)}; outer pairs {outer}")
     out.append(f"mechanism of class {st.mechanism_class}; structure: {st.structure_formula(c.link)}")
     out.append("extreme positions (crank angle → value):")
     for q, roots in study.extremes.items():
@@ -91,8 +97,32 @@ def run_info(args) -> int:
             out.append(f"  warning: the output reverses {s.reversals} times per turn: H is its overall travel, "
                        "θ and K refer to its highest and lowest extremes only")
     out.append(f"reference position 1 at φ = {math.degrees(study.reference):.6f}°")
+    if getattr(args, "svg", None):
+        out.append(f"wrote {save_structure(mech, args.svg, args.lang)}")
     emit("\n".join(out), None)
     return 0
+
+
+def save_structure(mech, path: str, lang: str | None) -> str:
+    """Draw the structural analysis of ``mech`` to ``path`` (.svg, .png or .pdf)."""
+    from pathlib import Path
+
+    from velplan.cli.common import default_language
+    from velplan.cli.convert import pose
+    from velplan.errors import VelplanError
+    from velplan.mechanism.drawn_write import drawn_tables
+    from velplan.render import export
+    from velplan.render.svg import to_svg
+    from velplan.views.structure import structure_view
+
+    writers = {".svg": export.write_svg, ".png": export.write_png, ".pdf": export.write_pdf}
+    suffix = Path(path).suffix.lower()
+    if suffix not in writers:
+        raise VelplanError(f"--svg {path}: write a .svg, .png or .pdf file")
+    tables = drawn_tables(mech, *pose(mech))
+    svg = to_svg(structure_view(mech, tables["joint"], lang=lang or default_language()))
+    writers[suffix](svg, path)
+    return path
 
 
 def run_analyze(args) -> int:

@@ -35,7 +35,7 @@ from velplan.options import LANGUAGES
 
 _TOP_KEYS = {
     "name", "title", "description", "reference_deg", "output", "ground", "crank", "group",
-    "point", "link", "gravity", "load", "dynamics", "names",
+    "point", "link", "gravity", "load", "dynamics", "names", "joint", "special",
 }
 
 
@@ -60,6 +60,8 @@ def load(source: str | Path) -> Mechanism:
     `velplan.study.Study` that studies it.
     """
     path = Path(source)
+    if path.suffix.lower() == ".pmks":
+        return load_pmks(path)
     bundled = path.suffix.lower() != ".toml"
     if bundled and str(source) in example_names():
         text = resources.files("velplan.examples").joinpath(f"{source}.toml").read_text("utf-8")
@@ -79,6 +81,38 @@ def load(source: str | Path) -> Mechanism:
             "nor a catalogue name (velplan examples --all) and no such file"
         )
     return parse(text, name=name)
+
+
+def load_pmks(path: str | Path, **options) -> Mechanism:
+    """Load a pyslvs/PMKS expression file (`velplan.mechanism.pmks.drawn_data` gives the
+    ``options``: ``unit`` (default mm), ``pair`` (the input pair), ``omega`` or ``rpm``
+    (default 1 rad/s), ``names``)."""
+    return read_pmks(path, **options)[0]
+
+
+def read_pmks(path: str | Path, **options) -> tuple[Mechanism, dict]:
+    """The mechanism of a .pmks file and its drawn tables (`load_pmks`). A group velplan does
+    not solve is refused naming an input pair that avoids it, where one does."""
+    from velplan.mechanism.pmks import drawn_data, other_inputs
+
+    path = Path(path)
+    try:
+        text = path.read_text("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MechanismError(f"cannot read {path}: {exc}") from None
+    data = drawn_data(text, name=path.stem, **options)
+    try:
+        return from_dict(dict(data), name=path.stem), data
+    except MechanismError as exc:
+        if "velplan solves the dyads" not in str(exc):
+            raise
+        for pair, link in other_inputs(text, options):
+            try:
+                from_dict(drawn_data(text, **(options | {"pair": pair})))
+            except MechanismError:
+                continue
+            raise MechanismError(f"{exc}; driven by link {link} (--input {pair[0]},{pair[1]}) it decomposes") from None
+        raise
 
 
 def parse(text: str, *, name: str = "mechanism") -> Mechanism:
@@ -108,8 +142,15 @@ loads = deprecated(parse, "velplan.mechanism.loader.loads")
 
 
 def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
-    """Build a `Mechanism` from parsed TOML data (structure and values validated)."""
+    """Build a `Mechanism` from parsed TOML data (structure and values validated); a drawn
+    file (``[[joint]]`` tables) is first decomposed into groups (`velplan.mechanism.drawn`)."""
     _no_unknown(data, _TOP_KEYS, "the file")
+    if "joint" in data:
+        from velplan.mechanism.drawn import explicit
+
+        data = explicit(data, name)
+    elif "special" in data:
+        raise MechanismError("[[special]] belongs to a drawn file (one with [[joint]] tables)")
     for key, most in SIZE_LIMITS.items():
         count = len(data.get(key) or ())
         if count > most:
@@ -495,7 +536,7 @@ def _opt_name(t: dict, key: str) -> str | None:
 
 SHEET_LANGUAGES = LANGUAGES
 """Languages a ``[names]`` table may give (those of the sheets)."""
-SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100}
+SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100, "joint": 400}
 """Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""
 MAGNITUDE = 1e9
 """Largest magnitude of any number in a mechanism file (m, rad/s, rpm, kg, kg·m², °): beyond it

@@ -55,6 +55,20 @@ def structure_section(note, study) -> None:
                groups, key="groups")
     note.add(Para.of(p("formula", lang)), Equation(_structure_tex(st, mech.crank.link)),
              Para.of(p("mech_class", lang, st.mechanism_class)))
+    _structure_figure(note, mech)
+
+
+def _structure_figure(note, mech) -> None:
+    """The initial mechanism and each group drawn apart, their outer pairs ringed."""
+    from velplan.analysis.pose import pose
+    from velplan.mechanism.drawn_write import drawn_tables
+    from velplan.note.figures import views_png
+    from velplan.render.i18n import label
+    from velplan.views.structure import structure_view
+
+    scene = structure_view(mech, drawn_tables(mech, *pose(mech))["joint"], lang=note.lang, title=False)
+    png, width = views_png([scene], None)
+    note.figure(label("structural_analysis", note.lang), png, width)
 
 
 def _structure_tex(st, crank: str) -> str:

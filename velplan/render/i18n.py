@@ -175,6 +175,15 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
     "literal": _entry("Lit.", "Лит.", "Літ.", "阶段"),
     "sheet": _entry("Sheet", "Лист", "Аркуш", "张次"),
     "sheets": _entry("Sheets", "Листов", "Аркушів", "总张数"),
+    # The structural analysis (velplan info --svg): the initial mechanism and the groups apart.
+    "structural_analysis": _entry("Structural analysis of the mechanism", "Структурный анализ механизма",
+                                  "Структурний аналіз механізму", "机构结构分析"),
+    "initial_mechanism": _entry("Initial mechanism, class I", "Начальный механизм I класса",
+                                "Початковий механізм I класу", "I级机构（原动件与机架）"),
+    "group_class": _entry("Group of class {cls}, order {order}", "Группа {cls} класса, {order} порядка",
+                          "Група {cls} класу, {order} порядку", "{cls}级{order}阶杆组"),
+    "outer_pairs": _entry("outer pairs", "внешние пары", "зовнішні пари", "外副"),
+    "structure_formula": _entry("Formula of structure", "Формула строения", "Формула будови", "结构式"),
 })
 
 

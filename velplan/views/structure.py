@@ -1,0 +1,281 @@
+"""The structural analysis drawn as a course draws it: the initial mechanism (the frame and the
+crank, class I) and each Assur group drawn apart, in solving order, at one scale; the outer
+pairs of each group marked with a dashed ring; its class, order and kind written under it; the
+mobility and the formula of structure under the title.
+
+The view takes the mechanism as drawn (`velplan.mechanism.drawn_write.drawn_tables`: every joint
+with its links, each sliding pair with its guide's direction), so it never solves.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping, Sequence
+
+import numpy as np
+import shapely
+
+from velplan.mechanism.model import GROUND, Mechanism
+from velplan.mechanism.structure import structure
+from velplan.render.i18n import label
+from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
+from velplan.render.shapes import text_extent
+from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
+
+PANEL_MM = 70.0
+"""Width the widest panel is drawn at, mm."""
+GAP_MM = 18.0
+MARGIN_MM = 12.0
+TEXT_MM = 3.5
+BLOCK_MM = (10.0, 6.0)
+RING_MM = 3.2
+"""Radius of the dashed ring that marks an outer pair, mm."""
+_LETTERS = {"ru": {"R": "В", "P": "П"}, "uk": {"R": "О", "P": "П"}}
+_ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV"}
+
+
+def kind_in(kind: str, lang: str) -> str:
+    """A group's kind in the letters of ``lang`` (ВПВ for RPR in Russian)."""
+    if kind == "triad":
+        return {"ru": "триада", "uk": "тріада", "zh": "三杆组"}.get(lang, "triad")
+    return "".join(_LETTERS.get(lang, {}).get(c, c) for c in kind)
+
+
+class _Panel:
+    """One part of the figure: its links, and what it draws in metres, before placing."""
+
+    def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...]):
+        self.links, self.known, self.caption = links, known, caption
+        self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in links}
+        self.joints: list[tuple[str, np.ndarray, bool]] = []  # name, at, outer?
+        self.blocks: list[tuple[np.ndarray, float, bool]] = []  # at, angle, outer?
+        self.marks: list[tuple[str, np.ndarray]] = []  # a named point of a link, not a joint
+        self.guides: list[tuple[np.ndarray, float, bool]] = []  # at, angle, on the frame?
+        self.pivots: list[np.ndarray] = []
+        self.centre = 0.0  # mm, where its captions are centred
+
+    def points(self) -> np.ndarray:
+        pts = [v for vs in self.vertices.values() for v in vs] + [p for _, p, _ in self.joints]
+        pts += [p for p, _, _ in self.blocks] + self.pivots
+        return np.array(pts) if pts else np.zeros((1, 2))
+
+
+def _panels(mech: Mechanism, joints: Sequence[Mapping], lang: str) -> list[_Panel]:
+    st = structure(mech)
+    first = _Panel({mech.crank.link}, {GROUND}, (label("initial_mechanism", lang), f"I(0, {mech.crank.link})"))
+    panels, known = [first], {GROUND, mech.crank.link}
+    for (name, kind, cls, order, links) in st.groups:
+        caption = (label("group_class", lang).format(cls=_ROMAN.get(cls, str(cls)), order=order),
+                   f"{kind_in(kind, lang)}: {', '.join(links)}")
+        panels.append(_Panel(set(links), set(known), caption))
+        known |= set(links)
+    for panel in panels:
+        for j in joints:
+            _add_joint(panel, j)
+    return panels
+
+
+def _add_joint(panel: _Panel, j: Mapping) -> None:
+    """What joint ``j`` adds to ``panel``: points of its links, a joint, a block, a guide."""
+    at, kind = np.array(j["at"], float), j.get("kind", "R")
+    links = [str(k) for k in j["links"]]
+    slide = None
+    if kind == "R":
+        hinge = links
+    elif kind == "RP":  # the pins turn in a block that slides on links[0]
+        hinge, slide = links[1:] + [str(j["block"])], (links[0], str(j["block"]))
+    else:  # P: the point is the slider's, which slides on links[0]
+        hinge, slide = [links[1]], (links[0], links[1])
+    on = [k for k in hinge if k in panel.links]
+    for k in on:
+        panel.vertices[k].append(at)
+    if slide is not None:
+        slot, slider = slide
+        if slot in panel.links:
+            panel.vertices[slot].append(at)
+        if slider in panel.links:
+            outer = slot not in panel.links
+            panel.blocks.append((at, float(j["angle_deg"]), outer))
+            if outer:
+                panel.guides.append((at, float(j["angle_deg"]), slot == GROUND))
+    if not on:
+        return
+    initial = panel.known == {GROUND}
+    if initial and GROUND in hinge:
+        panel.pivots.append(at)
+    if len(hinge) >= 2:
+        outer = not initial and any(k in panel.known for k in hinge)
+        panel.joints.append((j["name"], at, outer))
+    elif kind == "R":
+        panel.marks.append((j["name"], at))
+
+
+def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True) -> Scene:
+    """The figure of the structural analysis (mm, y up) from the drawn joints of ``mech``;
+    ``title``: with its heading, W and the formula of structure above it."""
+    panels = _panels(mech, joints, lang)
+    spans = [np.ptp(p.points(), axis=0) for p in panels]
+    widest = max(max(float(s[0]), float(s[1])) for s in spans) or 1.0
+    mu = PANEL_MM / widest  # mm per m
+    heights = [float(s[1]) * mu for s in spans]
+    tallest = max(heights)
+    items: list = []
+    x, base = MARGIN_MM, MARGIN_MM + 4 * TEXT_MM * 1.8 + 8.0
+    low, high = base, base
+    for panel, span in zip(panels, spans):
+        lo = panel.points().min(axis=0)
+        shift = np.array([0.0, base + (tallest - float(span[1]) * mu) / 2]) - lo * mu
+        drawn = _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
+        box = _bounds(drawn)
+        captions = max(text_extent(c, TEXT_MM)[0] for c in panel.caption)
+        width = max(box[2] - box[0], captions)
+        shift = shift + (x + (width - (box[2] - box[0])) / 2 - box[0], 0.0)
+        items += _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
+        panel.centre, low, high = x + width / 2, min(low, box[1]), max(high, box[3])
+        x += width + GAP_MM
+    for panel in panels:
+        for k, line in enumerate(panel.caption):
+            items.append(Text((panel.centre, low - 6.0 - k * TEXT_MM * 1.6), line, "labels", TEXT_MM, "middle"))
+    width = x - GAP_MM + MARGIN_MM
+    st = structure(mech)
+    top = high + 8.0
+    if title:
+        items += [Text((MARGIN_MM, top + 2.2 * TEXT_MM), label("structural_analysis", lang), "labels", 5.0),
+                  Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
+                        f"{st.structure_formula(mech.crank.link)}", "labels", TEXT_MM)]
+    else:
+        top = high - 4 * TEXT_MM + 2.0
+    legend = np.array([MARGIN_MM + RING_MM, low - 6.0 - 2 * TEXT_MM * 1.6 - 2 * RING_MM])
+    shift_up = MARGIN_MM - (legend[1] - RING_MM)
+    items = [_moved(p, shift_up) for p in items]
+    legend = legend + (0.0, shift_up)
+    top += shift_up
+    items += [Circle(legend, RING_MM, "labels", "hidden"),
+              Text(legend + (RING_MM + 2.0, -TEXT_MM / 2), label("outer_pairs", lang), "labels", TEXT_MM)]
+    return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + 4 * TEXT_MM + MARGIN_MM)
+
+
+def _draw(panel: _Panel, place) -> list:
+    out: list = []
+    for at, angle, frame in panel.guides:
+        u = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))]) * BLOCK_MM[0] * 1.8
+        c = place(at)
+        if frame:
+            out += straight_guide(c - u, c + u, side="right")
+        else:
+            out.append(Polyline([c - u, c + u], "mechanism", "thick"))
+    shapes = {k: [place(v) for v in verts] for k, verts in panel.vertices.items()}
+    for pts in shapes.values():
+        out += _link_shape(pts)
+    for at, angle, outer in panel.blocks:
+        out += slider_block(place(at), angle, length_mm=BLOCK_MM[0], width_mm=BLOCK_MM[1])
+        if outer:
+            out.append(Circle(place(at), 0.75 * BLOCK_MM[0], "labels", "hidden"))
+    sides = {}  # a pivot's side for its letter: across its support, away from its links
+    for at in panel.pivots:
+        c = place(at)
+        away = _away(c, shapes)
+        out += fixed_pivot(c, direction_deg=math.degrees(math.atan2(away[1], away[0])))
+        across = np.array([-away[1], away[0]])
+        sides[tuple(c)] = across if across[0] >= 0 else -across
+    blocks = {tuple(place(at)): (angle, outer) for at, angle, outer in panel.blocks}
+    for name, at, outer in panel.joints:
+        c = place(at)
+        out += revolute_joint(c)
+        if outer:
+            out.append(Circle(c, RING_MM, "labels", "hidden"))
+        if tuple(c) in blocks:  # beside the block, across its guide
+            angle, ringed = blocks[tuple(c)]
+            left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
+            reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
+            out.append(Text(c + left * reach, name, "labels", TEXT_MM, "middle", "middle"))
+        else:
+            out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes))))
+    for name, at in panel.marks:
+        c = place(at)
+        out.append(_label(c, name, _away(c, shapes)))
+    centre = np.mean([p for pts in shapes.values() for p in pts], axis=0)
+    for k, pts in shapes.items():
+        if pts and k != GROUND:
+            out.append(_link_number(k, pts, centre, panel, place))
+    return out
+
+
+def _bounds(items: list) -> tuple[float, float, float, float]:
+    boxes = np.array([p.bounds for p in items])
+    return (float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max()))
+
+
+def _moved(p, dy: float):
+    """A primitive moved up by ``dy`` mm."""
+    from dataclasses import replace
+
+    if isinstance(p, Text):
+        return replace(p, position=(p.position[0], p.position[1] + dy))
+    if isinstance(p, Circle):
+        return replace(p, centre=(p.centre[0], p.centre[1] + dy))
+    return replace(p, points=[(x, y + dy) for x, y in p.points])
+
+
+def _away(c: np.ndarray, shapes: Mapping[str, list], pivot=None) -> np.ndarray:
+    """The unit direction from ``c`` away from the links drawn through it."""
+    total = np.zeros(2)
+    for pts in shapes.values():
+        if any(np.hypot(*(p - c)) < 1e-6 for p in pts):
+            for p in pts:
+                d = p - c
+                n = float(np.hypot(*d))
+                if n > 1e-6:
+                    total -= d / n
+    n = float(np.hypot(*total))
+    return total / n if n > 1e-9 else np.array([0.7071, 0.7071])
+
+
+def _label(c: np.ndarray, name: str, away: np.ndarray) -> Text:
+    at = c + away * (RING_MM + 2.0)
+    anchor = "start" if away[0] > 0.3 else "end" if away[0] < -0.3 else "middle"
+    return Text(at, name, "labels", TEXT_MM, anchor, "middle")
+
+
+def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) -> Text:
+    """The link's number beside its longest piece, on the side away from the panel's middle."""
+    if len(pts) == 1:  # a block: its number across the guide from its joint's letter
+        for at, angle, ringed in panel.blocks:
+            if np.hypot(*(place(at) - pts[0])) < 1e-6:
+                left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
+                reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
+                return Text(pts[0] - left * reach, k, "labels", TEXT_MM, "middle", "middle")
+        return Text(pts[0] + (0.0, -3.0), k, "labels", TEXT_MM, "middle", "top")
+    a, b = max(((p, q) for i, p in enumerate(pts) for q in pts[i + 1:]), key=lambda pq: np.hypot(*(pq[0] - pq[1])))
+    mid, d = (a + b) / 2, b - a
+    normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
+    if len(pts) >= 3 and not _collinear(pts):  # a plate: its number inside
+        return Text(np.mean(pts, axis=0), k, "labels", TEXT_MM, "middle", "middle")
+    if normal @ (mid - centre) < 0:
+        normal = -normal
+    return Text(mid + normal * 3.0, k, "labels", TEXT_MM, "middle", "middle")
+
+
+def _collinear(pts: list) -> bool:
+    hull = shapely.MultiPoint(pts).convex_hull
+    return hull.geom_type != "Polygon" or hull.area < 0.02 * hull.length ** 2 / 4
+
+
+def _link_shape(pts: list[np.ndarray]) -> list:
+    """A link through its points: a line when they are (nearly) on one, else its outline."""
+    unique = []
+    for p in pts:
+        if all(np.hypot(*(p - q)) > 1e-6 for q in unique):
+            unique.append(p)
+    if len(unique) < 2:
+        return []
+    if len(unique) == 2:
+        return list(link(*unique, trim_a_mm=JOINT_RADIUS_MM, trim_b_mm=JOINT_RADIUS_MM))
+    if _collinear(unique):
+        arr = np.array(unique)
+        d = arr - arr.mean(axis=0)
+        axis = np.linalg.svd(d)[2][0]
+        t = d @ axis
+        return list(link(arr[np.argmin(t)], arr[np.argmax(t)]))
+    ring = np.array(shapely.MultiPoint(unique).convex_hull.exterior.coords)[:-1]
+    return [Polygon(ring, "mechanism", "thick", "white")]
