@@ -23,7 +23,7 @@ from velplan.analysis import compiled, groups
 from velplan.analysis.design import design_keys
 from velplan.errors import MechanismError
 import velplan.forces as vf
-from velplan.mechanism import loader
+from velplan.mechanism import drawn_write, loader
 from velplan.mechanism.loader import catalogue_names, example_names
 from velplan.mechanism.model import FACTS, KINDS, PRP, RPP, RPR, RRP, RRR, AssurGroup, Dyad, Triad
 from velplan.mechanism.structure import (coincident_points, facts, guides_of, joints_in, pairs, point_owners,
@@ -41,6 +41,7 @@ REGISTRIES = (
     ("velplan.plans.build", lambda: build.BUILDERS, False),
     ("velplan.forces.kinetostatics", lambda: fk.POLYGONS, False),
     ("velplan.views.mechanism", lambda: vm.DRAWINGS, False),
+    ("velplan.mechanism.drawn_write", lambda: drawn_write.SLIDES, False),
 )
 
 
@@ -110,6 +111,7 @@ def test_a_fake_kind_is_refused_by_every_layer_naming_it():
         "velplan.plans.build": lambda: build.construct(fake),
         "velplan.forces.kinetostatics": lambda: fk.kinetostatics(fake, kin, acts),
         "velplan.views.mechanism": lambda: vm._Geometry(fake, kin).segments(0),
+        "velplan.mechanism.drawn_write": lambda: drawn_write._slides_of(fake.groups[0], {}, {}, {}, [], set()),
     }
     refused = []
     for module, run in runs.items():

@@ -7,7 +7,8 @@ from typing import Mapping
 
 from velplan.mechanism.drawn import fresh_name
 from velplan.mechanism.drawn_groups import degrees_of
-from velplan.mechanism.model import GROUND
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Triad, kind_entry
+
 
 def drawn_tables(mech, at: Mapping[str, complex], angles: Mapping[str, float]) -> dict:
     """The drawn file of ``mech`` in a pose: ``at`` holds every named point's position (m) and
@@ -70,32 +71,58 @@ def _xy(z) -> list[float]:
     return [float(z.real), float(z.imag)]
 
 
+class _Slides:
+    """Collects the RP joints (a block's pin, as ``rp``) and P joints (``extra``) that show
+    the sliding pairs of a group in the pose: ``theta`` the links' frame angles (rad), ``at``
+    the points (m)."""
+
+    def __init__(self, theta, at, rp: dict, extra: list, taken: set):
+        self.theta, self.at, self.rp, self.extra, self.taken = theta, at, rp, extra, taken
+
+    def rp_at(self, name: str, slot: str, block: str, angle: float, co: str | None) -> None:
+        self.rp[name] = {"links": [slot], "block": block, "angle_deg": degrees_of(angle)} | (
+            {"coincident": co} if co else {})
+
+    def p_at(self, name: str, point: str, links: list[str], angle: float, co: str | None = None) -> None:
+        self.extra.append({"name": name, "at": _xy(self.at[point]), "kind": "P", "links": links,
+                           "angle_deg": degrees_of(angle)} | ({"coincident": co} if co else {}))
+
+    def guide_angle(self, guide) -> float:
+        return self.theta[guide.link] + guide.angle
+
+
+def _rrp(g, s: _Slides) -> None:
+    s.rp_at(g.point, g.guide.link, g.links[1], s.guide_angle(g.guide), g.coincident)
+
+
+def _rpr(g, s: _Slides) -> None:
+    s.rp_at(g.joint, g.links[1], g.links[0], s.theta[g.links[1]], g.coincident)
+
+
+def _prp(g, s: _Slides) -> None:
+    a, b = g.links
+    name = fresh_name(f"{g.point}_{a}", s.taken)
+    s.taken.add(name)
+    s.p_at(name, g.point, [g.guides[0].link, a], s.guide_angle(g.guides[0]), g.coincident[0])
+    s.rp_at(g.point, g.guides[1].link, b, s.guide_angle(g.guides[1]), g.coincident[1])
+
+
+def _rpp(g, s: _Slides) -> None:
+    block, runner = g.links
+    s.rp_at(g.joint, runner, block, s.guide_angle(g.guide) + g.slot_angle, g.coincident)
+    s.p_at(g.origin_name, g.origin_name, [g.guide.link, runner], s.guide_angle(g.guide))
+
+
+def _triad(g, s: _Slides) -> None:
+    for j, lead in zip(g.joints, g.leads):
+        if lead.slider:
+            s.rp_at(j, lead.guide.link, lead.link, s.guide_angle(lead.guide), lead.coincident)
+
+
+SLIDES = {RRR: lambda g, s: None, RRP: _rrp, RPR: _rpr, PRP: _prp, RPP: _rpp, Triad: _triad}
+"""Group kind → how its sliding pairs are drawn as joints (the drawn form's lookup)."""
+
+
 def _slides_of(g, theta, at, rp: dict, extra: list, taken: set) -> None:
     """The RP joints (a block's pin) and P joints that show the sliding pairs of ``g``."""
-    def rp_at(name: str, slot: str, block: str, angle: float, co: str | None) -> None:
-        rp[name] = {"links": [slot], "block": block, "angle_deg": degrees_of(angle)} | ({"coincident": co} if co else {})
-
-    def guide_angle(guide) -> float:
-        return theta[guide.link] + guide.angle
-
-    if g.kind == "RRP":
-        rp_at(g.point, g.guide.link, g.links[1], guide_angle(g.guide), g.coincident)
-    elif g.kind == "RPR":
-        rp_at(g.joint, g.links[1], g.links[0], theta[g.links[1]], g.coincident)
-    elif g.kind == "PRP":
-        a, b = g.links
-        name = fresh_name(f"{g.point}_{a}", taken)
-        taken.add(name)
-        extra.append({"name": name, "at": _xy(at[g.point]), "kind": "P", "links": [g.guides[0].link, a],
-                      "angle_deg": degrees_of(guide_angle(g.guides[0]))} |
-                     ({"coincident": g.coincident[0]} if g.coincident[0] else {}))
-        rp_at(g.point, g.guides[1].link, b, guide_angle(g.guides[1]), g.coincident[1])
-    elif g.kind == "RPP":
-        block, runner = g.links
-        rp_at(g.joint, runner, block, guide_angle(g.guide) + g.slot_angle, g.coincident)
-        extra.append({"name": g.origin_name, "at": _xy(at[g.origin_name]), "kind": "P",
-                      "links": [g.guide.link, runner], "angle_deg": degrees_of(guide_angle(g.guide))})
-    elif g.kind == "triad":
-        for j, lead in zip(g.joints, g.leads):
-            if lead.slider:
-                rp_at(j, lead.guide.link, lead.link, guide_angle(lead.guide), lead.coincident)
+    kind_entry(SLIDES, g, "velplan.mechanism.drawn_write.SLIDES")(g, _Slides(theta, at, rp, extra, taken))
