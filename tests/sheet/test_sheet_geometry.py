@@ -173,4 +173,4 @@ def test_title_block_carries_the_scale_and_designation(sheets):
     sheet = sheets["shaper"]
     texts = {t.text for t in sheet.scene.on_layer("title").of_kind(Text)}
     assert sheet.info.scale in texts
-    assert "ТММ.shaper.01" in texts
+    assert "ТММ 01.00.000" in texts
