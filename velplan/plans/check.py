@@ -27,7 +27,7 @@ from velplan.mechanism.model import Mechanism
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import Plan, auto_scale
 from velplan.plans.scale import check_drawable, check_scale
-from velplan.plans.table import parse_quantity, quantity_name
+from velplan.plans.table import natural_key, parse_quantity, quantity_name
 
 
 @dataclass(frozen=True)
@@ -111,9 +111,10 @@ def quantity_of(name: str, points, links, crank: str, what: str = "") -> tuple[s
     rows = [f"w_{k}" for k in links] + [f"V_{p}" for p in points]
     row = parse_quantity(name, rows, crank)
     if row is None:
-        v = ", ".join(quantity_name(f"V_{p}", crank) for p in points)
-        w = ", ".join(quantity_name(f"w_{k}", crank) for k in links)
-        raise TableError(f"unknown quantity {name!r}{what}; known: {v}" + (f"; {w}" if w else ""))
+        v, w = quantity_name("V_<point>", crank), quantity_name("w_<link>", crank)
+        raise TableError(f"unknown quantity {name!r}{what}; use {v} with a point of "
+                         f"{', '.join(sorted(points, key=natural_key))} or {w} with a link of "
+                         f"{', '.join(sorted(links, key=natural_key))}")
     kind, x = row.split("_", 1)
     return kind, x
 

@@ -202,6 +202,13 @@ def power_of_ten(x: float, lang: Language, digits: int = 4) -> str:
     return _signs(_significant(mantissa, digits), lang) + "·" + power
 
 
+def indexed(base: str, index: str, marked: bool = True) -> str:
+    """A symbol with its index below the line: ``indexed("ω", "max")`` → ``"ω_{max}"`` (the
+    ``_{…}`` mark the drawings set as a subscript); ``marked=False`` writes ``"ωmax"`` (for text
+    that is not drawn)."""
+    return f"{base}_{{{index}}}" if marked and index else f"{base}{index}"
+
+
 def number(x: float, lang: Language, digits: int = 4) -> str:
     """`x` to `digits` significant figures, decimal comma in ru and uk, the minus sign "−";
     a power of ten (`power_of_ten`) below `POWER_BELOW` or from `POWER_FROM`, never "e-14"."""
