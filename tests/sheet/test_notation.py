@@ -235,7 +235,7 @@ def test_the_key_names_what_the_sheet_prints_and_check_accepts_it(course, tmp_pa
         assert [plain for _, plain in names] == key_names  # the same strings, in the same order
         assert all(n.endswith(f"/ω{a['crank']}") for n in key_names) and a["crank"] == "2"
         values = {r[1]: r[3:3 + a["positions"]] for r in rows[1:] if r[0] == v}
-        mech = batch.build_variant(batch.Variant(v, a["base"], a["overrides"]))
+        mech, _ = batch.build_variant(batch.Variant(v, a["base"], a["overrides"]))
         for spelling in (0, 1, 2):  # the typeset name, the plain one, ASCII
             table = tmp_path / f"{v}-{spelling}.csv"
             lines = ["quantity," + ",".join(str(i) for i in range(1, a["positions"] + 1))]
