@@ -166,7 +166,7 @@ def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_labe
     step = nice_step(hi - lo)
     decimals = max(0, -math.floor(math.log10(step) + 1e-9) + (1 if f"{step:.3g}".rstrip("0").endswith("25") else 0))
     items: list[Primitive] = []
-    clear = 1e-9 if base == 0 else 0.9 * size
+    clear = 1e-9 if base == 0 else 1.5 * size
     for v in _ticks(lo, hi, step):
         y = (v - base) / mu
         if abs(y) < clear:

@@ -27,6 +27,19 @@ _ROW_PITCH = 2.0  # row height over text height
 _PAD = 1.0  # cell padding each side, mm
 # Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
 _WIDE = 1.3
+#: Digits, signs and separators render within 3 % of the estimate (the bundled font:
+#: "−0,0833" is 3.61 em, estimated 3.57): a number's column needs less margin.
+NUMBER_MARGIN = 1.1
+_NUMBER = set("0123456789,.−-+")
+
+
+def _cell_width(text: str | None, size_mm: float, numbers: float) -> float:
+    """Estimated width a cell's text needs, mm: a number's estimate times `numbers`, any other
+    text's times the Cyrillic margin."""
+    if text is None:
+        return 0.0
+    margin = numbers if text and set(text) <= _NUMBER else _WIDE
+    return margin * text_extent(text, size_mm)[0]
 
 
 def _row_label(name: str, crank: str, lang: Language) -> str:
@@ -47,15 +60,16 @@ def _spans(row: list) -> list[tuple[int, int]]:
     return spans
 
 
-def grid_table(grid: list[list[str | None]], size_mm: float) -> tuple[list[Primitive], float, float]:
+def grid_table(grid: list[list[str | None]], size_mm: float, *,
+               numbers: float = _WIDE) -> tuple[list[Primitive], float, float]:
     """A ruled table of text cells with its lower-left corner at (0, 0): the first column left-
     aligned, the value columns of equal width and centred; the outline and the header rule
     thick, the body lines thin. A None cell merges with the cell before it in its row (a header
-    over two columns): no rule between them, the text centred over both. Returns (primitives,
-    width mm, height mm)."""
+    over two columns): no rule between them, the text centred over both. ``numbers`` is the
+    margin of a number's estimated width (`NUMBER_MARGIN` where the columns hold numbers of the
+    bundled font). Returns (primitives, width mm, height mm)."""
     n = len(grid[0]) - 1
-    widths = [max(_WIDE * text_extent(r[c], size_mm)[0] if r[c] is not None else 0.0 for r in grid) + 2 * _PAD
-              for c in range(n + 1)]
+    widths = [max(_cell_width(r[c], size_mm, numbers) for r in grid) + 2 * _PAD for c in range(n + 1)]
     widths[1:] = [max(widths[1:])] * n  # equal value columns
     row_h = _ROW_PITCH * size_mm
     total_w, total_h = sum(widths), row_h * len(grid)
@@ -110,7 +124,7 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
         values = np.asarray(values, float)
         decimals = row_decimals(values, digits)
         rows.append([quantity_label(name, crank)] + [fixed(float(v), lang, decimals) for v in values])
-    items, total_w, total_h = grid_table([head] + rows, size_mm)
+    items, total_w, total_h = grid_table([head] + rows, size_mm, numbers=NUMBER_MARGIN)
     w1 = f"ω_{{{crank}}}"
     items.append(Text((0.0, total_h + 2.5), f"{label('table_transfer', lang)} "
                       f"(v/{w1}, {unit('m', lang)}; ω/{w1})", "table", title_mm))
