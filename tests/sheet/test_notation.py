@@ -312,3 +312,18 @@ def test_dynamics_sheet_text(dynamics_sheet):
         assert any(symbol in t for t in texts), symbol
     for bare in ("ωmax", "ωmin", "JI ", "ψmax", "μφ"):
         assert not any(bare in t for t in texts), bare
+
+
+def test_no_reference_drawing_writes_a_hyphen_minus_or_an_exponent():
+    """Every bundled sheet as committed (drawings/, kept up to date by the sheet tests): numbers
+    with "−", powers of ten as ·10ⁿ, no designation made of a file key."""
+    from velplan.sheets import drawings
+
+    files = sorted(drawings.DRAWINGS.glob("*.svg"))
+    assert len(files) >= 5
+    for path in files:
+        for t in ET.parse(path).getroot().iter(f"{SVG}text"):
+            text = "".join(t.itertext())
+            assert not re.search(r"(^|[\s(=;:/±])-\d", text), (path.name, text)
+            assert not re.search(r"\de[-+]?\d", text), (path.name, text)
+            assert not re.search(r"(ТММ|TMM)\.[a-z]", text), (path.name, text)
