@@ -464,6 +464,7 @@ def _answers(v: Variant, study) -> dict:
         "base": v.base,
         "overrides": v.overrides,
         "positions": int(study.n),
+        "crank": mech.crank.link,
         "phi_deg": [round(float(math.degrees(p) % 360), 9) for p in study.phi],
         "V": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("V_")},
         "omega": {k[2:]: _clean(vals) for k, vals in table.rows.items() if k.startswith("w_")},
@@ -542,8 +543,11 @@ def run_batch(variants: list[Variant], opts: Options, *, jobs: int | None = None
 
 
 def answers_csv(answers: list[dict]) -> str:
-    """The key as CSV: ``variant,quantity,unit,1,2,…`` — φ, V/ω1 of the points, ω/ω1 of the
-    links, M_b at each position, then H and K (in column 1)."""
+    """The key as CSV: ``variant,quantity,unit,1,2,…`` — φ, v/ω of the crank of the points,
+    ω/ω of the crank of the links (named as the sheet's table names them, `quantity_name`),
+    M_b at each position, then H and K (in column 1)."""
+    from velplan.plans.table import quantity_name
+
     n = max((a["positions"] for a in answers), default=0)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -552,9 +556,9 @@ def answers_csv(answers: list[dict]) -> str:
         v = a["variant"]
         w.writerow([v, "φ", "deg", *(f"{x:.4f}" for x in a["phi_deg"])])
         for p, vals in a["V"].items():
-            w.writerow([v, f"V{p}/ω1", "m", *(f"{x:.6g}" for x in vals)])
+            w.writerow([v, quantity_name(f"V_{p}", a.get("crank", "1")), "m", *(f"{x:.6g}" for x in vals)])
         for link, vals in a["omega"].items():
-            w.writerow([v, f"ω{link}/ω1", "", *(f"{x:.6g}" for x in vals)])
+            w.writerow([v, quantity_name(f"w_{link}", a.get("crank", "1")), "", *(f"{x:.6g}" for x in vals)])
         if "M_b" in a:
             w.writerow([v, "M_b", "N·m", *(f"{x:.6g}" for x in a["M_b"])])
         if "H" in a:

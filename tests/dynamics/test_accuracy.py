@@ -231,7 +231,7 @@ def test_error_fields_in_json_and_table():
     rows = results_rows(d, None, "en")[-3:]
     assert [r[0] for r in rows] == ["Error estimate: Md", "Error estimate: JI", "Error estimate: ω"]
     assert rows[1][1] == bound(doc["error"]["flywheel_exact"], "en")
-    assert bound(1.2e-11, "en") == "±2e-11" and bound(0.0031, "ru") == "±0,004"
+    assert bound(1.2e-11, "en") == "±2·10⁻¹¹" and bound(0.0031, "ru") == "±0,004"  # never "e-11"
 
 
 def test_indicator_nodes_lie_where_the_piston_passes_each_travel_on_both_strokes():

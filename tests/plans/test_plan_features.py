@@ -198,7 +198,7 @@ def test_check_table_errors(tmp_path):
     mech = velplan.load("press")
     bad = tmp_path / "t.csv"
     bad.write_text("quantity,1,2\nVZ/ω1,0.1,0.2\n")
-    with pytest.raises(TableError, match=r"^unknown quantity 'VZ/ω1'; use V<point>/ω1 with a point of "):
+    with pytest.raises(TableError, match=r"^unknown quantity 'VZ/ω1'; use v<point>/ω1 with a point of "):
         check_table(mech, bad)
     bad.write_text("quantity,1,2\nVC/ω1,0.1,x\n")
     with pytest.raises(TableError, match=r"row 'VC/ω1': 'x' is not a number$"):

@@ -139,7 +139,8 @@ def test_text_names_mechanism_scales_positions_and_every_image(name, sheets):
     sheet = sheets[name]
     texts = [t.text for t in sheet.scene.of_kind(Text)]
     joined = "\n".join(texts)
-    assert name in joined
+    assert sheet.info.title.endswith(sheet.mechanism.name_in("ru"))  # the title names it, wrapped in its cell
+    assert all(word in joined for word in sheet.info.title.split()) and name not in joined  # the designation is a code
     assert f"μl = {number(sheet.scales['mu_l'], 'ru')} м/мм" in joined
     mech_texts = {t.text for t in sheet.views["mechanism"].primitives if isinstance(t, Text)}
     for k in range(1, 13):
@@ -173,4 +174,4 @@ def test_title_block_carries_the_scale_and_designation(sheets):
     sheet = sheets["shaper"]
     texts = {t.text for t in sheet.scene.on_layer("title").of_kind(Text)}
     assert sheet.info.scale in texts
-    assert "ТММ.shaper.01" in texts
+    assert "ТММ 01.00.000" in texts

@@ -82,7 +82,7 @@ def test_the_three_sheets_share_the_skeleton():
     titles = [kinematic.default_title(velplan.load("shaper"), "en", "A1", "1:2", "iso"),
               forces.default_force_title(velplan.load("shaper"), "en", "1:2"),
               dynamics.default_dynamics_title(velplan.load("shaper"), "en", "1:2")]
-    assert [t.designation for t in titles] == ["TMM.shaper.01", "TMM.shaper.02", "TMM.shaper.03"]
+    assert [t.designation for t in titles] == ["TMM 01.00.000", "TMM 02.00.000", "TMM 03.00.000"]
     assert {t.scale for t in titles} == {"1:2"}
 
 

@@ -2,8 +2,10 @@
 
 A table is CSV: a ``quantity`` column, then one column per position (``1``, ``2``, …, in the
 order of the mechanism's positions from its reference; a repeated ``1`` at the end is ignored).
-Quantities: ``VB2/ω1`` or ``V_B2`` (|V|/ω1 in m), ``ω2/ω1`` or ``w_2`` (ω/ω1, sign ignored
-when the table gives magnitudes). Semicolon-separated files with decimal commas are read too.
+Quantities by the names the sheet's table and the batch's key print (`velplan.plans.table.
+quantity_name`: ``vB2/ω1``, |v|/ω of the crank in m; ``ω2/ω1``, sign ignored when the table gives
+magnitudes), typeset (``v_{B2}/ω₁``) or in ASCII (``VB2/w1``, ``V_B2``, ``w_2``; see
+`velplan.plans.table.parse_quantity`). Semicolon-separated files with decimal commas are read too.
 """
 
 from __future__ import annotations
@@ -11,7 +13,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,9 +27,7 @@ from velplan.mechanism.model import Mechanism
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import Plan, auto_scale
 from velplan.plans.scale import check_drawable, check_scale
-
-_POINT = re.compile(r"^V_?([A-Za-z][A-Za-z0-9]*?)(?:/(?:ω1|w1|omega1))?(?:,\s*m)?$")
-_LINK = re.compile(r"^(?:ω|w|omega)_?([A-Za-z0-9]+?)(?:/(?:ω1|w1|omega1))?$")
+from velplan.plans.table import natural_key, parse_quantity, quantity_name
 
 
 @dataclass(frozen=True)
@@ -106,18 +105,18 @@ def read_table(source: str | Path) -> tuple[list[str], dict[str, list[float | No
     return head[1:], out
 
 
-def _quantity(name: str, points, links) -> tuple[str, str]:
-    key = name.replace(" ", "")
-    m = _LINK.match(key)
-    if m and m.group(1) in links:
-        return "w", m.group(1)
-    m = _POINT.match(key)
-    if m and m.group(1) in points:
-        return "V", m.group(1)
-    raise TableError(
-        f"unknown quantity {name!r}; use V<point>/ω1 with a point of {', '.join(points)} "
-        f"or ω<link>/ω1 with a link of {', '.join(links)}"
-    )
+def quantity_of(name: str, points, links, crank: str, what: str = "") -> tuple[str, str]:
+    """("V", point) or ("w", link) of a table's quantity `name`; `TableError` naming the names
+    known (those of `points` and `links` over the crank's link `crank`) else."""
+    rows = [f"w_{k}" for k in links] + [f"V_{p}" for p in points]
+    row = parse_quantity(name, rows, crank)
+    if row is None:
+        v, w = quantity_name("V_<point>", crank), quantity_name("w_<link>", crank)
+        raise TableError(f"unknown quantity {name!r}{what}; use {v} with a point of "
+                         f"{', '.join(sorted(points, key=natural_key))} or {w} with a link of "
+                         f"{', '.join(sorted(links, key=natural_key))}")
+    kind, x = row.split("_", 1)
+    return kind, x
 
 
 MC_RUNS = 400
@@ -158,7 +157,7 @@ def check_table(mech: Mechanism, source: str | Path, *, scale_v: float | None = 
     plan = Plan.of(mech)
     points = list(plan.images["v"])
     links = [k for k in plan.figures["v"] if k != "0"]
-    quantities = {name: _quantity(name, points, links) for name in table}
+    quantities = {name: quantity_of(name, points, links, mech.crank.link) for name in table}
     for name, (kind, x) in quantities.items():  # an ω row with a negative entry is signed
         if kind == "w" and any(v is not None and v < 0 for v in table[name]):
             quantities[name] = ("ws", x)

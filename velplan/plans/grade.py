@@ -1,7 +1,8 @@
 """Grading a student's table of transfer functions against a batch's answer key.
 
 The table is read as `velplan.plans.check.read_table` reads it (``quantity,1,2,…``; rows
-``VA/ω1`` or ``V_A`` and ``ω3/ω1`` or ``w_3``); the key is the ``answers.json`` that
+by the names the sheet and the key print, ``vA/ω1`` and ``ω3/ω1``, or as
+`velplan.plans.table.parse_quantity` reads them otherwise); the key is the ``answers.json`` that
 ``velplan batch`` writes. An entry is right when it is within ``tolerance`` × the largest
 magnitude of its row in the key, plus half a unit of the last digit the row is written to.
 An ω row with a negative entry is compared signed (+ in the crank's sense), a row of
@@ -16,7 +17,7 @@ from pathlib import Path
 
 from velplan.analysis.numbering import position_number
 from velplan.errors import TableError
-from velplan.plans.check import _LINK, _POINT, _decimals, position_count, read_table
+from velplan.plans.check import _decimals, position_count, quantity_of, read_table
 
 
 @dataclass(frozen=True)
@@ -98,14 +99,9 @@ def grade_table(table: str | Path, key: str | Path, variant: str, *, tolerance: 
 
 
 def _key_row(name: str, answers: dict, vals) -> tuple[list[float], bool]:
-    key = name.replace(" ", "")
-    m = _LINK.match(key)
-    if m and m.group(1) in answers["omega"]:
-        return answers["omega"][m.group(1)], any(v is not None and v < 0 for v in vals)
-    m = _POINT.match(key)
-    if m and m.group(1) in answers["V"]:
-        return answers["V"][m.group(1)], False
-    raise TableError(
-        f"unknown quantity {name!r}; the key has V<point>/ω1 for {', '.join(answers['V'])} "
-        f"and ω<link>/ω1 for {', '.join(answers['omega'])}"
-    )
+    """The key's row that `name` names (keys written before the crank was recorded: link 1)."""
+    kind, x = quantity_of(name, list(answers["V"]), list(answers["omega"]), str(answers.get("crank", "1")),
+                          " in the key")
+    if kind == "w":
+        return answers["omega"][x], any(v is not None and v < 0 for v in vals)
+    return answers["V"][x], False

@@ -34,7 +34,7 @@ from velplan.sheets.skeleton import (
     ComposedSheet, Request, compose, fit_table, sheet_request, title_with_scale)
 from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
-from velplan.views.base import PlacedView, View, eskd_scales, number, ratio_text, scale_mark, unit
+from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
 from velplan.views.dynamics import (
     DynamicsSizes, Series, curve_panel, flywheel_view, results_rows, results_view, wittenbauer_view)
 
@@ -78,33 +78,35 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
                               sizes=sizes)
     nm, joule = unit("N·m", lang), unit("J", lang)
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
-    loads = [Series(c[f"M_{k}"], "thin", f"M {k}" if k != "gravity" else "M G") for k in d.profile.labels]
-    drive = f"M{drv} = {_n(d.driving, lang)} {nm}" if d.run is None and d.periodic is None else f"M{drv}"
-    moments = [Series(c["M_red"], "thick", f"M{res}"), Series(c["M_drive"], "hidden", drive)]
+    loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
+    m_drv, m_res = indexed("M", drv), indexed("M", res)
+    drive = f"{m_drv} = {_n(d.driving, lang)} {nm}" if d.run is None and d.periodic is None else m_drv
+    moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
     views = {"moments": curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
                                     title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **kw)}
-    works = [Series(c["A_resist"], "thin", f"A{res}"), Series(c["A_sum"], "thick", "ΔT")]
+    works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
     if np.all(np.isfinite(c["A_drive"])):
-        works.insert(0, Series(c["A_drive"], "hidden", f"A{drv}"))
+        works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
     views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
                                  unit_text=joule, **kw)
     jii = c["J_red"] - d.declared
     views["inertia"] = curve_panel(
-        "inertia", travel, [Series(jii, "thick", "JII")], title=label("reduced_inertia", lang), ordinate="JII",
-        unit_text=unit("kg·m²", lang),
-        notes=[f"JI = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **kw)
+        "inertia", travel, [Series(jii, "thick", indexed("J", "II"))], title=label("reduced_inertia", lang),
+        ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
+        notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **kw)
     w = np.abs(c["omega"])
     st = d.steady or d.periodic
     if st is not None:
         base = st.omega_mean
-        marks = [(st.theta_max, st.omega_max, "ωmax"), (st.theta_min, st.omega_min, "ωmin")]
-        notes = [f"ωm = {_n(st.omega_mean, lang)} {unit('rad/s', lang)};  δ = {_n(st.delta, lang)}"]
+        marks = [(st.theta_max, st.omega_max, indexed("ω", "max")), (st.theta_min, st.omega_min, indexed("ω", "min"))]
+        notes = [f"{indexed('ω', 'm')} = {_n(st.omega_mean, lang)} {unit('rad/s', lang)};  δ = {_n(st.delta, lang)}"]
+        base_label = indexed("ω", "m")
     else:
-        base, marks = float(np.nanmin(w)), []
+        base, marks, base_label = float(np.nanmin(w)), [], ""
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
     views["omega"] = curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
                                  ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
-                                 notes=notes, **kw)
+                                 notes=notes, base_label=base_label, **kw)
     return views
 
 
@@ -180,7 +182,7 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
     fx0, fy0, fx1, fy1 = req.area
     tx0, _, _, ty1 = req.title_block
     wit = d.wittenbauer() if d.flywheel is not None else None
-    table = fit_table(lambda size: results_view(results_rows(d, wit, lang), lang=lang, size_mm=size,
+    table = fit_table(lambda size: results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=size,
                                                 title_mm=req.sizes.table_title),
                       req, what="table of results", max_width=fx1 - right_x0, advice="")
     views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
@@ -193,7 +195,7 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
         views["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
         scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
         # the table reads the segment off this drawing
-        table = results_view(results_rows(d, wit, lang), lang=lang, size_mm=table.meta["size_mm"],
+        table = results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=table.meta["size_mm"],
                              title_mm=req.sizes.table_title)
         views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     return wit

@@ -1,7 +1,7 @@
 """The sheet kinds, dispatched once: a kind (`velplan.options.SheetKind`) to its builder and its
 title block. `velplan.sheet` and ``velplan sheet --kind`` both draw through `build`.
 
->>> default_title_of("forces", "four-bar", "en").designation.endswith("02")
+>>> default_title_of("forces", "four-bar", "en").designation.endswith("02.00.000")
 True
 >>> build("four-bar", "plan")
 Traceback (most recent call last):

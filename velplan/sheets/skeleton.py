@@ -188,10 +188,12 @@ def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_
 
 def course_title(mech: Mechanism, lang: Language, what: str, number: int, scale: str) -> TitleInfo:
     """The title block of document `number` of a course work: `what` (a label key) of the
-    mechanism, its designation and scale; no date (velplan never reads the clock)."""
+    mechanism, its designation and scale; no date (velplan never reads the clock). The
+    designation is a code, ``"ТММ 01.00.000"`` (Cyrillic in ru and uk, ``"TMM 01.00.000"``
+    otherwise): the document's number, no file name (ГОСТ 2.201)."""
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
     return TitleInfo(title=f"{label(what, lang)}: {mech.name_in(lang)}",
-                     designation=f"{prefix}.{mech.name}.{number:02d}", scale=scale)
+                     designation=f"{prefix} {number:02d}.00.000", scale=scale)
 
 
 def title_with_scale(info: TitleInfo | None, default: Callable[[str], TitleInfo],

@@ -161,30 +161,84 @@ def subscript(name: str) -> str:
     return head + name[len(head):].translate(_SUB) if head else name
 
 
-def number(x: float, lang: Language, digits: int = 4) -> str:
-    """`x` to `digits` significant figures, decimal comma in ru and uk, no exponent."""
-    if not math.isfinite(x):
-        return "—"
-    if x == 0:
-        text = "0"
-    else:
-        decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
-        text = f"{x:.{decimals}f}"
-        if "." in text:
-            text = text.rstrip("0").rstrip(".")
-    if text in ("-0", ""):
-        text = "0"
+MINUS = "\u2212"
+"""The minus sign of printed numbers ("−", not the hyphen "-")."""
+
+_SUPER = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+#: Magnitudes below the first or from the second are written with a power of ten (·10⁻⁵).
+POWER_BELOW, POWER_FROM = 1e-4, 1e7
+
+
+def _signs(text: str, lang: Language) -> str:
+    """The decimal sign of `lang` (a comma in ru and uk) and the minus sign in a number's text."""
+    text = text.replace("-", MINUS)
     return text.replace(".", ",") if lang in ("ru", "uk") else text
 
 
+def _significant(x: float, digits: int) -> str:
+    """`x` to `digits` significant figures in positional notation, trailing zeros dropped."""
+    if x == 0:
+        return "0"
+    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+    text = f"{x:.{decimals}f}"
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def power_of_ten(x: float, lang: Language, digits: int = 4) -> str:
+    """`x` as mantissa·10ⁿ (``"1,25·10⁻¹⁴"``; ``"10⁻⁵"`` for a mantissa of 1), `digits`
+    significant figures in the mantissa."""
+    if not math.isfinite(x) or x == 0:
+        return number(x, lang, digits)
+    k = math.floor(math.log10(abs(x)))
+    mantissa = float(f"{x / 10.0**k:.{digits - 1}f}")
+    if abs(mantissa) >= 10.0:
+        mantissa, k = mantissa / 10.0, k + 1
+    power = "10" + str(k).translate(_SUPER)
+    if abs(mantissa) == 1.0:
+        return (MINUS if mantissa < 0 else "") + power
+    return _signs(_significant(mantissa, digits), lang) + "·" + power
+
+
+def indexed(base: str, index: str, marked: bool = True) -> str:
+    """A symbol with its index below the line: ``indexed("ω", "max")`` → ``"ω_{max}"`` (the
+    ``_{…}`` mark the drawings set as a subscript); ``marked=False`` writes ``"ωmax"`` (for text
+    that is not drawn)."""
+    return f"{base}_{{{index}}}" if marked and index else f"{base}{index}"
+
+
+def number(x: float, lang: Language, digits: int = 4) -> str:
+    """`x` to `digits` significant figures, decimal comma in ru and uk, the minus sign "−";
+    a power of ten (`power_of_ten`) below `POWER_BELOW` or from `POWER_FROM`, never "e-14"."""
+    if not math.isfinite(x):
+        return "—"
+    if x != 0 and not POWER_BELOW <= abs(float(f"{x:.{digits}g}")) < POWER_FROM:
+        return power_of_ten(x, lang, digits)
+    return _signs(_significant(x, digits), lang)
+
+
 def fixed(x: float, lang: Language, decimals: int = 3) -> str:
-    """`x` with a fixed number of decimals (a table cell), decimal comma in ru and uk."""
+    """`x` with a fixed number of decimals (a table cell), decimal comma in ru and uk, "−"."""
     if not math.isfinite(x):
         return "—"
     text = f"{x:.{decimals}f}"
     if float(text) == 0:
         text = f"{0:.{decimals}f}"
-    return text.replace(".", ",") if lang in ("ru", "uk") else text
+    return _signs(text, lang)
+
+
+def row_decimals(values, digits: int = 3) -> int:
+    """Decimals that give the largest magnitude of `values` `digits` significant figures (every
+    entry of a table's row to the same absolute precision, as read off one plan); 0 for a row
+    of zeros."""
+    a = np.abs(np.asarray(values, float))
+    a = a[np.isfinite(a)]
+    top = float(a.max()) if a.size else 0.0
+    if top == 0.0:
+        return 0
+    return max(0, digits - 1 - math.floor(math.log10(float(f"{top:.{digits}g}"))))
 
 
 _UNITS: Mapping[str, Mapping[str, str]] = MappingProxyType({

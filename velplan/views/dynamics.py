@@ -22,11 +22,15 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
-from velplan.views.base import View, axis_numbers_clear, make_view, number, place_labels, unit
+from velplan.views.base import (
+    View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
 from velplan.views.table import grid_table
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
+
+KL_OFFSET_MM = -10.0
+"""Where the dimension of Wittenbauer's segment kl runs, from the ΔT axis, mm."""
 
 
 @dataclass(frozen=True)
@@ -66,8 +70,8 @@ def _ticks(lo: float, hi: float, step: float) -> np.ndarray:
 def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycle: float,
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
-                base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = ()
-                ) -> View:
+                base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
+                base_label: str = "") -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -84,6 +88,10 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         Largest span of the ordinates, mm: μ is the standard scale keeping it within.
     base : float
         The value on the φ axis (ω_m for the speed, else 0), units of the values.
+    base_label : str
+        What the φ axis is labelled with where it meets the ordinate axis when ``base`` is
+        not 0 (``"ω_{m}"``; the value of ``base`` when empty). The ticks are round values of
+        the ordinate itself (8.2, 8.3, …), not steps from ``base``.
     marks : sequence of (travel rad, value, text)
         Points marked with a dot and a label (the extremes of ω).
     """
@@ -110,14 +118,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         if k % every == 0:
             items.append(Text((x, -1.8), str(position_number(k % positions)), LABELS, 0.8 * size if size > 2.5 else size,
                               "middle", "top"))
-    # ordinate ticks with their values
-    step = nice_step((top - bottom) * mu)
-    for v in _ticks(bottom * mu, top * mu, step):
-        y = v / mu
-        if abs(y) < 1e-9:
-            continue
-        items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), number(base + v, lang, 4), LABELS, 0.8 * size, "end", "middle"))
+    # ordinate ticks at round values of the ordinate, clear of the φ axis's own label
+    items += _ordinate_ticks(bottom, top, mu, base, base_label, lang, size)
     # the curves, each named near its largest ordinate
     names = []
     lines = []
@@ -144,7 +146,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     items += list(place_labels(names, lines + axes))
     # title, scales and notes above the plot
-    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μφ = {number(mu_phi, lang)} "
+    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
     text_lines = [scale] + list(notes)
     y = top + 8.0 + 1.6 * size * len(text_lines)
@@ -152,6 +154,28 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base})
+
+
+def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_label: str, lang: Language,
+                    size: float) -> list[Primitive]:
+    """Ticks and values of an ordinate axis drawn from `bottom` to `top` mm at `mu` units per mm
+    whose zero is the value `base`: round values (a `nice_step` apart, to the step's decimals);
+    where `base` is not 0, the φ axis's label (`base_label`, else the value) and no tick
+    within a text height of it."""
+    lo, hi = base + bottom * mu, base + top * mu
+    step = nice_step(hi - lo)
+    decimals = max(0, -math.floor(math.log10(step) + 1e-9) + (1 if f"{step:.3g}".rstrip("0").endswith("25") else 0))
+    items: list[Primitive] = []
+    clear = 1e-9 if base == 0 else 1.5 * size
+    for v in _ticks(lo, hi, step):
+        y = (v - base) / mu
+        if abs(y) < clear:
+            continue
+        items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
+        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size, "end", "middle"))
+    if base != 0:
+        items.append(Text((-1.8, 0.0), base_label or number(base, lang, 4), LABELS, size, "end", "middle"))
+    return items
 
 
 def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequence[tuple[float, float]], *,
@@ -174,7 +198,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     lx, ly = 0.0, w.intercept_min / mT
     tmax = (w.touch_max[0] / mJ, w.touch_max[1] / mT)
     tmin = (w.touch_min[0] / mJ, w.touch_min[1] / mT)
-    ends = {}
+    ends: dict[str, tuple[float, float]] = {}
     for mark, (ax, ay), (tx, ty) in (("k", (kx, ky), tmax), ("l", (lx, ly), tmin)):
         ex = tx + 10.0
         ends[mark] = (ex, ay + (ty - ay) * ex / tx if tx > 0 else ay)
@@ -200,12 +224,19 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         items.append(Polyline([(ax, ay), (ex, ey)], LINES, "thin"))
         items.append(Circle((ax, ay), 0.7, LAYER, "thin", "solid"))
         items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
-        names.append(Text((ax - 1.5, ay), mark, LABELS, sizes.title_mm, "end", "middle"))
-        sym = "ψmax" if mark == "k" else "ψmin"
+        # beside the ΔT axis, never on it: k above its extension line, between the axis and the
+        # dimension kl (the tangent leaves k up and to the right); l to the right of its point,
+        # under its tangent and off the axis's tail (an upright l beside a parallel line reads
+        # as a tick), moved clear of the lines where the tangent runs flat
+        if mark == "k":
+            items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
+        else:
+            names.append(Text((4.0, ay + 0.3), mark, LABELS, sizes.title_mm, "start", "baseline"))
+        sym = indexed("ψ", "max" if mark == "k" else "min")
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
     # the segment kl, dimensioned beside the ΔT axis
-    dx = -10.0
+    dx = KL_OFFSET_MM
     items.append(Polyline([(0.0, ky), (dx - 2.0, ky)], LINES, "thin"))
     items.append(Polyline([(0.0, ly), (dx - 2.0, ly)], LINES, "thin"))
     mid = 0.5 * (ky + ly)
@@ -215,13 +246,15 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
                       LABELS, size, "middle", "baseline", 90.0))
     lines = [shapely.LineString(np.column_stack([x, y])),
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
+    lines += [shapely.LineString([(0.0, ay), end]) for ay, end in ((ky, ends["k"]), (ly, ends["l"]))]
     items += list(place_labels(names, lines))
     w2d = omega_mean**2 * delta
-    text = [f"μJ = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
-            f"μT = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
-            f"tg ψmax,min = (μJ/μT)·ω²m(1 ± δ/2)²/2;  ωm = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
-            f"δ = {number(delta, lang)}",
-            f"JI = μT·kl/(ω²m·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
+    mu_j, mu_t, wm = indexed("μ", "J"), indexed("μ", "T"), indexed("ω", "m")
+    text = [f"{mu_j} = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
+            f"{mu_t} = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
+            f"tg {indexed('ψ', 'max,min')} = ({mu_j}/{mu_t})·{wm}²(1 ± δ/2)²/2;  {wm} = {number(omega_mean, lang)} "
+            f"{unit('rad/s', lang)}, δ = {number(delta, lang)}",
+            f"{indexed('J', 'I')} = {mu_t}·kl/({wm}²·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
             f"{number(w2d, lang)} = {number(w.inertia_drawn, lang)} {unit('kg·m²', lang)}"]
     ytext = top + 4.0 + 1.6 * size * len(text)
     items.append(Text((0.0, ytext + 1.8 * size), label("energy_mass", lang), LABELS, sizes.title_mm))
@@ -234,7 +267,8 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
 def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                   scale_text: str = "") -> View:
     """The flywheel's axial section at ``scale`` (m per mm): a disc, or a rim on a web and a
-    hub, hatched, with its axis and the dimensions ⌀D (⌀D₁, ⌀D₂) and b; mass and inertia.
+    hub, hatched, with its axis and the diameters (⌀426, as ESKD writes them: the sign and the
+    size in mm) and the width b; mass and inertia.
 
     ``dims`` is a `velplan.dynamics.flywheel.FlywheelDimensions`."""
     s = 1.0 / scale
@@ -261,17 +295,17 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
                                  "flywheel", "thick", "hatch"))
     # the axis
     items.append(Polyline([(-6.0, 0.0), (b + 6.0, 0.0)], "flywheel", "axis"))
-    # ⌀D to the left, b below
-    diam = [("⌀D" if dims.shape == "disc" else "⌀D₂", R, dims.outer)]
+    # the diameters to the left, b below
+    diam = [(R, dims.outer)]
     if dims.shape == "rim":
-        diam.append(("⌀D₁", 0.5 * dims.inner * s, dims.inner))
-    for k, (sym, r, value) in enumerate(diam):
+        diam.append((0.5 * dims.inner * s, dims.inner))
+    for k, (r, value) in enumerate(diam):
         xd = -8.0 - 8.0 * k
         items.append(Polyline([(0.0, r), (xd - 2.0, r)], "flywheel", "thin"))
         items.append(Polyline([(0.0, -r), (xd - 2.0, -r)], "flywheel", "thin"))
         items.append(Arrow((xd, 0.0), (xd, r), "flywheel", "thin", 2.5, 0.8))
         items.append(Arrow((xd, 0.0), (xd, -r), "flywheel", "thin", 2.5, 0.8))
-        items.append(Text((xd - 1.0, 0.5 * r), f"{sym} {number(1000 * value, lang, 4)}", LABELS, size,
+        items.append(Text((xd - 1.0, 0.5 * r), f"⌀{number(1000 * value, lang, 4)}", LABELS, size,
                           "middle", "baseline", 90.0))
     yb = -R - 8.0
     items.append(Polyline([(0.0, -R), (0.0, yb - 2.0)], "flywheel", "thin"))
@@ -293,8 +327,7 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
 
 
 def bound(x: float, lang: Language) -> str:
-    """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``, ``±2e-11``
-    (the sheets' fonts have no superscript minus)."""
+    """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``, ``±2·10⁻¹¹``."""
     if not (math.isfinite(x) and x > 0):
         return "0" if x == 0 else "—"
     k = math.floor(math.log10(x))
@@ -303,51 +336,55 @@ def bound(x: float, lang: Language) -> str:
         m, k = 1, k + 1
     if -3 <= k <= 3:
         return "±" + number(m * 10.0**k, lang, 1)
-    return f"±{m}e{k}"
+    return "±" + power_of_ten(m * 10.0**k, lang, 1)
 
 
-def error_rows(d, lang: Language) -> list[tuple[str, str, str]]:
+def error_rows(d, lang: Language, marked: bool = False) -> list[tuple[str, str, str]]:
     """(quantity, bound, unit) rows of the estimated errors of the main results
-    (`velplan.dynamics.Dynamics.errors`)."""
+    (`velplan.dynamics.Dynamics.errors`); ``marked``: symbols' indices marked ``_{…}`` (drawn)."""
     e = d.errors
     name = label("estimated_error", lang)
-    keys = (("driving_moment", "M" + label("symbol_drive", lang), "N·m"), ("flywheel_exact", "JI", "kg·m²"),
+    keys = (("driving_moment", indexed("M", label("symbol_drive", lang), marked), "N·m"),
+            ("flywheel_exact", indexed("J", "I", marked), "kg·m²"),
             ("omega", "ω", "rad/s"), ("time", "t", "s"))
     return [(f"{name}: {sym}", bound(e[k], lang), unit(u, lang)) for k, sym, u in keys
             if k in e and e[k] and not (k == "driving_moment" and (d.run or d.periodic) is not None)]
 
 
-def results_rows(d, w, lang: Language, errors: bool = True) -> list[tuple[str, str, str]]:
+def results_rows(d, w, lang: Language, errors: bool = True, marked: bool = False) -> list[tuple[str, str, str]]:
     """(quantity, value, unit) rows of the dynamics' results, then (``errors``) the estimated
-    errors of the main ones; ``w`` the drawn `Wittenbauer` (or None)."""
-    rows = _result_rows(d, w, lang)
-    return rows + (error_rows(d, lang) if errors else [])
+    errors of the main ones; ``w`` the drawn `Wittenbauer` (or None); ``marked``: the symbols'
+    indices marked ``_{…}`` (ω_{max}), as a drawing sets them, else written on the line (ωmax)."""
+    rows = _result_rows(d, w, lang, marked)
+    return rows + (error_rows(d, lang, marked) if errors else [])
 
 
-def _result_rows(d, w, lang: Language) -> list[tuple[str, str, str]]:
+def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str]]:
     deg = unit("deg", lang)
     rads = unit("rad/s", lang)
+    w_max, w_min, w_m = (indexed("ω", i, marked) for i in ("max", "min", "m"))
+    j_one = indexed("J", "I", marked)
     if d.run is not None:
         r = d.run
         return [("t", number(r.time, lang, 5), unit("s", lang)),
                 ("φ", number(math.degrees(r.travel), lang, 5), deg),
                 ("ω₀", number(r.omega_start, lang, 5), rads),
                 ("ω (t)", number(r.omega_end, lang, 5), rads),
-                ("ωmax", number(r.omega_max, lang, 5), rads),
-                ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(r.theta_min), lang, 4)}{deg}"),
+                (w_max, number(r.omega_max, lang, 5), rads),
+                (w_min + ", " + label("at_travel", lang).format(angle=f"{number(math.degrees(r.theta_min), lang, 4)}{deg}"),
                  number(r.omega_min, lang, 5), rads),
-                ("JI", number(d.inertia, lang, 5), unit("kg·m²", lang))]
+                (j_one, number(d.inertia, lang, 5), unit("kg·m²", lang))]
     rows = []
     if d.periodic is None:
-        rows.append((label("driving_moment", lang) + " M" + label("symbol_drive", lang), number(d.driving, lang, 5),
+        rows.append((label("driving_moment", lang) + " " + indexed("M", label("symbol_drive", lang), marked), number(d.driving, lang, 5),
                      unit("N·m", lang)))
     st = d.steady or d.periodic
     if st is not None:
         rows += [
-            (label("mean_speed", lang) + " ωm", number(st.omega_mean, lang, 5), unit("rad/s", lang)),
-            ("ωmax, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_max), lang, 4)}{deg}"),
+            (label("mean_speed", lang) + " " + w_m, number(st.omega_mean, lang, 5), unit("rad/s", lang)),
+            (w_max + ", " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_max), lang, 4)}{deg}"),
              number(st.omega_max, lang, 5), unit("rad/s", lang)),
-            ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_min), lang, 4)}{deg}"),
+            (w_min + ", " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_min), lang, 4)}{deg}"),
              number(st.omega_min, lang, 5), unit("rad/s", lang)),
             (label("delta_obtained", lang), number(st.delta, lang, 4), ""),
         ]
@@ -355,14 +392,14 @@ def _result_rows(d, w, lang: Language) -> list[tuple[str, str, str]]:
     if fly is not None:
         kgm2 = unit("kg·m²", lang)
         rows += [(label("delta_required", lang), number(fly.delta, lang, 4), ""),
-                 (f"JI ({label('method_exact', lang)})", number(fly.exact, lang, 6), kgm2),
-                 (f"JI ({label('method_wittenbauer', lang)})", number(fly.wittenbauer, lang, 6), kgm2)]
+                 (f"{j_one} ({label('method_exact', lang)})", number(fly.exact, lang, 6), kgm2),
+                 (f"{j_one} ({label('method_wittenbauer', lang)})", number(fly.wittenbauer, lang, 6), kgm2)]
         if w is not None:
             err = 100.0 * (w.inertia_drawn - fly.exact) / fly.exact
-            rows.append((f"JI ({label('method_wittenbauer_drawn', lang)})",
+            rows.append((f"{j_one} ({label('method_wittenbauer_drawn', lang)})",
                          f"{number(w.inertia_drawn, lang, 6)} ({'+' if err >= 0 else '−'}{number(abs(err), lang, 2)} %)",
                          kgm2))
-        rows += [(f"JI ({label('method_mertsalov', lang)})",
+        rows += [(f"{j_one} ({label('method_mertsalov', lang)})",
                   f"{number(fly.mertsalov, lang, 6)} ({'+' if fly.mertsalov_difference >= 0 else '−'}"
                   f"{number(abs(100 * fly.mertsalov_difference), lang, 3)} %)", kgm2),
                  (label("declared_inertia", lang), number(fly.declared, lang, 5), kgm2),

@@ -1,9 +1,11 @@
 """The table of transfer functions (velocity analogues) as drawn on a course sheet.
 
-Columns are the positions 1…n, rows the crank angle, |V|/ω1 (m) of the mechanism's points
-and ω/ω1 of its turning links, read off the velocity plans (`velplan.plans.table`). Grid
-lines are thin, the outline and the header rule thick (GOST 2.105 tables). Layer
-``"table"``.
+Columns are the positions 1…n, rows the crank angle, |v|/ω of the crank (m) of the mechanism's
+points and ω/ω of the crank of its turning links, read off the velocity plans
+(`velplan.plans.table`), named as the answer key and ``velplan check`` name them
+(`velplan.plans.table.quantity_label`), each row to three significant figures of its largest
+value. Grid lines are thin, the outline and the header rule thick (GOST 2.105 tables); a header
+cell may span the cells after it. Layer ``"table"``.
 """
 
 from __future__ import annotations
@@ -15,16 +17,29 @@ import numpy as np
 from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import Mechanism
 from velplan.options import Language
-from velplan.plans.table import TransferTable
+from velplan.plans.table import TransferTable, quantity_label
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
-from velplan.views.base import View, digits_down, fixed, make_view, subscript, unit
+from velplan.views.base import View, digits_down, fixed, make_view, row_decimals, subscript, unit
 
 _ROW_PITCH = 2.0  # row height over text height
 _PAD = 1.0  # cell padding each side, mm
 # Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
 _WIDE = 1.3
+#: Digits, signs and separators render within 3 % of the estimate (the bundled font:
+#: "−0,0833" is 3.61 em, estimated 3.57): a number's column needs less margin.
+NUMBER_MARGIN = 1.1
+_NUMBER = set("0123456789,.−-+")
+
+
+def _cell_width(text: str | None, size_mm: float, numbers: float) -> float:
+    """Estimated width a cell's text needs, mm: a number's estimate times `numbers`, any other
+    text's times the Cyrillic margin."""
+    if text is None:
+        return 0.0
+    margin = numbers if text and set(text) <= _NUMBER else _WIDE
+    return margin * text_extent(text, size_mm)[0]
 
 
 def _row_label(name: str, crank: str, lang: Language) -> str:
@@ -34,13 +49,27 @@ def _row_label(name: str, crank: str, lang: Language) -> str:
     return f"V{subscript(name[2:])}/{w1}, {unit('m', lang)}"
 
 
-def grid_table(grid: list[list[str]], size_mm: float) -> tuple[list[Primitive], float, float]:
+def _spans(row: list) -> list[tuple[int, int]]:
+    """(first, last) columns of each cell of `row`: a None cell belongs to the cell before it."""
+    spans: list[tuple[int, int]] = []
+    for c, text in enumerate(row):
+        if text is None and spans:
+            spans[-1] = (spans[-1][0], c)
+        else:
+            spans.append((c, c))
+    return spans
+
+
+def grid_table(grid: list[list[str | None]], size_mm: float, *,
+               numbers: float = _WIDE) -> tuple[list[Primitive], float, float]:
     """A ruled table of text cells with its lower-left corner at (0, 0): the first column left-
     aligned, the value columns of equal width and centred; the outline and the header rule
-    thick, the body lines thin. Returns (primitives, width mm, height mm)."""
+    thick, the body lines thin. A None cell merges with the cell before it in its row (a header
+    over two columns): no rule between them, the text centred over both. ``numbers`` is the
+    margin of a number's estimated width (`NUMBER_MARGIN` where the columns hold numbers of the
+    bundled font). Returns (primitives, width mm, height mm)."""
     n = len(grid[0]) - 1
-    widths = [max(_WIDE * text_extent(r[c], size_mm)[0] for r in grid) + 2 * _PAD
-              for c in range(n + 1)]
+    widths = [max(_cell_width(r[c], size_mm, numbers) for r in grid) + 2 * _PAD for c in range(n + 1)]
     widths[1:] = [max(widths[1:])] * n  # equal value columns
     row_h = _ROW_PITCH * size_mm
     total_w, total_h = sum(widths), row_h * len(grid)
@@ -49,47 +78,55 @@ def grid_table(grid: list[list[str]], size_mm: float) -> tuple[list[Primitive], 
     for r in range(1, len(grid)):
         y = total_h - r * row_h
         items.append(Polyline([(0.0, y), (total_w, y)], "table", "thick" if r == 1 else "thin"))
-    for x in xs[1:-1]:
-        items.append(Polyline([(x, 0.0), (x, total_h)], "table", "thin"))
+    for c, x in enumerate(xs[1:-1], start=1):
+        # the rule left of column c, broken where a merged cell spans it
+        open_rows = [r for r, row in enumerate(grid) if row[c] is not None]
+        for run in np.split(np.asarray(open_rows), np.flatnonzero(np.diff(open_rows) > 1) + 1):
+            if run.size:
+                items.append(Polyline([(x, total_h - (run[-1] + 1) * row_h), (x, total_h - run[0] * row_h)],
+                                      "table", "thin"))
     items.append(Polygon([(0.0, 0.0), (total_w, 0.0), (total_w, total_h), (0.0, total_h)],
                          "table", "thick"))
     for r, row in enumerate(grid):
         y = total_h - (r + 0.5) * row_h
-        for c, text in enumerate(row):
-            if c == 0:
+        for first, last in _spans(row):
+            text = row[first]
+            if first == 0:
                 items.append(Text((xs[0] + _PAD, y), text, "table", size_mm, "start", "middle"))
             else:
-                items.append(Text(((xs[c] + xs[c + 1]) / 2, y), text, "table", size_mm,
+                items.append(Text(((xs[first] + xs[last + 1]) / 2, y), text, "table", size_mm,
                                   "middle", "middle"))
     return items, total_w, total_h
 
 
 def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
-               size_mm: float = 2.5, title_mm: float = 3.5, decimals: int = 3) -> View:
+               size_mm: float = 2.5, title_mm: float = 3.5, digits: int = 3) -> View:
     """The table as a view, its title above it.
 
     Parameters
     ----------
     table : TransferTable
-        The study's table (`velplan.Study.table`).
+        The study's table (`velplan.Study.table`), its rows in point and link order.
     mech : Mechanism
-        For the crank's name (ω1 is the crank's ω).
+        For the crank's name (the ω every row is divided by).
     size_mm, title_mm : float
         Text heights of the cells and of the title, mm.
-    decimals : int
-        Decimals of the values.
+    digits : int
+        Significant figures of each row's largest value; the row's other values to the same
+        decimals (`velplan.views.base.row_decimals`).
     """
     n = len(table.phi)
+    crank = mech.crank.link
     head = [label("position", lang)] + [str(position_number(i)) for i in range(n)]
     rows = [[f"φ, {unit('deg', lang)}"] +
             [fixed(math.degrees(p) % 360.0, lang, 1) for p in table.phi]]
     for name, values in table.rows.items():
-        rows.append([_row_label(name, mech.crank.link, lang)] +
-                    [fixed(float(v), lang, decimals) for v in np.asarray(values)])
-    items, total_w, total_h = grid_table([head] + rows, size_mm)
+        values = np.asarray(values, float)
+        decimals = row_decimals(values, digits)
+        rows.append([quantity_label(name, crank)] + [fixed(float(v), lang, decimals) for v in values])
+    items, total_w, total_h = grid_table([head] + rows, size_mm, numbers=NUMBER_MARGIN)
+    w1 = f"ω_{{{crank}}}"
     items.append(Text((0.0, total_h + 2.5), f"{label('table_transfer', lang)} "
-                      f"(V/ω{digits_down(mech.crank.link)}, {unit('m', lang)}; "
-                      f"ω/ω{digits_down(mech.crank.link)})",
-                      "table", title_mm))
+                      f"(v/{w1}, {unit('m', lang)}; ω/{w1})", "table", title_mm))
     return make_view("table", items, pad_mm=1.0,
                      meta={"rows": tuple(table.rows), "n": n, "size_mm": size_mm})
