@@ -18,13 +18,12 @@ from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
-from velplan.plans import standard_scale
-from velplan.plans.engine import PlanResult
+from velplan.plans.engine import POSITION_PLAN_MM, PlanResult
 from velplan.render.i18n import label
 from velplan.render.layout import fit_text
 from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
-    extent_mm, image_letters, plan_steps, plan_title, plan_view)
+    image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
 from velplan.views.base import digits_down, eskd_scales, shift
 
@@ -43,7 +42,7 @@ class StepFigure:
 
 
 def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResult], position: int, *,
-                 kind: str = "both", lang: str = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
+                 kind: str = "both", lang: str = "ru", plan_mm: float = POSITION_PLAN_MM) -> list[StepFigure]:
     """Figures of every construction step of the plans at `position` (1-based).
 
     Parameters
@@ -75,9 +74,7 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     series = []
     for kd in kinds:
         res0 = plans[kd]
-        ew, eh = extent_mm(res0, position)
-        mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
-        res = res0.at_scale(mu)
+        res = res0.at_scale(res0.position_scale(position, plan_mm))
         series.append((kd, res, plan_view(res, position, lang=lang), plan_steps(res, position, lang=lang)))
     # one page size for the whole series, velocity and acceleration alike
     width = max([_MARGIN * 3 + mview.width_mm + full.width_mm for _, _, full, _ in series] + [297.0])
