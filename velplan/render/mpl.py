@@ -22,7 +22,7 @@ from velplan.render.fonts import GENERIC_FAMILIES, candidate_families, register_
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import (
     Stroke, arrow_shape, arrow_size, circle_outline, hatch_segments, hatch_stroke,
-    stroke_for, text_origin)
+    plain_text, stroke_for, text_origin)
 from velplan.render.style import SheetStyle
 
 if TYPE_CHECKING:
@@ -145,7 +145,7 @@ class MplCanvas:
     def draw_text(self, item: Text) -> None:
         x, y = text_origin(item)
         size_pt = self.style.font_size_em(item.size_mm) * self._pt_per_mm
-        self.ax.text(x, y, item.text, fontsize=size_pt,
+        self.ax.text(x, y, plain_text(item.text), fontsize=size_pt,
                      family=_installed_families(self.style.font_families),
                      style="italic" if self.style.italic else "normal",
                      color=self.style.stroke_colour(item.layer),

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import unicodedata
 from typing import TYPE_CHECKING, NamedTuple, Protocol
 
@@ -244,6 +245,27 @@ def script_of(char: str) -> tuple[str, str]:
     return char, ""
 
 
+_MARKED_INDEX = re.compile(r"_\{([^{}]*)\}")
+"""A whole index written out: ``v_{BA}`` is v with the subscript "BA" (letters have no
+Unicode subscript forms); digits and superscripts stay as in the rest of the text."""
+
+
+def _characters(text: str):
+    """(plain character, script) of every drawn character of `text`, marked indices as "sub"."""
+    at = 0
+    for m in _MARKED_INDEX.finditer(text):
+        yield from (script_of(c) for c in text[at:m.start()])
+        yield from ((script_of(c)[0], "sub") for c in m.group(1))
+        at = m.end()
+    yield from (script_of(c) for c in text[at:])
+
+
+def plain_text(text: str) -> str:
+    """`text` without the ``_{…}`` marks of whole indices (``v_{BA}`` → ``vBA``): what a
+    backend that draws one plain string writes."""
+    return _MARKED_INDEX.sub(lambda m: m.group(1), text)
+
+
 def text_runs(text: str) -> tuple[TextRun, ...]:
     """Split `text` into runs of one script each; a text without indices is one run.
 
@@ -253,10 +275,11 @@ def text_runs(text: str) -> tuple[TextRun, ...]:
     (TextRun(text='ω', script=''), TextRun(text='2', script='sub'))
     >>> [run.text for run in text_runs("aⁿ_A4O3 = 2 м/с²")]
     ['a', 'n', '_A4O3 = 2 м/с²']
+    >>> text_runs("v_{K3} =")
+    (TextRun(text='v', script=''), TextRun(text='K3', script='sub'), TextRun(text=' =', script=''))
     """
     runs: list[TextRun] = []
-    for char in text:
-        plain, script = script_of(char)
+    for plain, script in _characters(text):
         if runs and runs[-1].script == script:
             runs[-1] = TextRun(runs[-1].text + plain, script)
         else:
@@ -282,8 +305,7 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
         height from the descender line to the capital line, 1.25·h.
     """
     units = 0.0
-    for char in text:
-        plain, script = script_of(char)
+    for plain, script in _characters(text):
         width = WIDE_CHAR_WIDTH if is_wide_char(plain) else NARROW_CHAR_WIDTH
         units += width * (SCRIPT_SCALE if script else 1.0)
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm

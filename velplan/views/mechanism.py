@@ -25,7 +25,7 @@ from velplan.analysis.solver import Kinematics
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, Triad
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
-from velplan.render.scene import Circle, Polyline, Primitive, Text
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
@@ -386,7 +386,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     if not single:
         _other_positions(items, obstacles, geo, fine, t, mm, mu_l, extreme, bold)
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, special)
-    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme)
+    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     items += place_labels(labels, obstacles, rings=8)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes)
@@ -479,9 +479,9 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None) -> list[Text]:
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> list[Text]:
     """The labels to place: points of the thick position, position numbers, ω1 (its arrow
-    added to `items`), links."""
+    added to `items`, and to `obstacles`: no letter is written over it), links."""
     mech, kin = geo.mech, geo.kin
     labels: list[Text] = list(drawn.special_letters)
     labels += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
@@ -499,6 +499,9 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
     omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
     items += omega[:-1]
     labels.append(omega[-1])
+    if obstacles is not None:
+        obstacles += [shapely.LineString(p.points if isinstance(p, Polyline) else [p.start, p.end]).buffer(0.6)
+                      for p in omega[:-1] if isinstance(p, (Polyline, Arrow))]
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
     labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
@@ -728,7 +731,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         a, b = mm(s.a), mm(s.b)
         d = b - a
         length = np.hypot(*d)
-        if length < 4 * size:
+        if length < 4 * size and s.link != mech.crank.link:  # a short crank keeps its number
             continue
         done.add(s.link)
         normal = np.array([-d[1], d[0]]) / length

@@ -103,11 +103,17 @@ _INDEX = re.compile(r"(?<=[A-Za-zωεπ])(\d+)")
 
 
 def readable(sentence: str) -> str:
-    """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``VA₄A``,
-    ``aⁿ_A4O3`` → ``aⁿA₄O₃``, ``O3A`` → ``O₃A``, ``ak1`` → ``ak₁`` (no underscores; the
-    digits of point, image and link names as subscripts)."""
-    text = _SYMBOL.sub(lambda m: m.group(1) + m.group(2) + m.group(3), sentence)
-    return _INDEX.sub(lambda m: digits_down(m.group(1)), text)
+    """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``v_{A4A}`` (v with
+    the whole index "A4A" below), ``aⁿ_A4O3`` → ``aⁿ_{A4O3}``, ``O3A`` → ``O₃A``, ``ak1`` →
+    ``ak₁`` (velocities in lowercase v; the digits of point, image and link names outside a
+    symbol's index as subscripts)."""
+    parts = _SYMBOL.split(sentence)  # text, (letter, mark, index), text, …
+    out = [_INDEX.sub(lambda m: digits_down(m.group(1)), parts[0])]
+    for k in range(1, len(parts), 4):
+        letter, mark, index, rest = parts[k:k + 4]
+        out.append(("v" if letter == "V" else letter) + mark + "_{" + index + "}")
+        out.append(_INDEX.sub(lambda m: digits_down(m.group(1)), rest))
+    return "".join(out)
 
 
 def partial_plan(res, position: int, k: int, *, full, drawings, lang: str) -> list:
