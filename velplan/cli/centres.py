@@ -172,7 +172,7 @@ def table(con: Construction, exact, res, number: int | None, *, lang: str = "en"
     velocities by centres beside the plan's and the analytic ones (m/s, rad/s)."""
     kin, i = con.kin, con.index
     where = f"position {number}, " if number is not None else ""
-    lines = [f"{kin.mechanism.name}: instant centres, {where}φ = {kin.phi_deg[i]:.3f}°, "
+    lines = [f"{kin.mechanism.name}: instant centres, {where}φ = {float(kin.phi_deg[i]) % 360.0:.3f}°, "
              f"μl = {con.mu_l:g} m/mm, {con.drafting.mode}"]
     lines += _centre_rows(con, exact, i)
     for s in con.unreached:
