@@ -247,6 +247,12 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
                 segments += [(pts[j], pts[j + 1]) for j in range(len(pts) - 1)]
     obstacles = [shapely.LineString([a, b]).buffer(0.5) for a, b in segments
                  if np.hypot(*(b - a)) > 1e-9]
+    obstacles += [shapely.Point(p.centre).buffer(p.radius + 0.3) for d in drawings[:upto] for p in d.items
+                  if isinstance(p, Circle)]
+    # where every spot is crossed, a thin line under a letter reads better than a vector: each
+    # vector counts twice
+    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.5) for d in drawings[:upto] for p in d.items
+                  if isinstance(p, Arrow) and p.length > 1e-9]
     texts = []
     for g in groups:
         z = _image(res, g[0], i)
