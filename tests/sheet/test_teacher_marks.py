@@ -201,3 +201,24 @@ def test_every_plan_shows_the_base_links_image_as_a_triangle(press_sheet):
         dots = [np.asarray(p.centre) for p in placed.primitives if isinstance(p, Circle) and p.fill == "solid"]
         for c in corners:
             assert min(np.hypot(*(d - c)) for d in dots) < 1e-6, (name, kind)
+
+
+@pytest.mark.parametrize("text, anchor", [("ω₁", "middle"), ("k₃", "end"), ("v_{BA}", "middle"), ("P₀₆", "end"), ("s₁₂", "middle")])
+def test_png_draws_an_indexed_label_whole_at_its_anchor(tmp_path, text, anchor):
+    """PNG through cairosvg as a browser draws the SVG: a centred or right-aligned label with
+    an index is one piece (no gap between letter and index) and sits at its anchor."""
+    pytest.importorskip("cairosvg")
+    from PIL import Image
+
+    from velplan.render.export import write_png
+
+    dpi, x = 400, 50.0
+    scene = Scene((Text((x, 10.0), text, "labels", 5.0, anchor, "middle"),), 100.0, 20.0)
+    path = write_png(to_svg(scene, SheetStyle(language="en")), tmp_path / "t.png", dpi=dpi)
+    ink = np.asarray(Image.open(path).convert("L")) < 128
+    cols = np.flatnonzero(ink.any(axis=0)) * 25.4 / dpi  # mm
+    assert cols.size
+    gaps = np.diff(cols)
+    assert gaps.max() < 1.2, gaps.max()  # a word space is ~1.4 mm at 5 mm; a split index ~2+
+    centre = {"middle": (cols[0] + cols[-1]) / 2, "end": cols[-1]}[anchor]
+    assert abs(centre - x) < 0.6, (centre, x)
