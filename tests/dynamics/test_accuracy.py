@@ -229,9 +229,10 @@ def test_error_fields_in_json_and_table():
     from velplan.views.dynamics import bound, results_rows
 
     rows = results_rows(d, None, "en")[-3:]
-    assert [r[0] for r in rows] == ["Error estimate: Md", "Error estimate: JI", "Error estimate: ω"]
+    # symbols with their whole index below (M_d, J_I), a power of ten as ·10⁻¹¹ (issue 32)
+    assert [r[0] for r in rows] == ["Error estimate: M_{d}", "Error estimate: J_{I}", "Error estimate: ω"]
     assert rows[1][1] == bound(doc["error"]["flywheel_exact"], "en")
-    assert bound(1.2e-11, "en") == "±2e-11" and bound(0.0031, "ru") == "±0,004"
+    assert bound(1.2e-11, "en") == "±2·10^{−11}" and bound(0.0031, "ru") == "±0,004"
 
 
 def test_indicator_nodes_lie_where_the_piston_passes_each_travel_on_both_strokes():

@@ -72,32 +72,33 @@ def _panels(d, c, lang: str, length: float, height: float, sizes: DynamicsSizes,
     kw = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang, sizes=sizes)
     nm, joule = unit("N·m", lang), unit("J", lang)
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
-    loads = [Series(c[f"M_{k}"], "thin", f"M {k}" if k != "gravity" else "M G") for k in d.profile.labels]
-    drive = f"M{drv} = {_n(d.driving, lang)} {nm}" if d.run is None and d.periodic is None else f"M{drv}"
-    moments = [Series(c["M_red"], "thick", f"M{res}"), Series(c["M_drive"], "hidden", drive)]
+    loads = [Series(c[f"M_{k}"], "thin", f"M_{{{k}}}" if k != "gravity" else "M_{G}") for k in d.profile.labels]
+    drive = f"M_{{{drv}}} = {_n(d.driving, lang)} {nm}" if d.run is None and d.periodic is None else f"M_{{{drv}}}"
+    moments = [Series(c["M_red"], "thick", f"M_{{{res}}}"), Series(c["M_drive"], "hidden", drive)]
     views = {"moments": curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
                                     title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **kw)}
-    works = [Series(c["A_resist"], "thin", f"A{res}"), Series(c["A_sum"], "thick", "ΔT")]
+    works = [Series(c["A_resist"], "thin", f"A_{{{res}}}"), Series(c["A_sum"], "thick", "ΔT")]
     if np.all(np.isfinite(c["A_drive"])):
-        works.insert(0, Series(c["A_drive"], "hidden", f"A{drv}"))
+        works.insert(0, Series(c["A_drive"], "hidden", f"A_{{{drv}}}"))
     views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
                                  unit_text=joule, **kw)
     jii = c["J_red"] - d.declared
     views["inertia"] = curve_panel(
-        "inertia", travel, [Series(jii, "thick", "JII")], title=label("reduced_inertia", lang), ordinate="JII",
+        "inertia", travel, [Series(jii, "thick", "J_{II}")], title=label("reduced_inertia", lang), ordinate="J_{II}",
         unit_text=unit("kg·m²", lang),
-        notes=[f"JI = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **kw)
+        notes=[f"J_{{I}} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **kw)
     w = np.abs(c["omega"])
     st = d.steady or d.periodic
     if st is not None:
         base = st.omega_mean
-        marks = [(st.theta_max, st.omega_max, "ωmax"), (st.theta_min, st.omega_min, "ωmin")]
-        notes = [f"ωm = {_n(st.omega_mean, lang)} {unit('rad/s', lang)};  δ = {_n(st.delta, lang)}"]
+        marks = [(st.theta_max, st.omega_max, "ω_{max}"), (st.theta_min, st.omega_min, "ω_{min}")]
+        notes = [f"ω_{{m}} = {_n(st.omega_mean, lang)} {unit('rad/s', lang)};  δ = {_n(st.delta, lang)}"]
     else:
         base, marks = float(np.nanmin(w)), []
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
     views["omega"] = curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
                                  ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
+                                 base_label="ω_{m}" if st is not None else "",
                                  notes=notes, **kw)
     return views
 

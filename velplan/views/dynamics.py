@@ -65,8 +65,8 @@ def _ticks(lo: float, hi: float, step: float) -> np.ndarray:
 def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycle: float,
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: str, sizes: DynamicsSizes = DynamicsSizes(),
-                base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = ()
-                ) -> View:
+                base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
+                base_label: str = "") -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -83,6 +83,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         Largest span of the ordinates, mm: μ is the standard scale keeping it within.
     base : float
         The value on the φ axis (ω_m for the speed, else 0), units of the values.
+    base_label : str
+        Its name, written at the axis (``"ω_{m}"``); the ticks are at round values all the same.
     marks : sequence of (travel rad, value, text)
         Points marked with a dot and a label (the extremes of ω).
     """
@@ -111,12 +113,14 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                               "middle", "top"))
     # ordinate ticks with their values
     step = nice_step((top - bottom) * mu)
-    for v in _ticks(bottom * mu, top * mu, step):
-        y = v / mu
-        if abs(y) < 1e-9:
+    for v in _ticks(base + bottom * mu, base + top * mu, step):  # round values of the quantity
+        y = (v - base) / mu
+        if abs(y) < (1.2 * size if base_label else 1e-9):
             continue
         items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), number(base + v, lang, 4), LABELS, 0.8 * size, "end", "middle"))
+        items.append(Text((-1.8, y), number(v, lang, 4), LABELS, 0.8 * size, "end", "middle"))
+    if base_label:  # the φ axis at ω_m: named
+        items.append(Text((-1.8, 0.0), base_label, LABELS, size, "end", "middle"))
     # the curves, each named near its largest ordinate
     names = []
     lines = []
@@ -194,13 +198,17 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         items.append(Circle((px, py), 0.6, LAYER, "thin", "solid"))
         names.append(Text((px + 1.2, py + 1.2), str(position_number(k)), LABELS, size, "start", "baseline"))
     # the tangents: from the ΔT axis through the touch points and a little beyond
+    tangents: list = []
     for (ax, ay), (tx, ty), psi, mark in (((kx, ky), tmax, w.psi_max_deg, "k"), ((lx, ly), tmin, w.psi_min_deg, "l")):
         ex, ey = ends[mark]
         items.append(Polyline([(ax, ay), (ex, ey)], LINES, "thin"))
         items.append(Circle((ax, ay), 0.7, LAYER, "thin", "solid"))
         items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
-        names.append(Text((ax - 1.5, ay), mark, LABELS, sizes.title_mm, "end", "middle"))
-        sym = "ψmax" if mark == "k" else "ψmin"
+        up = (ey - ay) >= 0  # the letter on the side away from its tangent, right of the axis
+        names.append(Text((ax + 2.5, ay + (-1.5 - sizes.title_mm if up else 1.5)), mark, LABELS, sizes.title_mm,
+                          "start", "baseline"))
+        tangents.append(shapely.LineString([(ax, ay), (ex, ey)]))
+        sym = "ψ_{max}" if mark == "k" else "ψ_{min}"
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
     # the segment kl, dimensioned beside the ΔT axis
@@ -214,13 +222,13 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
                       LABELS, size, "middle", "baseline", 90.0))
     lines = [shapely.LineString(np.column_stack([x, y])),
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
-    items += list(place_labels(names, lines))
+    items += list(place_labels(names, lines + tangents))
     w2d = omega_mean**2 * delta
     text = [f"μJ = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
             f"μT = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
-            f"tg ψmax,min = (μJ/μT)·ω²m(1 ± δ/2)²/2;  ωm = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
+            f"tg ψ_{{max,min}} = (μJ/μT)·ω_{{m}}²(1 ± δ/2)²/2;  ω_{{m}} = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
             f"δ = {number(delta, lang)}",
-            f"JI = μT·kl/(ω²m·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
+            f"J_{{I}} = μT·kl/(ω_{{m}}²·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
             f"{number(w2d, lang)} = {number(w.inertia_drawn, lang)} {unit('kg·m²', lang)}"]
     ytext = top + 4.0 + 1.6 * size * len(text)
     items.append(Text((0.0, ytext + 1.8 * size), label("energy_mass", lang), LABELS, sizes.title_mm))
@@ -270,7 +278,7 @@ def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = Dynam
         items.append(Polyline([(0.0, -r), (xd - 2.0, -r)], "flywheel", "thin"))
         items.append(Arrow((xd, 0.0), (xd, r), "flywheel", "thin", 2.5, 0.8))
         items.append(Arrow((xd, 0.0), (xd, -r), "flywheel", "thin", 2.5, 0.8))
-        items.append(Text((xd - 1.0, 0.5 * r), f"{sym} {number(1000 * value, lang, 4)}", LABELS, size,
+        items.append(Text((xd - 1.0, 0.5 * r), f"⌀{number(1000 * value, lang, 4)}", LABELS, size,
                           "middle", "baseline", 90.0))
     yb = -R - 8.0
     items.append(Polyline([(0.0, -R), (0.0, yb - 2.0)], "flywheel", "thin"))
@@ -292,8 +300,8 @@ def flywheel_view(dims, *, scale: float, lang: str, sizes: DynamicsSizes = Dynam
 
 
 def bound(x: float, lang: str) -> str:
-    """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``, ``±2e-11``
-    (the sheets' fonts have no superscript minus)."""
+    """An error bound ``x`` ≥ 0 rounded up to one significant figure: ``±0.004``,
+    ``±2·10^{−11}`` (the power of ten as ESKD writes it, its exponent a marked superscript)."""
     if not (math.isfinite(x) and x > 0):
         return "0" if x == 0 else "—"
     k = math.floor(math.log10(x))
@@ -302,7 +310,7 @@ def bound(x: float, lang: str) -> str:
         m, k = 1, k + 1
     if -3 <= k <= 3:
         return "±" + number(m * 10.0**k, lang, 1)
-    return f"±{m}e{k}"
+    return f"±{m}·10^{{{'−' if k < 0 else ''}{abs(k)}}}"
 
 
 def error_rows(d, lang: str) -> list[tuple[str, str, str]]:
@@ -310,7 +318,7 @@ def error_rows(d, lang: str) -> list[tuple[str, str, str]]:
     (`velplan.dynamics.Dynamics.errors`)."""
     e = d.errors
     name = label("estimated_error", lang)
-    keys = (("driving_moment", "M" + label("symbol_drive", lang), "N·m"), ("flywheel_exact", "JI", "kg·m²"),
+    keys = (("driving_moment", "M_{" + label("symbol_drive", lang) + "}", "N·m"), ("flywheel_exact", "J_{I}", "kg·m²"),
             ("omega", "ω", "rad/s"), ("time", "t", "s"))
     return [(f"{name}: {sym}", bound(e[k], lang), unit(u, lang)) for k, sym, u in keys
             if k in e and e[k] and not (k == "driving_moment" and (d.run or d.periodic) is not None)]
@@ -332,21 +340,21 @@ def _result_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
                 ("φ", number(math.degrees(r.travel), lang, 5), deg),
                 ("ω₀", number(r.omega_start, lang, 5), rads),
                 ("ω (t)", number(r.omega_end, lang, 5), rads),
-                ("ωmax", number(r.omega_max, lang, 5), rads),
-                ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(r.theta_min), lang, 4)}{deg}"),
+                ("ω_{max}", number(r.omega_max, lang, 5), rads),
+                ("ω_{min}, " + label("at_travel", lang).format(angle=f"{number(math.degrees(r.theta_min), lang, 4)}{deg}"),
                  number(r.omega_min, lang, 5), rads),
-                ("JI", number(d.inertia, lang, 5), unit("kg·m²", lang))]
+                ("J_{I}", number(d.inertia, lang, 5), unit("kg·m²", lang))]
     rows = []
     if d.periodic is None:
-        rows.append((label("driving_moment", lang) + " M" + label("symbol_drive", lang), number(d.driving, lang, 5),
+        rows.append((label("driving_moment", lang) + " M_{" + label("symbol_drive", lang) + "}", number(d.driving, lang, 5),
                      unit("N·m", lang)))
     st = d.steady or d.periodic
     if st is not None:
         rows += [
-            (label("mean_speed", lang) + " ωm", number(st.omega_mean, lang, 5), unit("rad/s", lang)),
-            ("ωmax, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_max), lang, 4)}{deg}"),
+            (label("mean_speed", lang) + " ω_{m}", number(st.omega_mean, lang, 5), unit("rad/s", lang)),
+            ("ω_{max}, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_max), lang, 4)}{deg}"),
              number(st.omega_max, lang, 5), unit("rad/s", lang)),
-            ("ωmin, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_min), lang, 4)}{deg}"),
+            ("ω_{min}, " + label("at_travel", lang).format(angle=f"{number(math.degrees(st.theta_min), lang, 4)}{deg}"),
              number(st.omega_min, lang, 5), unit("rad/s", lang)),
             (label("delta_obtained", lang), number(st.delta, lang, 4), ""),
         ]
@@ -354,14 +362,14 @@ def _result_rows(d, w, lang: str) -> list[tuple[str, str, str]]:
     if fly is not None:
         kgm2 = unit("kg·m²", lang)
         rows += [(label("delta_required", lang), number(fly.delta, lang, 4), ""),
-                 (f"JI ({label('method_exact', lang)})", number(fly.exact, lang, 6), kgm2),
-                 (f"JI ({label('method_wittenbauer', lang)})", number(fly.wittenbauer, lang, 6), kgm2)]
+                 (f"J_{{I}} ({label('method_exact', lang)})", number(fly.exact, lang, 6), kgm2),
+                 (f"J_{{I}} ({label('method_wittenbauer', lang)})", number(fly.wittenbauer, lang, 6), kgm2)]
         if w is not None:
             err = 100.0 * (w.inertia_drawn - fly.exact) / fly.exact
-            rows.append((f"JI ({label('method_wittenbauer_drawn', lang)})",
+            rows.append((f"J_{{I}} ({label('method_wittenbauer_drawn', lang)})",
                          f"{number(w.inertia_drawn, lang, 6)} ({'+' if err >= 0 else '−'}{number(abs(err), lang, 2)} %)",
                          kgm2))
-        rows += [(f"JI ({label('method_mertsalov', lang)})",
+        rows += [(f"J_{{I}} ({label('method_mertsalov', lang)})",
                   f"{number(fly.mertsalov, lang, 6)} ({'+' if fly.mertsalov_difference >= 0 else '−'}"
                   f"{number(abs(100 * fly.mertsalov_difference), lang, 3)} %)", kgm2),
                  (label("declared_inertia", lang), number(fly.declared, lang, 5), kgm2),
