@@ -147,7 +147,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     items += list(place_labels(names, lines + axes))
     # title, scales and notes above the plot
-    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μφ = {number(mu_phi, lang)} "
+    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
     text_lines = [scale] + list(notes)
     y = top + 8.0 + 1.6 * size * len(text_lines)
@@ -224,11 +224,11 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
     items += list(place_labels(names, lines + tangents))
     w2d = omega_mean**2 * delta
-    text = [f"μJ = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
-            f"μT = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
-            f"tg ψ_{{max,min}} = (μJ/μT)·ω_{{m}}²(1 ± δ/2)²/2;  ω_{{m}} = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
+    text = [f"μ_{{J}} = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "
+            f"μ_{{T}} = {number(mT, lang)} {unit('J', lang)}/{unit('mm', lang)}",
+            f"tg ψ_{{max,min}} = (μ_{{J}}/μ_{{T}})·ω_{{m}}²(1 ± δ/2)²/2;  ω_{{m}} = {number(omega_mean, lang)} {unit('rad/s', lang)}, "
             f"δ = {number(delta, lang)}",
-            f"J_{{I}} = μT·kl/(ω_{{m}}²·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
+            f"J_{{I}} = μ_{{T}}·kl/(ω_{{m}}²·δ) = {number(mT, lang)}·{number(w.segment_drawn_mm, lang, 4)}/"
             f"{number(w2d, lang)} = {number(w.inertia_drawn, lang)} {unit('kg·m²', lang)}"]
     ytext = top + 4.0 + 1.6 * size * len(text)
     items.append(Text((0.0, ytext + 1.8 * size), label("energy_mass", lang), LABELS, sizes.title_mm))
