@@ -222,3 +222,12 @@ def test_png_draws_an_indexed_label_whole_at_its_anchor(tmp_path, text, anchor):
     assert gaps.max() < 1.2, gaps.max()  # a word space is ~1.4 mm at 5 mm; a split index ~2+
     centre = {"middle": (cols[0] + cols[-1]) / 2, "end": cols[-1]}[anchor]
     assert abs(centre - x) < 0.6, (centre, x)
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_centres_table_speaks_one_language(capsys, lang):
+    assert main(["centres", "shaper", "--position", "4", "--steps", "--lang", lang]) == 0
+    out = capsys.readouterr().out.replace("shaper", "")
+    assert not _LATIN_WORD.findall(out.replace("sin ", "")), _LATIN_WORD.findall(out)[:5]
+    assert not _DECIMAL_POINT.search(out) and "e-" not in out and "e+" not in out
+    assert "φ = 64,292°" in out  # 424.292° from the x axis: one turn less
