@@ -150,7 +150,8 @@ def plan_text(res: PlanResult, doc: dict, lang: str) -> str:
     title = label(f"{res.kind}_plan", lang)
     where = f", {label('position', lang).lower()} {doc['position']}" if doc["position"] else ""
     phi = math.fmod(doc["phi_deg"], 360.0) % 360.0
-    head = (f"{doc['mechanism']}: {title}{where}, φ = {T.num(phi, lang, 6)}°, "
+    angle = format(phi, ".3f").replace(".", "," if lang in ("ru", "uk") else ".")
+    head = (f"{doc['mechanism']}: {title}{where}, φ = {angle}°, "
             f"μ{k} = {T.num(res.scale, lang)} {T.unit('μ' + k, lang)}, {T.phrase('mode_' + res.mode, lang)}")
     lines = [head, ""]
     lines += [f"{n}. {s}" for n, s in enumerate(res.describe(lang=lang), 1)]
