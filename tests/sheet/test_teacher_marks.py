@@ -231,3 +231,14 @@ def test_centres_table_speaks_one_language(capsys, lang):
     assert not _LATIN_WORD.findall(out.replace("sin ", "")), _LATIN_WORD.findall(out)[:5]
     assert not _DECIMAL_POINT.search(out) and "e-" not in out and "e+" not in out
     assert "φ = 64,292°" in out  # 424.292° from the x axis: one turn less
+
+
+def test_assurs_point_only_for_the_positions_whose_plans_are_drawn(press_sheet):
+    letters = [t.text for t in press_sheet.views["mechanism"].primitives
+               if isinstance(t, Text) and t.text.startswith("K₃")]
+    assert len(letters) == len(press_sheet.positions) == 2
+    from velplan.sheets.kinematic import build_sheet
+
+    small = build_sheet(velplan.Study("triad-eight-link"), lang="ru", fmt="A3")  # one position's plans fit
+    letters = [t.text for t in small.views["mechanism"].primitives if isinstance(t, Text) and t.text.startswith("K")]
+    assert letters == ["K₅"] * len(small.positions)

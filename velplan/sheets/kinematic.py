@@ -222,6 +222,9 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
                                                            fallback=plans is None)
     plan_views, results, cells = fitted
+    if tuple(chosen) != draw.special:  # the first position's plans alone: its K alone
+        draw.special = tuple(chosen)
+        mview = draw._scheme(mview.mu)
     if not scale_per_plan:
         plan_views, results = _one_scale_per_kind(draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
