@@ -484,4 +484,4 @@ def test_a_class_iii_sheet_is_clean_and_equals_its_svg(tmp_path, capsys):
     a, b = _sorted_segments(svg["segments"]), _sorted_segments(dxf["segments"])
     assert a.shape == b.shape and len(a) > 300 and np.abs(a - b).max() < 1e-3
     texts = [e.dxf.text for e in doc.modelspace().query("TEXT")]
-    assert "机构位置图" in texts and "K₃" not in texts  # the special point stays off the scheme
+    assert "机构位置图" in texts and "K₃" in texts  # Assur's point where its plans are drawn (issue 32)

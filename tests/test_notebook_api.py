@@ -36,8 +36,8 @@ def _arrows(d: SvgDrawing) -> list[Arrow]:
 
 
 def _pole(d: SvgDrawing) -> np.ndarray:
-    (dot,) = [p for p in d.scene.primitives if isinstance(p, Circle)]
-    return np.array(dot.centre)
+    dots = [p for p in d.scene.primitives if isinstance(p, Circle)]
+    return np.array(max(dots, key=lambda c: c.radius).centre)  # the pole's dot: the images' are smaller
 
 
 # -- SvgDrawing ---------------------------------------------------------------------------------

@@ -189,11 +189,11 @@ def test_sentences_in_four_languages_name_the_special_point(kind):
         assert sum(head[lang] in x for x in said) == 1, lang
     first = next(x for x in en if "Assur's special point" in x)
     if kind == "velocity":
-        assert "V_K3 = V_CE + V_K3C" in first and "Through p draw a line ⊥ CE" in first
+        assert "V_K3 = V_E + V_CE + V_K3C" in first and "Through p draw a line ⊥ CE" in first
         assert any("k3 is the image of Assur's special point K3" in x and "instant centre" in x for x in en)
         assert any(x.startswith("The joint B of link 3 and lead 2: V_B = V_K3 + V_BK3 = V_A + V_BA.") for x in en)
     else:
-        assert "a_K3 = aⁿ_CE + aᵗ_CE + aⁿ_K3C + aᵗ_K3C" in first and "(aⁿ_CE = " in first
+        assert "a_K3 = a_E + aⁿ_CE + aᵗ_CE + aⁿ_K3C + aᵗ_K3C" in first and "(aⁿ_CE = " in first
         assert any("(aⁿ_K3C = " in x for x in en)  # ω3²·|K3C|, from K3 towards C
     assert "," in ru[1]  # decimal commas
 

@@ -33,8 +33,12 @@ QUIET = 1e-9
 
 
 def link_names(mech: Mechanism) -> tuple[str, ...]:
-    """The frame ``"0"`` and the moving links, in solving order."""
-    return (GROUND,) + tuple(mech.links)
+    """The frame ``"0"`` and the moving links in the textbook's order, by number (2 before 10;
+    names that are not numbers after them): the order of the circle diagram and of each
+    centre's name (P23, never P32)."""
+    def natural(name: str):
+        return (0, int(name), "") if name.isdigit() else (1, 0, name)
+    return (GROUND,) + tuple(sorted((k for k in mech.links if k != GROUND), key=natural))
 
 
 def link_pairs(mech: Mechanism) -> tuple[tuple[str, str], ...]:

@@ -114,48 +114,104 @@ def _draw(args, study: Study, con: Construction, number: int | None) -> None:
     write_outputs(to_svg(scene, SheetStyle(language=args.lang)), args.svg)
 
 
-def _cell(x: float, width: int = 12, spec: str = ".6g", scale: float = 0.0) -> str:
+_WORDS = {
+    "head": {"en": "instant centres", "ru": "мгновенные центры скоростей", "uk": "миттєві центри швидкостей",
+             "zh": "速度瞬心"},
+    "position": {"en": "position", "ru": "положение", "uk": "положення", "zh": "位置"},
+    "exact": {"en": "exact", "ru": "точно", "uk": "точно", "zh": "精确"},
+    "drafting": {"en": "drafted", "ru": "с точностью чертежа", "uk": "з точністю креслення", "zh": "按作图精度"},
+    "centre": {"en": "centre", "ru": "центр", "uk": "центр", "zh": "瞬心"},
+    "construction": {"en": "construction", "ru": "построение", "uk": "побудова", "zh": "作法"},
+    "exact_col": {"en": "exact", "ru": "точно", "uk": "точно", "zh": "精确"},
+    "joint": {"en": "joint {0}", "ru": "шарнир {0}", "uk": "шарнір {0}", "zh": "铰链 {0}"},
+    "hinge": {"en": "hinge {0}", "ru": "сложный шарнир {0}", "uk": "складний шарнір {0}", "zh": "复合铰链 {0}"},
+    "slider": {"en": "slider ⊥ guide at {0}", "ru": "ползун: ⊥ направляющей в {0}",
+               "uk": "повзун: ⊥ напрямної в {0}", "zh": "滑块：在 {0} 处 ⊥ 导路"},
+    "kennedy": {"en": "Kennedy via {0}, {1} (sin {2})", "ru": "Кеннеди через {0}, {1} (sin {2})",
+                "uk": "Кеннеді через {0}, {1} (sin {2})", "zh": "经 {0}、{1} 的肯尼迪线（sin {2}）"},
+    "not_reached": {"en": "not reached", "ru": "не найден", "uk": "не знайдено", "zh": "未求得"},
+    "not_reached_at": {"en": "not reached: {0}", "ru": "не найден: {0}", "uk": "не знайдено: {0}", "zh": "未求得：{0}"},
+    "circle": {"en": "circle diagram: {0} of {1} centres found", "ru": "круговая диаграмма: найдено {0} из {1} центров",
+               "uk": "кругова діаграма: знайдено {0} з {1} центрів", "zh": "瞬心多边形：已求得 {0}/{1}"},
+    "velocities": {"en": "velocities by centres, off the plan and analytic (|v| m/s, ω rad/s)",
+                   "ru": "скорости по центрам, по плану и аналитически (|v| м/с, ω рад/с)",
+                   "uk": "швидкості за центрами, за планом і аналітично (|v| м/с, ω рад/с)",
+                   "zh": "由瞬心、速度多边形与解析法所得速度（|v| m/s，ω rad/s）"},
+    "quantity": {"en": "quantity", "ru": "величина", "uk": "величина", "zh": "量"},
+    "by_centres": {"en": "centres", "ru": "по центрам", "uk": "за центрами", "zh": "瞬心法"},
+    "plan": {"en": "plan", "ru": "по плану", "uk": "за планом", "zh": "速度多边形"},
+    "analytic": {"en": "analytic", "ru": "аналит.", "uk": "аналіт.", "zh": "解析"},
+    "err_centres": {"en": "err centres", "ru": "погр. центр.", "uk": "похиб. центр.", "zh": "瞬心法误差"},
+    "err_plan": {"en": "err plan", "ru": "погр. плана", "uk": "похиб. плану", "zh": "多边形误差"},
+    "m": {"en": "m", "ru": "м", "uk": "м", "zh": "m"},
+}
+
+
+def _w(key: str, lang: str, *args) -> str:
+    return _WORDS[key][lang].format(*args)
+
+
+def _num(text: str, lang: str) -> str:
+    """A formatted number in the language: decimal comma in ru and uk, the minus "−"."""
+    text = text.replace("-", "−") if lang != "en" else text
+    return text.replace(".", ",") if lang in ("ru", "uk") else text
+
+
+def _cell(x: float, width: int = 12, spec: str = ".6g", scale: float = 0.0, lang: str = "en") -> str:
     """A right-aligned number after a space; round-off below 1e-12 × ``scale`` prints as 0."""
     if not math.isfinite(x):
         return f" {'—':>{width - 1}}"
     x = 0.0 if abs(x) <= 1e-12 * scale else x
-    return f" {x:>{width - 1}{spec}}"
+    text = format(x, spec)
+    if spec.endswith("e") and lang != "en":  # a power of ten as written by hand: 1,11·10⁻¹⁶
+        mantissa, _, power = text.partition("e")
+        exponent = ("⁻" if int(power) < 0 else "") + str(abs(int(power))).translate(_POWER)
+        text = "0" if x == 0 else f"{mantissa}·10{exponent}"
+    return f" {_num(text, lang):>{width - 1}}"
 
 
-def _direction(d: complex) -> str:
+_POWER = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _direction(d: complex, lang: str = "en") -> str:
     """A centre at infinity: ∞ and its unit direction."""
-    return f" {'∞ ' + format(d.real, '.4f'):>11} {d.imag:>11.4f}"
+    return f" {'∞ ' + _num(format(d.real, '.4f'), lang):>11} {_num(format(d.imag, '.4f'), lang):>11}"
 
 
-def _how(s) -> str:
+def _how(s, lang: str = "en") -> str:
     """How a centre was found, in a few words."""
     if s.how in ("joint", "hinge"):
-        return f"{s.how} {s.via[0]}"
+        return _w(s.how, lang, s.via[0])
     if s.how == "slider":
-        return f"slider ⊥ guide at {s.via[0]}"
-    return f"Kennedy via {s.via[0]}, {s.via[1]} (sin {s.condition:.3g})"
+        return _w("slider", lang, s.via[0])
+    return _w("kennedy", lang, s.via[0], s.via[1], _num(format(s.condition, ".3g"), lang))
 
 
-def _centre_rows(con: Construction, exact, i: int) -> list[str]:
+def _centre_rows(con: Construction, exact, i: int, lang: str = "en") -> list[str]:
     L = exact.size
-    rows = [f"{'centre':<8}{'x, m':>12}{'y, m':>12}  {'construction':<34}{'exact x, m':>12}{'exact y, m':>12}"]
+    m = _w("m", lang)
+    rows = [f"{_w('centre', lang):<8}{'x, ' + m:>12}{'y, ' + m:>12}  {_w('construction', lang):<34}"
+            f"{_w('exact_col', lang) + ' x, ' + m:>12}{_w('exact_col', lang) + ' y, ' + m:>12}"]
     for k, (a, b) in enumerate(exact.pairs):
         s = con.centre(a, b)
         p, d = exact.points[i, k], exact.directions[i, k]
-        ex = _direction(d) if np.isfinite(d) else _cell(p.real, scale=L) + _cell(p.imag, scale=L)
+        ex = (_direction(d, lang) if np.isfinite(d)
+              else _cell(p.real, scale=L, lang=lang) + _cell(p.imag, scale=L, lang=lang))
         if s is None:
-            how, xy = "not reached", f"{'—':>12}{'—':>12}"
+            how, xy = _w("not_reached", lang), f"{'—':>12}{'—':>12}"
         else:
-            xy = _direction(s.direction) if s.infinite else _cell(s.point.real, scale=L) + _cell(s.point.imag, scale=L)
-            how = _how(s)
+            xy = (_direction(s.direction, lang) if s.infinite
+                  else _cell(s.point.real, scale=L, lang=lang) + _cell(s.point.imag, scale=L, lang=lang))
+            how = _how(s, lang)
         rows.append(f"{centre_name((a, b)):<8}{xy}  {how:<34}{ex}")
     return rows
 
 
-def _velocity_rows(con: Construction, res, i: int) -> list[str]:
+def _velocity_rows(con: Construction, res, i: int, lang: str = "en") -> list[str]:
     kin = con.kin
     by = velocities_by_centres(con)
-    rows = [f"{'quantity':<10}{'centres':>12}{'plan':>12}{'analytic':>12}{'err centres':>13}{'err plan':>11}"]
+    rows = [f"{_w('quantity', lang):<10}{_w('by_centres', lang):>12}{_w('plan', lang):>12}{_w('analytic', lang):>12}"
+            f"{_w('err_centres', lang):>14}{_w('err_plan', lang):>13}"]
     vs = float(np.nanmax(np.hypot(*kin.velocities[i].T)))
     ws = vs / length_scale(kin.mechanism)
     j = list(res.index).index(i) if res is not None else 0
@@ -164,29 +220,33 @@ def _velocity_rows(con: Construction, res, i: int) -> list[str]:
     for name, v in by.velocities.items():
         exact = float(np.hypot(*kin.velocity(name)[i]))
         pv = float(np.hypot(*plan_v[name][j])) if name in plan_v else float("nan")
-        rows.append(f"{'V_' + name:<10}{_cell(abs(v), scale=vs)}{_cell(pv, scale=vs)}{_cell(exact, scale=vs)}"
-                    f"{_cell(abs(v) - exact, 13, '.2e')}{_cell(pv - exact, 11, '.2e')}")
+        rows.append(f"{'v_' + name:<10}{_cell(abs(v), scale=vs, lang=lang)}{_cell(pv, scale=vs, lang=lang)}"
+                    f"{_cell(exact, scale=vs, lang=lang)}"
+                    f"{_cell(abs(v) - exact, 14, '.2e', lang=lang)}{_cell(pv - exact, 13, '.2e', lang=lang)}")
     for link, w in by.omegas.items():
         exact = float(kin.omega(link)[i])
         pw = float(plan_w[link][j]) if link in plan_w else float("nan")
-        rows.append(f"{'ω' + link:<10}{_cell(w, scale=ws)}{_cell(pw, scale=ws)}{_cell(exact, scale=ws)}"
-                    f"{_cell(w - exact, 13, '.2e')}{_cell(pw - exact, 11, '.2e')}")
+        rows.append(f"{'ω' + link:<10}{_cell(w, scale=ws, lang=lang)}{_cell(pw, scale=ws, lang=lang)}"
+                    f"{_cell(exact, scale=ws, lang=lang)}"
+                    f"{_cell(w - exact, 14, '.2e', lang=lang)}{_cell(pw - exact, 13, '.2e', lang=lang)}")
     return rows
 
 
 def table(con: Construction, exact, res, number: int | None, *, lang: Language = "en", steps: bool = False) -> str:
     """One position: every centre (constructed beside exact), what was not reached and why, the
-    velocities by centres beside the plan's and the analytic ones (m/s, rad/s)."""
+    velocities by centres beside the plan's and the analytic ones (m/s, rad/s), in ``lang``."""
     kin, i = con.kin, con.index
-    where = f"position {number}, " if number is not None else ""
-    lines = [f"{kin.mechanism.name}: instant centres, {where}φ = {kin.phi_deg[i]:.3f}°, "
-             f"μl = {con.mu_l:g} m/mm, {con.drafting.mode}"]
-    lines += _centre_rows(con, exact, i)
+    where = f"{_w('position', lang)} {number}, " if number is not None else ""
+    phi = _num(format(float(kin.phi_deg[i]) % 360.0, ".3f"), lang)
+    mu = _num(format(con.mu_l, "g"), lang)
+    lines = [f"{kin.mechanism.name}: {_w('head', lang)}, {where}φ = {phi}°, "
+             f"μl = {mu} {_w('m', lang)}/{'mm' if lang in ('en', 'zh') else 'мм'}, {_w(con.drafting.mode, lang)}"]
+    lines += _centre_rows(con, exact, i, lang)
     for s in con.unreached:
-        lines.append(f"not reached: {con.describe('en')[s.number - 1]}")
-    lines.append(f"circle diagram: {len(con.steps) - len(con.unreached)} of {len(con.steps)} centres found")
-    lines.append("velocities by centres, off the plan and analytic (|V| m/s, ω rad/s)")
-    lines += _velocity_rows(con, res, i)
+        lines.append(_w("not_reached_at", lang, con.describe(lang)[s.number - 1]))
+    lines.append(_w("circle", lang, len(con.steps) - len(con.unreached), len(con.steps)))
+    lines.append(_w("velocities", lang))
+    lines += _velocity_rows(con, res, i, lang)
     if steps:
         lines.append("")
         lines += [f"{n}. {s}" for n, s in enumerate(con.describe(lang), 1)]

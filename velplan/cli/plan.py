@@ -82,12 +82,24 @@ def run_plan(args) -> int:
                                  position_index(args.position, args.positions), args.position)
     study.require_assembled([position_number(index)])
     only = [x.strip() for x in args.only.split(",")] if args.only else None
-    res = study.plan(args.kind, positions=[position_number(index)], only=only, scale_v=args.scale_v, scale_a=args.scale_a,
+    scale_v, scale_a = position_scales(study, position_number(index), args.kind, args.scale_v, args.scale_a)
+    res = study.plan(args.kind, positions=[position_number(index)], only=only, scale_v=scale_v, scale_a=scale_a,
                      drafting=_drafting(args))
     doc = plan_json(res, number)
     emit(json.dumps(doc, indent=1, ensure_ascii=False) if args.format == "json" else plan_text(res, doc, args.lang),
          args.output)
     return 0
+
+
+def position_scales(study: Study, position: int, kind: str, scale_v: float | None,
+                    scale_a: float | None) -> tuple[float, float | None]:
+    """μv and μa of the plan at position number ``position``: the given ones, else the default
+    of that position alone (`PlanResult.position_scale`, the one ``velplan steps`` draws at)."""
+    if scale_v is None:
+        scale_v = study.plan("velocity").position_scale(position)
+    if kind == "acceleration" and scale_a is None:
+        scale_a = study.plan("acceleration").position_scale(position)
+    return scale_v, scale_a
 
 
 def _f(x) -> float | None:
@@ -132,30 +144,39 @@ def plan_json(res: PlanResult, number: int | None, i: int = 0) -> dict:
 
 
 def plan_text(res: PlanResult, doc: dict, lang: Language) -> str:
+    """The plan as text, every word and number in ``lang`` (decimal comma in ru and uk)."""
+    from velplan.plans import text as T
     from velplan.render.i18n import label
+    from velplan.views.base import digits_down
 
-    unit = "(m/s²)/mm" if res.kind == "acceleration" else "(m/s)/mm"
+    k = "a" if res.kind == "acceleration" else "v"
     title = label(f"{res.kind}_plan", lang)
     where = f", {label('position', lang).lower()} {doc['position']}" if doc["position"] else ""
-    head = f"{doc['mechanism']}: {title}{where}, φ = {doc['phi_deg']:.3f}°, μ = {res.scale:g} {unit}, {res.mode}"
+    phi = math.fmod(doc["phi_deg"], 360.0) % 360.0
+    angle = format(phi, ".3f").replace(".", "," if lang in ("ru", "uk") else ".")
+    head = (f"{doc['mechanism']}: {title}{where}, φ = {angle}°, "
+            f"μ{k} = {T.num(res.scale, lang)} {T.unit('μ' + k, lang)}, {T.phrase('mode_' + res.mode, lang)}")
     lines = [head, ""]
     lines += [f"{n}. {s}" for n, s in enumerate(res.describe(lang=lang), 1)]
     lines.append("")
-    sym, key = ("a", "accelerations") if res.kind == "acceleration" else ("V", "velocities")
+    key = "accelerations" if k == "a" else "velocities"
     ground = dict(res.plan.mechanism.ground)
-    for k, v in doc[key].items():
-        if k in ground:
+    for p, v in doc[key].items():
+        if p in ground:
             continue
         mag = math.hypot(*(x or 0.0 for x in v.values()))
-        lines.append(f"{sym}_{k} = {mag:.6g}")
-    for k, w in doc["omegas"].items():
-        lines.append(f"ω{k} = {w:+.6g} rad/s")
-    for k, e in doc.get("epsilons", {}).items():
-        lines.append(f"ε{k} = {e:+.6g} rad/s²")
+        lines.append(f"{k}_{p} = {T.num(mag, lang, 6)} {T.unit(k, lang)}")
+    def by_link(rates: dict) -> list:
+        return sorted(rates.items(), key=lambda kv: (len(kv[0]), kv[0]))
+
+    for link, w in by_link(doc["omegas"]):
+        lines.append(f"ω{digits_down(link)} = {T.signed(w, lang)} {T.unit('ω', lang)}")
+    for link, e in by_link(doc.get("epsilons", {})):
+        lines.append(f"ε{digits_down(link)} = {T.signed(e, lang)} {T.unit('ε', lang)}")
     for f in doc["flags"]:
-        state = "refused" if f["refused"] else "flagged"
-        lines.append(f"{state}: lines at {f['image']} meet at sin = {f['condition']:.3g}; error bound {f['bound_mm']:.3g} mm")
-    lines.append(f"evaluated steps: {doc['evaluated_steps']}")
+        lines.append(T.phrase("refused" if f["refused"] else "flagged", lang, f["image"],
+                              T.num(f["condition"], lang, 3), T.mm(f["bound_mm"], lang)))
+    lines.append(T.phrase("evaluated", lang, doc["evaluated_steps"]))
     return "\n".join(lines)
 
 

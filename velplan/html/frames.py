@@ -24,6 +24,7 @@ from velplan.plans.engine import PlanResult
 from velplan.plans.steps import Intersect, LayOff, Similar
 from velplan.plans.text import label_of
 from velplan.render.scene import Polyline
+from velplan.render.shapes import unicode_text
 from velplan.render.style import SheetStyle
 from velplan.study import Study
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
@@ -31,7 +32,7 @@ from velplan.html.text import templates
 from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
 from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
 from velplan.views.plan import image_letters, plan_steps
-from velplan.views.steps import readable
+from velplan.views.steps import readable as _readable
 
 #: The scheme is drawn at the largest ESKD scale that keeps it within this size, mm.
 SCHEME_MM = 170.0
@@ -44,6 +45,12 @@ REFERENCE_POSITIONS = 24
 SMALLEST_FRAME_MM = 110.0
 #: Decimals of the crank angle, degrees.
 PHI_DECIMALS = 2
+
+
+def readable(sentence: str) -> str:
+    """`velplan.views.steps.readable` for the page's plain text: a whole index's digits as
+    subscripts (``v_{A4A}`` → ``vA₄A``)."""
+    return unicode_text(_readable(sentence))
 
 
 def _centre_marks(study: Study, i: int, view, mu_l: float) -> list:

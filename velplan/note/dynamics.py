@@ -9,6 +9,7 @@ from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import p
 from velplan.render.i18n import label
 from velplan.views.base import number, unit
+from velplan.render.shapes import unicode_text
 from velplan.views.dynamics import results_rows
 
 PANELS = (("moments", "reduced_moments"), ("works", "works_energy"), ("inertia", "reduced_inertia"),
@@ -31,7 +32,7 @@ def dynamics_section(note, sheet) -> None:
                           rf"{txt(number(wm, lang, 5))}^{{2}}}} = {txt(number(fly.exact, lang, 6))}\ {kgm2}"))
     rows = results_rows(d, sheet.wittenbauer, lang)
     note.table(p("dyn_results", lang), [p("quantity", lang), p("value", lang), p("unit", lang)],
-               [list(r) for r in rows], key="dynamics")
+               [[unicode_text(x) for x in r] for r in rows], key="dynamics")
     for view, key in PANELS:
         if view in sheet.views:
             png, width = views_png([sheet.views[view]], sheet.style)

@@ -25,6 +25,9 @@ from velplan.options import Language, PlanKind as Kind
 
 TARGET_MM = {"velocity": 100.0, "acceleration": 120.0}
 """Default length (mm) of the longest vector when the scale is chosen automatically."""
+POSITION_PLAN_MM = 160.0
+"""Default size (mm) of the plan of one position (`PlanResult.position_scale`): what
+``velplan plan`` and ``velplan steps`` draw it to."""
 FLAG_BELOW = 0.1
 """Intersections whose |sin| is below this are flagged (the lines meet at < 5.7°)."""
 REFUSE_BELOW = {"exact": 1e-8, "drafting": 0.02}
@@ -401,6 +404,19 @@ class PlanResult:
             have = ", ".join(str(position_number(k)) for k in self.index)
             raise VelplanError(f"position {position} is not in this plan (its positions: {have})")
         return int(hit[0])
+
+    def position_scale(self, position: int, size_mm: float = POSITION_PLAN_MM) -> float:
+        """The default scale of this plan at position number ``position`` alone ((m/s)/mm or
+        (m/s²)/mm): the smallest standard value at which the pole and every image fit in a
+        square of ``size_mm``. `velplan plan` and `velplan steps` both draw at it."""
+        k, i = self.kind[0], self.index_of(position)
+        pts = np.array([0j] + [complex(z[i]) for t, z in self.values.items()
+                               if t.startswith(k + ":") and not isinstance(z, tuple)])
+        pts = pts[np.isfinite(pts)]
+        extent = max(float(np.ptp(pts.real)), float(np.ptp(pts.imag)))
+        if not extent > 0:
+            raise ScaleError(f"the {self.kind} plan at position {position} is a point; give the scale explicitly")
+        return standard_scale(self.scale * extent / size_mm)
 
     def describe(self, position: int | None = None, lang: Language = "en") -> list[str]:
         """The worked solution at position number ``position`` (1…n; the first position of this

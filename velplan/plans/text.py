@@ -68,6 +68,17 @@ _PHRASES: dict[str, dict[str, str]] = {
               "ланки {1}.",
         "zh": "阿苏尔特殊点 {0}（构件 {1}）：杆 {2} 与杆 {3} 所在直线的交点，视为构件 {1} 上的点。",
     },
+    "triad_special_of": {
+        "en": "Assur's special point {0} of link {1}: the crossing of {2} and {3}, taken as a point of link {1}.",
+        "ru": "Особая точка Ассура {0} звена {1}: пересечение {2} и {3}, рассматриваемое как точка звена {1}.",
+        "uk": "Особлива точка Ассура {0} ланки {1}: перетин {2} і {3}, що розглядається як точка ланки {1}.",
+        "zh": "阿苏尔特殊点 {0}（构件 {1}）：{2}与{3}的交点，视为构件 {1} 上的点。",
+    },
+    "triad_line": {"en": "the line of lead {0}", "ru": "линии поводка {0}", "uk": "лінії повідця {0}",
+                   "zh": "杆 {0} 所在直线"},
+    "triad_normal": {"en": "the normal to the guide of lead {0} through {1}",
+                     "ru": "нормали к направляющей поводка {0} в точке {1}",
+                     "uk": "нормалі до напрямної повідця {0} у точці {1}", "zh": "过 {1} 的杆 {0} 导路法线"},
     "triad_lead": {
         "en": "{0} lies on the line of lead {2}, so {3}, the unknown terms {4}.",
         "ru": "Точка {0} лежит на линии поводка {2}, поэтому {3}, неизвестные слагаемые {4}.",
@@ -107,9 +118,33 @@ _PHRASES: dict[str, dict[str, str]] = {
     },
 }
 
+_PHRASES.update({
+    "mode_exact": {"en": "exact", "ru": "точно", "uk": "точно", "zh": "精确"},
+    "mode_drafting": {"en": "drafted", "ru": "с точностью чертежа", "uk": "з точністю креслення", "zh": "按作图精度"},
+    "evaluated": {"en": "evaluated steps: {0}", "ru": "выполнено шагов: {0}", "uk": "виконано кроків: {0}",
+                  "zh": "已完成步骤：{0}"},
+    "flagged": {
+        "en": "flagged: the lines at {0} meet at sin = {1}; the image may be off by {2}",
+        "ru": "предупреждение: прямые в точке {0} пересекаются под углом с синусом {1}; погрешность изображения до {2}",
+        "uk": "попередження: прямі в точці {0} перетинаються під кутом із синусом {1}; похибка зображення до {2}",
+        "zh": "警告：{0} 处两直线夹角正弦 {1}；影像误差可达 {2}",
+    },
+    "refused": {
+        "en": "refused: the lines at {0} meet at sin = {1}; the image may be off by {2}",
+        "ru": "не построено: прямые в точке {0} пересекаются под углом с синусом {1}; погрешность изображения до {2}",
+        "uk": "не побудовано: прямі в точці {0} перетинаються під кутом із синусом {1}; похибка зображення до {2}",
+        "zh": "未作出：{0} 处两直线夹角正弦 {1}；影像误差可达 {2}",
+    },
+})
+
 _UNITS = {
     "v": {"en": "m/s", "ru": "м/с", "uk": "м/с", "zh": "m/s"},
     "a": {"en": "m/s²", "ru": "м/с²", "uk": "м/с²", "zh": "m/s²"},
+    "ω": {"en": "rad/s", "ru": "рад/с", "uk": "рад/с", "zh": "rad/s"},
+    "ε": {"en": "rad/s²", "ru": "рад/с²", "uk": "рад/с²", "zh": "rad/s²"},
+    "μv": {"en": "(m/s)/mm", "ru": "(м/с)/мм", "uk": "(м/с)/мм", "zh": "(m/s)/mm"},
+    "μa": {"en": "(m/s²)/mm", "ru": "(м/с²)/мм", "uk": "(м/с²)/мм", "zh": "(m/s²)/mm"},
+    "deg": {"en": "°", "ru": "°", "uk": "°", "zh": "°"},
     "mm": {"en": "mm", "ru": "мм", "uk": "мм", "zh": "mm"},
 }
 
@@ -130,6 +165,12 @@ def num(x: float, lang: Language, digits: int = 4) -> str:
         return "—"
     s = f"{x:.{digits}g}" if abs(x) >= 1e-3 or x == 0 else f"{x:.3e}"
     return s.replace(".", ",") if lang in ("ru", "uk") else s
+
+
+def signed(x: float, lang: Language, digits: int = 6) -> str:
+    """`num` with the sign always written, the minus as "−" (U+2212)."""
+    text = num(abs(x), lang, digits)
+    return text if not math.isfinite(x) or x == 0 else ("−" if x < 0 else "+") + text
 
 
 def mm(x: float, lang: Language) -> str:

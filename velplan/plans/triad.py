@@ -41,7 +41,8 @@ def _join(lang: Language, *sentences: str | None) -> str:
 class Said:
     """What a triad step says before its own sentence: the vector equation it starts drawing.
 
-    ``intro`` (special point, base link, lead i, lead j) names Assur's special point first;
+    ``intro`` (special point, base link, lead i, lead j, the joint of lead i and of lead j
+    where that lead is a block, else "") names Assur's special point first;
     ``point`` is the point the equation is written for, on the line of ``lead`` (``joint``:
     the point is the joint of the base link and that lead); ``direction`` is the direction of
     the equation's unknown terms."""
@@ -52,7 +53,7 @@ class Said:
     lead: str
     direction: Perpendicular | Parallel
     joint: bool = False
-    intro: tuple[str, str, str, str] | None = None
+    intro: tuple[str, str, str, str, str, str] | None = None
     known: Parallel | None = None
     """The known direction of the point's velocity, written where the equation has ``{}``."""
     block: str = ""
@@ -60,7 +61,7 @@ class Said:
 
     def text(self, lang: Language) -> str:
         """The sentences said before the step's own (ending in a separator)."""
-        out = [T.phrase("triad_special", lang, *self.intro)] if self.intro else []
+        out = [_special(lang, *self.intro)] if self.intro else []
         if self.joint:
             eq = self.equation.replace("{}", self.known.text(lang)) if self.known else self.equation
             out.append(T.phrase("triad_joint", lang, self.point, self.base, self.lead, eq))
@@ -110,6 +111,16 @@ class SpecialIntersect(Intersect):
 # -- the construction ------------------------------------------------------------------------------
 
 
+def _special(lang: str, point: str, base: str, li: str, lj: str, ji: str, jj: str) -> str:
+    """The sentence naming Assur's special point: the crossing of two leads' lines, a block
+    lead's line being the normal to its guide through its joint."""
+    if not (ji or jj):
+        return T.phrase("triad_special", lang, point, base, li, lj)
+    lines = [T.phrase("triad_normal", lang, lk, jk) if jk else T.phrase("triad_line", lang, lk)
+             for lk, jk in ((li, ji), (lj, jj))]
+    return T.phrase("triad_special_of", lang, point, base, *lines)
+
+
 def _sum(*terms: str | None) -> str:
     return " + ".join(t for t in terms if t)
 
@@ -124,7 +135,8 @@ class TriadPlan:
         self.pair = (i, j)
         self.third = 3 - i - j
         self.S = g.special_name
-        self.intro = (self.S, g.base, g.leads[i].link, g.leads[j].link)
+        self.intro = (self.S, g.base, g.leads[i].link, g.leads[j].link,
+                      g.joints[i] if g.leads[i].slider else "", g.joints[j] if g.leads[j].slider else "")
         self.guide_images: dict[tuple[str, int], str] = {}
 
     # -- helpers --------------------------------------------------------------------------------
@@ -192,7 +204,7 @@ class TriadPlan:
             P = lead.joint
             fixed = self._fixed(b.v, P)
             through = b.v.images[P]
-            eq = f"V_{S} = " + _sum(None if fixed else f"V_{P}", f"V_{J}{P}", f"V_{S}{J}")
+            eq = f"V_{S} = " + _sum(f"V_{P}", f"V_{J}{P}", f"V_{S}{J}")  # V_P = 0 on the frame, as written
             comp = f"V_{S}" if fixed else f"V_{S}{P}"
         return self._line(b.v, through, self._direction(k), comp, self._say(k, eq, intro=intro))
 
@@ -208,7 +220,7 @@ class TriadPlan:
         else:
             P = lead.joint
             through, fixed = b.v.images[P], self._fixed(b.v, P)
-            other = _sum(None if fixed else f"V_{P}", f"V_{J}{P}")
+            other = _sum(f"V_{P}", f"V_{J}{P}")  # v_C = v_E + v_CE, v_E = 0 on the frame
             comp = f"V_{J}" if fixed else f"V_{J}{P}"
         eq = f"V_{J} = V_{S} + V_{J}{S}" + (f" = {other}" if other else f", V_{J} {{}}")
         L1 = self._line(b.v, s_v, Perpendicular(J, S), f"V_{J}{S}", self._say(k, eq, joint=True))
@@ -260,7 +272,7 @@ class TriadPlan:
             comp = f"aʳ_{S}{J}"
         else:
             P = lead.joint
-            eq = f"a_{S} = " + _sum(None if self._fixed(b.a, P) else f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}",
+            eq = f"a_{S} = " + _sum(f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}",
                                     f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
             start = self._normal(b.a.images[P], lead.link, J, P, self._say(k, eq, intro=intro))
             start = self._normal(start, g.base, S, J)
@@ -276,7 +288,7 @@ class TriadPlan:
             other = _sum(f"a_{gname}" if moving else None, f"aᵏ_{J}" if moving else None, f"aʳ_{J}")
         else:
             P = lead.joint
-            other = _sum(None if self._fixed(b.a, P) else f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}")
+            other = _sum(f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}")
         eq = f"a_{J} = a_{S} + aⁿ_{J}{S} + aᵗ_{J}{S} = {other}"
         start = self._normal(s_a, g.base, J, S, self._say(k, eq, joint=True))
         L1 = self._line(b.a, start, Perpendicular(J, S), f"aᵗ_{J}{S}")

@@ -245,25 +245,40 @@ def script_of(char: str) -> tuple[str, str]:
     return char, ""
 
 
-_MARKED_INDEX = re.compile(r"_\{([^{}]*)\}")
+_MARKED_INDEX = re.compile(r"([_^])\{([^{}]*)\}")
 """A whole index written out: ``v_{BA}`` is v with the subscript "BA" (letters have no
-Unicode subscript forms); digits and superscripts stay as in the rest of the text."""
+Unicode subscript forms), ``10^{−12}`` ten with the superscript "−12"; digits and
+superscripts outside the marks stay as in the rest of the text."""
 
 
 def _characters(text: str):
-    """(plain character, script) of every drawn character of `text`, marked indices as "sub"."""
+    """(plain character, script) of every drawn character of `text`, marked indices as "sub"
+    or "super"."""
     at = 0
     for m in _MARKED_INDEX.finditer(text):
         yield from (script_of(c) for c in text[at:m.start()])
-        yield from ((script_of(c)[0], "sub") for c in m.group(1))
+        script = "sub" if m.group(1) == "_" else "super"
+        yield from ((script_of(c)[0], script) for c in m.group(2))
         at = m.end()
     yield from (script_of(c) for c in text[at:])
 
 
 def plain_text(text: str) -> str:
-    """`text` without the ``_{…}`` marks of whole indices (``v_{BA}`` → ``vBA``): what a
-    backend that draws one plain string writes."""
-    return _MARKED_INDEX.sub(lambda m: m.group(1), text)
+    """`text` without the ``_{…}``, ``^{…}`` marks of whole indices (``v_{BA}`` → ``vBA``):
+    what a backend that draws one plain string writes."""
+    return _MARKED_INDEX.sub(lambda m: m.group(2), text)
+
+
+_SUPERSCRIPTS = str.maketrans("0123456789−-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁻⁺")
+_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def unicode_text(text: str) -> str:
+    """`text` for plain text (a note, a page): a marked superscript in Unicode superscripts
+    (``10^{−12}`` → ``10⁻¹²``), a marked subscript's digits as subscripts (``ω_{m}`` → ``ωm``,
+    ``v_{A4}`` → ``vA₄``)."""
+    return _MARKED_INDEX.sub(lambda m: m.group(2).translate(_SUPERSCRIPTS if m.group(1) == "^" else _SUBSCRIPTS),
+                             text)
 
 
 def text_runs(text: str) -> tuple[TextRun, ...]:

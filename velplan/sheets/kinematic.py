@@ -133,8 +133,8 @@ class _Drawings:
     it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view), the
     kinematic diagrams by (arrangement, φ axis mm, height mm)."""
 
-    def __init__(self, req: Request, thick: int):
-        self.req, self.thick = req, thick
+    def __init__(self, req: Request, thick: int, special: Sequence[int] = ()):
+        self.req, self.thick, self.special = req, thick, tuple(special)
         study = req.study
         self.fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
         self.bold = _extreme_positions(study)
@@ -146,7 +146,7 @@ class _Drawings:
         study, req = self.req.study, self.req
         return mechanism_view(study.mechanism, mu_l=mu, n=study.n, thick=self.thick, lang=req.lang,
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
-                              extreme=study.other_extreme, bold=self.bold)
+                              extreme=study.other_extreme, bold=self.bold, special=self.special)
 
     def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
         res = self.req.study.plan(kind).at_scale(mu)
@@ -217,7 +217,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     req = sheet_request(mech, n=n, fmt=fmt, lang=lang, frame_style=frame_style, style=style)
     study, mech = req.study, req.mechanism
     chosen = _check_options(study, plans, kind, diagrams, centres)
-    draw = _Drawings(req, chosen[0])
+    draw = _Drawings(req, chosen[0], special=chosen)  # Assur's K where its plans are drawn
     views: dict[str, PlacedView] = {}
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
@@ -225,6 +225,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
                                                            fallback=plans is None)
     plan_views, results, cells = fitted
+    if tuple(chosen) != draw.special:  # the first position's plans alone: its K alone
+        draw.special = tuple(chosen)
+        mview = draw._scheme(mview.mu)
     if not scale_per_plan:
         plan_views, results = _one_scale_per_kind(draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's

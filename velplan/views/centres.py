@@ -8,6 +8,7 @@ shapes.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import shapely
@@ -16,9 +17,10 @@ from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics
 from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
-from velplan.render.scene import Circle, Polyline, Primitive, Text
-from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
 from velplan.views.mechanism import MechanismSizes, mechanism_view
+from velplan.views.base import number as _number  # `number` is also the position argument
 
 MARGIN_MM = 40.0
 """How far beyond the scheme (mm, at least; ¾ of its size when larger) centres and Kennedy lines
@@ -35,8 +37,15 @@ _LABELS = {
     "found": {"en": "found {0} of {1}", "ru": "найдено {0} из {1}", "uk": "знайдено {0} з {1}",
               "zh": "已求得 {0}/{1}"},
     "off": {"en": "off the drawing", "ru": "вне чертежа", "uk": "поза кресленням", "zh": "在图外"},
-    "infinity": {"en": "at infinity ⊥ {0}°", "ru": "в бесконечности ⊥ {0}°", "uk": "у нескінченності ⊥ {0}°",
-                 "zh": "在无穷远处 ⊥ {0}°"},
+    "metre": {"en": "m", "ru": "м", "uk": "м", "zh": "m"},
+    "vertical": {"en": "at infinity, vertically", "ru": "в бесконечности по вертикали",
+                 "uk": "у нескінченності по вертикалі", "zh": "在竖直方向的无穷远处"},
+    "horizontal": {"en": "at infinity, horizontally", "ru": "в бесконечности по горизонтали",
+                   "uk": "у нескінченності по горизонталі", "zh": "在水平方向的无穷远处"},
+    "inclined": {"en": "at infinity, along the line at {0}° to the horizontal",
+                 "ru": "в бесконечности по прямой под углом {0}° к горизонтали",
+                 "uk": "у нескінченності по прямій під кутом {0}° до горизонталі",
+                 "zh": "在与水平线成 {0}° 的方向的无穷远处"},
     "unreached": {"en": "not reached", "ru": "не найден", "uk": "не знайдено", "zh": "未求得"},
 }
 
@@ -74,39 +83,102 @@ def _kennedy_lines(con: Construction, s: CentreStep, to_mm, box, line: str = "co
     return out
 
 
-def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tuple[list, list, list[str]]:
-    """Centre marks with their names, and notes for centres at infinity or off the drawing."""
+def infinity_note(direction: complex, lang: Language) -> str:
+    """Where a centre at infinity lies, in words: vertically, horizontally, or along the line
+    at an angle (0…180°, counter-clockwise from the horizontal) — the direction of the centre
+    itself, not of the guide it is perpendicular to."""
+    deg = math.degrees(math.atan2(direction.imag, direction.real)) % 180.0
+    if min(deg, 180.0 - deg) < 0.05:
+        return _t("horizontal", lang)
+    if abs(deg - 90.0) < 0.05:
+        return _t("vertical", lang)
+    return _t("inclined", lang, number(deg, lang, 4))
+
+
+def _at_infinity(con: Construction, s: CentreStep, to_mm, name: str, size: float) -> tuple[list, list]:
+    """A slider's centre at infinity on the drawing: its direction line through the slider's
+    joint, an arrowhead at each end, and its name with ∞ beyond one end."""
+    joint = s.via[0] if s.how == "slider" and s.via else None
+    if joint is None or joint not in con.kin.point_index:
+        return [], []
+    at = to_mm(complex(*con.kin.position(joint)[con.index]))
+    u = np.array([s.direction.real, s.direction.imag])
+    if u[1] < -1e-9 or (abs(u[1]) <= 1e-9 and u[0] < 0):
+        u = -u  # the named end up (or to the right)
+    reach = INFINITY_LINE_MM
+    items = [Arrow(tuple(at), tuple(at + reach * u), LAYER, "thin", 2.5, 0.8),
+             Arrow(tuple(at), tuple(at - reach * u), LAYER, "thin", 2.5, 0.8)]
+    tip = at + (reach + 1.0 + 0.6 * size) * u
+    return items, [Text(tuple(tip), name + " → ∞", "labels", size, "middle", "middle")]
+
+
+#: Half-length of the direction line of a centre at infinity through its slider's joint, mm.
+INFINITY_LINE_MM = 9.0
+
+
+def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tuple[list, list, list[str], dict]:
+    """Centre marks, the names of the centres found by Kennedy lines (one merged name where
+    marks coincide), the notes for centres at infinity or off the drawing, and the names of
+    the centres at a lettered joint (joint → names: written with the joint's letter)."""
     items, labels, notes = [], [], []
+    joints: dict[str, list[str]] = {}
+    spots: list[tuple[np.ndarray, list[str]]] = []
     for s in con.steps:
         name = _name(s.pair)
         if s.how == "unreached":
             notes.append(f"{name}: {_t('unreached', lang)}")
         elif s.infinite:
-            deg = round(math.degrees(math.atan2(s.direction.imag, s.direction.real)), 6) + 0.0  # no 1e-15°
-            notes.append(f"{name}: {_t('infinity', lang, number(deg, lang, 4))}")
+            notes.append(f"{name}: {infinity_note(s.direction, lang)}")
+            marks, names = _at_infinity(con, s, to_mm, name, size)
+            items += marks
+            labels += names
         elif box.contains(shapely.Point(*to_mm(s.point))):
             at = to_mm(s.point)
             items.append(Circle(tuple(at), 0.9 if s.how == "kennedy" else 1.6, LAYER,
                                 "thin", "solid" if s.how == "kennedy" else None))
-            labels.append(Text((at[0] + 1.5, at[1] + 1.2), name, "labels", size))
+            if s.how in ("joint", "hinge") and s.via:
+                joints.setdefault(s.via[0], []).append(name)
+                continue
+            for where, names in spots:
+                if np.hypot(*(where - at)) < COINCIDENT_MM:
+                    names.append(name)
+                    break
+            else:
+                spots.append((at, [name]))
         else:
-            xy = f"({number(s.point.real, lang, 4)}; {number(s.point.imag, lang, 4)}) m"
-            notes.append(f"{name} = {xy}: {_t('off', lang)}")
-    return items, labels, notes
+            xy = f"({number(s.point.real, lang, 4)}; {number(s.point.imag, lang, 4)}) {_t('metre', lang)}"
+            notes.append(f"{name} = {xy.replace('-', '−')}: {_t('off', lang)}")
+    labels += [Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", size) for at, names in spots]
+    return items, labels, notes, joints
+
+
+#: Centres closer than this on the drawing share one name ("P₂₄, P₂₆"), mm.
+COINCIDENT_MM = 1.0
 
 
 def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float = CIRCLE_MM,
                    size_mm: float = 3.5) -> list[Primitive]:
-    """The circle diagram around (0, 0) mm: links on a circle, a chord per centre (thick:
-    obvious, thin: by Kennedy lines, dashed: not reached), and its title."""
+    """The circle diagram around (0, 0) mm: links on a circle, a chord per centre — solid for
+    the centres known at once, dashed and numbered in the order found for those found by
+    Kennedy lines, dash-dotted for those not reached — and its title."""
     links = con.links
     n = len(links)
     at = {k: radius_mm * np.array([math.cos(math.pi / 2 - 2 * math.pi * j / n),
                                    math.sin(math.pi / 2 - 2 * math.pi * j / n)]) for j, k in enumerate(links)}
-    items: list[Primitive] = [Circle((0.0, 0.0), radius_mm, LAYER, "axis")]
+    items: list[Primitive] = [Circle((0.0, 0.0), radius_mm, LAYER, "thin")]
+    numbers: list[Text] = []
+    used: list[np.ndarray] = list(at.values())
     for s in con.steps:
-        line = {"joint": "thick", "hinge": "thick", "slider": "thick", "kennedy": "thin"}.get(s.how, "hidden")
-        items.append(Polyline([tuple(at[s.pair[0]]), tuple(at[s.pair[1]])], LAYER, line))
+        line = {"joint": "thick", "hinge": "thick", "slider": "thick", "kennedy": "hidden"}.get(s.how, "axis")
+        a, b = at[s.pair[0]], at[s.pair[1]]
+        items.append(Polyline([tuple(a), tuple(b)], LAYER, line))
+        if s.how == "kennedy":  # its number in the order found, where no other number is
+            t = max(CHORD_SPOTS, key=lambda f: min(float(np.hypot(*(a + f * (b - a) - q))) for q in used))
+            spot = a + t * (b - a)
+            used.append(spot)
+            numbers.append(Text(tuple(spot), str(len(numbers) + 1), "labels", 2.5, "middle", "middle"))
+    chords = [shapely.LineString(p.points).buffer(0.2) for p in items if isinstance(p, Polyline)]
+    items += place_labels(numbers, chords, rings=4)
     for k, p in at.items():
         items.append(Circle(tuple(p), 1.2, LAYER, "thin", "white"))
         out = p / radius_mm * (radius_mm + 3.5)
@@ -116,6 +188,10 @@ def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float
     items.append(Text((0.0, -radius_mm - 10.0), _t("found", lang, found, total), "labels", 2.5, "middle"))
     items.append(Text((0.0, radius_mm + 9.0), _t("circle", lang), "labels", size_mm, "middle"))
     return items
+
+
+#: Where along its chord (a fraction from its first link) a found centre's number may go.
+CHORD_SPOTS = (0.5, 0.4, 0.6, 0.3, 0.7, 0.22, 0.78)
 
 
 def centres_view(con: Construction, *, fine: Kinematics, number: int | None = None, lang: Language = "en",
@@ -151,11 +227,22 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     for s in con.steps:
         if s.how == "kennedy":
             items += _kennedy_lines(con, s, to_mm, box, "thick" if s.number == emphasis else "construction")
-    marks, labels, notes = _markers(con, to_mm, box, sizes.number_mm + 0.5, lang)
+    marks, labels, notes, joints = _markers(con, to_mm, box, sizes.number_mm + 0.5, lang)
     items += marks
+    # every letter placed anew, the scheme's with the centres': none over another, none on a
+    # Kennedy line; a joint that is a centre carries its name ("A (P₁₂)")
+    letters = {subscript(j): j for j in joints}
+    texts = [p for p in items if isinstance(p, Text)]
+    items = [p for p in items if not isinstance(p, Text)]
+    texts = [replace(t, text=f"{t.text} ({', '.join(joints.pop(letters[t.text]))})")
+             if t.text in letters and letters[t.text] in joints else t for t in texts]
+    for j, names in joints.items():  # a joint without a letter of its own
+        at = to_mm(complex(*kin.position(j)[con.index]))
+        texts.append(Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", sizes.number_mm + 0.5))
     obstacles = [shapely.LineString(p.points).buffer(0.4) for p in items if isinstance(p, Polyline)]
-    obstacles += [shapely.box(*p.bounds).buffer(0.3) for p in items if isinstance(p, (Text, Circle))]
-    items += place_labels(labels, obstacles, rings=6)
+    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.4) for p in items if isinstance(p, Arrow)]
+    obstacles += [shapely.box(*p.bounds).buffer(0.3) for p in items if isinstance(p, Circle)]
+    items += place_labels(texts + labels, obstacles, rings=8)
     x0, y0, x1, y1 = bounds_of(items)
     diagram = circle_diagram(con, lang=lang)
     cx, cy = x1 + CIRCLE_MM + 20.0, (y0 + y1) / 2
@@ -163,7 +250,7 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     for k, note in enumerate(notes):
         items.append(Text((x0, y0 - 6.0 - 4.0 * k), note, "labels", 2.5))
     title = _t("title", lang) + (f", {_t('position', lang)} {number}" if number is not None else "")
-    title += f", φ = {kin.phi_deg[con.index]:.1f}°"
+    title += f", φ = {_number(round(float(kin.phi_deg[con.index]) % 360.0, 1) % 360.0, lang, 4)}°"
     top = max(y1, cy + CIRCLE_MM + 12.0)
     items.append(Text((x0, top + 4.0 + 1.6 * sizes.title_mm), title, "labels", sizes.title_mm))
     items.append(Text((x0, top + 4.0), scale_text("μl", con.mu_l, "m/mm", lang), "labels", sizes.label_mm))

@@ -26,7 +26,7 @@ from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, 
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.options import Language
 from velplan.render.i18n import label
-from velplan.render.scene import Circle, Polyline, Primitive, Text
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
     straight_guide)
@@ -353,7 +353,7 @@ class MechanismSizes:
 def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
                    thick: int = 1, lang: Language = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
-                   extreme: Kinematics | None = None, special: bool = False,
+                   extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
                    bold: Sequence[int] = ()) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
@@ -379,8 +379,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``1′`` at the output point (`velplan.study.Study.other_extreme`).
     bold : sequence of int
         Positions (1-based) drawn bold rather than thin: the extreme ones among the n.
-    special : bool
-        Draw each triad's Assur special point in the thick position: the lines of the two
+    special : bool or sequence of int
+        Draw each triad's Assur special point in the thick position (True) or in these
+        positions (1-based; the plans' positions of a sheet): the lines of the two
         leads that cross there (thin, dash-dotted) and the point, lettered (the figures of a
         plan's construction); it is left out where it falls far off the scheme.
 
@@ -397,8 +398,10 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     obstacles: list = []
     if not single:
         _other_positions(items, obstacles, geo, fine, t, mm, mu_l, extreme, bold)
-    drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, special)
-    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme)
+    specials = ([t] if special is True else
+                [position_index(k, n) for k in special] if special else [])
+    drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
+    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     items += place_labels(labels, obstacles, rings=8)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes)
@@ -444,7 +447,7 @@ class _Thick:
 
 
 def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinematics, t: int, mm,
-                    mu_l: float, label_mm: float, special: bool) -> _Thick:
+                    mu_l: float, label_mm: float, specials: Sequence[int] = ()) -> _Thick:
     """Add the thick position `t` to `items`: guides, pivots, (special point), links, blocks,
     joints; their outlines to `obstacles`."""
     centre = mm(_centroid(geo.kin))
@@ -462,7 +465,9 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                               layer="mechanism")
         items += support
         obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
-    special_letters = _add_special(items, obstacles, geo, t, mm, label_mm) if special else []
+    special_letters = [x for i in specials  # positions other than the thick one say theirs
+                       for x in _add_special(items, obstacles, geo, i, mm, label_mm,
+                                             "" if i == t else f" ({position_number(i)})")]
     for _, corners in geo.plates(t):
         items += plate_corners(mm(corners))
     for s in thick_segments:
@@ -488,9 +493,9 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None) -> list[Text]:
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> list[Text]:
     """The labels to place: points of the thick position, position numbers, ω1 (its arrow
-    added to `items`), links."""
+    added to `items`, and to `obstacles`: no letter is written over it), links."""
     mech, kin = geo.mech, geo.kin
     labels: list[Text] = list(drawn.special_letters)
     labels += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
@@ -508,6 +513,9 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
     omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
     items += omega[:-1]
     labels.append(omega[-1])
+    if obstacles is not None:
+        obstacles += [shapely.LineString(p.points if isinstance(p, Polyline) else [p.start, p.end]).buffer(0.6)
+                      for p in omega[:-1] if isinstance(p, (Polyline, Arrow))]
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
     labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
@@ -736,7 +744,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         a, b = mm(s.a), mm(s.b)
         d = b - a
         length = np.hypot(*d)
-        if length < 4 * size:
+        if length < 4 * size and s.link != mech.crank.link:  # a short crank keeps its number
             continue
         done.add(s.link)
         normal = np.array([-d[1], d[0]]) / length
@@ -811,11 +819,12 @@ def _plate_number_at(corners, size: float, points=()):
     return max(spots, key=lambda q: min(float(np.hypot(*(q - p))) for p in points))
 
 
-def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size: float) -> list[Text]:
+def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size: float,
+                 suffix: str = "") -> list[Text]:
     """Append the special points' construction to `items` (under the links and joints that
     come after) and its lines to `obstacles`; returns the letters, to be placed."""
     letters = []
-    for p in _special_construction(geo, t, mm, size):
+    for p in _special_construction(geo, t, mm, size, suffix):
         if isinstance(p, Text):
             letters.append(p)
         else:
@@ -825,7 +834,7 @@ def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size:
     return letters
 
 
-def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primitive]:
+def _special_construction(geo: _Geometry, t: int, mm, size: float, suffix: str = "") -> list[Primitive]:
     """Each triad's special point in position t: the two lead lines through it (dash-dotted,
     from the outer joint, or the inner joint of a block, on to the point and a little past
     it), the point
@@ -865,6 +874,6 @@ def _special_construction(geo: _Geometry, t: int, mm, size: float) -> list[Primi
             out.append(Polyline([ends[0] + u * lo, ends[0] + u * hi], "mechanism", "axis"))
         at = mm(k)
         out.append(Circle(at, 0.6, "mechanism", "thin", "solid"))
-        out.append(Text(at + np.array([1.2, 1.2]), subscript(special[0]), "labels", size,
+        out.append(Text(at + np.array([1.2, 1.2]), subscript(special[0]) + suffix, "labels", size,
                         "start", "baseline"))
     return out

@@ -115,6 +115,8 @@ def plan_steps(res, position: int, *, lang: Language = "ru") -> list[StepDrawing
                 meets[line] = s.target
     out = []
     from_pole: set[str] = set()
+    figures = _figures(res, k)
+    fixed: set[str] = set()
     for s, sentence in zip(steps, sentences):
         items: list[Primitive] = []
         images: tuple[str, ...] = ()
@@ -161,8 +163,44 @@ def plan_steps(res, position: int, *, lang: Language = "ru") -> list[StepDrawing
             items.append(Arrow((0.0, 0.0), _xy(x), vec_layer, "thick"))
             from_pole.add(s.target)
             images = (s.target,)
+        fixed.update(images)
+        items += _marks(res, images, i, pole, vec_layer)
+        items += _figure_sides(res, figures, images, fixed, i, vec_layer)
         items = [p for p in items if _finite(p)]
         out.append(StepDrawing(s, tuple(items), images, sentence))
+    return out
+
+
+#: Radius of the dot that marks an image point on a plan, mm.
+IMAGE_DOT_MM = 0.45
+
+
+def _marks(res, images, i: int, pole: str, layer: str) -> list[Primitive]:
+    """A dot at each image a step fixes (every image is a point of the plan, marked as one,
+    not only by the arrowhead of its vector); the pole has its own larger dot."""
+    out = []
+    for t in images:
+        z = _image(res, t, i)
+        if t != pole and np.isfinite(z) and abs(z) > 1e-9:
+            out.append(Circle(_xy(z), IMAGE_DOT_MM, layer, "thin", "solid"))
+    return out
+
+
+def _figures(res, k: str) -> list[tuple[str, ...]]:
+    """Targets of the images of each class III group's base link (b, c, d): drawn as the
+    figure similar to the link (the similarity theorem) once the plan has all three."""
+    images = res.plan.images[k]
+    return [tuple(images[j] for j in g.joints) for g in res.plan.mechanism.groups
+            if getattr(g, "kind", "") == "triad" and all(j in images for j in g.joints)]
+
+
+def _figure_sides(res, figures, images, fixed: set, i: int, layer: str) -> list[Primitive]:
+    """The closed figure of a base link's images, drawn by the step that fixes its last one."""
+    out = []
+    for fig in figures:
+        if set(images) & set(fig) and set(fig) <= fixed:
+            pts = [_xy(_image(res, t, i)) for t in fig]
+            out.append(Polyline(pts + pts[:1], layer, "thin"))
     return out
 
 
@@ -206,9 +244,16 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
             if isinstance(p, Arrow):
                 segments.append((np.array(p.start), np.array(p.end)))
             elif isinstance(p, Polyline):
-                segments.append((np.array(p.points[0]), np.array(p.points[-1])))
+                pts = np.asarray(p.points, float)
+                segments += [(pts[j], pts[j + 1]) for j in range(len(pts) - 1)]
     obstacles = [shapely.LineString([a, b]).buffer(0.5) for a, b in segments
                  if np.hypot(*(b - a)) > 1e-9]
+    obstacles += [shapely.Point(p.centre).buffer(p.radius + 0.3) for d in drawings[:upto] for p in d.items
+                  if isinstance(p, Circle)]
+    # where every spot is crossed, a thin line under a letter reads better than a vector: each
+    # vector counts twice
+    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.5) for d in drawings[:upto] for p in d.items
+                  if isinstance(p, Arrow) and p.length > 1e-9]
     texts = []
     for g in groups:
         z = _image(res, g[0], i)

@@ -19,13 +19,12 @@ from velplan.analysis.solver import Kinematics
 from velplan.errors import VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.options import Language
-from velplan.plans import standard_scale
-from velplan.plans.engine import PlanResult
+from velplan.plans.engine import POSITION_PLAN_MM, PlanResult
 from velplan.render.i18n import label
 from velplan.render.layout import fit_text
 from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
-    extent_mm, image_letters, plan_steps, plan_title, plan_view)
+    image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
 from velplan.views.base import digits_down, eskd_scales, shift
 
@@ -44,7 +43,7 @@ class StepFigure:
 
 
 def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResult], position: int, *,
-                 kind: str = "both", lang: Language = "ru", plan_mm: float = 160.0) -> list[StepFigure]:
+                 kind: str = "both", lang: Language = "ru", plan_mm: float = POSITION_PLAN_MM) -> list[StepFigure]:
     """Figures of every construction step of the plans at `position` (1-based).
 
     Parameters
@@ -76,9 +75,7 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     series = []
     for kd in kinds:
         res0 = plans[kd]
-        ew, eh = extent_mm(res0, position)
-        mu = standard_scale(res0.scale * max(ew, eh, 1e-9) / plan_mm)
-        res = res0.at_scale(mu)
+        res = res0.at_scale(res0.position_scale(position, plan_mm))
         series.append((kd, res, plan_view(res, position, lang=lang), plan_steps(res, position, lang=lang)))
     # one page size for the whole series, velocity and acceleration alike
     width = max([_MARGIN * 3 + mview.width_mm + full.width_mm for _, _, full, _ in series] + [297.0])
@@ -107,11 +104,17 @@ _INDEX = re.compile(r"(?<=[A-Za-zωεπ])(\d+)")
 
 
 def readable(sentence: str) -> str:
-    """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``VA₄A``,
-    ``aⁿ_A4O3`` → ``aⁿA₄O₃``, ``O3A`` → ``O₃A``, ``ak1`` → ``ak₁`` (no underscores; the
-    digits of point, image and link names as subscripts)."""
-    text = _SYMBOL.sub(lambda m: m.group(1) + m.group(2) + m.group(3), sentence)
-    return _INDEX.sub(lambda m: digits_down(m.group(1)), text)
+    """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``v_{A4A}`` (v with
+    the whole index "A4A" below), ``aⁿ_A4O3`` → ``aⁿ_{A4O3}``, ``O3A`` → ``O₃A``, ``ak1`` →
+    ``ak₁`` (velocities in lowercase v; the digits of point, image and link names outside a
+    symbol's index as subscripts)."""
+    parts = _SYMBOL.split(sentence)  # text, (letter, mark, index), text, …
+    out = [_INDEX.sub(lambda m: digits_down(m.group(1)), parts[0])]
+    for k in range(1, len(parts), 4):
+        letter, mark, index, rest = parts[k:k + 4]
+        out.append(("v" if letter == "V" else letter) + mark + "_{" + index + "}")
+        out.append(_INDEX.sub(lambda m: digits_down(m.group(1)), rest))
+    return "".join(out)
 
 
 def partial_plan(res, position: int, k: int, *, full, drawings, lang: Language) -> list:
