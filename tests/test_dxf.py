@@ -20,6 +20,7 @@ import pytest
 
 import velplan
 from velplan.cli import main
+from velplan.render.shapes import unicode_text
 from velplan.errors import VelplanError
 from velplan.render.canvas import RecordingCanvas, render
 from velplan.render.dxf import (
@@ -313,7 +314,7 @@ def test_texts_equal_the_scene(docs, sheets):
     for item, entity in zip(scene, texts, strict=True):
         anchor = entity.dxf.insert if (entity.dxf.halign, entity.dxf.valign) == (0, 0) \
             else entity.dxf.align_point
-        assert entity.dxf.text == item.text and entity.dxf.layer == TEXT_LAYER
+        assert entity.dxf.text == unicode_text(item.text) and entity.dxf.layer == TEXT_LAYER
         assert np.allclose(_xy(anchor), item.position, atol=TOL)
         assert entity.dxf.height == item.size_mm and entity.dxf.rotation == item.rotation_deg
 

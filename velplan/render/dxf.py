@@ -52,7 +52,7 @@ from velplan.errors import VelplanError
 from velplan.render.canvas import render
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import (
-    arrow_shape, arrow_size, circle_outline, hatch_segments, plain_text, stroke_for)
+    arrow_shape, arrow_size, circle_outline, hatch_segments, stroke_for, unicode_text)
 from velplan.render.style import LINE_TYPES, SheetStyle
 
 #: DXF version written: AutoCAD R2013 (AC1027).
@@ -385,7 +385,7 @@ def _xy(points) -> list[tuple[float, float]]:
 def dxf_text_content(text: str) -> str:
     """The string a TEXT entity stores for `text`: control characters become spaces, and
     ``%`` is escaped wherever ``%%`` would start an AutoCAD control code."""
-    clean = "".join(" " if unicodedata.category(c) == "Cc" else c for c in plain_text(text))
+    clean = "".join(" " if unicodedata.category(c) == "Cc" else c for c in unicode_text(text))
     return clean.replace("%", "%%%") if "%%" in clean else clean
 
 
