@@ -59,6 +59,6 @@ def structure_section(note, study) -> None:
 
 def _structure_tex(st, crank: str) -> str:
     roman = {1: "I", 2: "II", 3: "III", 4: "IV"}
-    parts = [rf"\mathrm{{I}}(0, {crank})"] + [rf"\mathrm{{{roman.get(c, str(c))}}}({', '.join(links)})"
+    parts = [rf"\text{{I}}(0, {crank})"] + [rf"\text{{{roman.get(c, str(c))}}}({', '.join(links)})"
                                              for _, _, c, _, links in st.groups]
     return r" \rightarrow ".join(parts)
