@@ -29,7 +29,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: str = "ru", f
     fields : dict, optional
         Title page: ``organisation``, ``author``, ``group``, ``checker``, ``date``.
     """
-    from velplan.note import forces as F, front, kinematics as K
+    from velplan.note import ends, forces as F, front, kinematics as K
     from velplan.render.i18n import check_language
     from velplan.sheets.forces import has_forces
     from velplan.sheets.kinematic import build_sheet
@@ -45,6 +45,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: str = "ru", f
     sheet = build_sheet(study, plans=plans, fmt=fmt, lang=lang)
     note = Note(lang, f"{p('note', lang)}: {study.mechanism.name_in(lang)}")
     front.title_page(note, study, fields)
+    ends.introduction(note, study, [x for x in parts if x != "forces" or has_forces(study.mechanism)])
     front.data_section(note, study)
     front.structure_section(note, study)
     K.positions_section(note, study, sheet)
@@ -64,7 +65,21 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: str = "ru", f
                                f"to write out; add [link.N] masses or [[load]] tables")
     if "dynamics" in parts:
         _optional("dynamics", asked, lambda: _dynamics(note, study, fmt, lang))
+    _conclusion(note, study, parts)
+    ends.references(note)
     return note
+
+
+def _conclusion(note, study, parts) -> None:
+    """The conclusion from the parts the note holds (a part left out adds nothing)."""
+    from velplan.note import ends
+    from velplan.note.blocks import Heading
+
+    heads = {b.text for b in note.blocks if isinstance(b, Heading)}
+    moments = (study.forces().balancing_moments["kinetostatics"]
+               if p("sec_forces", note.lang) in heads else None)
+    fly = study.dynamics.flywheel if p("sec_dynamics", note.lang) in heads else None
+    ends.conclusion(note, study, moments, fly)
 
 
 def _optional(part: str, asked: bool, write) -> None:

@@ -8,8 +8,8 @@ import math
 from velplan.analysis.numbering import position_index, position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import force, txt
-from velplan.note.model import Equation, Heading, Para
-from velplan.note.text import p
+from velplan.note.model import Equation, Heading, Math, Para
+from velplan.note.text import group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
 from velplan.views.base import fixed
@@ -38,7 +38,7 @@ def _group(note, sheet, k: int, group: str) -> None:
     poly = ks.polygons[group]
     kind = next((g.kind for g in sheet.mechanism.groups if g.name == group), "")
     title = (p("sec_crank", lang, sheet.mechanism.crank.link) if group == "crank"
-             else p("sec_group", lang, group, kind))
+             else p("sec_group", lang, group, group_kind(kind, lang)))
     note.add(Heading(title, 3), Para.of(p("known_forces", lang)))
     mu_f = sheet.scales.get(f"polygon-{k}-{slug(group)}")
     rows = []
@@ -47,7 +47,7 @@ def _group(note, sheet, k: int, group: str) -> None:
         rows.append([force_text(name), _num(value, lang),
                      _num(value / mu_f, lang) if mu_f else "—"])
     unit_mm = "мм" if lang in ("ru", "uk") else "mm"
-    note.table(title, [p("quantity", lang), newton(lang), f"{p('segment', lang)}, {unit_mm}"], rows,
+    note.table(title, [p("quantity", lang), f"{p('value', lang)}, {newton(lang)}", f"{p('segment', lang)}, {unit_mm}"], rows,
                key=f"forces-{k}-{group}")
     names = [n for n, _ in poly.vectors] + [n for n, _ in poly.closing_vectors]
     note.add(Para.of(p("equilibrium", lang)),
@@ -79,12 +79,28 @@ def _lever(note, sheet, k: int) -> None:
     c = mech.crank
     note.add(Heading(p("sec_lever", lang, k), 3), Para.of(p("lever_text", lang)))
     arm = rf"l_{{{c.pivot[0]}_{{{c.pivot[1:]}}}{c.tip}}}" if c.pivot[1:].isdigit() else rf"l_{{{c.pivot}{c.tip}}}"
-    note.add(Equation(rf"\sum M_{{p}}(\vec{{F}}) = 0:\quad F_{{b}} = {txt(_num(abs(meta['balancing_force']), lang))}"
-                      rf"\ {txt(newton(lang))},\quad M_{{b}} = F_{{b}}\cdot {arm} = "
+    from velplan.note.lever import lever_equations
+
+    lever_equations(note, sheet.analysis, k, int(meta["index"]), float(meta["mu_v"]))
+    note.add(Equation(rf"M_{{b}} = F_{{b}}\cdot {arm} = {txt(_num(abs(meta['balancing_force']), lang))}\cdot "
+                      rf"{txt(_num(_crank_length(sheet, int(meta['index'])), lang))} = "
                       rf"{txt(_num(meta['mb_lever'], lang))}\ {txt(newton_metre(lang))}"))
-    note.add(Para.of(meta["balance"]))
+    mb_kin, nm = meta["mb_kinetostatics"], txt(newton_metre(lang))
+    note.add(Para.of(p("lever_check", lang), Math(
+        rf"M_{{b}} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
+        rf"M_{{b}} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
+        rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"), "."))
     png, width = views_png([sheet.views[name]], sheet.style)
     note.figure(p("lever_fig", lang, k), png, width)
+
+
+def _crank_length(sheet, i: int) -> float:
+    """l of the crank, m."""
+    c = sheet.mechanism.crank
+    kin = sheet.analysis.kinematics
+    pos = kin.positions
+    a, o = kin.point_index[c.tip], kin.point_index[c.pivot]
+    return float(abs(complex(*pos[i, a]) - complex(*pos[i, o])))
 
 
 def _moments(note, sheet) -> None:

@@ -24,7 +24,7 @@ def positions_section(note, study, sheet) -> None:
     lang = note.lang
     note.add(Heading(p("sec_positions", lang), 1))
     mu_l = sheet.scales["mu_l"]
-    note.add(Para.of(p("scale_l", lang, number(mu_l, lang), ratio_text(mu_l, lang), study.n,
+    note.add(Para.of(p("scale_l" if _starts_at_extreme(study) else "scale_l_zero", lang, number(mu_l, lang), ratio_text(mu_l, lang), study.n,
                        study.mechanism.crank.link)))
     png, width = views_png([sheet.views["mechanism"]], sheet.style)
     k = note.figure(p("scheme_fig", lang), png, width)
@@ -47,6 +47,15 @@ def positions_section(note, study, sheet) -> None:
                       rf"\theta = {txt(number(math.degrees(st.theta), lang) + deg)}"),
              Equation(rf"K = \frac{{180{txt(deg)} + \theta}}{{180{txt(deg)} - \theta}} = "
                       rf"\frac{{180 + {txt(theta)}}}{{180 - {txt(theta)}}} = {txt(number(st.K, lang))}"))
+
+
+def _starts_at_extreme(study) -> bool:
+    """Whether position 1 is an extreme position of the output."""
+    st = study.stroke
+    if st is None:
+        return False
+    phi0 = float(study.phi[0])
+    return any(abs(math.remainder(phi0 - e.phi, 2 * math.pi)) < 1e-6 for e in (st.start, st.end))
 
 
 def plan_section(note, sheet, number_k: int, kind: str) -> None:

@@ -34,7 +34,7 @@ def to_markdown(note, target: str, images: dict[str, str]) -> str:
 
 def _block(b, note, target: str, images: dict[str, str]) -> str:
     if isinstance(b, Heading):
-        return "#" * b.level + " " + md_text(b.text)
+        return "#" * b.level + " " + md_text(b.text) + ("" if b.numbered or target == "md" else " {-}")
     if isinstance(b, Para):
         return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in b.parts)
     if isinstance(b, Equation):

@@ -77,6 +77,13 @@ _P: dict[str, tuple[str, str, str, str]] = {
                 "Схему побудовано в масштабі μl = {0} м/мм ({1}); {2} положень кривошипа від крайнього "
                 "положення в напрямі ω{3}.",
                 "机构简图比例 μl = {0} m/mm（{1}）；自极限位置起沿 ω{3} 方向取曲柄 {2} 个位置。"),
+    "scale_l_zero": ("The scheme is drawn at μl = {0} m/mm ({1}); {2} positions of the crank from φ = 0, "
+                     "in the sense of ω{3}.",
+                     "Схема построена в масштабе μl = {0} м/мм ({1}); {2} положений кривошипа от φ = 0 "
+                     "в направлении ω{3}.",
+                     "Схему побудовано в масштабі μl = {0} м/мм ({1}); {2} положень кривошипа від φ = 0 "
+                     "в напрямі ω{3}.",
+                     "机构简图比例 μl = {0} m/mm（{1}）；自 φ = 0 起沿 ω{3} 方向取曲柄 {2} 个位置。"),
     "crank_angles": ("Crank angles of the positions", "Углы поворота кривошипа", "Кути повороту кривошипа",
                      "各位置曲柄转角"),
     "phi": ("crank angle φ, °", "угол φ, °", "кут φ, °", "转角 φ，°"),
@@ -187,6 +194,21 @@ _P: dict[str, tuple[str, str, str, str]] = {
                    "знаходиться зрівноважувальна сила в точці кривошипа:",
                    "将速度图转过 90° 作为以极点为支点的杠杆；各力作用于其对应点的影像上，由对极点的力矩和"
                    "求得作用于曲柄端点影像上的平衡力："),
+    "lever_arms": ("The arm hᵢ of each force is the perpendicular from the pole to its line of action, "
+                   "measured on the lever (the velocity plan at μv = {0} (m/s)/mm turned by 90°); a force "
+                   "turning the lever counter-clockwise counts positive:",
+                   "Плечо hᵢ каждой силы — перпендикуляр из полюса на линию её действия, измеренный на "
+                   "рычаге (план скоростей в масштабе μv = {0} (м/с)/мм, повёрнутый на 90°); момент, "
+                   "поворачивающий рычаг против часовой стрелки, положителен:",
+                   "Плече hᵢ кожної сили — перпендикуляр з полюса на лінію її дії, виміряний на важелі "
+                   "(план швидкостей у масштабі μv = {0} (м/с)/мм, повернутий на 90°); момент, що "
+                   "повертає важіль проти годинникової стрілки, додатний:",
+                   "各力的力臂 hᵢ 为极点到其作用线的垂直距离，在杠杆（比例 μv = {0} (m/s)/mm 的速度图转过 90°）上量取；"
+                   "使杠杆逆时针转动的力矩为正："),
+    "lever_check": ("The lever against kinetostatics: ", "Сравнение с кинетостатикой: ",
+                    "Порівняння з кінетостатикою: ", "与动态静力法比较："),
+    "lever_table": ("Forces on the lever and their arms, position {0}", "Силы на рычаге и их плечи, положение {0}",
+                    "Сили на важелі та їхні плечі, положення {0}", "杠杆上的力及其力臂，位置 {0}"),
     "lever_fig": ("Zhukovsky's lever, position {0}", "Рычаг Жуковского, положение {0}",
                   "Важіль Жуковського, положення {0}", "茹科夫斯基杠杆，位置 {0}"),
     "moments_text": ("The balancing moment found by kinetostatics, by Zhukovsky's lever and by the "
@@ -219,6 +241,33 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "dyn_results": ("Results of the dynamics (as on the sheet)", "Результаты динамического анализа (как на листе)",
                     "Результати динамічного аналізу (як на аркуші)", "动力学分析结果（同图纸）"),
     "dyn_fig": ("{0}", "{0}", "{0}", "{0}"),
+    "sec_intro": ("Introduction", "Введение", "Вступ", "引言"),
+    "sec_conclusion": ("Conclusion", "Заключение", "Висновки", "结论"),
+    "sec_references": ("References", "Список использованных источников", "Список використаних джерел",
+                       "参考文献"),
+    "intro": ("The task of the course project is the study of the mechanism of the {0}: its structure, {1}. "
+              "The initial data are those of the task (section 1); the methods follow the textbooks in the "
+              "list of references, and every number is that of the drawing sheets.",
+              "Задача курсового проекта — исследование механизма: {0}. Выполнены структурный анализ, {1}. "
+              "Исходные данные взяты из задания (раздел 1); методы следуют учебникам из списка "
+              "использованных источников, все числа совпадают с листами графической части.",
+              "Завдання курсового проєкту — дослідження механізму: {0}. Виконано структурний аналіз, {1}. "
+              "Вихідні дані взято із завдання (розділ 1); методи відповідають підручникам зі списку "
+              "використаних джерел, усі числа збігаються з аркушами графічної частини.",
+              "本课程设计的任务是研究{0}机构：结构分析、{1}。原始数据取自设计任务书（第1节）；方法依据参考文献中的教材，"
+              "全部数值与图纸一致。"),
+    "concl_structure": ("The mechanism has one degree of freedom W = {0} and is of class {1}.",
+                        "Механизм имеет степень подвижности W = {0}, механизм {1} класса.",
+                        "Механізм має ступінь вільності W = {0}, механізм {1} класу.",
+                        "机构自由度 W = {0}，为 {1} 级机构。"),
+    "concl_stroke": ("The stroke, the angle of overlap and the time-ratio coefficient: ",
+                     "Ход выходного звена, угол перекрытия и коэффициент изменения средней скорости: ",
+                     "Хід вихідної ланки, кут перекриття та коефіцієнт зміни середньої швидкості: ",
+                     "输出构件行程、极位夹角与行程速比系数："),
+    "concl_mb": ("Over a turn the balancing moment lies within ", "За оборот уравновешивающий момент изменяется в пределах ",
+                 "За оберт зрівноважувальний момент змінюється в межах ", "一周内平衡力矩的范围为 "),
+    "concl_flywheel": ("The flywheel on the crank shaft needs ", "Маховик на валу кривошипа должен иметь ",
+                       "Маховик на валу кривошипа повинен мати ", "曲柄轴上的飞轮需要 "),
     "left_out": ("left out: {0}", "не включено: {0}", "не включено: {0}", "未包括：{0}"),
 }
 
@@ -231,3 +280,25 @@ def p(key: str, lang: str, *args) -> str:
 def direction(value: float, lang: str) -> str:
     """The sense of a rotation: counter-clockwise for a positive value."""
     return p("ccw" if value > 0 else "cw", lang)
+
+
+_PAIR_LETTERS = {"ru": {"R": "В", "P": "П"}, "uk": {"R": "О", "P": "П"}, "zh": {"R": "转", "P": "移"}}
+_WORDS = {"triad": ("triad", "триада", "тріада", "三杆组"), "crank": ("crank", "кривошип", "кривошип", "曲柄"),
+          "dyad": ("dyad", "диада", "діада", "二杆组")}
+
+
+def group_kind(kind: str, lang: str) -> str:
+    """A group's kind as the course of ``lang`` names it: a dyad by its pairs (RPR → ВПВ in
+    ru, ОПО in uk, 转移转 in zh), a triad, the crank."""
+    lang = check_lang(lang)
+    if kind in _WORDS:
+        return _WORDS[kind][LANG_INDEX[lang]]
+    letters = _PAIR_LETTERS.get(lang)
+    if letters and kind and set(kind) <= set(letters):
+        return "".join(letters[c] for c in kind)
+    return kind
+
+
+def group_name(group: str, lang: str) -> str:
+    """A group's name (``3-4``), or the crank's in words."""
+    return group_kind(group, lang) if group in _WORDS else group
