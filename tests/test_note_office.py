@@ -139,6 +139,7 @@ def test_libreoffice_breaks_no_number_across_lines(shaper_ru, office_pdf):
     text = "\n".join(lines)
     words = {w for tbl in _body(path).iter(qn("w:tbl")) for tc in tbl.iter(qn("w:tc"))
              for w in " ".join(cell_text(tc)).split() if re.search(r"\d", w) or len(w) >= 6}
+    words = {w for w in words if "⁻" not in w}  # pdfium reads a fallback font's superscript minus out of order
     assert len(words) > 100
     missing = sorted(w for w in words if w not in text)
     assert not missing, f"broken across lines in LibreOffice: {missing[:10]}"

@@ -9,7 +9,7 @@ import numpy as np
 
 from velplan.note.formulas import txt
 from velplan.note.model import Heading, Math, Para
-from velplan.note.text import LANG_INDEX, p
+from velplan.note.text import balancing, LANG_INDEX, p
 from velplan.views.base import number
 
 REFERENCES = {
@@ -72,7 +72,7 @@ def conclusion(note, study, moments=None, flywheel=None) -> None:
     if moments is not None:
         mb = np.asarray(moments, dtype=float)
         note.add(Para.of(p("concl_mb", lang), Math(
-            rf"{txt(number(float(mb.min()), lang))} \le M_{{b}} \le {txt(number(float(mb.max()), lang))}\ {txt(nm)}"),
+            rf"{txt(number(float(mb.min()), lang))} \le {balancing('M', lang)} \le {txt(number(float(mb.max()), lang))}\ {txt(nm)}"),
             "."))
     if flywheel is not None:
         kgm2 = "кг·м²" if lang in ("ru", "uk") else "kg·m²"

@@ -9,7 +9,7 @@ from velplan.analysis.numbering import position_index, position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Heading, Math, Para
-from velplan.note.text import group_kind, p
+from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
 from velplan.views.base import fixed
@@ -59,7 +59,7 @@ def _group(note, sheet, k: int, group: str) -> None:
             note.add(Equation(rf"{force(rc.label)} = {txt(_num(float(rc.magnitude[i]), lang))}\ "
                               rf"{txt(newton(lang))}"))
     if group == "crank":
-        note.add(Equation(rf"M_{{b}} = {txt(_num(float(ks.balancing_moment[i]), lang))}\ "
+        note.add(Equation(rf"{balancing('M', lang)} = {txt(_num(float(ks.balancing_moment[i]), lang))}\ "
                           rf"{txt(newton_metre(lang))}\quad\text{{({label('method_kinetostatics', lang)})}}"))
     views = [sheet.views[v] for v in (f"group-{k}-{slug(group)}", f"polygon-{k}-{slug(group)}")
              if v in sheet.views]
@@ -82,13 +82,13 @@ def _lever(note, sheet, k: int) -> None:
     from velplan.note.lever import lever_equations
 
     lever_equations(note, sheet.analysis, k, int(meta["index"]), float(meta["mu_v"]))
-    note.add(Equation(rf"M_{{b}} = F_{{b}}\cdot {arm} = {txt(_num(abs(meta['balancing_force']), lang))}\cdot "
+    note.add(Equation(rf"{balancing('M', lang)} = {balancing('F', lang)}\cdot {arm} = {txt(_num(abs(meta['balancing_force']), lang))}\cdot "
                       rf"{txt(_num(_crank_length(sheet, int(meta['index'])), lang))} = "
                       rf"{txt(_num(meta['mb_lever'], lang))}\ {txt(newton_metre(lang))}"))
     mb_kin, nm = meta["mb_kinetostatics"], txt(newton_metre(lang))
     note.add(Para.of(p("lever_check", lang), Math(
-        rf"M_{{b}} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
-        rf"M_{{b}} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
+        rf"{balancing('M', lang)} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
+        rf"{balancing('M', lang)} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
         rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"), "."))
     png, width = views_png([sheet.views[name]], sheet.style)
     note.figure(p("lever_fig", lang, k), png, width)
@@ -110,7 +110,7 @@ def _moments(note, sheet) -> None:
     moments = fa.balancing_moments
     decimals = moment_decimals(moments["kinetostatics"])
     mb = label("symbol_balancing_moment", lang)
-    note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang)))
+    note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang, sheet.mechanism.crank.link)))
     head = [label("position_short", lang), "φ, °"] + [f"{mb} ({label('method_' + key, lang)})"
                                                      for key in ("kinetostatics", "lever", "power")]
     rows = [[str(position_number(j)), fixed(math.degrees(phi) % 360.0, lang, 1)] +

@@ -124,7 +124,7 @@ def analogues_section(note, study, sheet) -> None:
     lang = note.lang
     table = sheet_table(study.plan("velocity"))
     mech = study.mechanism
-    note.add(Heading(p("sec_analogues", lang), 2), Para.of(p("analogues_text", lang)))
+    note.add(Heading(p("sec_analogues", lang), 2), Para.of(p("analogues_text", lang, mech.crank.link)))
     head = [label("position_short", lang), f"φ, {unit('deg', lang)}"] + [
         _row_label(name, mech.crank.link, lang) for name in table.rows]
     rows = []

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Para
-from velplan.note.text import p
+from velplan.note.text import balancing, p
 from velplan.views.base import fixed
 from velplan.views.base import number as _num
 from velplan.views.forces import force_text, newton
@@ -60,10 +60,10 @@ def lever_equations(note, fa, k: int, i: int, mu_v: float) -> int:
             out += f" {s} {t}"
         return out
 
-    note.add(Equation(r"\sum M_{p} = " + side(sym, rf"{sign_b}F_{{b}}\cdot h_{{b}}") + " = 0"))
-    note.add(Equation(side(num, rf"{sign_b}F_{{b}}\cdot{txt(fixed(arm_b, lang, 1))}")
+    note.add(Equation(r"\sum M_{p} = " + side(sym, rf"{sign_b}{balancing('F', lang)}\cdot h_{{b}}") + " = 0"))
+    note.add(Equation(side(num, rf"{sign_b}{balancing('F', lang)}\cdot{txt(fixed(arm_b, lang, 1))}")
                       + " = 0"))
-    note.add(Equation(rf"F_{{b}} = \frac{{{txt(_num(abs(total), lang))}}}{{{txt(fixed(arm_b, lang, 1))}}} = "
+    note.add(Equation(rf"{balancing('F', lang)} = \frac{{{txt(_num(abs(total), lang))}}}{{{txt(fixed(arm_b, lang, 1))}}} = "
                       rf"{txt(_num(abs(fb), lang))}\ {txt(newton(lang))}"))
     return len(terms)
 

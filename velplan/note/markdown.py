@@ -36,7 +36,10 @@ def _block(b, note, target: str, images: dict[str, str]) -> str:
     if isinstance(b, Heading):
         return "#" * b.level + " " + md_text(b.text) + ("" if b.numbered or target == "md" else " {-}")
     if isinstance(b, Para):
-        return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in b.parts)
+        from velplan.note.prose import prose_parts
+
+        parts = [y for x in b.parts for y in ((x,) if isinstance(x, Math) else prose_parts(x, note.lang))]
+        return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in parts)
     if isinstance(b, Equation):
         return f"$${b.tex}$$"
     if isinstance(b, Table):

@@ -128,13 +128,13 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "read": ("read off the plan", "по плану", "за планом", "图上量得"),
     "analytic": ("analytic", "аналитически", "аналітично", "解析"),
     "plan_fig": ("{0}, position {1}", "{0}, положение {1}", "{0}, положення {1}", "{0}，位置 {1}"),
-    "analogues_text": ("The analogues V/ω₁ (m) of the points and ω/ω₁ of the links are read off the "
+    "analogues_text": ("The analogues $V/\\omega_{{{0}}}$ (m) of the points and $\\omega/\\omega_{{{0}}}$ of the links are read off the "
                        "exact velocity plans of all positions (the table of the sheet).",
-                       "Аналоги скоростей V/ω₁ (м) точек и ω/ω₁ звеньев сняты с точных планов скоростей "
+                       "Аналоги скоростей $V/\\omega_{{{0}}}$ (м) точек и $\\omega/\\omega_{{{0}}}$ звеньев сняты с точных планов скоростей "
                        "всех положений (таблица листа).",
-                       "Аналоги швидкостей V/ω₁ (м) точок і ω/ω₁ ланок знято з точних планів швидкостей "
+                       "Аналоги швидкостей $V/\\omega_{{{0}}}$ (м) точок і $\\omega/\\omega_{{{0}}}$ ланок знято з точних планів швидкостей "
                        "усіх положень (таблиця аркуша).",
-                       "各点速度类比量 V/ω₁（m）及各构件 ω/ω₁ 取自全部位置的精确速度图（图纸上的表）。"),
+                       "各点速度类比量 $V/\\omega_{{{0}}}$（m）及各构件 $\\omega/\\omega_{{{0}}}$ 取自全部位置的精确速度图（图纸上的表）。"),
     "diagrams_text": ("The displacement diagram s(φ) of the output is plotted from the positions; "
                       "the velocity analogue and acceleration analogue diagrams follow from it by "
                       "graphical differentiation (the chord method): each chord of a curve is "
@@ -156,19 +156,19 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "diagrams_fig": ("Kinematic diagrams of the output", "Кинематические диаграммы выходного звена",
                      "Кінематичні діаграми вихідної ланки", "输出构件运动线图"),
     "ks_intro": ("The groups are separated from the mechanism beginning with the one farthest from the "
-                 "initial link; the inertia forces Φ = −m·a_S and moments M_Φ = −J_S·ε are applied "
+                 "initial link; the inertia forces $\\Phi = -m\\,a_{{S}}$ and moments $M_{{\\Phi}} = -J_{{S}}\\,\\varepsilon$ are applied "
                  "with the weights and the loads (d'Alembert's principle), and each group's force "
                  "polygon is drawn.",
                  "Группы отделяются от механизма, начиная с наиболее удалённой от начального звена; "
-                 "к звеньям прикладываются силы тяжести, внешние нагрузки, силы инерции Φ = −m·a_S и "
-                 "моменты сил инерции M_Φ = −J_S·ε (принцип Даламбера), для каждой группы строится "
+                 "к звеньям прикладываются силы тяжести, внешние нагрузки, силы инерции $\\Phi = -m\\,a_{{S}}$ и "
+                 "моменты сил инерции $M_{{\\Phi}} = -J_{{S}}\\,\\varepsilon$ (принцип Даламбера), для каждой группы строится "
                  "план сил.",
                  "Групи відокремлюються від механізму, починаючи з найвіддаленішої від початкової "
                  "ланки; до ланок прикладаються сили тяжіння, зовнішні навантаження, сили інерції "
-                 "Φ = −m·a_S і моменти сил інерції M_Φ = −J_S·ε (принцип Даламбера), для кожної групи "
+                 "$\\Phi = -m\\,a_{{S}}$ і моменти сил інерції $M_{{\\Phi}} = -J_{{S}}\\,\\varepsilon$ (принцип Даламбера), для кожної групи "
                  "будується план сил.",
-                 "从离原动件最远的杆组开始依次拆分；在各构件上施加重力、外载荷、惯性力 Φ = −m·a_S 及惯性力矩 "
-                 "M_Φ = −J_S·ε（达朗贝尔原理），对每个杆组作力多边形。"),
+                 "从离原动件最远的杆组开始依次拆分；在各构件上施加重力、外载荷、惯性力 $\\Phi = -m\\,a_{{S}}$ 及惯性力矩 "
+                 "$M_{{\\Phi}} = -J_{{S}}\\,\\varepsilon$（达朗贝尔原理），对每个杆组作力多边形。"),
     "known_forces": ("Forces known on the group:", "Известные силы, действующие на группу:",
                      "Відомі сили, що діють на групу:", "作用于杆组的已知力："),
     "equilibrium": ("Equation of equilibrium (the force polygon closes):",
@@ -212,28 +212,28 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "lever_fig": ("Zhukovsky's lever, position {0}", "Рычаг Жуковского, положение {0}",
                   "Важіль Жуковського, положення {0}", "茹科夫斯基杠杆，位置 {0}"),
     "moments_text": ("The balancing moment found by kinetostatics, by Zhukovsky's lever and by the "
-                     "power method M_b = −ΣP·V/ω₁ at every position (the table of the sheet):",
+                     "power method $M_{{b}} = -\\sum P\\,V/\\omega_{{{0}}}$ at every position (the table of the sheet):",
                      "Уравновешивающий момент, найденный кинетостатикой, рычагом Жуковского и методом "
-                     "мощностей M_ур = −ΣP·V/ω₁, во всех положениях (таблица листа):",
+                     "мощностей $M_{{\\text{{ур}}}} = -\\sum P\\,V/\\omega_{{{0}}}$, во всех положениях (таблица листа):",
                      "Зрівноважувальний момент, знайдений кінетостатикою, важелем Жуковського та методом "
-                     "потужностей M_зр = −ΣP·V/ω₁, в усіх положеннях (таблиця аркуша):",
-                     "用动态静力法、茹科夫斯基杠杆法和功率法 M_b = −ΣP·V/ω₁ 求得的各位置平衡力矩（图纸上的表）："),
+                     "потужностей $M_{{\\text{{зр}}}} = -\\sum P\\,V/\\omega_{{{0}}}$, в усіх положеннях (таблиця аркуша):",
+                     "用动态静力法、茹科夫斯基杠杆法和功率法 $M_{{b}} = -\\sum P\\,V/\\omega_{{{0}}}$ 求得的各位置平衡力矩（图纸上的表）："),
     "mb_fig": ("Balancing moment over a turn", "Уравновешивающий момент за оборот",
                "Зрівноважувальний момент за оберт", "一周内的平衡力矩"),
     "dyn_intro": ("The links are replaced by a dynamic model on the crank: the reduced moment of inertia "
-                  "J_red = Σ(m·V_S² + J_S·ω²)/ω₁² and the reduced moment M_red = ΣP·V/ω₁ of the forces. "
+                  "$J_{{red}} = \\sum (m\\,V_{{S}}^{{2}} + J_{{S}}\\,\\omega^{{2}})/\\omega_{{{0}}}^{{2}}$ and the reduced moment $M_{{red}} = \\sum P\\,V/\\omega_{{{0}}}$ of the forces. "
                   "The work of the driving and of the resisting moments over a cycle gives the change of "
                   "kinetic energy, and the flywheel is sized for the coefficient of speed fluctuation δ.",
                   "Механизм заменяется динамической моделью на кривошипе: приведённый момент инерции "
-                  "J_пр = Σ(m·V_S² + J_S·ω²)/ω₁² и приведённый момент сил M_пр = ΣP·V/ω₁. Работы "
+                  "$J_{{\\text{{пр}}}} = \\sum (m\\,V_{{S}}^{{2}} + J_{{S}}\\,\\omega^{{2}})/\\omega_{{{0}}}^{{2}}$ и приведённый момент сил $M_{{\\text{{пр}}}} = \\sum P\\,V/\\omega_{{{0}}}$. Работы "
                   "движущих сил и сил сопротивления за цикл дают изменение кинетической энергии, по "
                   "которому маховик подбирается для заданного коэффициента неравномерности δ.",
                   "Механізм замінюється динамічною моделлю на кривошипі: зведений момент інерції "
-                  "J_зв = Σ(m·V_S² + J_S·ω²)/ω₁² і зведений момент сил M_зв = ΣP·V/ω₁. Роботи рушійних "
+                  "$J_{{\\text{{зв}}}} = \\sum (m\\,V_{{S}}^{{2}} + J_{{S}}\\,\\omega^{{2}})/\\omega_{{{0}}}^{{2}}$ і зведений момент сил $M_{{\\text{{зв}}}} = \\sum P\\,V/\\omega_{{{0}}}$. Роботи рушійних "
                   "сил і сил опору за цикл дають зміну кінетичної енергії, за якою маховик добирається "
                   "для заданого коефіцієнта нерівномірності δ.",
-                  "将机构替换为曲柄上的等效动力学模型：等效转动惯量 J_red = Σ(m·V_S² + J_S·ω²)/ω₁²，等效力矩 "
-                  "M_red = ΣP·V/ω₁。一个周期内驱动力矩与阻力矩之功给出动能变化，据此按速度波动系数 δ 设计飞轮。"),
+                  "将机构替换为曲柄上的等效动力学模型：等效转动惯量 $J_{{red}} = \\sum (m\\,V_{{S}}^{{2}} + J_{{S}}\\,\\omega^{{2}})/\\omega_{{{0}}}^{{2}}$，等效力矩 "
+                  "$M_{{red}} = \\sum P\\,V/\\omega_{{{0}}}$。一个周期内驱动力矩与阻力矩之功给出动能变化，据此按速度波动系数 δ 设计飞轮。"),
     "flywheel_formula": ("The flywheel's moment of inertia from the largest change of the energy of the "
                          "links' masses ΔT:", "Момент инерции маховика по наибольшему изменению "
                          "кинетической энергии ΔT:", "Момент інерції маховика за найбільшою зміною "
@@ -268,6 +268,61 @@ _P: dict[str, tuple[str, str, str, str]] = {
                  "За оберт зрівноважувальний момент змінюється в межах ", "一周内平衡力矩的范围为 "),
     "concl_flywheel": ("The flywheel on the crank shaft needs ", "Маховик на валу кривошипа должен иметь ",
                        "Маховик на валу кривошипа повинен мати ", "曲柄轴上的飞轮需要 "),
+    "dyn_worked": ("The reduced moment of inertia of the links other than the crank at position {0} "
+                   "(φ = {1}°), from the velocity analogues of the centres of mass and of the links:",
+                   "Приведённый момент инерции звеньев, кроме кривошипа, в положении {0} (φ = {1}°) по "
+                   "аналогам скоростей центров масс и звеньев:",
+                   "Зведений момент інерції ланок, крім кривошипа, у положенні {0} (φ = {1}°) за "
+                   "аналогами швидкостей центрів мас і ланок:",
+                   "位置 {0}（φ = {1}°）除曲柄外各构件的等效转动惯量，由质心和构件的速度类比量求得："),
+    "dyn_worked_m": ("The reduced moment of the loads and weights at the same position, each "
+                     "$\\sum P\\,V\\cos\\alpha/\\omega_{{{0}}}$:",
+                     "Приведённый момент сил сопротивления и тяжести в том же положении, каждый "
+                     "$\\sum P\\,V\\cos\\alpha/\\omega_{{{0}}}$:",
+                     "Зведений момент сил опору та тяжіння в тому самому положенні, кожен "
+                     "$\\sum P\\,V\\cos\\alpha/\\omega_{{{0}}}$:",
+                     "同一位置阻力与重力的等效力矩，各为 $\\sum P\\,V\\cos\\alpha/\\omega_{{{0}}}$："),
+    "dyn_tables": ("The same quantities at every position, and the works and energies over the cycle "
+                   "($\\Delta T_{{II}}$ the energy of the variable inertia, $\\Delta T_{{I}} = \\Delta T - \\Delta T_{{II}}$ "
+                   "that of the constant inertia, from position 1):",
+                   "Те же величины во всех положениях, работы и изменения энергии за цикл ($\\Delta T_{{II}}$ — "
+                   "энергия переменной части приведённого момента инерции, $\\Delta T_{{I}} = \\Delta T - \\Delta T_{{II}}$ — "
+                   "энергия постоянной части, от положения 1):",
+                   "Ті самі величини в усіх положеннях, роботи та зміни енергії за цикл ($\\Delta T_{{II}}$ — енергія "
+                   "змінної частини зведеного моменту інерції, $\\Delta T_{{I}} = \\Delta T - \\Delta T_{{II}}$ — "
+                   "енергія сталої частини, від положення 1):",
+                   "各位置的上述各量及一个周期内的功与能量变化（$\\Delta T_{{II}}$ 为变等效转动惯量部分的动能，"
+                   "$\\Delta T_{{I}} = \\Delta T - \\Delta T_{{II}}$ 为常量部分的动能，自位置 1 起）："),
+    "dyn_table_j": ("Reduced moment of inertia and reduced moments by position",
+                    "Приведённый момент инерции и приведённые моменты по положениям",
+                    "Зведений момент інерції та зведені моменти за положеннями", "各位置的等效转动惯量与等效力矩"),
+    "dyn_table_t": ("Works and changes of kinetic energy by position", "Работы и изменения кинетической энергии по положениям",
+                    "Роботи та зміни кінетичної енергії за положеннями", "各位置的功与动能变化"),
+    "fly_none": ("The constant inertia already present is enough: no flywheel is needed.",
+                 "Имеющегося постоянного момента инерции достаточно: маховик не нужен.",
+                 "Наявного сталого моменту інерції досить: маховик не потрібен.", "已有的常量转动惯量足够，无需飞轮。"),
+    "fly_shaft": ("On a shaft turning u = {0} times as fast as the crank (the drive's ratio) the flywheel needs:",
+                  "На валу, вращающемся в u = {0} раз быстрее кривошипа (передаточное отношение привода), "
+                  "маховик должен иметь:",
+                  "На валу, що обертається в u = {0} разів швидше за кривошип (передатне відношення привода), "
+                  "маховик повинен мати:",
+                  "安装在转速为曲柄 u = {0} 倍的轴上（传动比）时，飞轮需要："),
+    "fly_motor": ("The drive: motor {0}, {1} kW, {2} rpm.", "Привод: электродвигатель {0}, {1} кВт, {2} об/мин.",
+                  "Привід: електродвигун {0}, {1} кВт, {2} об/хв.", "驱动：电动机 {0}，{1} kW，{2} r/min。"),
+    "fly_recommend": ("The flywheel is recommended on the faster shaft: u² = {0} times less inertia, a "
+                      "smaller and lighter wheel.",
+                      "Маховик рекомендуется ставить на быстроходный вал: момент инерции в u² = {0} раз "
+                      "меньше, маховик меньше и легче.",
+                      "Маховик рекомендовано ставити на швидкохідний вал: момент інерції в u² = {0} разів "
+                      "менший, маховик менший і легший.",
+                      "建议将飞轮装在高速轴上：转动惯量减小为 1/u²（u² = {0}），飞轮更小更轻。"),
+    "fly_crank_only": ("The drive's ratio is not given: the flywheel is sized for the crank shaft; on a faster "
+                       "shaft it would need u² times less inertia.",
+                       "Передаточное отношение привода не задано: маховик рассчитан на вал кривошипа; на "
+                       "быстроходном валу его момент инерции был бы в u² раз меньше.",
+                       "Передатне відношення привода не задано: маховик розраховано на вал кривошипа; на "
+                       "швидкохідному валу його момент інерції був би в u² разів менший.",
+                       "未给出传动比：飞轮按曲柄轴计算；装在高速轴上时转动惯量可减小为 1/u²。"),
     "left_out": ("left out: {0}", "не включено: {0}", "не включено: {0}", "未包括：{0}"),
 }
 
@@ -302,3 +357,13 @@ def group_kind(kind: str, lang: str) -> str:
 def group_name(group: str, lang: str) -> str:
     """A group's name (``3-4``), or the crank's in words."""
     return group_kind(group, lang) if group in _WORDS else group
+
+
+_BALANCING = {"ru": "ур", "uk": "зр"}
+
+
+def balancing(letter: str, lang: str) -> str:
+    """TeX of the balancing moment (``"M"``) or force (``"F"``) in the symbol the sheets of
+    ``lang`` print (Mур in ru, Mзр in uk, M_b in en/zh): one symbol in text, tables and figures."""
+    index = _BALANCING.get(check_lang(lang))
+    return f"{letter}_{{\\text{{{index}}}}}" if index else f"{letter}_{{b}}"
