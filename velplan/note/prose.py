@@ -10,6 +10,8 @@ import re
 from velplan.note.blocks import Math
 from velplan.note.formulas import chain, symbol
 
+_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
 _NOT_WORD = r"A-Za-z0-9_"
 TOKEN = re.compile(
     r"\$(?P<tex>[^$]+)\$"
@@ -17,7 +19,10 @@ TOKEN = re.compile(
     rf"|(?<![{_NOT_WORD}])μ(?P<mu>[vlaF])(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>\d+)(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<pts>[A-Za-zπ][A-Za-zπ]*\d[A-Za-z0-9π]*)(?![{_NOT_WORD}])")
-LETTERS = re.compile(rf"(?<![{_NOT_WORD}])(Δ?)([A-Za-z]+)(?![{_NOT_WORD}])")
+LETTERS = re.compile(rf"(?<![{_NOT_WORD}])(Δ?)([A-Za-z][A-Za-z₀-₉]*)(?![{_NOT_WORD}])")
+INDEXED = re.compile(r"(?<![A-Za-z0-9_])([A-Za-z][A-Za-z₀-₉]*[₀-₉][A-Za-z₀-₉]*)")
+"""A symbol with a subscript digit (lO₂A, JS₄, m₄, O₃): a symbol in every language."""
+UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
 _GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi"}
@@ -35,12 +40,17 @@ def prose_parts(text: str, lang: str = "en") -> list:
     every other word of Latin letters is a symbol too (``p``, ``pa``, ``H``), a zh unit
     excepted."""
     out = []
+    text = UNIT_AFTER_NUMBER.sub("\\1\u00a0", text)  # a number keeps its unit on its line
     for piece in _symbols(text):
-        if isinstance(piece, Math) or lang == "en":
+        if isinstance(piece, Math):
             out.append(piece)
             continue
         at = 0
-        for m in LETTERS.finditer(piece):
+        for m in (INDEXED if lang == "en" else LETTERS).finditer(piece):
+            if lang == "en":
+                out += [x for x in (piece[at:m.start()], Math(_letters("", m.group(1)))) if x]
+                at = m.end()
+                continue
             if lang == "zh" and m.group(2) in UNITS:
                 continue
             if m.start() > at:
@@ -56,7 +66,15 @@ def _letters(delta: str, word: str) -> str:
     """TeX of a word of Latin letters in a ru/uk/zh note: a symbol (``p``, ``pa``; ``JI`` →
     J_I, ``ΔTII`` → ΔT_II)."""
     roman = re.fullmatch(r"([A-Za-z])(I+)", word)
-    tex = f"{roman.group(1)}_{{{roman.group(2)}}}" if roman else (word if len(word) == 1 else chain(word))
+    if roman:
+        tex = f"{roman.group(1)}_{{{roman.group(2)}}}"
+    elif len(word) == 1:
+        tex = word
+    elif word[0].isupper() or word[0] in "lme" or re.fullmatch(r"[a-z][₀-₉]+", word):
+        head = re.match(r"(\d*)(.*)", word[1:].translate(_SUB))
+        tex = word[0] + "_{" + head.group(1) + (chain(head.group(2)) if head.group(2) else "") + "}"  # lO₂A, JS₄, m₄
+    else:
+        tex = chain(word)  # pa, bs₅: a segment of a plan, its letters side by side
     return (r"\Delta " if delta else "") + tex
 
 
