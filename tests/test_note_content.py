@@ -69,9 +69,10 @@ def test_zhukovsky_lever_has_one_term_per_force_with_its_arm(notes):
     assert len(sections) == 2
     lever_mb = study.forces().balancing_moments["lever"]
     crank = study.mechanism.crank
-    for k, table, (symbols, numbers, fb, mb) in sections:
+    for k, table, eqs in sections:
+        symbols, numbers, fb = eqs[:3]
         rows = table.rows
-        assert symbols.startswith(r"\sum M_{p}") and symbols.count("h_{") == len(rows) + 1
+        assert r"\sum M_{p}" in symbols and symbols.count("h_{") == len(rows) + 1
         for n in range(1, len(rows) + 1):
             assert f"h_{{{n}}}" in symbols
         # the equation in numbers: every F·h of the table, with its sign; it balances F_b·h_b

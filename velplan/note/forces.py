@@ -8,7 +8,7 @@ import math
 from velplan.analysis.numbering import position_index, position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import force, txt
-from velplan.note.model import Equation, Heading, Math, Para
+from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
@@ -86,10 +86,10 @@ def _lever(note, sheet, k: int) -> None:
                       rf"{txt(_num(_crank_length(sheet, int(meta['index'])), lang))} = "
                       rf"{txt(_num(meta['mb_lever'], lang))}\ {txt(newton_metre(lang))}"))
     mb_kin, nm = meta["mb_kinetostatics"], txt(newton_metre(lang))
-    note.add(Para.of(p("lever_check", lang), Math(
+    note.add(Para.of(p("lever_check", lang)), Equation(
         rf"{balancing('M', lang)} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
         rf"{balancing('M', lang)} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
-        rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"), "."))
+        rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"))
     png, width = views_png([sheet.views[name]], sheet.style)
     note.figure(p("lever_fig", lang, k), png, width)
 

@@ -37,6 +37,21 @@ def _symbol(label_: str) -> str:
     return force(label_)
 
 
+def lines(first: str, terms: list[tuple[str, str]], per_line: int) -> str:
+    """``first`` and the signed ``terms``, ``= 0``, broken after every ``per_line`` terms into
+    the lines of an aligned formula (a long sum stays inside the text width)."""
+    rows, row = [], first
+    for n, (sign, term) in enumerate(terms):
+        if n and n % per_line == 0:
+            rows.append(row)
+            row = ""
+        row += f" {sign} {term}"
+    rows.append(row + " = 0")
+    if len(rows) == 1:
+        return rows[0]
+    return r"\begin{aligned} & " + r" \\ & ".join(rows) + r" \end{aligned}"
+
+
 def lever_equations(note, fa, k: int, i: int, mu_v: float) -> int:
     """The table of forces and arms, the moment equation in symbols and in numbers, F_b and
     M_b; returns the number of force terms."""
@@ -54,15 +69,8 @@ def lever_equations(note, fa, k: int, i: int, mu_v: float) -> int:
     num = [(("+" if m >= 0 else "-"), rf"{txt(_num(size, lang))}\cdot{txt(fixed(h, lang, 1))}")
            for lab, size, h, m in terms]
 
-    def side(parts, first):
-        out = first
-        for s, t in parts:
-            out += f" {s} {t}"
-        return out
-
-    note.add(Equation(r"\sum M_{p} = " + side(sym, rf"{sign_b}{balancing('F', lang)}\cdot h_{{b}}") + " = 0"))
-    note.add(Equation(side(num, rf"{sign_b}{balancing('F', lang)}\cdot{txt(fixed(arm_b, lang, 1))}")
-                      + " = 0"))
+    note.add(Equation(lines(r"\sum M_{p} = " + rf"{sign_b}{balancing('F', lang)}\cdot h_{{b}}", sym, 5)))
+    note.add(Equation(lines(rf"{sign_b}{balancing('F', lang)}\cdot{txt(fixed(arm_b, lang, 1))}", num, 4)))
     note.add(Equation(rf"{balancing('F', lang)} = \frac{{{txt(_num(abs(total), lang))}}}{{{txt(fixed(arm_b, lang, 1))}}} = "
                       rf"{txt(_num(abs(fb), lang))}\ {txt(newton(lang))}"))
     return len(terms)
