@@ -97,7 +97,7 @@ def worked_position(note, d, k: int) -> None:
                       else rf"J_{{S_{{{link}}}}}\left(\frac{{\omega_{{{link}}}}}{{\omega_{{{crank}}}}}\right)^{{2}}")
                      for kind, link, _, _ in terms]
     rows = [" + ".join(sym[n:n + 3]) for n in range(0, len(sym), 3)] or ["0"]
-    sym = rows[0] if len(rows) == 1 else (r"\begin{aligned} & " + r" \\ & + ".join(rows) + r" \end{aligned}")
+    sym = rows[0] if len(rows) == 1 else (r"\begin{aligned} " + r" \\ + ".join(rows) + r" \end{aligned}")
     num = " + ".join(rf"{txt(number(f, lang))}\cdot{txt(number(math.sqrt(a2), lang))}^{{2}}" for _, _, f, a2 in terms)
     kgm2 = txt("кг·м²" if lang in ("ru", "uk") else "kg·m²")
     note.add(Equation(rf"J_{{II}} = {sym}"),

@@ -49,7 +49,7 @@ def lines(first: str, terms: list[tuple[str, str]], per_line: int) -> str:
     rows.append(row + " = 0")
     if len(rows) == 1:
         return rows[0]
-    return r"\begin{aligned} & " + r" \\ & ".join(rows) + r" \end{aligned}"
+    return r"\begin{aligned} " + r" \\ ".join(rows) + r" \end{aligned}"
 
 
 def lever_equations(note, fa, k: int, i: int, mu_v: float) -> int:
