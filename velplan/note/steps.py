@@ -79,14 +79,16 @@ def _lay_off(res, step, i, lang):
     return [first, second]
 
 
-def _direction(d) -> str:
+def _direction(d, lang: str = "en") -> str:
     if isinstance(d, Perpendicular):
         return r"\perp " + chain(d.a + d.b)
+    if d.along.startswith("guide:"):  # a link's guide, in words as the step's sentence says it
+        return r"\parallel " + txt(T.phrase("guide", lang, d.along.split(":", 1)[1]))
     return r"\parallel " + (chain(d.along) if "–" not in d.along else txt(d.along))
 
 
 def _line(res, step, i, lang):
-    return [vec(step.component) + " " + _direction(step.direction)]
+    return [vec(step.component) + " " + _direction(step.direction, lang)]
 
 
 def _point_of(res, target: str) -> str | None:
