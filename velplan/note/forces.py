@@ -45,7 +45,7 @@ def _group(note, sheet, k: int, group: str) -> None:
     for name, vector in poly.vectors:
         value = abs(complex(vector[i]))
         rows.append([force_text(name), _num(value, lang),
-                     _num(value / mu_f, lang) if mu_f else "—"])
+                     fixed(value / mu_f, lang, 1) if mu_f else "—"])  # a drawn length: 0.1 mm
     unit_mm = "мм" if lang in ("ru", "uk") else "mm"
     note.table(title, [p("quantity", lang), f"{p('value', lang)}, {newton(lang)}", f"{p('segment', lang)}, {unit_mm}"], rows,
                key=f"forces-{k}-{group}")

@@ -1,0 +1,42 @@
+"""Figures of the note drawn for the page: a drawing shrunk to the text width goes to the next
+ESKD scale and says so, and its lettering prints at 2.5 mm at least."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("cairosvg")
+
+from velplan.note.figures import LETTER_MM, TEXT_WIDTH_MM, for_page, views_png  # noqa: E402
+from velplan.render.scene import Polyline, Text  # noqa: E402
+from velplan.views.base import View  # noqa: E402
+
+
+def _scheme(width: float, mu: float, label: str) -> View:
+    return View("mechanism", (Polyline(((0.0, 0.0), (width, 100.0)), "thick"),
+                              Text((5.0, 95.0), label, "text", 3.5)), width, 100.0, mu)
+
+
+def test_a_shrunk_scheme_prints_at_the_next_eskd_scale():
+    view = _scheme(300.0, 0.0025, "μl = 0,0025 м/мм (M 1:2,5)")
+    _, printed = views_png([view], None)
+    assert printed == pytest.approx(150.0)  # 300 mm at 1:2.5 is 150 mm at 1:5, under 170 mm
+    text = for_page(view.primitives[1], view.mu, printed / 300.0)
+    assert text.text == "μl = 0,005 м/мм (M 1:5)"
+    assert text.size_mm * printed / 300.0 == pytest.approx(LETTER_MM)
+
+
+def test_a_figure_that_fits_keeps_its_scale_and_lettering():
+    view = _scheme(120.0, 0.0025, "μl = 0,0025 м/мм (M 1:2,5)")
+    _, printed = views_png([view], None)
+    assert printed == pytest.approx(120.0)
+    assert for_page(view.primitives[1], view.mu, 1.0) is view.primitives[1]
+
+
+def test_a_drawing_without_a_length_scale_only_fits_the_width():
+    view = View("diagram", (Polyline(((0.0, 0.0), (400.0, 50.0)), "thin"), Text((1.0, 1.0), "M, Н·м", "text", 2.5)),
+                400.0, 50.0, None)
+    _, printed = views_png([view], None)
+    assert printed == pytest.approx(TEXT_WIDTH_MM)
+    shrink = printed / 400.0
+    assert for_page(view.primitives[1], None, shrink).size_mm == pytest.approx(LETTER_MM / shrink)
