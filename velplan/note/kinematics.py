@@ -79,9 +79,20 @@ def plan_section(note, sheet, number_k: int, kind: str) -> None:
         note.add(*(Equation(tex) for tex in step_equations(res, step, i, lang)))
     rates = res.omegas if kind == "v" else res.epsilons
     note.add(Para.of(p("angular" if kind == "v" else "angular_a", lang)))
+    seen = {}
     for link in rates:
-        tex = rate_equation(res, link, i, lang)
+        fig = res.plan.figures[kind].get(link)
+        key = (fig.img1, fig.img2) if fig is not None else None
         value = float(rates[link][i])
+        if key in seen:  # a block turning with its rocker: the same rate, not computed again
+            sym = (r"\omega_{" if kind == "v" else r"\varepsilon_{")
+            note.add(Equation(rf"{sym}{link}}} = {sym}{seen[key]}}} = {txt(T.num(abs(value), lang))}\ "
+                              rf"{txt(unit('rad/s' if kind == 'v' else 'rad/s²', lang))}\quad "
+                              rf"\text{{({p('turns_with', lang, link, seen[key])})}}"))
+            continue
+        if key is not None:
+            seen[key] = link
+        tex = rate_equation(res, link, i, lang)
         if tex is not None:
             note.add(Equation(tex + (rf"\quad \text{{({direction(value, lang)})}}" if value != 0 else "")))
     png, width = views_png([sheet.views[view]], sheet.style)
