@@ -79,7 +79,12 @@ def _conclusion(note, study, parts) -> None:
     moments = (study.forces().balancing_moments["kinetostatics"]
                if p("sec_forces", note.lang) in heads else None)
     fly = study.dynamics.flywheel if p("sec_dynamics", note.lang) in heads else None
-    ends.conclusion(note, study, moments, fly)
+    drive = None
+    if fly is not None:
+        from velplan.note.dynamics_worked import drive_of
+
+        drive = drive_of(study.dynamics)
+    ends.conclusion(note, study, moments, fly, drive)
 
 
 def _optional(part: str, asked: bool, write) -> None:

@@ -41,26 +41,38 @@ def flywheel_shafts(note, d) -> None:
     if fly.added <= 0:
         note.add(Para.of(p("fly_none", lang)))
         return
-    drive = _drive(d)
+    drive = drive_of(d)
     u = drive.ratio if drive is not None else fly.ratio
     if abs(u - 1.0) <= 1e-9:
         note.add(Para.of(p("fly_crank_only", lang)))
         return
     if drive is not None:
-        note.add(Para.of(p("fly_motor", lang, drive.motor.name, number(drive.motor.power_kw, lang),
-                           number(drive.motor.nominal_rpm, lang))))
+        note.add(Para.of(p("fly_motor" if d.drive is not None else "fly_motor_default", lang, motor_name(drive, lang),
+                           number(drive.motor.power_kw, lang), number(drive.motor.nominal_rpm, lang),
+                           number(drive.required / 1000.0, lang, 3))))
     note.add(Para.of(p("fly_shaft", lang, number(u, lang))),
              Equation(rf"J_{{{fw}}}' = \frac{{J_{{{fw}}}}}{{u^{{2}}}} = \frac{{{txt(number(fly.added, lang))}}}"
                       rf"{{{txt(number(u, lang))}^{{2}}}} = {txt(number(fly.added / u ** 2, lang))}\ {kgm2}"),
              Para.of(p("fly_recommend", lang, number(u ** 2, lang, 3))))
 
 
-def _drive(d):
-    """The drive the file declares, or None (one that cannot be chosen is left out)."""
+def motor_name(drive, lang: str) -> str:
+    """The motor's designation, upright (``АИР100L4`` in ru/uk: the series' own letters)."""
+    name = drive.motor.name
+    if lang in ("ru", "uk") and name.startswith("AIR"):
+        name = "АИР" + name[3:]
+    return "$\\text{" + name + "}$"
+
+
+def drive_of(d):
+    """The drive the file declares, else the one velplan's default rules choose for the useful
+    power (`velplan.dynamics.drive.select_drive`); None where none can be chosen (no loads,
+    no crank speed)."""
+    from velplan.dynamics.drive import select_drive
     from velplan.errors import VelplanError
 
     try:
-        return d.drive
+        return d.drive or select_drive(d)
     except VelplanError:
         return None
 

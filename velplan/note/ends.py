@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from velplan.note.dynamics_worked import motor_name
 from velplan.note.formulas import txt
 from velplan.note.model import Heading, Math, Para
 from velplan.note.text import balancing, LANG_INDEX, p
@@ -53,8 +54,9 @@ def introduction(note, study, parts) -> None:
              Para.of(p("intro", lang, study.mechanism.name_in(lang), sep.join(done))))
 
 
-def conclusion(note, study, moments=None, flywheel=None) -> None:
-    """What was found: W and the class, H, θ and K, the range of M_b, the flywheel."""
+def conclusion(note, study, moments=None, flywheel=None, drive=None) -> None:
+    """What was found: W and the class, H, θ and K, the extreme positions, the range of M_b,
+    the flywheel and the motor."""
     from velplan.mechanism.structure import structure
 
     lang = note.lang
@@ -67,7 +69,9 @@ def conclusion(note, study, moments=None, flywheel=None) -> None:
         unit = "м" if lang in ("ru", "uk") and sym == "H" else ("m" if sym == "H" else "rad")
         note.add(Para.of(p("concl_stroke", lang), Math(
             rf"{sym} = {txt(number(stroke.H, lang))}\ {txt(unit)},\ \theta = {txt(number(math.degrees(stroke.theta), lang))}"
-            rf"^{{\circ}},\ K = {txt(number(stroke.K, lang))}"), "."))
+            rf"^{{\circ}},\ K = {txt(number(stroke.K, lang))}"), "; ",
+            p("concl_extremes", lang, *(number(math.degrees(e.phi) % 360.0, lang) for e in (stroke.start, stroke.end))),
+            "."))
     nm = "Н·м" if lang in ("ru", "uk") else "N·m"
     if moments is not None:
         mb = np.asarray(moments, dtype=float)
@@ -79,6 +83,11 @@ def conclusion(note, study, moments=None, flywheel=None) -> None:
         note.add(Para.of(p("concl_flywheel", lang), Math(
             rf"J_{{I}} = {txt(number(flywheel.exact, lang))}\ {txt(kgm2)}\ (\delta = {txt(number(flywheel.delta, lang))})"),
             "."))
+        if drive is not None and flywheel.added > 0 and abs(drive.ratio - 1.0) > 1e-9:
+            note.add(Para.of(p("concl_motor", lang, motor_name(drive, lang), number(drive.motor.power_kw, lang),
+                               number(drive.motor.nominal_rpm, lang)), Math(
+                rf"J = {txt(number(flywheel.added / drive.ratio ** 2, lang))}\ {txt(kgm2)}\ "
+                rf"(u = {txt(number(drive.ratio, lang))})"), "."))
 
 
 def references(note) -> None:
