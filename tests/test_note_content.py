@@ -155,3 +155,20 @@ def test_extreme_position_only_where_position_1_is_one(tmp_path):
     note = build_note(study, lang="ru", parts=("kinematics",))
     text = " ".join(x for b in note.blocks if isinstance(b, Para) for x in b.parts if isinstance(x, str))
     assert "от крайнего положения" not in text and "от φ = 0" in text
+
+
+def test_flywheel_on_the_motor_shaft_where_the_ratio_is_known(notes):
+    """The shaper gives no drive: the note chooses the motor by the default rules, says so,
+    and puts the flywheel on its shaft with J/u², recommended there."""
+    from velplan.dynamics.drive import select_drive
+
+    study, note, _ = notes["ru"]
+    drive = select_drive(study.dynamics)
+    fly = study.dynamics.flywheel
+    shaft = next(b.tex for b in note.blocks if isinstance(b, Equation) and r"}' = \frac" in b.tex)
+    printed = [_value(x) for x in re.findall(r"\\text\{([−\d,. ]+)\}", shaft)]
+    assert printed[0] == pytest.approx(fly.added, rel=5e-4) and printed[1] == pytest.approx(drive.ratio, rel=5e-4)
+    assert printed[2] == pytest.approx(fly.added / drive.ratio ** 2, rel=5e-4)
+    text = " ".join(x for b in note.blocks if isinstance(b, Para) for x in b.parts if isinstance(x, str))
+    assert "Привод в задании не указан" in text and "быстроходный вал" in text
+    assert drive.ratio > 5  # a motor's shaft turns much faster than a shaper's crank
