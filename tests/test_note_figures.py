@@ -40,3 +40,13 @@ def test_a_drawing_without_a_length_scale_only_fits_the_width():
     assert printed == pytest.approx(TEXT_WIDTH_MM)
     shrink = printed / 400.0
     assert for_page(view.primitives[1], None, shrink).size_mm == pytest.approx(LETTER_MM / shrink)
+
+
+def test_two_views_shrink_to_the_scale_of_the_one_drawn_to_scale():
+    crank = _scheme(150.0, 0.005, "μl = 0,005 м/мм (M 1:5)")
+    polygon = View("polygon", (Polyline(((0.0, 0.0), (80.0, 40.0)), "thin"),
+                               Text((1.0, 1.0), "μF = 20 Н/мм", "text", 3.5)), 80.0, 40.0, 20.0)
+    _, printed = views_png([crank, polygon], None)
+    width = 150.0 + 80.0 + 6.0
+    assert printed == pytest.approx(width * 0.5)  # 1:5 → 1:10, the next ESKD scale below 170 mm
+    assert for_page(crank.primitives[1], crank.mu, 0.5).text == "μl = 0,01 м/мм (M 1:10)"

@@ -29,8 +29,8 @@ def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     height = max(_view(v).height_mm for v in views)
     width = sum(_view(v).width_mm for v in views) + GAP_MM * (len(views) - 1)
     printed = min(width, TEXT_WIDTH_MM, width * FIGURE_HEIGHT_MM / height)
-    if printed < width and len(views) == 1:
-        printed = width * _standard_shrink(_view(views[0]), printed / width)
+    if printed < width:
+        printed = width * min(_standard_shrink(_view(v), printed / width) for v in views)
     shrink = printed / width
     items, x = [], 0.0
     for v in views:
@@ -63,10 +63,12 @@ def for_page(item, mu: float | None, shrink: float):
     size = max(item.size_mm, min(LETTER_MM / shrink, item.size_mm / shrink))
     text = item.text
     if mu and "μ" in text:
-        for lang in ("ru", "en"):
-            for old, new in ((number(mu, lang), number(mu / shrink, lang)),
-                             (ratio_text(mu, lang), ratio_text(mu / shrink, lang))):
-                text = text.replace(old, new)
+        for lang in ("ru", "en"):  # the sheet's own decimal sign, rewritten once
+            pairs = ((number(mu, lang), number(mu / shrink, lang)), (ratio_text(mu, lang), ratio_text(mu / shrink, lang)))
+            if any(old in text for old, _ in pairs):
+                for old, new in pairs:
+                    text = text.replace(old, new)
+                break
     return replace(item, size_mm=size, text=text)
 
 
