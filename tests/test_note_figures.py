@@ -42,11 +42,22 @@ def test_a_drawing_without_a_length_scale_only_fits_the_width():
     assert for_page(view.primitives[1], None, shrink).size_mm == pytest.approx(LETTER_MM / shrink)
 
 
-def test_two_views_shrink_to_the_scale_of_the_one_drawn_to_scale():
+def test_two_views_stack_rather_than_shrink():
+    """A group and its polygon too wide side by side go one above the other at full size."""
     crank = _scheme(150.0, 0.005, "μl = 0,005 м/мм (M 1:5)")
     polygon = View("polygon", (Polyline(((0.0, 0.0), (80.0, 40.0)), "thin"),
                                Text((1.0, 1.0), "μF = 20 Н/мм", "text", 3.5)), 80.0, 40.0, 20.0)
     _, printed = views_png([crank, polygon], None)
-    width = 150.0 + 80.0 + 6.0
-    assert printed == pytest.approx(width * 0.5)  # 1:5 → 1:10, the next ESKD scale below 170 mm
-    assert for_page(crank.primitives[1], crank.mu, 0.5).text == "μl = 0,01 м/мм (M 1:10)"
+    assert printed == pytest.approx(150.0)
+
+
+def test_two_views_shrink_to_the_scale_of_the_one_drawn_to_scale():
+    """Two 200 mm views: stacked, 200 mm wide, they go from 1:5 to the next ESKD scale, 1:10
+    (side by side they would need 1:15); the polygon's μF doubles with them."""
+    group = _scheme(200.0, 0.005, "μl = 0,005 м/мм (M 1:5)")
+    polygon = View("polygon", (Polyline(((0.0, 0.0), (200.0, 40.0)), "thin"),
+                               Text((1.0, 1.0), "μF = 20 Н/мм", "text", 3.5)), 200.0, 40.0, 20.0)
+    _, printed = views_png([group, polygon], None)
+    assert printed == pytest.approx(100.0)
+    assert for_page(group.primitives[1], group.mu, 0.5).text == "μl = 0,01 м/мм (M 1:10)"
+    assert for_page(polygon.primitives[1], polygon.mu, 0.5).text == "μF = 40 Н/мм"

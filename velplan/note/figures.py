@@ -22,24 +22,47 @@ enlarged back to this where the sheet's text would print smaller."""
 
 
 def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
-    """PNG of `views` (placed or bare `View` objects) side by side, and the width (mm) it takes
-    on the page: its size on the sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
+    """PNG of `views` (placed or bare `View` objects) side by side — or one above the other
+    where that shrinks them less —, and the width (mm) it takes on the page: its size on the
+    sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
     from velplan.render.export import _convert
 
-    height = max(_view(v).height_mm for v in views)
-    width = sum(_view(v).width_mm for v in views) + GAP_MM * (len(views) - 1)
+    views = [_view(v) for v in views]
+    (width, height, places), shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)),
+                                          key=lambda x: x[1])
+    items = [for_page(shift(p, x, y), view.mu, shrink)
+             for view, (x, y) in zip(views, places) for p in view.primitives]
+    svg = to_svg(Scene(tuple(items), width, height), style)
+    png = _convert("svg2png", svg, dpi=dpi * shrink, background_color="white")
+    return png, width * shrink
+
+
+def _layouts(views):
+    """(width, height, offsets) of the views side by side, and one above the other."""
+    height = max(v.height_mm for v in views)
+    x, side = 0.0, []
+    for v in views:
+        side.append((x, (height - v.height_mm) / 2))
+        x += v.width_mm + GAP_MM
+    out = [(x - GAP_MM, height, side)]
+    if len(views) > 1:
+        width = max(v.width_mm for v in views)
+        y, stack = 0.0, []
+        for v in views:
+            stack.append(((width - v.width_mm) / 2, y))
+            y += v.height_mm + GAP_MM
+        out.append((width, y - GAP_MM, stack))
+    return out
+
+
+def _fit(views, layout) -> float:
+    """The shrink (printed/sheet size) of ``layout`` on the page, at a standard scale where a
+    view is drawn to one."""
+    width, height, _ = layout
     printed = min(width, TEXT_WIDTH_MM, width * FIGURE_HEIGHT_MM / height)
     if printed < width:
-        printed = width * min(_standard_shrink(_view(v), printed / width) for v in views)
-    shrink = printed / width
-    items, x = [], 0.0
-    for v in views:
-        view = _view(v)
-        items += [for_page(shift(p, x, (height - view.height_mm) / 2), view.mu, shrink) for p in view.primitives]
-        x += view.width_mm + GAP_MM
-    svg = to_svg(Scene(tuple(items), width, height), style)
-    png = _convert("svg2png", svg, dpi=dpi * printed / width, background_color="white")
-    return png, printed
+        return min(_standard_shrink(v, printed / width) for v in views)
+    return 1.0
 
 
 def _standard_shrink(view, shrink: float) -> float:
