@@ -51,7 +51,9 @@ def _layouts(views):
         for v in views:
             stack.append(((width - v.width_mm) / 2, y))
             y += v.height_mm + GAP_MM
-        out.append((width, y - GAP_MM, stack))
+        total = y - GAP_MM  # y runs up the page: the first view goes on top
+        stack = [(x0, total - y0 - v.height_mm) for (x0, y0), v in zip(stack, views)]
+        out.append((width, total, stack))
     return out
 
 
