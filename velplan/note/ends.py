@@ -10,7 +10,7 @@ import numpy as np
 from velplan.note.dynamics_worked import motor_name
 from velplan.note.formulas import txt
 from velplan.note.model import Heading, Math, Para
-from velplan.note.text import balancing, LANG_INDEX, p
+from velplan.note.text import LANG_INDEX, balancing, p, roman
 from velplan.views.base import number
 
 REFERENCES = {
@@ -62,7 +62,7 @@ def conclusion(note, study, moments=None, flywheel=None, drive=None) -> None:
     lang = note.lang
     st = structure(study.mechanism)
     note.add(Heading(p("sec_conclusion", lang), 1, numbered=False),
-             Para.of(p("concl_structure", lang, st.mobility, st.mechanism_class)))
+             Para.of(p("concl_structure", lang, st.mobility, roman(st.mechanism_class))))
     stroke = study.stroke
     if stroke is not None:
         sym = "H" if stroke.quantity.startswith(("slide", "point")) else r"\psi_{max}"

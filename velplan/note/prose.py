@@ -51,8 +51,8 @@ def prose_parts(text: str, lang: str = "en") -> list:
                 out += [x for x in (piece[at:m.start()], Math(_letters("", m.group(1)))) if x]
                 at = m.end()
                 continue
-            if lang == "zh" and m.group(2) in UNITS:
-                continue
+            if (lang == "zh" and m.group(2) in UNITS) or re.fullmatch(r"[IVX]+", m.group(2)):
+                continue  # a unit of a zh note, a Roman numeral (a class): plain upright text
             if m.start() > at:
                 out.append(piece[at:m.start()])
             out.append(Math(_letters(m.group(1), m.group(2))))

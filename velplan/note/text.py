@@ -389,3 +389,8 @@ def balancing(letter: str, lang: str) -> str:
     ``lang`` print (Mур in ru, Mзр in uk, M_b in en/zh): one symbol in text, tables and figures."""
     index = _BALANCING.get(check_lang(lang))
     return f"{letter}_{{\\text{{{index}}}}}" if index else f"{letter}_{{b}}"
+
+
+def roman(n: int) -> str:
+    """The class of a group or mechanism as the course writes it: 2 → II."""
+    return {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}.get(int(n), str(n))
