@@ -143,3 +143,24 @@ def test_libreoffice_breaks_no_number_across_lines(shaper_ru, office_pdf):
     assert len(words) > 100
     missing = sorted(w for w in words if w not in text)
     assert not missing, f"broken across lines in LibreOffice: {missing[:10]}"
+
+
+def test_properties_in_the_schemas_order(shaper_ru):
+    """Word refuses a file whose run, paragraph or style properties are out of the schema's
+    order: every such element the note writes or edits keeps it."""
+    from lxml import etree
+
+    from velplan.note.docx_layout import _ORDER
+
+    _, path = shaper_ru
+    w = "{http://schemas.openxmlformats.org/wordprocessingml/2006/main}"
+    archive = zipfile.ZipFile(path)
+    checked = 0
+    for part in [n for n in archive.namelist() if n.startswith("word/") and n.endswith(".xml")]:
+        root = etree.fromstring(archive.read(part))
+        for key, order in _ORDER.items():
+            for el in root.iter(w + key[2:]):
+                ranks = [order.index(c.tag[len(w):]) for c in el if c.tag.startswith(w) and c.tag[len(w):] in order]
+                assert ranks == sorted(ranks), (part, key, [c.tag[len(w):] for c in el])
+                checked += 1
+    assert checked > 500

@@ -48,16 +48,44 @@ _BODY_STYLES = ("Normal", "BodyText", "FirstParagraph")
 _INDENTED = ("BodyText", "FirstParagraph")
 
 
-def _child(parent, tag: str, first: bool = False):
-    """The child ``tag`` of ``parent``, made if missing."""
-    el = parent.find(qn(tag))
-    if el is None:
-        el = OxmlElement(tag)
-        if first:
-            parent.insert(0, el)
-        else:
-            parent.append(el)
+_ORDER = {
+    "w:rPr": ("rStyle", "rFonts", "b", "bCs", "i", "iCs", "caps", "smallCaps", "strike", "dstrike", "outline",
+              "shadow", "emboss", "imprint", "noProof", "snapToGrid", "vanish", "webHidden", "color", "spacing",
+              "w", "kern", "position", "sz", "szCs", "highlight", "u", "effect", "bdr", "shd", "fitText",
+              "vertAlign", "rtl", "cs", "em", "lang", "eastAsianLayout", "specVanish", "oMath"),
+    "w:pPr": ("pStyle", "keepNext", "keepLines", "pageBreakBefore", "framePr", "widowControl", "numPr",
+              "suppressLineNumbers", "pBdr", "shd", "tabs", "suppressAutoHyphens", "kinsoku", "wordWrap",
+              "overflowPunct", "topLinePunct", "autoSpaceDE", "autoSpaceDN", "bidi", "adjustRightInd",
+              "snapToGrid", "spacing", "ind", "contextualSpacing", "mirrorIndents", "suppressOverlap", "jc",
+              "textDirection", "textAlignment", "textboxTightWrap", "outlineLvl", "divId", "cnfStyle", "rPr",
+              "sectPr", "pPrChange"),
+    "w:style": ("name", "aliases", "basedOn", "next", "link", "autoRedefine", "hidden", "uiPriority",
+                "semiHidden", "unhideWhenUsed", "qFormat", "locked", "personal", "personalCompose",
+                "personalReply", "rsid", "pPr", "rPr", "tblPr", "trPr", "tcPr", "tblStylePr"),
+}
+"""The schema's order of the children of run and paragraph properties and of a style (Word
+refuses a file whose elements are out of it)."""
+
+
+def put_ordered(parent, el):
+    """Insert ``el`` into ``parent`` at its place in the schema's order; returns ``el``."""
+    order = _ORDER.get(parent.tag.replace("{http://schemas.openxmlformats.org/wordprocessingml/2006/main}", "w:"))
+    name = el.tag.rsplit("}", 1)[-1]
+    if order and name in order:
+        rank = order.index(name)
+        for k, child in enumerate(parent):
+            other = child.tag.rsplit("}", 1)[-1]
+            if other in order and order.index(other) > rank:
+                parent.insert(k, el)
+                return el
+    parent.append(el)
     return el
+
+
+def _child(parent, tag: str):
+    """The child ``tag`` of ``parent``, made in its place if missing."""
+    el = parent.find(qn(tag))
+    return el if el is not None else put_ordered(parent, OxmlElement(tag))
 
 
 def _set(el, **attrs) -> None:
@@ -72,7 +100,7 @@ def _fonts(rpr, look: Look) -> None:
             rpr.remove(old)
     fonts = OxmlElement("w:rFonts")
     _set(fonts, ascii=look.font, hAnsi=look.font, cs=look.font, eastAsia=look.east_asia)
-    rpr.insert(0, fonts)
+    put_ordered(rpr, fonts)
 
 
 def _size(rpr, half_points: int) -> None:

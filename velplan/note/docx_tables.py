@@ -173,6 +173,8 @@ def _head(tbl) -> None:
 
 
 def _text_size(tbl, half_points: int) -> None:
+    from velplan.note.docx_layout import put_ordered
+
     for r in tbl.iter(qn("w:r")):
         rpr = r.find(qn("w:rPr"))
         if rpr is None:
@@ -181,6 +183,5 @@ def _text_size(tbl, half_points: int) -> None:
         for tag in ("w:sz", "w:szCs"):
             el = rpr.find(qn(tag))
             if el is None:
-                el = OxmlElement(tag)
-                rpr.append(el)
+                el = put_ordered(rpr, OxmlElement(tag))
             el.set(qn("w:val"), str(half_points))

@@ -79,7 +79,7 @@ def _title(b: TitlePage, target: str) -> str:
     people = [f"{label}: {value}" for label, value in b.fields]
     if target == "docx":
         def para(text, size=28, space=0):
-            return (f'<w:p><w:pPr><w:jc w:val="center"/><w:spacing w:before="{space}"/></w:pPr><w:r><w:rPr>'
+            return (f'<w:p><w:pPr><w:spacing w:before="{space}"/><w:jc w:val="center"/></w:pPr><w:r><w:rPr>'
                     f'<w:sz w:val="{size}"/></w:rPr><w:t xml:space="preserve">{xml_escape(text)}</w:t></w:r></w:p>')
         body = (para(b.organisation) + para(b.kind, 40, 3000) + para(b.course) + para(b.topic, 32, 400)
                 + para(b.designation, 28, 400) + "".join(para(x, 28, 200 if k else 2400) for k, x in enumerate(people))
