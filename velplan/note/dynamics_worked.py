@@ -105,10 +105,10 @@ def worked_position(note, d, k: int) -> None:
     terms = inertia_terms(d, phi)
     red = d.reducer(travels(d, [phi]))
     note.add(Para.of(p("dyn_worked", lang, k, fixed(math.degrees(phi) % 360.0, lang, 1))))
-    sym = [(rf"m_{{{link}}}\left(\frac{{V_{{S_{{{link}}}}}}}{{\omega_{{{crank}}}}}\right)^{{2}}" if kind == "m"
+    terms_tex = [(rf"m_{{{link}}}\left(\frac{{V_{{S_{{{link}}}}}}}{{\omega_{{{crank}}}}}\right)^{{2}}" if kind == "m"
                       else rf"J_{{S_{{{link}}}}}\left(\frac{{\omega_{{{link}}}}}{{\omega_{{{crank}}}}}\right)^{{2}}")
                      for kind, link, _, _ in terms]
-    rows = [" + ".join(sym[n:n + 3]) for n in range(0, len(sym), 3)] or ["0"]
+    rows = [" + ".join(terms_tex[n:n + 3]) for n in range(0, len(terms_tex), 3)] or ["0"]
     sym = rows[0] if len(rows) == 1 else (r"\begin{aligned} " + r" \\ + ".join(rows) + r" \end{aligned}")
     num = " + ".join(rf"{txt(number(f, lang))}\cdot{txt(number(math.sqrt(a2), lang))}^{{2}}" for _, _, f, a2 in terms)
     kgm2 = txt("кг·м²" if lang in ("ru", "uk") else "kg·m²")

@@ -79,7 +79,7 @@ def plan_section(note, sheet, number_k: int, kind: str) -> None:
         note.add(*(Equation(tex) for tex in step_equations(res, step, i, lang)))
     rates = res.omegas if kind == "v" else res.epsilons
     note.add(Para.of(p("angular" if kind == "v" else "angular_a", lang)))
-    seen = {}
+    seen: dict[tuple, str] = {}
     for link in rates:
         fig = res.plan.figures[kind].get(link)
         key = (fig.img1, fig.img2) if fig is not None else None
