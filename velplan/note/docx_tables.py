@@ -83,7 +83,7 @@ def layout_tables(doc, lang: str) -> int:
             size = size if widths is not None else size - 2
         if widths is None:  # even 8 pt does not fit: the widest words, the page decides
             size, widths = SMALLEST, column_widths(rows, SMALLEST, 10 ** 6)
-        _grid(tbl, widths)
+        _grid(tbl, widths or [])
         _rules(tbl)
         _head(tbl)
         if size != size0:

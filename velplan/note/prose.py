@@ -71,15 +71,18 @@ def _letters(delta: str, word: str) -> str:
     elif len(word) == 1:
         tex = word
     elif word[0].isupper() or word[0] in "lme" or re.fullmatch(r"[a-z][₀-₉]+", word):
-        head = re.match(r"(\d*)(.*)", word[1:].translate(_SUB))
-        tex = word[0] + "_{" + head.group(1) + (chain(head.group(2)) if head.group(2) else "") + "}"  # lO₂A, JS₄, m₄
+        rest = word[1:].translate(_SUB)
+        rest_letters = rest.lstrip("0123456789")
+        digits = rest[:len(rest) - len(rest_letters)]
+        tex = word[0] + "_{" + digits + (chain(rest_letters) if rest_letters else "") + "}"  # lO₂A, JS₄, m₄
     else:
         tex = chain(word)  # pa, bs₅: a segment of a plan, its letters side by side
     return (r"\Delta " if delta else "") + tex
 
 
 def _symbols(text: str) -> list:
-    out, at = [], 0
+    out: list = []
+    at = 0
     for m in TOKEN.finditer(text):
         if m.group("tex"):
             tex = m.group("tex")
