@@ -38,6 +38,8 @@ class Equation:
 class Heading:
     text: str
     level: int = 1
+    numbered: bool = True
+    """False for the introduction, conclusion and references (unnumbered, ГОСТ 2.105)."""
 
 
 @dataclass(frozen=True)

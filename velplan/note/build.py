@@ -30,7 +30,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
     fields : dict, optional
         Title page: ``organisation``, ``author``, ``group``, ``checker``, ``date``.
     """
-    from velplan.note import forces as F, front, kinematics as K
+    from velplan.note import ends, forces as F, front, kinematics as K
     from velplan.render.i18n import check_language
     from velplan.sheets.forces import has_forces
     from velplan.sheets.kinematic import build_sheet
@@ -46,6 +46,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
     sheet = build_sheet(study, plans=plans, fmt=fmt, lang=lang)
     note = Note(lang, f"{p('note', lang)}: {study.mechanism.name_in(lang)}")
     front.title_page(note, study, fields)
+    ends.introduction(note, study, [x for x in parts if x != "forces" or has_forces(study.mechanism)])
     front.data_section(note, study)
     front.structure_section(note, study)
     K.positions_section(note, study, sheet)
@@ -65,7 +66,26 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
                                f"to write out; add [link.N] masses or [[load]] tables")
     if "dynamics" in parts:
         _optional("dynamics", asked, lambda: _dynamics(note, study, fmt, lang))
+    _conclusion(note, study, parts)
+    ends.references(note)
     return note
+
+
+def _conclusion(note, study, parts) -> None:
+    """The conclusion from the parts the note holds (a part left out adds nothing)."""
+    from velplan.note import ends
+    from velplan.note.blocks import Heading
+
+    heads = {b.text for b in note.blocks if isinstance(b, Heading)}
+    moments = (study.forces().balancing_moments["kinetostatics"]
+               if p("sec_forces", note.lang) in heads else None)
+    fly = study.dynamics.flywheel if p("sec_dynamics", note.lang) in heads else None
+    drive = None
+    if fly is not None:
+        from velplan.note.dynamics_worked import drive_of
+
+        drive = drive_of(study.dynamics)
+    ends.conclusion(note, study, moments, fly, drive)
 
 
 def _optional(part: str, asked: bool, write) -> None:

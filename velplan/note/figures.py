@@ -3,9 +3,11 @@ resolution through the sheets' PNG export (cairosvg, with the bundled font)."""
 
 from __future__ import annotations
 
-from velplan.render.scene import Scene
+from dataclasses import replace
+
+from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
-from velplan.views.base import shift
+from velplan.views.base import ESKD_RATIOS, number, ratio_text, shift
 
 DPI = 200.0
 """Resolution of the figures, dots per inch (print quality at their size on the page)."""
@@ -14,24 +16,85 @@ TEXT_WIDTH_MM = 170.0
 FIGURE_HEIGHT_MM = 200.0
 """Tallest figure on the page, mm (room left for its caption)."""
 GAP_MM = 6.0
+LETTER_MM = 2.5
+"""The smallest printed lettering (ГОСТ 2.304): a figure shrunk to the page has its text
+enlarged back to this where the sheet's text would print smaller."""
 
 
 def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
-    """PNG of `views` (placed or bare `View` objects) side by side, and the width (mm) it takes
-    on the page: its size on the sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
+    """PNG of `views` (placed or bare `View` objects) side by side — or one above the other
+    where that shrinks them less —, and the width (mm) it takes on the page: its size on the
+    sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
     from velplan.render.export import svg_to_png
 
-    items, x = [], 0.0
-    height = max(_view(v).height_mm for v in views)
-    for v in views:
-        view = _view(v)
-        items += [shift(p, x, (height - view.height_mm) / 2) for p in view.primitives]
-        x += view.width_mm + GAP_MM
-    width = x - GAP_MM
-    printed = min(width, TEXT_WIDTH_MM, width * FIGURE_HEIGHT_MM / height)
+    views = [_view(v) for v in views]
+    (width, height, places), shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)),
+                                          key=lambda x: x[1])
+    items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
+             for view, (x, y) in zip(views, places) for p in view.primitives]
     svg = to_svg(Scene(tuple(items), width, height), style)
-    png = svg_to_png(svg, dpi=dpi * printed / width)
-    return png, printed
+    png = svg_to_png(svg, dpi=dpi * shrink)
+    return png, width * shrink
+
+
+def _layouts(views):
+    """(width, height, offsets) of the views side by side, and one above the other."""
+    height = max(v.height_mm for v in views)
+    x, side = 0.0, []
+    for v in views:
+        side.append((x, (height - v.height_mm) / 2))
+        x += v.width_mm + GAP_MM
+    out = [(x - GAP_MM, height, side)]
+    if len(views) > 1:
+        width = max(v.width_mm for v in views)
+        y, stack = 0.0, []
+        for v in views:
+            stack.append(((width - v.width_mm) / 2, y))
+            y += v.height_mm + GAP_MM
+        total = y - GAP_MM  # y runs up the page: the first view goes on top
+        stack = [(x0, total - y0 - v.height_mm) for (x0, y0), v in zip(stack, views)]
+        out.append((width, total, stack))
+    return out
+
+
+def _fit(views, layout) -> float:
+    """The shrink (printed/sheet size) of ``layout`` on the page, at a standard scale where a
+    view is drawn to one."""
+    width, height, _ = layout
+    printed = min(width, TEXT_WIDTH_MM, width * FIGURE_HEIGHT_MM / height)
+    if printed < width:
+        return min(_standard_shrink(v, printed / width) for v in views)
+    return 1.0
+
+
+def _standard_shrink(view, shrink: float) -> float:
+    """A drawing at a length scale (its text states "1:2,5") shrinks to the next ESKD scale
+    (1:5 rather than 1:4,967), so the scale written on the page is a standard one."""
+    mu = getattr(view, "mu", None)
+    if not mu or not any(isinstance(p, Text) and ratio_text(mu, lang) in p.text
+                         for p in view.primitives for lang in ("ru", "en")):
+        return shrink
+    wanted = mu / shrink
+    scales = sorted(0.001 * b / a for a, b in ESKD_RATIOS if 0.001 * b / a >= wanted * (1 - 1e-9))
+    return mu / scales[0] if scales else shrink
+
+
+def for_page(item, mu: float | None, shrink: float):
+    """A primitive of a view drawn at ``shrink`` (printed/sheet size) for the page: its text
+    no smaller than `LETTER_MM` printed (never larger than on the sheet), and a scale the view
+    states (μ and the ESKD ratio of ``mu``) rewritten for the printed size."""
+    if not isinstance(item, Text) or shrink >= 1.0:
+        return item
+    size = max(item.size_mm, min(LETTER_MM / shrink, item.size_mm / shrink))
+    text = item.text
+    if mu and "μ" in text:
+        for lang in ("ru", "en"):  # the sheet's own decimal sign, rewritten once
+            pairs = ((number(mu, lang), number(mu / shrink, lang)), (ratio_text(mu, lang), ratio_text(mu / shrink, lang)))
+            if any(old in text for old, _ in pairs):
+                for old, new in pairs:
+                    text = text.replace(old, new)
+                break
+    return replace(item, size_mm=size, text=text)
 
 
 def _view(v):

@@ -9,7 +9,7 @@ from velplan.analysis.numbering import position_index, position_number
 from velplan.note.figures import views_png
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Heading, Para
-from velplan.note.text import p
+from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
 from velplan.views.base import fixed
@@ -38,16 +38,16 @@ def _group(note, sheet, k: int, group: str) -> None:
     poly = ks.polygons[group]
     kind = next((g.kind for g in sheet.mechanism.groups if g.name == group), "")
     title = (p("sec_crank", lang, sheet.mechanism.crank.link) if group == "crank"
-             else p("sec_group", lang, group, kind))
+             else p("sec_group", lang, group, group_kind(kind, lang)))
     note.add(Heading(title, 3), Para.of(p("known_forces", lang)))
     mu_f = sheet.scales.get(f"polygon-{k}-{slug(group)}")
     rows = []
     for name, vector in poly.vectors:
         value = abs(complex(vector[i]))
         rows.append([force_text(name), _num(value, lang),
-                     _num(value / mu_f, lang) if mu_f else "—"])
+                     fixed(value / mu_f, lang, 1) if mu_f else "—"])  # a drawn length: 0.1 mm
     unit_mm = "мм" if lang in ("ru", "uk") else "mm"
-    note.table(title, [p("quantity", lang), newton(lang), f"{p('segment', lang)}, {unit_mm}"], rows,
+    note.table(title, [p("quantity", lang), f"{p('value', lang)}, {newton(lang)}", f"{p('segment', lang)}, {unit_mm}"], rows,
                key=f"forces-{k}-{group}")
     names = [n for n, _ in poly.vectors] + [n for n, _ in poly.closing_vectors]
     note.add(Para.of(p("equilibrium", lang)),
@@ -59,7 +59,7 @@ def _group(note, sheet, k: int, group: str) -> None:
             note.add(Equation(rf"{force(rc.label)} = {txt(_num(float(rc.magnitude[i]), lang))}\ "
                               rf"{txt(newton(lang))}"))
     if group == "crank":
-        note.add(Equation(rf"M_{{b}} = {txt(_num(float(ks.balancing_moment[i]), lang))}\ "
+        note.add(Equation(rf"{balancing('M', lang)} = {txt(_num(float(ks.balancing_moment[i]), lang))}\ "
                           rf"{txt(newton_metre(lang))}\quad\text{{({label('method_kinetostatics', lang)})}}"))
     views = [sheet.views[v] for v in (f"group-{k}-{slug(group)}", f"polygon-{k}-{slug(group)}")
              if v in sheet.views]
@@ -79,12 +79,28 @@ def _lever(note, sheet, k: int) -> None:
     c = mech.crank
     note.add(Heading(p("sec_lever", lang, k), 3), Para.of(p("lever_text", lang)))
     arm = rf"l_{{{c.pivot[0]}_{{{c.pivot[1:]}}}{c.tip}}}" if c.pivot[1:].isdigit() else rf"l_{{{c.pivot}{c.tip}}}"
-    note.add(Equation(rf"\sum M_{{p}}(\vec{{F}}) = 0:\quad F_{{b}} = {txt(_num(abs(meta['balancing_force']), lang))}"
-                      rf"\ {txt(newton(lang))},\quad M_{{b}} = F_{{b}}\cdot {arm} = "
+    from velplan.note.lever import lever_equations
+
+    lever_equations(note, sheet.analysis, k, int(meta["index"]), float(meta["mu_v"]))
+    note.add(Equation(rf"{balancing('M', lang)} = {balancing('F', lang)}\cdot {arm} = {txt(_num(abs(meta['balancing_force']), lang))}\cdot "
+                      rf"{txt(_num(_crank_length(sheet, int(meta['index'])), lang))} = "
                       rf"{txt(_num(meta['mb_lever'], lang))}\ {txt(newton_metre(lang))}"))
-    note.add(Para.of(meta["balance"]))
+    mb_kin, nm = meta["mb_kinetostatics"], txt(newton_metre(lang))
+    note.add(Para.of(p("lever_check", lang)), Equation(
+        rf"{balancing('M', lang)} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
+        rf"{balancing('M', lang)} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
+        rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"))
     png, width = views_png([sheet.views[name]], sheet.style)
     note.figure(p("lever_fig", lang, k), png, width)
+
+
+def _crank_length(sheet, i: int) -> float:
+    """l of the crank, m."""
+    c = sheet.mechanism.crank
+    kin = sheet.analysis.kinematics
+    pos = kin.positions
+    a, o = kin.point_index[c.tip], kin.point_index[c.pivot]
+    return float(abs(complex(*pos[i, a]) - complex(*pos[i, o])))
 
 
 def _moments(note, sheet) -> None:
@@ -94,7 +110,7 @@ def _moments(note, sheet) -> None:
     moments = fa.balancing_moments
     decimals = moment_decimals(moments["kinetostatics"])
     mb = label("symbol_balancing_moment", lang)
-    note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang)))
+    note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang, sheet.mechanism.crank.link)))
     head = [label("position_short", lang), "φ, °"] + [f"{mb} ({label('method_' + key, lang)})"
                                                      for key in ("kinetostatics", "lever", "power")]
     rows = [[str(position_number(j)), fixed(math.degrees(phi) % 360.0, lang, 1)] +

@@ -13,6 +13,7 @@ _SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 def txt(s: str) -> str:
     """A piece of text (a number as printed, a unit) inside a formula, upright."""
     s = s.translate(_SUB).replace("\\", "").replace("{", "").replace("}", "")
+    s = re.sub(r"^-(?=\d)", "−", s)  # a negative number: the minus sign, not a hyphen
     return r"\text{" + s + "}"
 
 

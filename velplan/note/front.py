@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from velplan.mechanism.structure import structure, pairs
 from velplan.note.model import Contents, Equation, Heading, PageBreak, Para, TitlePage
-from velplan.note.text import p
+from velplan.note.text import group_kind, group_name, p, roman
 from velplan.views.data import data_lines
 
 BLANK = "____________"
@@ -45,17 +45,18 @@ def structure_section(note, study) -> None:
     note.add(Equation(rf"W = 3n - 2p_{{5}} - p_{{4}} = 3\cdot {st.n_links} - 2\cdot {st.p5} - {st.p4} = "
                       rf"{st.mobility}"))
     rows = [[pr.name.replace("P:", ""), p(f"pair_{pr.kind}", lang) if pr.kind in "RP" else pr.kind,
-             " – ".join(pr.links), pr.group] for pr in pairs(mech)]
+             " – ".join(pr.links), group_name(pr.group, lang)] for pr in pairs(mech)]
     note.table(p("pairs_title", lang), [p("pairs_head", lang), p("kind_head", lang), p("links_head", lang),
                                        p("group_head", lang)], rows, key="pairs")
-    groups = [[name, kind, p("class_order", lang, cls, order), ", ".join(links)]
+    groups = [[name, group_kind(kind, lang), p("class_order", lang, roman(cls), order), ", ".join(links)]
               for name, kind, cls, order, links in st.groups]
     note.table(p("groups_head", lang), [p("group_head", lang), p("kind_head", lang), p("class_head", lang),
                                          p("links_head", lang)],
                groups, key="groups")
     note.add(Para.of(p("formula", lang)), Equation(_structure_tex(st, mech.crank.link)),
-             Para.of(p("mech_class", lang, st.mechanism_class)))
+             Para.of(p("mech_class", lang, roman(st.mechanism_class))))
     _structure_figure(note, mech)
+
 
 
 def _structure_figure(note, mech) -> None:
@@ -72,7 +73,6 @@ def _structure_figure(note, mech) -> None:
 
 
 def _structure_tex(st, crank: str) -> str:
-    roman = {1: "I", 2: "II", 3: "III", 4: "IV"}
-    parts = [rf"\mathrm{{I}}(0, {crank})"] + [rf"\mathrm{{{roman.get(c, str(c))}}}({', '.join(links)})"
+    parts = [rf"\text{{I}}(0, {crank})"] + [rf"\text{{{roman(c)}}}({', '.join(links)})"
                                              for _, _, c, _, links in st.groups]
     return r" \rightarrow ".join(parts)

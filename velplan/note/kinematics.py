@@ -24,7 +24,7 @@ def positions_section(note, study, sheet) -> None:
     lang = note.lang
     note.add(Heading(p("sec_positions", lang), 1))
     mu_l = sheet.scales["mu_l"]
-    note.add(Para.of(p("scale_l", lang, number(mu_l, lang), ratio_text(mu_l, lang), study.n,
+    note.add(Para.of(p("scale_l" if _starts_at_extreme(study) else "scale_l_zero", lang, number(mu_l, lang), ratio_text(mu_l, lang), study.n,
                        study.mechanism.crank.link)))
     png, width = views_png([sheet.views["mechanism"]], sheet.style)
     k = note.figure(p("scheme_fig", lang), png, width)
@@ -49,6 +49,15 @@ def positions_section(note, study, sheet) -> None:
                       rf"\frac{{180 + {txt(theta)}}}{{180 - {txt(theta)}}} = {txt(number(st.K, lang))}"))
 
 
+def _starts_at_extreme(study) -> bool:
+    """Whether position 1 is an extreme position of the output."""
+    st = study.stroke
+    if st is None:
+        return False
+    phi0 = float(study.phi[0])
+    return any(abs(math.remainder(phi0 - e.phi, 2 * math.pi)) < 1e-6 for e in (st.start, st.end))
+
+
 def plan_section(note, sheet, number_k: int, kind: str) -> None:
     """The plan of ``kind`` (``"v"``, ``"a"``) at position ``number_k`` as on the sheet: its
     scale, each step's sentence and formulas, ω or ε of the links, the values found."""
@@ -70,9 +79,20 @@ def plan_section(note, sheet, number_k: int, kind: str) -> None:
         note.add(*(Equation(tex) for tex in step_equations(res, step, i, lang)))
     rates = res.omegas if kind == "v" else res.epsilons
     note.add(Para.of(p("angular" if kind == "v" else "angular_a", lang)))
+    seen: dict[tuple, str] = {}
     for link in rates:
-        tex = rate_equation(res, link, i, lang)
+        fig = res.plan.figures[kind].get(link)
+        key = (fig.img1, fig.img2) if fig is not None else None
         value = float(rates[link][i])
+        if key in seen:  # a block turning with its rocker: the same rate, not computed again
+            sym = (r"\omega_{" if kind == "v" else r"\varepsilon_{")
+            note.add(Equation(rf"{sym}{link}}} = {sym}{seen[key]}}} = {txt(T.num(abs(value), lang))}\ "
+                              rf"{txt(unit('rad/s' if kind == 'v' else 'rad/s²', lang))}\quad "
+                              rf"\text{{({p('turns_with', lang, link, seen[key])})}}"))
+            continue
+        if key is not None:
+            seen[key] = link
+        tex = rate_equation(res, link, i, lang)
         if tex is not None:
             note.add(Equation(tex + (rf"\quad \text{{({direction(value, lang)})}}" if value != 0 else "")))
     png, width = views_png([sheet.views[view]], sheet.style)
@@ -115,7 +135,7 @@ def analogues_section(note, study, sheet) -> None:
     lang = note.lang
     table = study.table
     mech = study.mechanism
-    note.add(Heading(p("sec_analogues", lang), 2), Para.of(p("analogues_text", lang)))
+    note.add(Heading(p("sec_analogues", lang), 2), Para.of(p("analogues_text", lang, mech.crank.link)))
     head = [label("position_short", lang), f"φ, {unit('deg', lang)}"] + [
         _row_label(name, mech.crank.link, lang) for name in table.rows]
     rows = []

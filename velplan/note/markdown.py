@@ -34,9 +34,12 @@ def to_markdown(note, target: str, images: dict[str, str]) -> str:
 
 def _block(b, note, target: str, images: dict[str, str]) -> str:
     if isinstance(b, Heading):
-        return "#" * b.level + " " + md_text(b.text)
+        return "#" * b.level + " " + md_text(b.text) + ("" if b.numbered or target == "md" else " {-}")
     if isinstance(b, Para):
-        return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in b.parts)
+        from velplan.note.prose import prose_parts
+
+        parts = [y for x in b.parts for y in ((x,) if isinstance(x, Math) else prose_parts(x, note.lang))]
+        return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in parts)
     if isinstance(b, Equation):
         return f"$${b.tex}$$"
     if isinstance(b, Table):
@@ -76,7 +79,7 @@ def _title(b: TitlePage, target: str) -> str:
     people = [f"{label}: {value}" for label, value in b.fields]
     if target == "docx":
         def para(text, size=28, space=0):
-            return (f'<w:p><w:pPr><w:jc w:val="center"/><w:spacing w:before="{space}"/></w:pPr><w:r><w:rPr>'
+            return (f'<w:p><w:pPr><w:spacing w:before="{space}"/><w:jc w:val="center"/></w:pPr><w:r><w:rPr>'
                     f'<w:sz w:val="{size}"/></w:rPr><w:t xml:space="preserve">{xml_escape(text)}</w:t></w:r></w:p>')
         body = (para(b.organisation) + para(b.kind, 40, 3000) + para(b.course) + para(b.topic, 32, 400)
                 + para(b.designation, 28, 400) + "".join(para(x, 28, 200 if k else 2400) for k, x in enumerate(people))

@@ -80,14 +80,16 @@ def _lay_off(res, step, i, lang):
     return [first, second]
 
 
-def _direction(d) -> str:
+def _direction(d, lang: str = "en") -> str:
     if isinstance(d, Perpendicular):
         return r"\perp " + chain(d.a + d.b)
+    if d.along.startswith("guide:"):  # a link's guide, in words as the step's sentence says it
+        return r"\parallel " + txt(T.phrase("guide", lang, d.along.split(":", 1)[1]))
     return r"\parallel " + (chain(d.along) if "–" not in d.along else txt(d.along))
 
 
 def _line(res, step, i, lang):
-    return [vec(step.component) + " " + _direction(step.direction)]
+    return [vec(step.component) + " " + _direction(step.direction, lang)]
 
 
 def _point_of(res, target: str) -> str | None:
@@ -171,6 +173,12 @@ def _similar(res, step, i, lang):
     return out
 
 
+def _image_point(image: str, point: str) -> str:
+    """The point whose image ``image`` is (``v:a4`` → ``A4``); the pole stands for ``point``."""
+    label = T.label_of(image)
+    return point if label in ("p", "π") else label[:1].upper() + label[1:]
+
+
 def rate_equation(res, link: str, i: int, lang: Language) -> str | None:
     """ω (velocity plan) or ε (acceleration plan) of ``link`` with its numbers, TeX."""
     k = res.kind[0]
@@ -184,11 +192,12 @@ def rate_equation(res, link: str, i: int, lang: Language) -> str | None:
     if link == res.plan.mechanism.crank.link or fig is None:
         return rf"{sym} = {num(abs(value), lang)}\ {unit}"
     l = _length(res.ctx, fig.p1, fig.p2, i)
+    points = _image_point(fig.img2, fig.p2) + _image_point(fig.img1, fig.p1)  # A4O3: the point the plan found
     if k == "v":
         rel = abs(res.values[fig.img2][i] - res.values[fig.img1][i]) * res.ctx.mu["v"]
-        top = rf"V_{{{chain(fig.p2 + fig.p1)}}}"
+        top = rf"V_{{{chain(points)}}}"
     else:
         rel = abs(value) * l
-        top = rf"a^{{t}}_{{{chain(fig.p2 + fig.p1)}}}"
+        top = rf"a^{{t}}_{{{chain(points)}}}"
     return (rf"{sym} = \frac{{{top}}}{{l_{{{chain(fig.p1 + fig.p2)}}}}} = \frac{{{num(rel, lang)}}}"
             rf"{{{num(l, lang)}}} = {num(abs(value), lang)}\ {unit}")

@@ -100,9 +100,23 @@ def _docx(note, tmp: Path, images, path: Path) -> bytes:
         section.left_margin, section.right_margin = mm(25), mm(15)
         section.top_margin = section.bottom_margin = mm(20)
     doc.core_properties.title = note.title
+    _layout(doc, note.lang)
     _update_fields_on_open(docx, doc.settings.element)
     doc.save(str(tmp / "note.docx"))
     return (tmp / "note.docx").read_bytes()
+
+
+def _layout(doc, lang: str) -> None:
+    """The course note's plain style, ruled tables that fit their columns, the contents
+    written out, page numbers in the footer (none on the title page)."""
+    from velplan.note import docx_layout, docx_tables, docx_toc
+
+    docx_layout.apply_look(doc, lang)
+    docx_layout.heading_spaces(doc)
+    docx_layout.math_size(doc, lang)
+    docx_tables.layout_tables(doc, lang)
+    docx_toc.fill_contents(doc, lang)
+    docx_layout.page_numbers(doc)
 
 
 _AFTER_UPDATE_FIELDS = ("hdrShapeDefaults", "footnotePr", "endnotePr", "compat", "docVars", "rsids", "mathPr",
