@@ -166,23 +166,20 @@ class Outputs:
         self.valid = np.empty(n, dtype=bool)
 
     def write(self, st: State, conditions: dict, where: slice) -> None:
-        """Copy a block's motions to the positions ``where``, then mark them (`_mark`) while
-        they are still in the CPU's caches."""
+        """Copy a block's motions to the positions ``where`` (one assignment per kind of output:
+        numpy's dispatch, not the copying, is the cost at a few positions), then mark them
+        (`_mark`) while they are still in the CPU's caches."""
         k = self.order + 1
-        for j, name in enumerate(self.names):
-            m = st.points[name]
-            for d, arr in zip(range(k), (m.p, m.v, m.a)):
-                self.z[d, j, where] = arr
-        for j, name in enumerate(self.links):
-            m = st.links[name]
-            for d, arr in zip(range(k), (m.theta, m.omega, m.epsilon)):
-                self.rates[d, j, where] = arr
-        for j, name in enumerate(self.slide_names):
-            m = st.slides[name]
-            for d, arr in zip(range(k), (m.p, m.v, m.a)):
-                self.slides[j, d, where] = arr.real
-        for j, name in enumerate(self.groups):
-            self.condition[j, where] = conditions[name]
+        pts = [st.points[name] for name in self.names]
+        self.z[:, :, where] = [[m.p for m in pts], [m.v for m in pts], [m.a for m in pts]][:k]
+        if self.links:
+            lks = [st.links[name] for name in self.links]
+            self.rates[:, :, where] = [[m.theta for m in lks], [m.omega for m in lks], [m.epsilon for m in lks]][:k]
+        if self.slide_names:
+            self.slides[:, :, where] = [[m.p.real, m.v.real, m.a.real][:k]
+                                        for m in (st.slides[name] for name in self.slide_names)]
+        if self.groups:
+            self.condition[:, where] = [conditions[name] for name in self.groups]
         self._mark(where)
 
     def _mark(self, where: slice) -> None:
@@ -190,14 +187,18 @@ class Outputs:
         velocities within `SINGULAR_BOUND`), and their angles wrapped into (−π, π]."""
         z, rates, condition = self.z[:, :, where], self.rates[:, :, where], self.condition[:, where]
         with np.errstate(invalid="ignore"):
-            valid = np.isfinite(z.sum(axis=(0, 1))) & np.isfinite(rates[1:].sum(axis=(0, 1)))
-            valid &= (np.isfinite(condition) & (condition > 0)).all(axis=0)
+            total = z.sum(axis=(0, 1)) + rates[1:].sum(axis=(0, 1)) + condition.sum(axis=0)
+            valid = np.isfinite(total) & (condition > 0).all(axis=0)
         if self.order >= 1 and condition.size and not np.fmin.reduce(condition, axis=None) >= WELL_CONDITIONED:
             valid &= velocity_bound(condition) <= SINGULAR_BOUND
         self.valid[where] = valid
-        for row in rates[0]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others
-            if ((row > np.pi) | (row <= -np.pi)).any():
-                row[:] = wrap_angle(row)
+        if rates.shape[1]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others bit for bit
+            rates[0] = wrap_angle(rates[0])
+
+    def shift(self, by: complex) -> None:
+        """Move every position by ``by`` (m, x + iy), in place."""
+        if by:
+            self.z[0] += by
 
     def keep(self, order: int) -> None:
         """Drop the derivatives above ``order`` (views: nothing is copied)."""
