@@ -60,7 +60,7 @@ def test_json_lines_agree_with_the_json_document():
     def same(a, b):
         if isinstance(a, dict):
             return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
-        if a is None or isinstance(a, bool):
+        if a is None or isinstance(a, (bool, str)):  # a string: the mark of a point not material
             return a == b
         return math.isclose(a, b, rel_tol=1e-11, abs_tol=1e-14)
 

@@ -17,6 +17,7 @@ from velplan.cli import dynamics as dyn_cli
 from velplan.cli import forces as forces_cli
 from velplan.cli import main
 from velplan.cli.kinematics import stream, to_json
+from velplan.mechanism.structure import coincident_points
 from velplan.plans import EXACT, Drafting
 from velplan.study import Study
 
@@ -33,13 +34,16 @@ def whole_analysis_document(kin) -> dict:
     """The JSON document of ``velplan analyze`` as it was built before it streamed: one dict of
     every position, read back from ``json.dumps(indent=1)``."""
     doc = {"mechanism": kin.mechanism.name, "omega1": kin.omega1, "epsilon1": kin.epsilon1, "positions": []}
+    special = {g.special_name for g in kin.mechanism.groups if g.kind == "triad"}
+    marks = {k: {"kind": "special" if k in special else "coincident", "link": link}
+             for k, link in coincident_points(kin.mechanism).items()}  # points not material: marked
     for i in range(len(kin)):
         ok = bool(kin.valid[i])
         rate = _num if ok else (lambda x: None)
         entry = {"position": i + 1, "phi_deg": float(kin.phi_deg[i]), "valid": ok,
                  "points": {k: dict(zip(("x", "y", "vx", "vy", "ax", "ay"),
                                         (*map(_num, kin.positions[i, j]), *map(rate, kin.velocities[i, j]),
-                                         *map(rate, kin.accelerations[i, j]))))
+                                         *map(rate, kin.accelerations[i, j]))), **marks.get(k, {}))
                             for k, j in kin.point_index.items()},
                  "links": {k: {"angle": _num(kin.angles[i, j]), "omega": rate(kin.omegas[i, j]),
                                "epsilon": rate(kin.epsilons[i, j])} for k, j in kin.link_index.items()},

@@ -184,6 +184,8 @@ class _Closure:
             foot = a1 * h1 / size2
             lr = self.leads[self.ref].length
             along = np.sqrt(np.maximum(lr * lr - dot(foot, foot), 0.0)) * 1j * a1 / np.sqrt(size2)
+        # with two block leads a1, a2 do not depend on θ: broadcast to the columns
+        y, flat, foot, along = np.broadcast_arrays(y, flat, foot, along)
         m = th.shape[1] // 2
         y = np.where(flat, foot + along, y)
         y[:, m:] = np.where(flat[:, m:], (foot - along)[:, m:], np.nan)
@@ -225,18 +227,21 @@ class _Closure:
 def _poly_roots(coeffs: np.ndarray) -> np.ndarray:
     """(n, 8) roots of the polynomials (n, 9) (highest first) by the eigenvalues of their
     companion matrices. For three rods the terms z⁸ and z⁰ vanish (the triad has at most six
-    assemblies): those rows are solved as sextics; a row with other missing terms is solved
-    alone (np.roots). Missing roots are NaN."""
+    assemblies): those rows are solved as sextics; with two block leads the guides do not
+    turn with the base link and z⁸, z⁷, z¹, z⁰ vanish (at most four assemblies): quartics; a
+    row with other missing terms is solved alone (np.roots). Missing roots are NaN."""
     n = coeffs.shape[0]
     scale = np.max(np.abs(coeffs), axis=1)
     tiny = 1e-11 * scale
     octic = np.abs(coeffs[:, 0]) > tiny
     sextic = ~octic & (np.abs(coeffs[:, 8]) <= tiny) & (np.abs(coeffs[:, 1]) > tiny)
+    small = np.abs(coeffs) <= tiny[:, None]
+    quartic = ~octic & ~sextic & small[:, [1, 7, 8]].all(axis=1) & ~small[:, 2]  # two block leads
     out = np.full((n, 8), np.nan + 0j)
-    for rows, lo, hi in ((octic, 0, 9), (sextic, 1, 8)):
+    for rows, lo, hi in ((octic, 0, 9), (sextic, 1, 8), (quartic, 2, 7)):
         if rows.any():
             out[rows, :hi - lo - 1] = _companion_roots(coeffs[rows, lo:hi])
-    for k in np.flatnonzero(~octic & ~sextic & (scale > 0) & np.isfinite(scale)):
+    for k in np.flatnonzero(~octic & ~sextic & ~quartic & (scale > 0) & np.isfinite(scale)):
         r = np.roots(np.where(np.abs(coeffs[k]) > 1e-13 * scale[k], coeffs[k], 0.0))
         out[k, :r.size] = r
     return out

@@ -205,15 +205,29 @@ def _entries(kin: Kinematics, first: int) -> tuple[dict, dict]:
                         if singular[i] else "not assembled") for i in np.flatnonzero(~ok)}
     rate = (lambda a: a) if not reasons else (lambda a: np.where(ok, a, np.nan))  # noqa: E731 (never a wrong number)
     P, V, A = kin.positions, kin.velocities, kin.accelerations
+    marks = point_marks(kin.mechanism)
     tree = {"position": np.arange(first + 1, first + len(kin) + 1), "phi_deg": kin.phi_deg, "valid": ok,
             "points": {k: {"x": P[:, j, 0], "y": P[:, j, 1], "vx": rate(V[:, j, 0]), "vy": rate(V[:, j, 1]),
-                           "ax": rate(A[:, j, 0]), "ay": rate(A[:, j, 1])} for k, j in kin.point_index.items()},
+                           "ax": rate(A[:, j, 0]), "ay": rate(A[:, j, 1]), **marks.get(k, {})}
+                       for k, j in kin.point_index.items()},
             "links": {k: {"angle": kin.angles[:, j], "omega": rate(kin.omegas[:, j]),
                           "epsilon": rate(kin.epsilons[:, j])} for k, j in kin.link_index.items()},
             "slides": {k: {"s": kin.slides[:, j, 0], "v": rate(kin.slides[:, j, 1]), "a": rate(kin.slides[:, j, 2])}
                        for k, j in kin.slide_index.items()},
             "condition": {k: kin.condition[:, j] for k, j in kin.group_index.items()}}
     return tree, reasons
+
+
+def point_marks(mech) -> dict[str, dict[str, str]]:
+    """The points whose velocity and acceleration are not the derivatives of their position:
+    name → {"kind": "special" (Assur's special point of a triad) or "coincident" (a guide
+    link's point at a slider's joint), "link": the link whose point it is at each instant}."""
+    from velplan.mechanism.model import Triad
+    from velplan.mechanism.structure import coincident_points
+
+    special = {g.special_name for g in mech.groups if isinstance(g, Triad)}
+    return {name: {"kind": "special" if name in special else "coincident", "link": link}
+            for name, link in coincident_points(mech).items()}
 
 
 def to_table(kin: Kinematics) -> str:

@@ -260,6 +260,7 @@ def _triad(t: dict, i: int) -> Triad:
     leads = tuple(_lead(x, k, f"{where} lead {k + 1}") for k, x in enumerate(leads_t))
     if all(lead.slider for lead in leads):
         raise MechanismError(f"{where}: at least one lead must be a rod (all three are blocks on guides)")
+    _no_truss(leads, base, where)
     asm = t.get("assembly")
     if not isinstance(asm, dict):
         raise MechanismError(f"{where}: missing assembly = {{phi_deg = …, {joints[0]} = [x, y], …}}: the approximate "
@@ -277,6 +278,18 @@ def _triad(t: dict, i: int) -> Triad:
         pair = (pair[0] - 1, pair[1] - 1)
     return Triad(name, base, joints, sides, leads, near, math.radians(_finite(asm.get("phi_deg", 0.0),
                  f"{where} assembly phi_deg")), _branch_key(t, "side", where), _opt_name(t, "special"), pair)
+
+
+def _no_truss(leads: tuple[Lead, ...], base: str, where: str) -> None:
+    """Refuse two rod leads from one outer joint: with the base link they close a rigid
+    triangle (a truss), so the four links are not a class III group."""
+    for k, a in enumerate(leads):
+        for m in range(k + 1, 3):
+            b = leads[m]
+            if not (a.slider or b.slider) and a.joint == b.joint:
+                raise MechanismError(
+                    f"{where}: leads {k + 1} and {m + 1} are rods from the same joint {a.joint!r}, so links "
+                    f"{a.link}, {b.link} and {base} make one rigid body (a truss), not a class III group")
 
 
 def _lead(t: dict, k: int, where: str) -> Lead:
