@@ -52,6 +52,16 @@ FAR = 0.25
 tracked branch and a root still taken as its continuation."""
 
 
+def _cis(t):
+    """cos t + i·sin t (`velplan.analysis.groups.cis`, the same numbers) written into one complex
+    array: no complex temporaries on the triad's many (n, 16) arrays."""
+    t = np.asarray(t, dtype=float)
+    out = np.empty(t.shape, dtype=complex)
+    np.cos(t, out=out.real)
+    np.sin(t, out=out.imag)
+    return out
+
+
 def dot(a, b):
     """Scalar product of two complex-encoded vectors."""
     return a.real * b.real + a.imag * b.imag
@@ -126,7 +136,7 @@ class _Closure:
 
     def offsets(self, theta):
         """r_i(θ) for the three joints (arrays broadcast with θ)."""
-        e = cis(theta)
+        e = _cis(theta)
         return [z * e for z in self.local]
 
     def rows(self, theta):
@@ -208,13 +218,19 @@ class _Closure:
                 rows.append((-u.imag, u.real + 0 * y.real, cross(u, 1j * r[i])))
         return f, rows
 
-    def _newton(self, y, th, steps: int = 6):
+    def _newton(self, y, th, steps: int = 6, settled: float | None = None):
+        """``steps`` Newton steps on the closure from (Y ``y``, θ ``th``); with ``settled``,
+        fewer where the largest correction (in lengths over the group's size, and radians) is
+        already below it: the next error, its square, is below round-off."""
         with np.errstate(all="ignore"):
             for _ in range(steps):
                 f, rows = self._equations(y, th)
                 dx, dy, dt = _cramer3(rows, [-x for x in f])
                 y = y + dx + 1j * dy
                 th = th + dt
+                if settled is not None and not np.fmax.reduce(
+                        np.abs(dx) + np.abs(dy) + np.abs(dt) * self.size, axis=None) > settled * self.size:
+                    break
         return y, th
 
     def _residual(self, y, th):
@@ -257,13 +273,16 @@ def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
 
 
 def _cramer3(rows, rhs):
-    """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns."""
+    """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns (each
+    2×2 minor computed once)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
-    det = a1 * (b2 * c3 - b3 * c2) - b1 * (a2 * c3 - a3 * c2) + c1 * (a2 * b3 - a3 * b2)
-    x = (r1 * (b2 * c3 - b3 * c2) - b1 * (r2 * c3 - r3 * c2) + c1 * (r2 * b3 - r3 * b2)) / det
-    y = (a1 * (r2 * c3 - r3 * c2) - r1 * (a2 * c3 - a3 * c2) + c1 * (a2 * r3 - a3 * r2)) / det
-    z = (a1 * (b2 * r3 - b3 * r2) - b1 * (a2 * r3 - a3 * r2) + r1 * (a2 * b3 - a3 * b2)) / det
+    bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
+    rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
+    det = a1 * bc - b1 * ac + c1 * ab
+    x = (r1 * bc - b1 * rc - c1 * br) / det
+    y = (a1 * rc - r1 * ac + c1 * ar) / det
+    z = (a1 * br - b1 * ar + r1 * ab) / det
     return x, y, z
 
 
@@ -446,7 +465,7 @@ def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
 def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
     (J_r, θ, whether it is unambiguous: closed, moved less than `QUICK_MOVE`, well conditioned)."""
-    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5)
+    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5, settled=SETTLED)
     f, rows = cl._equations(y, th)
     with np.errstate(invalid="ignore"):
         res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
@@ -638,6 +657,10 @@ QUICK_MOVE = 1e-3
 """Newton from the tracked branch is taken as it is when it moves the configuration less than
 this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is well conditioned."""
 QUICK_CONDITION = 0.05
+SETTLED = 1e-9
+"""Newton from the tracked branch stops once its largest correction is below this (over the
+group's size): the error left is about its square, below round-off (``QUICK_CONDITION`` bounds
+the closure's curvature)."""
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
