@@ -65,7 +65,8 @@ def test_the_default_engine_loads_the_kernel_once_the_numpy_engine_has_cost_as_m
     monkeypatch.setattr(solver, "_AUTO_ON", [False])
     monkeypatch.setattr(solver, "_NUMPY_SECONDS", [0.0])
     monkeypatch.setattr(compiled, "loaded", lambda: False)
-    monkeypatch.setitem(compiled.LOAD_SECONDS, "kernel", 0.0)  # the least it may cost
+    monkeypatch.setitem(solver.LOAD_AT_LEAST, "kernel", 0.0)  # the least it may cost
+    monkeypatch.setitem(solver.LOAD_AT_LEAST, "numba", 0.0)
     monkeypatch.setattr(compiled, "load_cost", lambda: 1e9)  # never worth it: numpy throughout
     for _ in range(3):
         velplan.solve(mech, phi)
@@ -102,3 +103,7 @@ def test_a_class_iii_group_is_tracked_once_per_mechanism(monkeypatch):
     assert prep.tracks(velplan.solve) is found
     kin = velplan.solve(mech, np.linspace(0, 2 * np.pi, 12, endpoint=False))
     assert kin.valid.sum() >= 10
+
+
+def test_the_least_load_cost_is_the_compiled_engines():
+    assert solver.LOAD_AT_LEAST == {k: compiled.LOAD_SECONDS[k] for k in ("kernel", "numba")}

@@ -466,6 +466,9 @@ def fingerprint() -> str:
 
 def _numba_version() -> str:
     """The installed numba's version, read without importing it."""
+    version = getattr(sys.modules.get("numba"), "__version__", None)
+    if version:
+        return version
     from importlib import metadata
 
     try:

@@ -8,6 +8,7 @@ the engine: the numpy one (`velplan.analysis.blocks`, block by block) or the com
 
 from __future__ import annotations
 
+import sys
 from time import perf_counter
 from typing import Iterable, Literal
 
@@ -149,6 +150,11 @@ _NUMPY_SECONDS = [0.0]
 _AUTO_ON = [False]
 
 
+LOAD_AT_LEAST = {"kernel": 0.05, "numba": 0.35}
+"""The least loading the compiled kernel costs (s; `compiled.LOAD_SECONDS`), numba imported already
+or not: below it "auto" does not even import the compiled engine's module."""
+
+
 def _auto_compiled(n: int) -> bool:
     """Whether an ``engine="auto"`` call of ``n`` angles runs compiled: numba installed, and the
     kernel loaded already, or ``n`` at least `AUTO_COMPILED`, or the time spent in the numpy
@@ -156,11 +162,13 @@ def _auto_compiled(n: int) -> bool:
     solves little never pays for loading it, one that solves much pays at most twice."""
     if _AUTO_ON[0]:
         return True
+    spent, least = _NUMPY_SECONDS[0], LOAD_AT_LEAST["kernel" if "numba" in sys.modules else "numba"]
+    if n < AUTO_COMPILED and spent < least and "velplan.analysis.compiled" not in sys.modules:
+        return False  # nothing loaded, nothing worth loading: not even the module
     c = _compiled()
     if not c.available():
         return False
-    spent = _NUMPY_SECONDS[0]
-    if c.loaded() or n >= AUTO_COMPILED or (spent >= c.LOAD_SECONDS["kernel"] and spent >= c.load_cost()):
+    if c.loaded() or n >= AUTO_COMPILED or (spent >= least and spent >= c.load_cost()):
         _AUTO_ON[0] = True
     return _AUTO_ON[0]
 
