@@ -192,8 +192,10 @@ class Outputs:
         if self.order >= 1 and condition.size and not np.fmin.reduce(condition, axis=None) >= WELL_CONDITIONED:
             valid &= velocity_bound(condition) <= SINGULAR_BOUND
         self.valid[where] = valid
-        if rates.shape[1]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others bit for bit
-            rates[0] = wrap_angle(rates[0])
+        if rates.shape[1]:  # cranks and guides may leave (−π, π]: those rows are wrapped
+            angles = rates[0]
+            for j in np.flatnonzero(((angles > np.pi) | (angles <= -np.pi)).any(axis=1)):
+                angles[j] = wrap_angle(angles[j])
 
     def shift(self, by: complex) -> None:
         """Move every position by ``by`` (m, x + iy), in place."""
