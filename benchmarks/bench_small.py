@@ -108,13 +108,19 @@ def contenders(mech_name: str, n: int) -> dict:
     return calls
 
 
+CLOCK = {"wall": time.perf_counter, "cpu": time.process_time}
+"""``--clock``: wall time, or this process's CPU time (all its threads: steadier on a shared
+machine; the compiled engine runs on one thread up to 4096 angles, pylinkage always)."""
+_clock = CLOCK["wall"]
+
+
 def per_call(fn, budget: float) -> float:
     """Mean seconds per call of ``fn`` over at least ``budget`` seconds (at least one call)."""
-    calls, t0 = 0, time.perf_counter()
+    calls, t0 = 0, _clock()
     while True:
         fn()
         calls += 1
-        t = time.perf_counter() - t0
+        t = _clock() - t0
         if t >= budget:
             return t / calls
 
@@ -147,6 +153,28 @@ def solve_table(sizes, count: int, budget: float) -> str:
     head = ["mechanism", "positions", "numpy µs", "compiled µs", "auto (default) µs", "pylinkage+numba µs",
             "numpy / peer", "compiled / peer", "auto / peer", "peer right?", "load"]
     return table(head, rows)
+
+
+SWITCH = """
+import time, numpy as np, velplan
+from velplan.analysis import solver
+mech, phi = velplan.load("{mech}"), np.arange({n}) * (2 * np.pi / {n})
+calls, t0 = 0, time.perf_counter()
+while not solver._AUTO_ON[0] and calls < 10**6:
+    velplan.solve(mech, phi)
+    calls += 1
+print(calls, time.perf_counter() - t0)
+"""
+
+
+def switch_point(mech: str = "four-bar", n: int = 12) -> str:
+    """When a fresh process's default engine moves to the compiled kernel: after how many calls
+    at ``n`` positions and how many seconds (numba not imported before)."""
+    out = subprocess.run([sys.executable, "-c", SWITCH.format(mech=mech, n=n)], capture_output=True, text=True,
+                         env=dict(os.environ, PYTHONPATH=str(ROOT)), check=True).stdout.split()
+    return (f"In a fresh process (numba not imported), the default engine solved the {mech} at {n} positions "
+            f"{int(out[0])} times with numpy before it loaded the compiled kernel ({float(out[1]):.2f} s in all, the load "
+            f"included; machine load {load_average()}).")
 
 
 def _cold(args, cwd: str) -> float:
@@ -184,12 +212,17 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=15)
     ap.add_argument("--budget", type=float, default=0.02, help="seconds per contender per round")
     ap.add_argument("--pairs", type=int, default=5, help="cold runs per command")
+    ap.add_argument("--clock", choices=tuple(CLOCK), default="wall", help="what a call's time is")
+    ap.add_argument("--no-cold", action="store_true", help="leave out the cold commands")
     a = ap.parse_args()
+    global _clock
+    _clock = CLOCK[a.clock]
     count = 5 if a.quick else a.rounds
     sizes = SIZES if a.quick else (*SIZES, HUGE)
     start = f"load {load_average()} at the start"
+    switch = switch_point()
     solved = solve_table(sizes, count, a.budget)
-    cold = "" if a.quick else cold_table(a.pairs)
+    cold = "" if a.quick or a.no_cold else cold_table(a.pairs)
     text = f"""# Small sizes and cold commands (issue 34)
 
 Written by `benchmarks/bench_small.py`{' --quick' if a.quick else ''}; {start}, load {load_average()} at the end
@@ -199,10 +232,10 @@ Written by `benchmarks/bench_small.py`{' --quick' if a.quick else ''}; {start}, 
 
 ## ``velplan.solve`` per call against pylinkage + numba
 
-Positions, velocities and accelerations; µs per call, the median of {count} rounds (one at 10⁶)
-in one process, the contenders alternating; ratios: the median of the per-round ratios to the
+Positions, velocities and accelerations; µs per call ({a.clock} clock), the median of {count}
+rounds of about {a.budget} s per contender (one call at 10⁶) in one process, the contenders alternating; ratios: the median of the per-round ratios to the
 peer (lowest–highest). "auto" is the default engine, in a process that has been solving (the
-compiled kernel is loaded once the numpy engine's time reaches the kernel's load cost).
+compiled kernel is loaded once the numpy engine's time reaches the kernel's load cost). {switch}
 
 {solved}
 """

@@ -107,3 +107,10 @@ def test_a_class_iii_group_is_tracked_once_per_mechanism(monkeypatch):
 
 def test_the_least_load_cost_is_the_compiled_engines():
     assert solver.LOAD_AT_LEAST == {k: compiled.LOAD_SECONDS[k] for k in ("kernel", "numba")}
+
+
+def test_the_default_engine_stays_numpy_when_numba_runs_uncompiled(monkeypatch):
+    monkeypatch.setenv("NUMBA_DISABLE_JIT", "1")
+    monkeypatch.setattr(solver, "_AUTO_ON", [False])
+    monkeypatch.setattr(solver, "_NUMPY_SECONDS", [1e9])
+    assert not solver._auto_compiled(10**7)

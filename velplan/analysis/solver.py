@@ -8,6 +8,7 @@ the engine: the numpy one (`velplan.analysis.blocks`, block by block) or the com
 
 from __future__ import annotations
 
+import os
 import sys
 from time import perf_counter
 from typing import Iterable, Literal
@@ -165,6 +166,8 @@ def _auto_compiled(n: int) -> bool:
     spent, least = _NUMPY_SECONDS[0], LOAD_AT_LEAST["kernel" if "numba" in sys.modules else "numba"]
     if n < AUTO_COMPILED and spent < least and "velplan.analysis.compiled" not in sys.modules:
         return False  # nothing loaded, nothing worth loading: not even the module
+    if os.environ.get("NUMBA_DISABLE_JIT", "0") not in ("", "0"):
+        return False  # the kernel would run as plain Python: numpy is far faster
     c = _compiled()
     if not c.available():
         return False
