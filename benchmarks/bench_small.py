@@ -18,6 +18,7 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
 
     python benchmarks/bench_small.py                # ≈ 3 min on 2 cores
     python benchmarks/bench_small.py --quick        # fewer rounds, no 10⁶, no cold commands
+    git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
 
 Writes ``benchmarks/results/small.md``.
 """
@@ -177,6 +178,45 @@ def switch_point(mech: str = "four-bar", n: int = 12) -> str:
             f"included; machine load {load_average()}).")
 
 
+LARGE = """
+import json, time, numpy as np, velplan
+out = {{}}
+for name in ("four-bar", "shaper"):
+    mech = velplan.load(name)
+    for n, reps in ((10_000, 30), (100_000, 7), (1_000_000, 3)):
+        phi = np.arange(n) * (2 * np.pi / n)
+        velplan.solve(mech, phi, engine="numpy")
+        ts = []
+        for _ in range(reps):
+            t0 = time.process_time()
+            velplan.solve(mech, phi, engine="numpy")
+            ts.append(time.process_time() - t0)
+        out[f"{{name}} {{n}}"] = float(np.median(ts)) / n * 1e9
+print(json.dumps(out))
+"""
+
+
+def large_table(before: str, pairs: int) -> str:
+    """The numpy engine at 10⁴–10⁶ positions (ns per position, CPU time, median of repeats in
+    one process), this tree against ``before``, in alternating processes."""
+    import json
+
+    runs: dict[str, list[dict]] = {"before": [], "after": []}
+    for _ in range(pairs):
+        for key, tree in (("before", before), ("after", str(ROOT))):
+            out = subprocess.run([sys.executable, "-c", LARGE], capture_output=True, text=True, check=True,
+                                 env=dict(os.environ, PYTHONPATH=tree)).stdout
+            runs[key].append(json.loads(out))
+    rows = []
+    for case in runs["after"][0]:
+        b, a = [r[case] for r in runs["before"]], [r[case] for r in runs["after"]]
+        ratio = [y / x for x, y in zip(b, a)]
+        rows.append([case, f"{statistics.median(b):.0f}", f"{statistics.median(a):.0f}",
+                     f"{statistics.median(ratio):.2f} ({min(ratio):.2f}–{max(ratio):.2f})"])
+    return table(["mechanism, positions", "before ns/position", "after ns/position", "after ÷ before, pair by pair"],
+                 rows) + f"\n\nLoad at the end: {load_average()}."
+
+
 def _cold(args, cwd: str) -> float:
     """Wall seconds of one whole process, its bytecode cached outside the tree (as an installed
     package's is)."""
@@ -214,6 +254,8 @@ def main() -> None:
     ap.add_argument("--pairs", type=int, default=5, help="cold runs per command")
     ap.add_argument("--clock", choices=tuple(CLOCK), default="wall", help="what a call's time is")
     ap.add_argument("--no-cold", action="store_true", help="leave out the cold commands")
+    ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
+    ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
     global _clock
     _clock = CLOCK[a.clock]
@@ -238,6 +280,16 @@ peer (lowest–highest). "auto" is the default engine, in a process that has bee
 compiled kernel is loaded once the numpy engine's time reaches the kernel's load cost). {switch}
 
 {solved}
+"""
+    if a.before:
+        text += f"""
+## The numpy engine at 10⁴–10⁶ positions, before and after
+
+CPU time per position (medians of 30, 7, 3 repeats), {a.before_label or a.before} against this tree in {a.pairs}
+alternating pairs of processes (the default engine's first call in a process is the numpy one; later
+calls are the compiled kernel's, faster still).
+
+{large_table(a.before, a.pairs)}
 """
     if cold:
         text += f"""
