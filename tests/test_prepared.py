@@ -114,3 +114,14 @@ def test_the_default_engine_stays_numpy_when_numba_runs_uncompiled(monkeypatch):
     monkeypatch.setattr(solver, "_AUTO_ON", [False])
     monkeypatch.setattr(solver, "_NUMPY_SECONDS", [1e9])
     assert not solver._auto_compiled(10**7)
+
+
+def test_outputs_take_a_value_given_once_for_a_whole_block():
+    from velplan.analysis.blocks import _fill
+
+    target = np.zeros((2, 2, 5))
+    _fill(target, [[np.arange(5.0), 1.5], [2.0, np.ones(5)]], slice(0, 5))
+    np.testing.assert_array_equal(target[0, 0], np.arange(5.0))
+    assert (target[0, 1] == 1.5).all() and (target[1, 0] == 2.0).all() and (target[1, 1] == 1.0).all()
+    _fill(target, [[np.full(2, 7.0)] * 2] * 2, slice(3, 5))
+    assert (target[:, :, 3:] == 7.0).all() and target[0, 0, 2] == 2.0

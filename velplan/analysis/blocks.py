@@ -146,6 +146,18 @@ def about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
     return replace(mech, ground=ground, groups=groups), pivot
 
 
+def _fill(target: np.ndarray, rows: list, where: slice) -> None:
+    """``target[i, j, where] = rows[i][j]`` for every i, j: in one assignment (numpy's dispatch,
+    not the copying, is the cost at a few positions), else — a value given once for the whole
+    block — one row at a time."""
+    try:
+        target[:, :, where] = rows
+    except ValueError:
+        for i, row in enumerate(rows):
+            for j, arr in enumerate(row):
+                target[i, j, where] = arr
+
+
 class Outputs:
     """Preallocated result arrays, point- (link-, slide-, group-) major so that each block
     writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
@@ -171,13 +183,13 @@ class Outputs:
         (`_mark`) while they are still in the CPU's caches."""
         k = self.order + 1
         pts = [st.points[name] for name in self.names]
-        self.z[:, :, where] = [[m.p for m in pts], [m.v for m in pts], [m.a for m in pts]][:k]
+        _fill(self.z, [[m.p for m in pts], [m.v for m in pts], [m.a for m in pts]][:k], where)
         if self.links:
             lks = [st.links[name] for name in self.links]
-            self.rates[:, :, where] = [[m.theta for m in lks], [m.omega for m in lks], [m.epsilon for m in lks]][:k]
+            _fill(self.rates, [[m.theta for m in lks], [m.omega for m in lks], [m.epsilon for m in lks]][:k], where)
         if self.slide_names:
-            self.slides[:, :, where] = [[m.p.real, m.v.real, m.a.real][:k]
-                                        for m in (st.slides[name] for name in self.slide_names)]
+            _fill(self.slides, [[m.p.real, m.v.real, m.a.real][:k]
+                                for m in (st.slides[name] for name in self.slide_names)], where)
         if self.groups:
             self.condition[:, where] = [conditions[name] for name in self.groups]
         self._mark(where)
