@@ -180,7 +180,7 @@ def switch_point(mech: str = "four-bar", n: int = 12) -> str:
 
 LARGE = """
 import json, time, numpy as np, velplan
-out = {{}}
+out = {}
 for name in ("four-bar", "shaper"):
     mech = velplan.load(name)
     for n, reps in ((10_000, 30), (100_000, 7), (1_000_000, 3)):
@@ -191,7 +191,7 @@ for name in ("four-bar", "shaper"):
             t0 = time.process_time()
             velplan.solve(mech, phi, engine="numpy")
             ts.append(time.process_time() - t0)
-        out[f"{{name}} {{n}}"] = float(np.median(ts)) / n * 1e9
+        out[f"{name} {n}"] = float(np.median(ts)) / n * 1e9
 print(json.dumps(out))
 """
 

@@ -125,3 +125,15 @@ def test_outputs_take_a_value_given_once_for_a_whole_block():
     assert (target[0, 1] == 1.5).all() and (target[1, 0] == 2.0).all() and (target[1, 1] == 1.0).all()
     _fill(target, [[np.full(2, 7.0)] * 2] * 2, slice(3, 5))
     assert (target[:, :, 3:] == 7.0).all() and target[0, 0, 2] == 2.0
+
+
+def test_the_output_layout_is_decided_once_and_results_name_the_same_rows():
+    mech = velplan.load("four-bar")
+    phi = np.linspace(0, 2 * np.pi, 7)
+    a = velplan.solve(mech, phi, engine="numpy")
+    prep = prepared(mech)
+    assert prep.outputs is not None and prep.outputs["point_index"] is a.point_index
+    b = velplan.solve(mech, phi[:3], engine="numpy", order=0)
+    assert b.point_index is a.point_index and b.velocities is None
+    np.testing.assert_array_equal(b.positions, a.positions[:3])
+    assert a.link_origins == {"1": "O", "2": "A", "3": "D"}

@@ -146,16 +146,33 @@ def about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
     return replace(mech, ground=ground, groups=groups), pivot
 
 
+ONE_ASSIGNMENT = 1024
+"""Up to this many positions a block's outputs are written in one assignment per kind (numpy's
+dispatch, not the copying, is the cost); above it row by row (one copy, not two)."""
+
+
 def _fill(target: np.ndarray, rows: list, where: slice) -> None:
-    """``target[i, j, where] = rows[i][j]`` for every i, j: in one assignment (numpy's dispatch,
-    not the copying, is the cost at a few positions), else — a value given once for the whole
-    block — one row at a time."""
-    try:
-        target[:, :, where] = rows
-    except ValueError:
-        for i, row in enumerate(rows):
-            for j, arr in enumerate(row):
-                target[i, j, where] = arr
+    """``target[i, j, where] = rows[i][j]`` for every i, j: in one assignment for a small block
+    (unless a value is given once for the whole block), else one row at a time."""
+    if where.stop - where.start <= ONE_ASSIGNMENT:
+        try:
+            target[:, :, where] = rows
+            return
+        except ValueError:  # a scalar among the rows: each row broadcasts on its own
+            pass
+    for i, row in enumerate(rows):
+        for j, arr in enumerate(row):
+            target[i, j, where] = arr
+
+
+def output_index(st: State, conditions: dict) -> dict:
+    """Where each result sits in the outputs (`Kinematics`' point_index, link_index, link_origins,
+    slide_index and group_index), in the order the state ``st`` made them."""
+    links = [k for k in st.links if k != GROUND]
+    return {"point_index": {k: i for i, k in enumerate(st.points)}, "link_index": {k: i for i, k in enumerate(links)},
+            "link_origins": {k: st.links[k].origin for k in links},
+            "slide_index": {k: i for i, k in enumerate(st.slides)},
+            "group_index": {k: i for i, k in enumerate(conditions)}}
 
 
 class Outputs:
@@ -163,11 +180,13 @@ class Outputs:
     writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
     derivatives up to ``order`` are kept."""
 
-    def __init__(self, st: State, conditions: dict, n: int, order: int = 2):
-        self.names = list(st.points)
-        self.links = [k for k in st.links if k != GROUND]
-        self.slide_names = list(st.slides)
-        self.groups = list(conditions)
+    def __init__(self, st: State, conditions: dict, n: int, order: int = 2, index: dict | None = None):
+        self.index = output_index(st, conditions) if index is None else index
+        """The results' names → rows (`output_index`): given, when known from an earlier solve."""
+        self.names = list(self.index["point_index"])
+        self.links = list(self.index["link_index"])
+        self.slide_names = list(self.index["slide_index"])
+        self.groups = list(self.index["group_index"])
         self.order = order
         P, L, S, G = len(self.names), len(self.links), len(self.slide_names), len(self.groups)
         k = order + 1
@@ -238,16 +257,12 @@ class Outputs:
             positions=xy[0],
             velocities=xy[1] if k > 1 else None,
             accelerations=xy[2] if k > 2 else None,
-            point_index={name: i for i, name in enumerate(self.names)},
             angles=rates[0],
             omegas=rates[1] if k > 1 else None,
             epsilons=rates[2] if k > 2 else None,
-            link_index={name: i for i, name in enumerate(self.links)},
-            link_origins={name: st.links[name].origin for name in self.links},
             slides=self.slides.transpose(2, 0, 1),
-            slide_index={name: i for i, name in enumerate(self.slide_names)},
             condition=self.condition.T,
-            group_index={name: i for i, name in enumerate(self.groups)},
             valid=valid,
             order=self.order,
+            **self.index,
         )

@@ -48,8 +48,9 @@ class Prepared:
         self.scale = length_scale(self.local)
         self._tracks: dict | None = None
         self._layout = None
-        self.outputs = None
-        """The numpy engine's output names (`velplan.analysis.blocks.Outputs`), set by its first solve."""
+        self.outputs: dict | None = None
+        """Where the numpy engine's results sit (`velplan.analysis.blocks.output_index`), set by
+        its first solve."""
 
     def tracks(self, solve) -> dict:
         """Each class III group's branch over the turn (`velplan.analysis.triad.track`, solving

@@ -110,7 +110,8 @@ def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, eng
         block = phi[start:start + blocks.BLOCK]
         st, conditions = solve_block(prep.local, block, w1o, e1o, prep.scale, on_failure, prep.items, tracks)
         if out is None:
-            out = Outputs(st, conditions, phi.shape[0], order)
+            out = Outputs(st, conditions, phi.shape[0], order, prep.outputs)
+            prep.outputs = out.index
         out.write(st, conditions, slice(start, start + block.shape[0]))
     out.shift(prep.shift)
     kin = out.kinematics(mech, phi, w1, e1, st)
