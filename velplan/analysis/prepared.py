@@ -36,9 +36,11 @@ class Prepared:
         The solving schedule, cut to what ``points`` need.
     scale : float
         `velplan.analysis.kinematics.length_scale` of ``mech``, m.
+    class_iii : bool
+        Whether ``items`` hold a class III group.
     """
 
-    __slots__ = ("local", "shift", "items", "scale", "points", "_tracks", "_layout", "outputs")
+    __slots__ = ("local", "shift", "items", "scale", "points", "class_iii", "_tracks", "_layout", "outputs")
 
     def __init__(self, mech: Mechanism, points: tuple | None):
         self.points = points
@@ -46,6 +48,8 @@ class Prepared:
         self.shift = complex(pivot[0], pivot[1])
         self.items = schedule(self.local) if points is None else needed_items(self.local, points)
         self.scale = length_scale(self.local)
+        self.class_iii = any(isinstance(g, Triad) for g in self.items)
+        """Whether a class III group is solved (the compiled engine hands it to numpy)."""
         self._tracks: dict | None = None
         self._layout = None
         self.outputs: dict | None = None
