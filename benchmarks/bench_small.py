@@ -246,6 +246,13 @@ def cold_table(pairs: int) -> str:
     return table(["command", "wall s (median)", "floor s (median)", "÷ floor, pair by pair", "load"], rows)
 
 
+def _versions() -> str:
+    """The compiled engine's and the peer's versions, as markdown items."""
+    from importlib import metadata
+
+    return "\n".join(f"- **{pkg}**: {metadata.version(pkg)}" for pkg in ("numba", "pylinkage"))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
@@ -271,6 +278,7 @@ Written by `benchmarks/bench_small.py`{' --quick' if a.quick else ''}; {start}, 
 (the 1-, 5- and 15-minute load averages; each row gives the load when it was taken).
 
 {machine_md()}
+{_versions()}
 
 ## ``velplan.solve`` per call against pylinkage + numba
 
