@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -218,19 +218,13 @@ class _Closure:
                 rows.append((-u.imag, u.real + 0 * y.real, cross(u, 1j * r[i])))
         return f, rows
 
-    def _newton(self, y, th, steps: int = 6, settled: float | None = None):
-        """``steps`` Newton steps on the closure from (Y ``y``, θ ``th``); with ``settled``,
-        fewer where the largest correction (in lengths over the group's size, and radians) is
-        already below it: the next error, its square, is below round-off."""
+    def _newton(self, y, th, steps: int = 6):
         with np.errstate(all="ignore"):
             for _ in range(steps):
                 f, rows = self._equations(y, th)
                 dx, dy, dt = _cramer3(rows, [-x for x in f])
                 y = y + dx + 1j * dy
                 th = th + dt
-                if settled is not None and not np.fmax.reduce(
-                        np.abs(dx) + np.abs(dy) + np.abs(dt) * self.size, axis=None) > settled * self.size:
-                    break
         return y, th
 
     def _residual(self, y, th):
@@ -307,6 +301,11 @@ class Track:
     pair: tuple[int, int]
     size: float
 
+    @cached_property
+    def unwrapped(self) -> np.ndarray:
+        """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
+        return np.unwrap(self.theta)
+
     def reference(self, phi: np.ndarray):
         """(x, θ, inside) of the branch at crank angles ``phi`` (linear between nodes)."""
         if self.t.size == 0:
@@ -318,7 +317,7 @@ class Track:
         inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
         tc = np.clip(t, self.t[0], self.t[-1])
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
-        th = np.interp(tc, self.t, np.unwrap(self.theta))
+        th = np.interp(tc, self.t, self.unwrapped)
         return x, th, inside
 
 
@@ -464,14 +463,22 @@ def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
 
 def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
-    (J_r, θ, whether it is unambiguous: closed, moved less than `QUICK_MOVE`, well conditioned)."""
-    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5, settled=SETTLED)
-    f, rows = cl._equations(y, th)
-    with np.errstate(invalid="ignore"):
-        res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
+    (J_r, θ, whether it is unambiguous: converged, moved less than `QUICK_MOVE`, well
+    conditioned). Up to 5 steps, fewer once every correction is below `SETTLED` (over the
+    group's size): a position whose last correction is that small has converged (the error left
+    is about its square), and its closure's conditioning is read from that last step's rows."""
+    y, th = (xr - cl.origin)[:, None], thr[:, None]
+    with np.errstate(all="ignore"):
+        for _ in range(5):
+            f, rows = cl._equations(y, th)
+            dx, dy, dt = _cramer3(rows, [-x for x in f])
+            y, th = y + dx + 1j * dy, th + dt
+            moved = (np.abs(dx) + np.abs(dy) + np.abs(dt) * cl.size)[:, 0]
+            if not np.fmax.reduce(moved, axis=None) > SETTLED * cl.size:
+                break
         cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
     x, th = y[:, 0] + cl.origin, th[:, 0]
-    return x, th, (res <= 1e-9 * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    return x, th, (moved <= SETTLED * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
 
 
 def _track_grid() -> np.ndarray:
@@ -659,8 +666,8 @@ this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is 
 QUICK_CONDITION = 0.05
 SETTLED = 1e-9
 """Newton from the tracked branch stops once its largest correction is below this (over the
-group's size): the error left is about its square, below round-off (``QUICK_CONDITION`` bounds
-the closure's curvature)."""
+group's size), and a position counts as converged where its last correction is: the error left
+is about its square, below round-off (`QUICK_CONDITION` bounds the closure's curvature)."""
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
