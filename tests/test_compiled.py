@@ -79,6 +79,8 @@ def test_auto_engine_and_bad_engine_name(monkeypatch):
     real = solver._solve_compiled
     monkeypatch.setattr(solver, "_solve_compiled", lambda *a: calls.append(len(a[1])) or real(*a))
     monkeypatch.setattr(compiled, "loaded", lambda: False)
+    monkeypatch.setattr(solver, "_AUTO_ON", [False])
+    monkeypatch.setattr(solver, "_NUMPY_SECONDS", [0.0])  # this process has not solved much yet
     velplan.solve(mech, np.linspace(0, 1, 5), engine="auto")  # few angles, kernel not loaded: numpy
     assert calls == []
     monkeypatch.setattr(compiled, "loaded", lambda: True)

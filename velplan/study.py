@@ -72,7 +72,7 @@ class Study:
         The crank turns at the file's constant ω1 (ε1 = 0), or at the ω(φ), ε(φ) found by the
         machine dynamics of its ``[dynamics]`` section.
     engine : {"numpy", "compiled", "auto"}
-        The solver's engine (see `velplan.solve`).
+        The solver's engine (see `velplan.solve`; "auto", its default, too).
     check_assembly : bool
         Check once, before anything is solved, that the mechanism closes over a whole turn.
     delta : float, optional
@@ -81,7 +81,7 @@ class Study:
     """
 
     def __init__(self, mechanism: Mechanism | str | Path, *, n: int = 12, angles=None,
-                 motion: Motion = "constant", engine: Engine = "numpy", check_assembly: bool = True,
+                 motion: Motion = "constant", engine: Engine = "auto", check_assembly: bool = True,
                  delta: float | None = None):
         self.mechanism = load(mechanism) if isinstance(mechanism, (str, Path)) else mechanism
         if motion not in ("constant", "dynamic"):

@@ -136,16 +136,47 @@ def about_pivot(mech: Mechanism) -> tuple[Mechanism, np.ndarray]:
     return replace(mech, ground=ground, groups=groups), pivot
 
 
+ONE_ASSIGNMENT = 1024
+"""Up to this many positions a block's outputs are written in one assignment per kind (numpy's
+dispatch, not the copying, is the cost); above it row by row (one copy, not two)."""
+
+
+def _fill(target: np.ndarray, rows: list, where: slice) -> None:
+    """``target[i, j, where] = rows[i][j]`` for every i, j: in one assignment for a small block
+    (unless a value is given once for the whole block), else one row at a time."""
+    if where.stop - where.start <= ONE_ASSIGNMENT:
+        try:
+            target[:, :, where] = rows
+            return
+        except ValueError:  # a scalar among the rows: each row broadcasts on its own
+            pass
+    for i, row in enumerate(rows):
+        for j, arr in enumerate(row):
+            target[i, j, where] = arr
+
+
+def output_index(st: State, conditions: dict) -> dict:
+    """Where each result sits in the outputs (`Kinematics`' point_index, link_index, link_origins,
+    slide_index and group_index), in the order the state ``st`` made them."""
+    links = [k for k in st.links if k != GROUND]
+    return {"point_index": {k: i for i, k in enumerate(st.points)}, "link_index": {k: i for i, k in enumerate(links)},
+            "link_origins": {k: st.links[k].origin for k in links},
+            "slide_index": {k: i for i, k in enumerate(st.slides)},
+            "group_index": {k: i for i, k in enumerate(conditions)}}
+
+
 class Outputs:
     """Preallocated result arrays, point- (link-, slide-, group-) major so that each block
     writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
     derivatives up to ``order`` are kept."""
 
-    def __init__(self, st: State, conditions: dict, n: int, order: int = 2):
-        self.names = list(st.points)
-        self.links = [k for k in st.links if k != GROUND]
-        self.slide_names = list(st.slides)
-        self.groups = list(conditions)
+    def __init__(self, st: State, conditions: dict, n: int, order: int = 2, index: dict | None = None):
+        self.index = output_index(st, conditions) if index is None else index
+        """The results' names → rows (`output_index`): given, when known from an earlier solve."""
+        self.names = list(self.index["point_index"])
+        self.links = list(self.index["link_index"])
+        self.slide_names = list(self.index["slide_index"])
+        self.groups = list(self.index["group_index"])
         self.order = order
         P, L, S, G = len(self.names), len(self.links), len(self.slide_names), len(self.groups)
         k = order + 1
@@ -156,23 +187,20 @@ class Outputs:
         self.valid = np.empty(n, dtype=bool)
 
     def write(self, st: State, conditions: dict, where: slice) -> None:
-        """Copy a block's motions to the positions ``where``, then mark them (`_mark`) while
-        they are still in the CPU's caches."""
+        """Copy a block's motions to the positions ``where`` (one assignment per kind of output:
+        numpy's dispatch, not the copying, is the cost at a few positions), then mark them
+        (`_mark`) while they are still in the CPU's caches."""
         k = self.order + 1
-        for j, name in enumerate(self.names):
-            m = st.points[name]
-            for d, arr in zip(range(k), (m.p, m.v, m.a)):
-                self.z[d, j, where] = arr
-        for j, name in enumerate(self.links):
-            m = st.links[name]
-            for d, arr in zip(range(k), (m.theta, m.omega, m.epsilon)):
-                self.rates[d, j, where] = arr
-        for j, name in enumerate(self.slide_names):
-            m = st.slides[name]
-            for d, arr in zip(range(k), (m.p, m.v, m.a)):
-                self.slides[j, d, where] = arr.real
-        for j, name in enumerate(self.groups):
-            self.condition[j, where] = conditions[name]
+        pts = [st.points[name] for name in self.names]
+        _fill(self.z, [[m.p for m in pts], [m.v for m in pts], [m.a for m in pts]][:k], where)
+        if self.links:
+            lks = [st.links[name] for name in self.links]
+            _fill(self.rates, [[m.theta for m in lks], [m.omega for m in lks], [m.epsilon for m in lks]][:k], where)
+        if self.slide_names:
+            _fill(self.slides, [[m.p.real, m.v.real, m.a.real][:k]
+                                for m in (st.slides[name] for name in self.slide_names)], where)
+        if self.groups:
+            self.condition[:, where] = [conditions[name] for name in self.groups]
         self._mark(where)
 
     def _mark(self, where: slice) -> None:
@@ -180,14 +208,20 @@ class Outputs:
         velocities within `SINGULAR_BOUND`), and their angles wrapped into (−π, π]."""
         z, rates, condition = self.z[:, :, where], self.rates[:, :, where], self.condition[:, where]
         with np.errstate(invalid="ignore"):
-            valid = np.isfinite(z.sum(axis=(0, 1))) & np.isfinite(rates[1:].sum(axis=(0, 1)))
-            valid &= (np.isfinite(condition) & (condition > 0)).all(axis=0)
+            total = z.sum(axis=(0, 1)) + rates[1:].sum(axis=(0, 1)) + condition.sum(axis=0)
+            valid = np.isfinite(total) & (condition > 0).all(axis=0)
         if self.order >= 1 and condition.size and not np.fmin.reduce(condition, axis=None) >= WELL_CONDITIONED:
             valid &= velocity_bound(condition) <= SINGULAR_BOUND
         self.valid[where] = valid
-        for row in rates[0]:  # cranks and guides may leave (−π, π]; wrap_angle keeps the others
-            if ((row > np.pi) | (row <= -np.pi)).any():
-                row[:] = wrap_angle(row)
+        if rates.shape[1]:  # cranks and guides may leave (−π, π]: those rows are wrapped
+            angles = rates[0]
+            for j in np.flatnonzero(((angles > np.pi) | (angles <= -np.pi)).any(axis=1)):
+                angles[j] = wrap_angle(angles[j])
+
+    def shift(self, by: complex) -> None:
+        """Move every position by ``by`` (m, x + iy), in place."""
+        if by:
+            self.z[0] += by
 
     def keep(self, order: int) -> None:
         """Drop the derivatives above ``order`` (views: nothing is copied)."""
@@ -213,16 +247,12 @@ class Outputs:
             positions=xy[0],
             velocities=xy[1] if k > 1 else None,
             accelerations=xy[2] if k > 2 else None,
-            point_index={name: i for i, name in enumerate(self.names)},
             angles=rates[0],
             omegas=rates[1] if k > 1 else None,
             epsilons=rates[2] if k > 2 else None,
-            link_index={name: i for i, name in enumerate(self.links)},
-            link_origins={name: st.links[name].origin for name in self.links},
             slides=self.slides.transpose(2, 0, 1),
-            slide_index={name: i for i, name in enumerate(self.slide_names)},
             condition=self.condition.T,
-            group_index={name: i for i, name in enumerate(self.groups)},
             valid=valid,
             order=self.order,
+            **self.index,
         )

@@ -11,7 +11,7 @@ from velplan.analysis.solver import Kinematics, solve
 from velplan.mechanism.model import Mechanism
 
 
-def chunked_kinematics(mech: Mechanism, phi: np.ndarray, *, omega1=None, epsilon1=None, engine: str = "numpy",
+def chunked_kinematics(mech: Mechanism, phi: np.ndarray, *, omega1=None, epsilon1=None, engine: str = "auto",
                        chunk: int = 16384) -> Iterator[tuple[int, Kinematics]]:
     """(first index, solution) of ``phi`` (rad) ``chunk`` angles at a time; ``omega1``,
     ``epsilon1`` (rad/s, rad/s²) one value or one per angle, as in `solve`. Each angle's

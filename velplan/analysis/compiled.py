@@ -18,6 +18,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import sys
 import threading
 import types
 from dataclasses import dataclass
@@ -474,12 +475,50 @@ def loaded() -> bool:
 def fingerprint() -> str:
     """A digest of the source the kernels are compiled from (this module and the closed forms)
     and of the numba version: it names their cache files, so that a change makes new ones."""
-    from numba import __version__
-
-    h = hashlib.sha256(__version__.encode())
+    h = hashlib.sha256(_numba_version().encode())
     for module in (__file__, G.__file__):
         h.update(Path(module).read_bytes())
     return h.hexdigest()[:16]
+
+
+def _numba_version() -> str:
+    """The installed numba's version, read without importing it."""
+    version = getattr(sys.modules.get("numba"), "__version__", None)
+    if version:
+        return version
+    from importlib import metadata
+
+    try:
+        return metadata.version("numba")
+    except metadata.PackageNotFoundError:  # e.g. vendored: ask numba itself
+        from numba import __version__
+
+        return __version__
+
+
+LOAD_SECONDS = {"kernel": 0.05, "numba": 0.35, "compile": 10.0}
+"""What loading the kernel costs (s, measured on a 2-core machine): numba imported already and the
+kernel on disk; numba to import too; no kernel on disk for this source (compiled once per machine)."""
+
+
+def load_cost() -> float:
+    """Seconds that loading the kernel would cost this process now (`LOAD_SECONDS`); 0 once loaded."""
+    if loaded():
+        return 0.0
+    if not _on_disk():
+        return LOAD_SECONDS["compile"]
+    return LOAD_SECONDS["kernel" if "numba" in sys.modules else "numba"]
+
+
+@lru_cache(maxsize=1)
+def _on_disk() -> bool:
+    """Whether numba's disk cache holds the kernel of this source: beside this module, or under
+    ``NUMBA_CACHE_DIR``."""
+    pattern = f"{Path(__file__).stem}._chunks_{fingerprint()}-*.nbi"
+    if any((Path(__file__).parent / "__pycache__").glob(pattern)):
+        return True
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    return bool(root) and any(Path(root).rglob(pattern))
 
 
 # ---- solving one mechanism -------------------------------------------------------------------
@@ -537,16 +576,20 @@ def _layout(mech: Mechanism, points) -> Layout:
     return Layout(items, None, ops, par[None], ground[None], names, sizes)
 
 
-def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int) -> Kinematics:
+def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int,
+          shift: complex = 0j) -> Kinematics:
     """`solver.solve` of ``mech`` (its `Layout` ``lay``) at the angles ``phi`` (rad) and one crank
     speed ``w1`` (rad/s) and acceleration ``e1`` (rad/s²), derivatives up to ``order``: the
-    outputs are allocated for that order only, and the kernel writes nothing above it."""
+    outputs are allocated for that order only, and the kernel writes nothing above it. ``shift``
+    (m, x + iy) is added to the positions (``lay`` was made about the crank's pivot)."""
     n, k = phi.shape[0], order + 1
     P, L, S, G_ = lay.sizes
     z, rates, slides = np.empty((k, P, n), dtype=complex), np.empty((k, L, n)), np.empty((S, k, n))
     condition, valid = np.empty((G_, n)), np.empty(n, dtype=bool)
     run(lay.ops, lay.par, lay.ground, np.ascontiguousarray(phi), np.array([float(w1)]), np.array([float(e1)]), n,
         z, rates, slides, condition, valid)
+    if shift:
+        z[0] += shift
     xy = z.view(float).reshape(k, P, n, 2).transpose(0, 2, 1, 3)
     rates = rates.transpose(0, 2, 1)
     return Kinematics(

@@ -8,17 +8,19 @@ the engine: the numpy one (`velplan.analysis.blocks`, block by block) or the com
 
 from __future__ import annotations
 
-from dataclasses import replace
+import os
+import sys
+from time import perf_counter
 from typing import Iterable, Literal
 
 import numpy as np
 
 from velplan.analysis import blocks
-from velplan.analysis.blocks import Outputs, about_pivot, check_closed, group_point, needed_items, solve_block
+from velplan.analysis.blocks import Outputs, check_closed, group_point, needed_items, solve_block
 from velplan.analysis.kinematics import (SINGULAR_BOUND, WELL_CONDITIONED, Kinematics, group_lengths, length_scale,
                                          length_spread, transfer_functions, velocity_bound)
+from velplan.analysis.prepared import Prepared, prepared
 from velplan.mechanism.model import Crank, LinkPoint, Mechanism, Triad
-from velplan.mechanism.structure import schedule
 
 __all__ = ["solve", "special_pair", "triad_tracks", "Kinematics", "SINGULAR_BOUND", "WELL_CONDITIONED",
            "group_lengths", "group_point", "length_scale", "length_spread", "needed_items",
@@ -34,7 +36,7 @@ def solve(
     points: Iterable[str] | None = None,
     order: Literal[0, 1, 2] = 2,
     on_failure: Literal["nan", "raise"] = "nan",
-    engine: Literal["numpy", "compiled", "auto"] = "numpy",
+    engine: Literal["numpy", "compiled", "auto"] = "auto",
 ) -> Kinematics:
     """Solve ``mech`` at crank angles ``phi`` (rad, scalar or 1-D array).
 
@@ -87,35 +89,35 @@ def solve(
         unit = solve(mech, phi, omega1=1.0, epsilon1=0.0, points=points, order=order,
                      on_failure=on_failure, engine=engine)
         return unit.at_speed(w1, e1)
-    local, shift = about_pivot(mech)
-    kin = _solve_scalar_rate(local, phi, w1, e1, points, order, on_failure, engine)
-    if local is not mech:  # solved about the pivot: velocities do not lose digits to |x|
-        kin = replace(kin, mechanism=mech, positions=kin.positions + shift)
-    return kin
+    return _solve_scalar_rate(prepared(mech, points), mech, phi, w1, e1, order, on_failure, engine)
 
 
-def _solve_scalar_rate(mech, phi, w1, e1, points, order, on_failure, engine) -> Kinematics:
-    """`solve` at one crank speed and acceleration."""
+def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, engine) -> Kinematics:
+    """`solve` at one crank speed and acceleration, solved about the crank's pivot (velocities
+    do not lose digits to |x|) and shifted back."""
     if engine not in ("numpy", "compiled", "auto"):
         raise ValueError(f"engine must be 'numpy', 'compiled' or 'auto', not {engine!r}")
-    if engine == "compiled" or (engine == "auto" and _compiled().available()
-                                and (_compiled().loaded() or phi.shape[0] >= AUTO_COMPILED)):
-        kin = _solve_compiled(mech, phi, w1, e1, points, order, on_failure, engine)
+    if engine == "compiled" or (engine == "auto" and _auto_compiled(phi.shape[0])):
+        kin = _solve_compiled(prep, phi, w1, e1, order, on_failure, engine, mech)
         if kin is not None:
             return kin
-    scale = length_scale(mech)
-    items = schedule(mech) if points is None else needed_items(mech, points)
+    began = perf_counter()
     w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
     out: Outputs | None = None
     # cache-sized blocks written into preallocated outputs: 2.5× faster at 10⁶ positions
-    tracks = triad_tracks(mech, items)
+    tracks = prep.tracks(solve)
     for start in range(0, max(phi.shape[0], 1), blocks.BLOCK):
         block = phi[start:start + blocks.BLOCK]
-        st, conditions = solve_block(mech, block, w1o, e1o, scale, on_failure, items, tracks)
+        st, conditions = solve_block(prep.local, block, w1o, e1o, prep.scale, on_failure, prep.items, tracks)
         if out is None:
-            out = Outputs(st, conditions, phi.shape[0], order)
+            out = Outputs(st, conditions, phi.shape[0], order, prep.outputs)
+            prep.outputs = out.index
         out.write(st, conditions, slice(start, start + block.shape[0]))
-    return out.kinematics(mech, phi, w1, e1, st)
+    out.shift(prep.shift)
+    kin = out.kinematics(mech, phi, w1, e1, st)
+    if engine == "auto" and not prep.class_iii:  # time the compiled engine could have saved
+        _NUMPY_SECONDS[0] += perf_counter() - began
+    return kin
 
 
 def _compiled():
@@ -143,16 +145,44 @@ def _crank_rate(value, what: str, n: int):
 
 
 AUTO_COMPILED = 2_000_000
-"""From this many angles ``engine="auto"`` loads the compiled engine (≈ 0.35 s: numba's import and
-the kernel from its disk cache; ≈ 10 s the first time on a machine; it saves ≈ 0.4 µs per angle);
-once loaded in a process, "auto" always uses it."""
+"""From this many angles one ``engine="auto"`` call loads the compiled engine (≈ 0.35 s: numba's
+import and the kernel from its disk cache; it saves ≈ 0.4 µs per angle)."""
+_NUMPY_SECONDS = [0.0]
+"""Time this process's ``engine="auto"`` calls have spent in the numpy engine, s."""
+_AUTO_ON = [False]
 
 
-def _solve_compiled(mech, phi, w1, e1, points, order, on_failure, engine) -> Kinematics | None:
-    """The compiled engine's solution, or None where it does not apply: a class III group (with a
-    warning when ``engine="compiled"`` was asked for), solved by the numpy engine instead."""
+LOAD_AT_LEAST = {"kernel": 0.05, "numba": 0.35}
+"""The least loading the compiled kernel costs (s; `compiled.LOAD_SECONDS`), numba imported already
+or not: below it "auto" does not even import the compiled engine's module."""
+
+
+def _auto_compiled(n: int) -> bool:
+    """Whether an ``engine="auto"`` call of ``n`` angles runs compiled: numba installed, and the
+    kernel loaded already, or ``n`` at least `AUTO_COMPILED`, or the time spent in the numpy
+    engine so far at least what loading the kernel costs (`compiled.load_cost`) — a process that
+    solves little never pays for loading it, one that solves much pays at most twice."""
+    if _AUTO_ON[0]:
+        return True
+    spent, least = _NUMPY_SECONDS[0], LOAD_AT_LEAST["kernel" if "numba" in sys.modules else "numba"]
+    if n < AUTO_COMPILED and spent < least and "velplan.analysis.compiled" not in sys.modules:
+        return False  # nothing loaded, nothing worth loading: not even the module
+    if os.environ.get("NUMBA_DISABLE_JIT", "0") not in ("", "0"):
+        return False  # the kernel would run as plain Python: numpy is far faster
+    c = _compiled()
+    if not c.available():
+        return False
+    if c.loaded() or n >= AUTO_COMPILED or (spent >= least and spent >= c.load_cost()):
+        _AUTO_ON[0] = True
+    return _AUTO_ON[0]
+
+
+def _solve_compiled(prep: Prepared, phi, w1, e1, order, on_failure, engine, mech) -> Kinematics | None:
+    """The compiled engine's solution of ``mech`` (prepared as ``prep``), or None where it does not
+    apply: a class III group (with a warning when ``engine="compiled"`` was asked for), solved by
+    the numpy engine instead."""
     compiled = _compiled()
-    lay = compiled.layout(mech, points)
+    lay = prep.layout()
     if lay.triad is not None:
         if engine == "compiled":
             import warnings
@@ -160,7 +190,7 @@ def _solve_compiled(mech, phi, w1, e1, points, order, on_failure, engine) -> Kin
             warnings.warn(f"engine='compiled' does not cover class III groups (group {lay.triad!r}); "
                           "solving with the numpy engine", stacklevel=4)
         return None
-    kin = compiled.solve(lay, mech, phi, w1, e1, order)
+    kin = compiled.solve(lay, mech, phi, w1, e1, order, shift=prep.shift)
     if on_failure == "raise" and not kin.valid.all():
         for item in lay.items:  # the first group, in solving order, that fails to close
             if not isinstance(item, (Crank, LinkPoint)):
@@ -175,11 +205,8 @@ def special_pair(mech: Mechanism, g: Triad) -> tuple[int, int]:
     angle over the tracked branch."""
     if g.pair is not None:
         return g.pair
-    from velplan.analysis import triad
-
-    local, _ = about_pivot(mech)
-    here = local.groups[mech.groups.index(g)]
-    return triad.track(triad.upstream(local, here), here, solve).pair
+    prep = prepared(mech)
+    return prep.tracks(solve)[prep.local.groups[mech.groups.index(g)].name].pair
 
 
 def triad_tracks(mech: Mechanism, items) -> dict:

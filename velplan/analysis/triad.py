@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -50,6 +50,16 @@ the assembly they pick."""
 FAR = 0.25
 """Largest distance (configuration units: lengths / the group's size + radians) between the
 tracked branch and a root still taken as its continuation."""
+
+
+def _cis(t):
+    """cos t + i·sin t (`velplan.analysis.groups.cis`, the same numbers) written into one complex
+    array: no complex temporaries on the triad's many (n, 16) arrays."""
+    t = np.asarray(t, dtype=float)
+    out = np.empty(t.shape, dtype=complex)
+    np.cos(t, out=out.real)
+    np.sin(t, out=out.imag)
+    return out
 
 
 def dot(a, b):
@@ -126,7 +136,7 @@ class _Closure:
 
     def offsets(self, theta):
         """r_i(θ) for the three joints (arrays broadcast with θ)."""
-        e = cis(theta)
+        e = _cis(theta)
         return [z * e for z in self.local]
 
     def rows(self, theta):
@@ -257,13 +267,16 @@ def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
 
 
 def _cramer3(rows, rhs):
-    """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns."""
+    """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns (each
+    2×2 minor computed once)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
-    det = a1 * (b2 * c3 - b3 * c2) - b1 * (a2 * c3 - a3 * c2) + c1 * (a2 * b3 - a3 * b2)
-    x = (r1 * (b2 * c3 - b3 * c2) - b1 * (r2 * c3 - r3 * c2) + c1 * (r2 * b3 - r3 * b2)) / det
-    y = (a1 * (r2 * c3 - r3 * c2) - r1 * (a2 * c3 - a3 * c2) + c1 * (a2 * r3 - a3 * r2)) / det
-    z = (a1 * (b2 * r3 - b3 * r2) - b1 * (a2 * r3 - a3 * r2) + r1 * (a2 * b3 - a3 * b2)) / det
+    bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
+    rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
+    det = a1 * bc - b1 * ac + c1 * ab
+    x = (r1 * bc - b1 * rc - c1 * br) / det
+    y = (a1 * rc - r1 * ac + c1 * ar) / det
+    z = (a1 * br - b1 * ar + r1 * ab) / det
     return x, y, z
 
 
@@ -288,6 +301,11 @@ class Track:
     pair: tuple[int, int]
     size: float
 
+    @cached_property
+    def unwrapped(self) -> np.ndarray:
+        """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
+        return np.unwrap(self.theta)
+
     def reference(self, phi: np.ndarray):
         """(x, θ, inside) of the branch at crank angles ``phi`` (linear between nodes)."""
         if self.t.size == 0:
@@ -299,7 +317,7 @@ class Track:
         inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
         tc = np.clip(t, self.t[0], self.t[-1])
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
-        th = np.interp(tc, self.t, np.unwrap(self.theta))
+        th = np.interp(tc, self.t, self.unwrapped)
         return x, th, inside
 
 
@@ -445,14 +463,22 @@ def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
 
 def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
-    (J_r, θ, whether it is unambiguous: closed, moved less than `QUICK_MOVE`, well conditioned)."""
-    y, th = cl._newton((xr - cl.origin)[:, None], thr[:, None], steps=5)
-    f, rows = cl._equations(y, th)
-    with np.errstate(invalid="ignore"):
-        res = np.maximum(np.maximum(np.abs(f[0]), np.abs(f[1])), np.abs(f[2]))[:, 0]
+    (J_r, θ, whether it is unambiguous: converged, moved less than `QUICK_MOVE`, well
+    conditioned). Up to 5 steps, fewer once every correction is below `SETTLED` (over the
+    group's size): a position whose last correction is that small has converged (the error left
+    is about its square), and its closure's conditioning is read from that last step's rows."""
+    y, th = (xr - cl.origin)[:, None], thr[:, None]
+    with np.errstate(all="ignore"):
+        for _ in range(5):
+            f, rows = cl._equations(y, th)
+            dx, dy, dt = _cramer3(rows, [-x for x in f])
+            y, th = y + dx + 1j * dy, th + dt
+            moved = (np.abs(dx) + np.abs(dy) + np.abs(dt) * cl.size)[:, 0]
+            if not np.fmax.reduce(moved, axis=None) > SETTLED * cl.size:
+                break
         cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
     x, th = y[:, 0] + cl.origin, th[:, 0]
-    return x, th, (res <= 1e-9 * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    return x, th, (moved <= SETTLED * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
 
 
 def _track_grid() -> np.ndarray:
@@ -638,6 +664,10 @@ QUICK_MOVE = 1e-3
 """Newton from the tracked branch is taken as it is when it moves the configuration less than
 this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is well conditioned."""
 QUICK_CONDITION = 0.05
+SETTLED = 1e-9
+"""Newton from the tracked branch stops once its largest correction is below this (over the
+group's size), and a position counts as converged where its last correction is: the error left
+is about its square, below round-off (`QUICK_CONDITION` bounds the closure's curvature)."""
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):

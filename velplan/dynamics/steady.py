@@ -220,8 +220,6 @@ def steady_state(c: EnergyCurve, omega_mean: float, inertia: float, driving: flo
     """The steady motion with the constant inertia ``inertia`` (kg·m²) whose mean speed
     (w_max + w_min)/2 is ``omega_mean`` (rad/s, > 0): T0 by Brent's method, the extremes
     refined by a root of d(w²)/dθ ∝ M − J′·w²/2 (or at a kink of A)."""
-    from scipy.optimize import brentq
-
     if not omega_mean > 0:
         raise VelplanError(f"dynamics: the mean crank speed must be > 0 rad/s, not {omega_mean:g}")
     A, J = c.on_grid
@@ -246,6 +244,8 @@ def steady_state(c: EnergyCurve, omega_mean: float, inertia: float, driving: flo
 
     if mean_speed(lo) >= omega_mean:
         raise VelplanError(stop)
+    from scipy.optimize import brentq  # ≈ 0.3 s to import: not for a motion refused above
+
     hi = lo + 0.5 * float(Jt.max()) * omega_mean**2 + 1.0
     while mean_speed(hi) < omega_mean:
         hi = lo + 2.0 * (hi - lo)

@@ -1,0 +1,101 @@
+"""What the sheet-quality tests share (`test_sheet_quality.py` and its files per language,
+`test_sheet_quality_<lang>.py`, split so that the workers of ``pytest -n … --dist loadfile``
+share the sheets out): the studies, each sheet built once per module (`built`), and the checks
+made in every language."""
+
+from importlib.resources import files
+
+import pytest
+import shapely
+
+import velplan
+from velplan.render.fonts import missing_in_bundled
+from velplan.render.layout import label_box, overlapping_labels
+from velplan.render.scene import Text
+from velplan.sheets.dynamics import build_dynamics_sheet
+from velplan.sheets.forces import build_force_sheet, has_forces
+from velplan.sheets.frame import frame_bounds
+from velplan.sheets.kinematic import build_sheet
+
+LANGS = ("en", "ru", "uk", "zh")
+#: The catalogue's class III mechanisms (``kind = "triad"`` files): every sheet kind of each.
+TRIADS = tuple(sorted(p.name[:-5] for p in files("velplan.catalogue").iterdir()
+                      if p.name.endswith(".toml") and 'kind = "triad"' in p.read_text("utf-8")))
+
+
+@pytest.fixture(scope="module")
+def studies():
+    return ({n: velplan.Study(n) for n in velplan.example_names() + list(TRIADS)}
+            | {"shaper-δ": velplan.Study("shaper", delta=0.05)})
+
+
+@pytest.fixture(scope="module")
+def built(studies):
+    """sheet(name, kind, lang, fmt): the sheet, built on first use and kept for the module."""
+    cache: dict = {}
+    makers = {"kinematic": build_sheet, "forces": build_force_sheet,
+              "dynamics": build_dynamics_sheet}
+
+    def sheet(name, kind, lang, fmt="A1"):
+        key = (name, kind, lang, fmt)
+        if key not in cache:
+            cache[key] = makers[kind](studies[name], lang=lang, fmt=fmt)
+        return cache[key]
+    return sheet
+
+
+def sheets_in(studies, lang, built):
+    """(name, kind, sheet) of every A1 sheet checked in `lang`."""
+    for name, study in studies.items():
+        if name == "shaper-δ":
+            yield name, "dynamics", built(name, "dynamics", lang)
+            continue
+        yield name, "kinematic", built(name, "kinematic", lang)
+        if has_forces(study.mechanism):
+            yield name, "forces", built(name, "forces", lang)
+        if name in TRIADS:
+            yield name, "dynamics", built(name, "dynamics", lang)
+
+
+def assert_legible(sheet, fmt, name, kind):
+    """No text over text, every text inside the frame, every glyph in the bundled font."""
+    frame = shapely.box(*frame_bounds(fmt)).buffer(1e-6)
+    pairs = overlapping_labels(sheet.scene, min_area=0.5)
+    assert not pairs, (name, kind, fmt, [(a.text, b.text) for a, b in pairs[:5]])
+    for t in sheet.scene.of_kind(Text):
+        assert frame.contains(label_box(t)), (name, kind, fmt, t.text)
+        assert not missing_in_bundled(t.text), (name, kind, t.text)  # every glyph in Velplan Sans
+
+
+def check_a1_sheets(studies, built, lang):
+    """No text over text, all inside the frame, every glyph in the font: every A1 sheet in ``lang``."""
+    for name, kind, sheet in sheets_in(studies, lang, built):
+        assert_legible(sheet, "A1", name, kind)
+
+
+def check_class_iii_on_a3(built, name, lang):
+    """The kinematic and dynamics sheets of a class III mechanism on A3 too; its force sheet
+    there either is legible or says in one line that it does not fit (as the press's)."""
+    for kind in ("kinematic", "dynamics"):
+        assert_legible(built(name, kind, lang, "A3"), "A3", name, kind)
+    try:
+        sheet = built(name, "forces", lang, "A3")
+    except velplan.errors.ScaleError as exc:
+        assert "do not fit A3" in str(exc) and "\n" not in str(exc)
+    else:
+        assert_legible(sheet, "A3", name, "forces")
+
+
+def check_png(studies, built, lang, tmp_path):
+    """Every bundled sheet through the PNG export, whose font choice refuses a text no font can
+    draw (one-line error): each comes out, an image of the sheet's size."""
+    pytest.importorskip("cairosvg")
+    from PIL import Image
+
+    from velplan.render.export import write_png
+
+    for name, kind, sheet in sheets_in(studies, lang, built):
+        path = write_png(sheet.svg(), tmp_path / f"{name}-{kind}.png", dpi=20)
+        with Image.open(path) as im:
+            assert im.size == (round(841 / 25.4 * 20), round(594 / 25.4 * 20)), (name, kind, im.size)
+            assert im.convert("L").getextrema()[0] < 100  # something is drawn
