@@ -119,6 +119,24 @@ class Reducer:
         """Crank angle at travel θ, rad."""
         return self.phi1 + self.sense * np.asarray(theta, dtype=float)
 
+    def inertia_terms(self, phi: float) -> list[tuple[str, str, float, float]]:
+        """The terms of J_II at the crank angle ``phi`` (rad), for a worked example: (kind
+        "m" or "J", link, its mass kg or inertia J_S kg·m², the squared analogue (v_S/ω₁)² m²
+        or (ω/ω₁)²) of each link other than the crank; their sum of products is J_II."""
+        mech = self.mechanism
+        kin = solve(mech, np.array([phi]), omega1=1.0, epsilon1=0.0)
+        out = []
+        for m, j in self._masses:
+            if m.link == mech.crank.link:
+                continue
+            v, _ = link_motion(kin, m.link, point(kin, m.centre))
+            if m.mass > 0:
+                out.append(("m", m.link, m.mass, float(abs(v[0])) ** 2))
+            w = float(kin.omega(m.link)[0])
+            if j > 0 and w != 0:
+                out.append(("J", m.link, j, w * w))
+        return out
+
     def __call__(self, theta) -> Reduced:
         """The reduced quantities at travels ``theta`` (rad), exactly (one solve)."""
         theta = np.atleast_1d(np.asarray(theta, dtype=float))

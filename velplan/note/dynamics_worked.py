@@ -9,9 +9,6 @@ import math
 
 import numpy as np
 
-from velplan.analysis.solver import solve
-from velplan.forces.common import link_motion
-from velplan.forces.inertia import inertia_of
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Para
 from velplan.note.text import p
@@ -76,32 +73,12 @@ def drive_of(d):
         return None
 
 
-def inertia_terms(d, phi: float) -> list[tuple[str, str, float, float]]:
-    """(kind "m"/"J", link, factor kg or kg·m², squared analogue) of each term of J_II at the
-    crank angle ``phi``: m·(V_S/ω₁)² and J_S·(ω/ω₁)² of the links other than the crank."""
-    mech = d.mechanism
-    kin = solve(mech, np.array([phi]), omega1=1.0, epsilon1=0.0)
-    out = []
-    for m in mech.masses:
-        if m.link == mech.crank.link:
-            continue
-        z = kin.positions[0, kin.point_index[m.centre]]
-        v, _ = link_motion(kin, m.link, np.array([complex(z[0], z[1])]))
-        if m.mass > 0:
-            out.append(("m", m.link, m.mass, float(abs(v[0])) ** 2))
-        j = inertia_of(mech, m)
-        w = float(kin.omega(m.link)[0])
-        if j > 0 and w != 0:
-            out.append(("J", m.link, j, w * w))
-    return out
-
-
 def worked_position(note, d, k: int) -> None:
     """J_II and the reduced moments at position number ``k`` of the dynamics' table, every
     term substituted."""
     lang, crank = note.lang, d.mechanism.crank.link
     phi = math.radians(float(d.table(12)["phi_deg"][k - 1]))
-    terms = inertia_terms(d, phi)
+    terms = d.reducer.inertia_terms(phi)
     red = d.reducer(travels(d, [phi]))
     note.add(Para.of(p("dyn_worked", lang, k, fixed(math.degrees(phi) % 360.0, lang, 1))))
     terms_tex = [(rf"m_{{{link}}}\left(\frac{{V_{{S_{{{link}}}}}}}{{\omega_{{{crank}}}}}\right)^{{2}}" if kind == "m"
