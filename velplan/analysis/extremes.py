@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from velplan.analysis.roots import newton_bisection
 from velplan.analysis.solver import Kinematics, solve
 from velplan.errors import MechanismError
 from velplan.mechanism.model import Mechanism
@@ -86,36 +87,23 @@ def find_roots(mech: Mechanism, kind: str, i: int, *, grid: int = GRID) -> list[
     brackets = np.flatnonzero(sign[:-1] * sign[1:] < 0)
     lo, hi = phi[brackets], phi[brackets + 1]
     flo, fhi = rate[brackets], rate[brackets + 1]
-    eps = np.finfo(float).eps
-    tiny = 4 * eps * max(np.nanmax(np.abs(rate)), 1e-300)
 
     def at(x):
         return _values(solve(mech, x, omega1=1.0, epsilon1=0.0), kind, i)
 
-    # safeguarded Newton (rtsafe) from the secant point of the grid's bracket (two or three
-    # Newton steps then reach round-off): a Newton step on the analytic derivative, or
-    # bisection when it would leave the bracket; the bracket keeps the sign change
+    def rate_of(x):
+        _, f, df = at(x)
+        return f, df
+
+    # Newton's steps on the analytic derivative from the secant point of the grid's bracket
+    # (two or three reach round-off), a bisection where a step would leave the bracket
     with np.errstate(divide="ignore", invalid="ignore"):
         x = lo - flo * (hi - lo) / (fhi - flo)
     x = np.where((x > lo) & (x < hi), x, 0.5 * (lo + hi))
-    val, f, df = at(x) if x.size else (x, x, x)
-    for _ in range(100):
-        if x.size == 0:
-            break
-        with np.errstate(divide="ignore", invalid="ignore"):
-            newton = x - f / df
-        inside = (newton > lo) & (newton < hi) & np.isfinite(newton)
-        x_new = np.where(inside, newton, 0.5 * (lo + hi))
-        val_new, f_new, df_new = at(x_new)
-        same = np.sign(f_new) == np.sign(flo)
-        lo, flo, hi = np.where(same, x_new, lo), np.where(same, f_new, flo), np.where(same, hi, x_new)
-        ulp4 = 4 * eps * np.maximum(np.abs(x_new), 1.0)
-        done = (np.abs(x_new - x) <= ulp4) | (np.abs(f_new) <= tiny) | (hi - lo <= ulp4)
-        x, val, f, df = x_new, val_new, f_new, df_new
-        if done.all():
-            break
     if x.size == 0:
         return []
+    x = newton_bisection(rate_of, lo, hi, flo, x, ulps=4, closed=False)
+    val, _, df = at(x)
     roots = x % (2 * np.pi)
     order = np.argsort(roots)
     return [Extreme(float(roots[j]), float(val[j]), "max" if df[j] < 0 else "min") for j in order]
