@@ -28,7 +28,7 @@ from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.views.base import View, make_view, place_labels, scale_text, subscript
+from velplan.views.base import View, make_view, number, place_labels, scale_text, subscript, unit
 
 #: Construction lines run this far past the images they join, mm.
 LINE_OVERRUN_MM = 10.0
@@ -36,6 +36,9 @@ LINE_OVERRUN_MM = 10.0
 AREA_MARGIN_MM = 12.0
 #: Images closer than this share one label ("p, f"), mm.
 COINCIDENT_MM = 0.8
+#: Shortest labelled vector a plan draws as a readable length, mm; a shorter one is listed
+#: under the plan as "≈ 0" with its value (DRAWING.md: the smallest labelled vector reads).
+MIN_VECTOR_MM = 3.0
 
 
 @dataclass(frozen=True)
@@ -227,6 +230,44 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
     return list(place_labels(texts, obstacles, rings=8))
 
 
+def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
+    """Image target → (the image its vector starts from, the vector's length, mm) of every
+    image of the plan at position number `position`: a laid-off vector (a normal, a Coriolis
+    component, n₁, k) from its origin, any other image from the pole."""
+    k, i = _kind(res), res.index_of(position)
+    pole = f"{k}:{'p' if k == 'v' else 'π'}"
+    origin = {s.target: s.origin for s in res.steps
+              if isinstance(s, LayOff) and s.target.startswith(k + ":")}
+    out = {}
+    for t in _image_targets(res, position):
+        if t == pole:
+            continue
+        start = origin.get(t, pole)
+        z = _image(res, t, i) - _image(res, start, i)
+        if np.isfinite(z):
+            out[t] = (start, float(abs(z)))
+    return out
+
+
+def near_zero(res, position: int, lang: str) -> list[str]:
+    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale, each written
+    as the course lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` — its value is |vector| · μ."""
+    u = unit("m/s" if _kind(res) == "v" else "m/s²", lang)
+    out = []
+    for t, (start, length) in labelled_vectors(res, position).items():
+        if length < MIN_VECTOR_MM:
+            name = subscript(label_of(start)) + subscript(label_of(t))
+            out.append(f"{name} ≈ 0 ({number(length * res.scale, lang, 2)} {u})")
+    return out
+
+
+def _image_targets(res, position: int) -> list[str]:
+    """Targets of the images drawn on the plan at `position` (finite values only)."""
+    k, i = _kind(res), res.index_of(position)
+    return [t for t, z in res.values.items() if t.startswith(k + ":") and not isinstance(z, tuple)
+            and np.isfinite(complex(z[i]))]
+
+
 def plan_title(res, number: int, lang: str) -> tuple[str, str]:
     """(title, scale) lines: ``"План скоростей (пол. 4)"``, ``"μv = 0,02 (м/с)/мм"``."""
     k = _kind(res)
@@ -267,10 +308,23 @@ def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSi
         items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
                           sizes.title_mm))
         items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
+        items += _near_zero_lines(res, position, lang, items, sizes.label_mm)
     k, i = _kind(res), res.index_of(position)
     images = {t: _image(res, t, i) for d in drawings for t in d.images}
     return make_view(f"plan-{k}-{position}", items, pad_mm=2.0, mu=None,
                      meta={"kind": k, "number": position, "scale": res.scale, "images": images})
+
+
+def _near_zero_lines(res, position: int, lang: str, items, size: float) -> list[Text]:
+    """The ≈ 0 list under the plan, three vectors a line."""
+    listed = near_zero(res, position, lang)
+    if not listed:
+        return []
+    _, _, text_layer = layer_names(_kind(res), position)
+    x0, y0, _, _ = _bounds(items)
+    lines = ["; ".join(listed[j:j + 3]) for j in range(0, len(listed), 3)]
+    return [Text((x0, y0 - 2.0 - 1.5 * size * (j + 1)), line, text_layer, size)
+            for j, line in enumerate(lines)]
 
 
 def _bounds(items):
@@ -291,5 +345,5 @@ def _images(res, position: int) -> list[complex]:
                    if t.startswith(k + ":") and not isinstance(z, tuple)]
 
 
-__all__ = ["StepDrawing", "PlanSizes", "plan_steps", "plan_view", "plan_area", "image_letters",
+__all__ = ["StepDrawing", "PlanSizes", "MIN_VECTOR_MM", "labelled_vectors", "near_zero", "plan_steps", "plan_view", "plan_area", "image_letters",
            "plan_title", "layer_names", "extent_mm", "label_box"]
