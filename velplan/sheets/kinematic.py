@@ -131,11 +131,12 @@ class _Drawings:
     it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view), the
     kinematic diagrams by (arrangement, φ axis mm, height mm)."""
 
-    def __init__(self, req: Request, thick: int):
-        self.req, self.thick = req, thick
+    def __init__(self, req: Request, chosen: Sequence[int]):
+        self.req, self.thick = req, chosen[0]
         study = req.study
         self.fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
-        self.bold = _extreme_positions(study)
+        # the extreme positions and the other positions whose plans are drawn: bold
+        self.bold = tuple(dict.fromkeys(_extreme_positions(study) + tuple(chosen[1:])))
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.diagrams = Trials(self._diagrams)
@@ -215,7 +216,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     req = sheet_request(mech, n=n, fmt=fmt, lang=lang, frame_style=frame_style, style=style)
     study, mech = req.study, req.mechanism
     chosen = _check_options(study, plans, kind, diagrams, centres)
-    draw = _Drawings(req, chosen[0])
+    draw = _Drawings(req, chosen)
     views: dict[str, PlacedView] = {}
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
@@ -223,6 +224,11 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
                                                            fallback=plans is None)
     plan_views, results, cells = fitted
+    if set(draw.bold) - set(chosen) - set(_extreme_positions(study)):
+        # a position dropped from the plans is drawn thin again, where that keeps the box
+        draw.bold = _extreme_positions(study)
+        redrawn = draw._scheme(mview.mu)
+        mview = redrawn if fits(redrawn, mview.width_mm, mview.height_mm) else mview
     if not scale_per_plan:
         plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's

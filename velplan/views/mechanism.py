@@ -27,8 +27,8 @@ from velplan.mechanism.structure import pairs, point_owners
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
-    JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
-    straight_guide)
+    JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
+    slider_block, straight_guide)
 from velplan.views.base import (
     View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
 
@@ -478,7 +478,21 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
+    _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
+    """The centre-of-mass sign at every centre of mass of position t (the mass table's
+    centres, or the points named S2, S3…) that no joint already marks."""
+    centres = {m.centre for m in geo.mech.masses} | {
+        p for p in geo.kin.point_index if p[:1] == "S" and p[1:].isdigit()}
+    joints = [mm(geo.p(t, q)) for q in geo.revolute]
+    for name in sorted(c for c in centres if c in geo.kin.point_index):
+        p = mm(geo.p(t, name))
+        if np.all(np.isfinite(p)) and all(np.hypot(*(p - q)) > JOINT_RADIUS_MM for q in joints):
+            items += centre_of_mass_sign(p, layer="mechanism")
+            obstacles.append(shapely.Point(p).buffer(2.0))
 
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:
