@@ -250,15 +250,19 @@ def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
 
 
 def near_zero(res, position: int, lang: str) -> list[str]:
-    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale, each written
-    as the course lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` — its value is |vector| · μ."""
+    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale, as the course
+    lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` (its value is |vector| · μ); the vectors that
+    vanish (under 10⁻⁶ mm) together: ``"pa₄, pb = 0"``."""
     u = unit("m/s" if _kind(res) == "v" else "m/s²", lang)
-    out = []
+    out, zero = [], []
     for t, (start, length) in labelled_vectors(res, position).items():
         if length < MIN_VECTOR_MM:
             name = subscript(label_of(start)) + subscript(label_of(t))
-            out.append(f"{name} ≈ 0 ({number(length * res.scale, lang, 2)} {u})")
-    return out
+            if length < 1e-6:
+                zero.append(name)
+            else:
+                out.append(f"{name} ≈ 0 ({number(length * res.scale, lang, 2)} {u})")
+    return ([", ".join(zero) + " = 0"] if zero else []) + out
 
 
 def _image_targets(res, position: int) -> list[str]:
@@ -316,13 +320,13 @@ def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSi
 
 
 def _near_zero_lines(res, position: int, lang: str, items, size: float) -> list[Text]:
-    """The ≈ 0 list under the plan, three vectors a line."""
+    """The ≈ 0 list under the plan, two entries a line."""
     listed = near_zero(res, position, lang)
     if not listed:
         return []
     _, _, text_layer = layer_names(_kind(res), position)
     x0, y0, _, _ = _bounds(items)
-    lines = ["; ".join(listed[j:j + 3]) for j in range(0, len(listed), 3)]
+    lines = ["; ".join(listed[j:j + 2]) for j in range(0, len(listed), 2)]
     return [Text((x0, y0 - 2.0 - 1.5 * size * (j + 1)), line, text_layer, size)
             for j, line in enumerate(lines)]
 
