@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+import shapely.ops
 
 from velplan.plans.steps import Intersect, LayOff, Line, Pole, Similar
 from velplan.plans.text import label_of
@@ -184,9 +185,11 @@ def plan_area(res, position: int) -> shapely.Polygon:
 
 
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None) -> list[Text]:
+                  upto: int | None = None, leaders: bool = False) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors."""
+    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
+    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
+    image is joined to it by a thin leader (the leaders follow the letters in the list)."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -227,7 +230,27 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
-    return list(place_labels(texts, obstacles, rings=8))
+    placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
+    if not leaders:
+        return placed
+    anchors = [_xy(_image(res, g[0], i)) for g in groups if np.isfinite(_image(res, g[0], i))]
+    return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
+
+
+#: A letter farther than this from its image gets a leader, mm.
+LEADER_MM = 3.0
+
+
+def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
+    """Thin leaders from each image to its letter's box where the letter stands more than
+    `LEADER_MM` off, mm."""
+    out = []
+    for t, xy in zip(texts, anchors):
+        box, point = label_box(t), shapely.Point(xy)
+        if box.distance(point) > LEADER_MM:
+            near = shapely.ops.nearest_points(box.buffer(0.5), point)[0]
+            out.append(Polyline([xy, (near.x, near.y)], layer, "thin"))
+    return out
 
 
 def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
@@ -304,7 +327,7 @@ def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSi
     """
     drawings = plan_steps(res, position, lang=lang)
     items: list[Primitive] = [p for d in drawings for p in d.items]
-    items += image_letters(res, position, drawings, size_mm=sizes.label_mm)
+    items += image_letters(res, position, drawings, size_mm=sizes.label_mm, leaders=True)
     if title:
         _, _, text_layer = layer_names(_kind(res), position)
         x0, _, _, y1 = _bounds(items)
