@@ -132,7 +132,7 @@ class _Drawings:
     kinematic diagrams by (arrangement, φ axis mm, height mm)."""
 
     def __init__(self, req: Request, chosen: Sequence[int]):
-        self.req, self.thick = req, chosen[0]
+        self.req, self.thick, self.chosen = req, chosen[0], tuple(chosen)
         study = req.study
         self.fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
         # the extreme positions and the other positions whose plans are drawn: bold
@@ -145,7 +145,7 @@ class _Drawings:
         study, req = self.req.study, self.req
         return mechanism_view(study.mechanism, mu_l=mu, n=study.n, thick=self.thick, lang=req.lang,
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
-                              extreme=study.other_extreme, bold=self.bold)
+                              extreme=study.other_extreme, bold=self.bold, plans=self.chosen)
 
     def _plan(self, kind: str, number: int, mu: float):
         res = self.req.study.plan(kind).at_scale(mu)
@@ -226,7 +226,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     plan_views, results, cells = fitted
     if set(draw.bold) - set(chosen) - set(_extreme_positions(study)):
         # a position dropped from the plans is drawn thin again, where that keeps the box
-        draw.bold = _extreme_positions(study)
+        draw.bold, draw.chosen = _extreme_positions(study), tuple(chosen)
         redrawn = draw._scheme(mview.mu)
         mview = redrawn if fits(redrawn, mview.width_mm, mview.height_mm) else mview
     if not scale_per_plan:

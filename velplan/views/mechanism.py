@@ -19,6 +19,7 @@ from typing import Any, Callable, NamedTuple, Sequence
 
 import numpy as np
 import shapely
+import shapely.ops
 
 from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
@@ -353,7 +354,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                    thick: int = 1, lang: str = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
                    extreme: Kinematics | None = None, special: bool = False,
-                   bold: Sequence[int] = ()) -> View:
+                   bold: Sequence[int] = (), plans: Sequence[int] = ()) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
     Parameters
@@ -377,7 +378,11 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         The other extreme position of the output (one position), drawn bold and marked
         ``1′`` at the output point (`velplan.study.Study.other_extreme`).
     bold : sequence of int
-        Positions (1-based) drawn bold rather than thin: the extreme ones among the n.
+        Positions (1-based) drawn bold rather than thin: the extreme ones among the n, and
+        those of the plans on the sheet.
+    plans : sequence of int
+        Positions (1-based) whose plans are drawn, named after the scale ("the plans'
+        positions (thick lines): 4, 10").
     special : bool
         Draw each triad's Assur special point in the thick position: the lines of the two
         leads that cross there (thin, dash-dotted) and the point, lettered (the figures of a
@@ -398,9 +403,13 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         _other_positions(items, obstacles, geo, fine, t, mm, mu_l, extreme, bold)
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, special)
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme)
-    items += place_labels(labels, obstacles, rings=8)
+    placed = place_labels(labels, obstacles, rings=8)
+    items += placed
+    if not single and output_point(mech) is not None:
+        items += _number_leaders(labels, placed, mm(kin.position(output_point(mech))),
+                                 mm(kin.position(mech.crank.tip)))
     if title:
-        items += _title(items, thick, single, mu_l, lang, sizes)
+        items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
 
@@ -528,14 +537,16 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: str,
-           sizes: MechanismSizes) -> list[Text]:
-    """The view's title and scale, above `items`."""
+           sizes: MechanismSizes, plans: Sequence[int] = ()) -> list[Text]:
+    """The view's title and scale (and the positions of the plans), above `items`."""
     x0, _, _, y1 = bounds_of(items)
+    which = (f";  {label('plan_positions_bold', lang)}: {', '.join(map(str, plans))}"
+             if plans and not single else "")
     return [Text((x0, y1 + 4.0 + 1.6 * sizes.title_mm),
                  f"{label('position', lang)} {thick}" if single else label("mechanism_positions", lang),
                  "labels", sizes.title_mm),
-            Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) + f"  ({scale_mark(mu_l, lang)})",
-                 "labels", sizes.label_mm)]
+            Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) + f"  ({scale_mark(mu_l, lang)})"
+                 + which, "labels", sizes.label_mm)]
 
 
 def extent_m(mech: Mechanism, kin: Kinematics, fine: Kinematics) -> tuple[float, float]:
@@ -695,6 +706,34 @@ def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool
                 break
         boxes.append(box)
         out.append(text)
+    return out
+
+
+#: A position number of the output point farther than this from its point gets a leader, mm.
+NUMBER_LEADER_MM = 4.0
+
+
+def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
+    """Thin leaders from the output point's positions (`points`, mm, one a position) to
+    their numbers that stand more than `NUMBER_LEADER_MM` off: the numbers stepped out of a
+    crowd (an extreme position, where the points nearly coincide). A number wanted nearer
+    the crank's tip in that position (`tips`, mm) is the crank's, one wanted over 15 mm off
+    the point a link's: they have none."""
+    from velplan.render.layout import label_box
+
+    out = []
+    for before, text in zip(wanted, placed):
+        if not text.text.isdigit() or not 1 <= int(text.text) <= len(points):
+            continue
+        k = int(text.text) - 1
+        p, here = points[k], np.asarray(before.position)
+        if (not np.all(np.isfinite(p)) or np.hypot(*(here - tips[k])) < np.hypot(*(here - p))
+                or np.hypot(*(here - p)) > 15.0):
+            continue  # the crank's number, or a link's
+        box = label_box(text)
+        if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
+            near = shapely.ops.nearest_points(box.buffer(0.4), shapely.Point(p))[0]
+            out.append(Polyline([tuple(p), (near.x, near.y)], "labels", "thin"))
     return out
 
 
