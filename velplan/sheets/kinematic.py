@@ -518,7 +518,7 @@ LEGIBLE_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 80.0, "A2": 60.0,
 
 
 def legible_at(common: PlanResult, own: PlanResult, number: int, fmt: str) -> bool:
-    """Whether the plan of position `number` drawn at the scale of `common` stays as legible
+    """Whether the plan of position number `number` (1…n) drawn at the scale of `common` stays as legible
     as the legibility rule asks, compared with `own`, the same plan at its own fit: every
     labelled vector at least `MIN_VECTOR_MM` long at its own scale stays so, and the plan
     spans `LEGIBLE_PLAN_MM` of the format (or as much as its own scale gives)."""

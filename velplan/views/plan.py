@@ -255,7 +255,7 @@ def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
 
 def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
     """Image target → (the image its vector starts from, the vector's length, mm) of every
-    image of the plan at position number `position`: a laid-off vector (a normal, a Coriolis
+    image of the plan at position number `position` (1…n): a laid-off vector (a normal, a Coriolis
     component, n₁, k) from its origin, any other image from the pole."""
     k, i = _kind(res), res.index_of(position)
     pole = f"{k}:{'p' if k == 'v' else 'π'}"
@@ -273,9 +273,10 @@ def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
 
 
 def near_zero(res, position: int, lang: str) -> list[str]:
-    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale, as the course
-    lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` (its value is |vector| · μ); the vectors that
-    vanish (under 10⁻⁶ mm) together: ``"pa₄, pb = 0"``."""
+    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale at position
+    number `position` (1…n), as the course lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` (its
+    value is |vector| · μ); the vectors that vanish (under 10⁻⁶ mm) together:
+    ``"pa₄, pb = 0"``."""
     u = unit("m/s" if _kind(res) == "v" else "m/s²", lang)
     out, zero = [], []
     for t, (start, length) in labelled_vectors(res, position).items():
@@ -289,7 +290,8 @@ def near_zero(res, position: int, lang: str) -> list[str]:
 
 
 def _image_targets(res, position: int) -> list[str]:
-    """Targets of the images drawn on the plan at `position` (finite values only)."""
+    """Targets of the images drawn on the plan at position number `position` (1…n; finite
+    values only)."""
     k, i = _kind(res), res.index_of(position)
     return [t for t, z in res.values.items() if t.startswith(k + ":") and not isinstance(z, tuple)
             and np.isfinite(complex(z[i]))]
