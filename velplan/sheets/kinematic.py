@@ -14,7 +14,7 @@ raises :class:`~velplan.errors.ScaleError` with a one-line message.
 Examples
 --------
 >>> sheet = build_sheet("crank-slider", fmt="A3", lang="en")
->>> sheet.scales["mu_l"], {"mechanism", "diagrams", "table"} <= set(sheet.views)
+>>> sheet.scales["mu_l"], {"mechanism", "table"} <= set(sheet.views)
 (0.002, True)
 """
 
