@@ -224,11 +224,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
     mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
                                                            fallback=plans is None)
     plan_views, results, cells = fitted
-    if set(draw.bold) - set(chosen) - set(_extreme_positions(study)):
-        # a position dropped from the plans is drawn thin again, where that keeps the box
-        draw.bold, draw.chosen = _extreme_positions(study), tuple(chosen)
-        redrawn = draw._scheme(mview.mu)
-        mview = redrawn if fits(redrawn, mview.width_mm, mview.height_mm) else mview
+    mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
         plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
@@ -259,6 +255,17 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                  MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
                  fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
                  MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
+
+
+def _without_dropped(draw: _Drawings, mview: View, chosen) -> View:
+    """The scheme with a position dropped from the plans (the first alone fitted) drawn thin
+    again, where that keeps its box; else `mview` as it is."""
+    extreme = _extreme_positions(draw.req.study)
+    if not set(draw.bold) - set(chosen) - set(extreme):
+        return mview
+    draw.bold, draw.chosen = extreme, tuple(chosen)
+    redrawn = draw._scheme(mview.mu)
+    return redrawn if fits(redrawn, mview.width_mm, mview.height_mm) else mview
 
 
 def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centres) -> tuple[int, ...]:
