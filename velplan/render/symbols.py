@@ -60,7 +60,8 @@ def centre_of_mass_sign(centre, *, radius_mm: float = 1.8, layer: str = "mechani
     for start in (0.0, math.pi):
         arc = [c + radius_mm * np.array([math.cos(a), math.sin(a)])
                for a in np.linspace(start, start + math.pi / 2, 7)]
-        items.append(Polygon([tuple(c)] + [tuple(q) for q in arc], layer, line, "solid"))
+        corners = [(float(c[0]), float(c[1]))] + [(float(q[0]), float(q[1])) for q in arc]
+        items.append(Polygon(tuple(corners), layer, line, "solid"))
     return tuple(items)
 
 

@@ -257,7 +257,7 @@ def build_sheet(mech: Study | Mechanism | str, *, n: int = 12, plans: Sequence[i
                  MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
 
 
-def _without_dropped(draw: _Drawings, mview: View, chosen) -> View:
+def _without_dropped(draw: _Drawings, mview, chosen):
     """The scheme with a position dropped from the plans (the first alone fitted) drawn thin
     again, where that keeps its box; else `mview` as it is."""
     extreme = _extreme_positions(draw.req.study)

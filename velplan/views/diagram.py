@@ -320,5 +320,5 @@ def ordinate_ranges(d: Diagrams, sc: DiagramScales) -> tuple[float, float, float
                              (d.a_exact, d.a_chord, sc.mu_a)):
         y = np.r_[exact, drawn] / mu
         out.append(float(np.max(y) - np.min(y)))
-    return tuple(out)
+    return out[0], out[1], out[2]
 

@@ -19,7 +19,6 @@ from typing import Any, Callable, NamedTuple, Sequence
 
 import numpy as np
 import shapely
-import shapely.ops
 
 from velplan.analysis.numbering import position_index, position_number
 from velplan.analysis.solver import Kinematics
@@ -405,9 +404,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme)
     placed = place_labels(labels, obstacles, rings=8)
     items += placed
-    if not single and output_point(mech) is not None:
-        items += _number_leaders(labels, placed, mm(kin.position(output_point(mech))),
-                                 mm(kin.position(mech.crank.tip)))
+    out = output_point(mech)
+    if not single and out is not None:
+        items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
@@ -732,8 +731,8 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
             continue  # the crank's number, or a link's
         box = label_box(text)
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
-            near = shapely.ops.nearest_points(box.buffer(0.4), shapely.Point(p))[0]
-            out.append(Polyline([tuple(p), (near.x, near.y)], "labels", "thin"))
+            near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
+            out.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
     return out
 
 

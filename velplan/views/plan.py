@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-import shapely.ops
 
 from velplan.plans.steps import Intersect, LayOff, Line, Pole, Similar
 from velplan.plans.text import label_of
@@ -248,8 +247,8 @@ def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
     for t, xy in zip(texts, anchors):
         box, point = label_box(t), shapely.Point(xy)
         if box.distance(point) > LEADER_MM:
-            near = shapely.ops.nearest_points(box.buffer(0.5), point)[0]
-            out.append(Polyline([xy, (near.x, near.y)], layer, "thin"))
+            near = shapely.shortest_line(box.buffer(0.5), point).coords[0]
+            out.append(Polyline((tuple(xy), (near[0], near[1])), layer, "thin"))
     return out
 
 
