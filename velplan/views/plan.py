@@ -336,23 +336,47 @@ def plan_view(res, position: int, *, lang: str = "ru", sizes: PlanSizes = PlanSi
         items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
                           sizes.title_mm))
         items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
-        items += _near_zero_lines(res, position, lang, items, sizes.label_mm)
+        items += _near_zero_lines(res, position, lang, items, sizes.label_mm, items[:-2])
     k, i = _kind(res), res.index_of(position)
     images = {t: _image(res, t, i) for d in drawings for t in d.images}
     return make_view(f"plan-{k}-{position}", items, pad_mm=2.0, mu=None,
                      meta={"kind": k, "number": position, "scale": res.scale, "images": images})
 
 
-def _near_zero_lines(res, position: int, lang: str, items, size: float) -> list[Text]:
-    """The ≈ 0 list under the plan, two entries a line."""
+def _near_zero_lines(res, position: int, lang: str, items, size: float, body) -> list[Text]:
+    """The ≈ 0 list, two entries a line or one: in a corner of the box of the plan's `body`
+    (its drawing without the title) where no line or letter is, so that the plan keeps its
+    size, else under the plan."""
     listed = near_zero(res, position, lang)
     if not listed:
         return []
     _, _, text_layer = layer_names(_kind(res), position)
-    x0, y0, _, _ = _bounds(items)
+    x0, y0, x1, y1 = _bounds(body)
+    taken = shapely.union_all([_outline(p) for p in items]).buffer(1.0)
+    step = 1.5 * size
+    for per in (2, 1):
+        lines = ["; ".join(listed[j:j + per]) for j in range(0, len(listed), per)]
+        for x, top, anchor in ((x0, y0 + step * len(lines) + 0.5 * size, "start"),
+                               (x1, y0 + step * len(lines) + 0.5 * size, "end"),
+                               (x1, y1, "end")):
+            texts = [Text((x, top - step * (j + 1)), line, text_layer, size, anchor)
+                     for j, line in enumerate(lines)]
+            if not any(label_box(t).intersects(taken) for t in texts):
+                return texts
     lines = ["; ".join(listed[j:j + 2]) for j in range(0, len(listed), 2)]
-    return [Text((x0, y0 - 2.0 - 1.5 * size * (j + 1)), line, text_layer, size)
+    return [Text((x0, y0 - 2.0 - step * (j + 1)), line, text_layer, size)
             for j, line in enumerate(lines)]
+
+
+def _outline(p: Primitive):
+    """The shape a primitive covers on the plan, mm."""
+    if isinstance(p, Text):
+        return label_box(p)
+    if isinstance(p, Arrow):
+        return shapely.LineString([p.start, p.end])
+    if isinstance(p, Circle):
+        return shapely.Point(p.centre).buffer(p.radius)
+    return shapely.LineString(p.points)
 
 
 def _bounds(items):
