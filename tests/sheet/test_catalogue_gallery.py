@@ -17,7 +17,9 @@ from velplan.sheets.kinematic import build_sheet, default_title
 NAMES = tuple(catalogue_names())
 FORMATS = ("A1",)
 """The format this module checks (A3: `test_catalogue_gallery_a3.py`)."""
-A3_DIAGRAMS = 19  # measured: 19 of the 25 catalogue sheets on A3 in Russian have room for diagrams
+# measured: 19 of the 25 catalogue sheets on A3 in Russian had room for diagrams with ordinates
+# of 10-20 mm; no A3 corner holds the 30 mm ordinates of a readable diagram, so none is drawn
+A3_DIAGRAMS = 0
 
 
 class Gallery(dict):
@@ -106,10 +108,21 @@ def test_one_velocity_scale_and_one_acceleration_scale_per_sheet(gallery, fmt):
 
 
 def check_one_velocity_scale_and_one_acceleration_scale_per_sheet(gallery, fmt):
+    """One μ per kind of plan, except where one μ would leave a plan illegible (the
+    legibility rule, `legible_at`): then each plan states its own."""
+    from velplan.sheets.kinematic import legible_at
+
+    shared = 0
     for name, sheet in _built(gallery, fmt):
         for kind in "va":
-            mus = {mu for k, mu in sheet.scales.items() if k.startswith(f"plan-{kind}-")}
-            assert len(mus) == 1, (name, fmt, kind, mus)
+            names = [k for k in sheet.scales if k.startswith(f"plan-{kind}-")]
+            mus = {sheet.scales[k] for k in names}
+            shared += len(mus) == 1
+            if len(mus) > 1:
+                common = max(mus)
+                assert not all(legible_at(sheet.plans[k].at_scale(common), sheet.plans[k],
+                                          sheet.plan_index[k] + 1, fmt) for k in names), (name, fmt, kind)
+    assert shared >= len(NAMES)  # most of the catalogue's plans still share one μ
 
 
 @pytest.mark.parametrize("lang", ["en", "ru", "uk", "zh"])

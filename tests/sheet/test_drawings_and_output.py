@@ -61,14 +61,15 @@ def test_scale_error_is_one_line_and_says_what_to_do():
 
 
 def test_diagrams_demanded_go_where_they_fit_else_raise_scale_error():
-    sheet = build_sheet("crank-slider", fmt="A3", lang="en")
-    # left of the band, the diagrams find the free corner under the scheme
+    sheet = build_sheet("crank-slider", fmt="A1", lang="en")
     assert "diagrams" in sheet.views and sheet.frame_style == "iso"
-    demanded = build_sheet("crank-slider", fmt="A3", lang="en", diagrams=True)
+    demanded = build_sheet("crank-slider", fmt="A1", lang="en", diagrams=True)
     assert demanded.svg() == sheet.svg()  # demanding them draws what "auto" draws
-    assert "diagrams" not in build_sheet("slider-press", fmt="A3").views
+    # on A3 the free corner holds diagrams only 10-20 mm high: left out rather than squashed
+    assert "diagrams" not in build_sheet("crank-slider", fmt="A3", lang="en").views
     with pytest.raises(ScaleError, match=r"^the kinematic diagrams do not fit A3 beside the table "
-                                         r"nor in a free corner .*; use a larger --format$"):
+                                         r"nor in a free corner .* ordinates of at least 30 mm; "
+                                         r"use a larger --format$"):
         build_sheet("slider-press", fmt="A3", diagrams=True)
 
 

@@ -51,6 +51,20 @@ def revolute_joint(centre, *, radius_mm: float = JOINT_RADIUS_MM, layer: str = "
     return (Circle(centre, radius_mm, layer, line, "white"),)
 
 
+def centre_of_mass_sign(centre, *, radius_mm: float = 1.8, layer: str = "mechanism",
+                        line: LineType = "thin") -> tuple[Primitive, ...]:
+    """The centre-of-mass sign: a small white circle with its first and third quarters
+    filled, mm."""
+    c = np.asarray(centre, float)
+    items: list[Primitive] = [Circle(tuple(c), radius_mm, layer, line, "white")]
+    for start in (0.0, math.pi):
+        arc = [c + radius_mm * np.array([math.cos(a), math.sin(a)])
+               for a in np.linspace(start, start + math.pi / 2, 7)]
+        corners = [(float(c[0]), float(c[1]))] + [(float(q[0]), float(q[1])) for q in arc]
+        items.append(Polygon(tuple(corners), layer, line, "solid"))
+    return tuple(items)
+
+
 def ground_hatch(start, end, *, side: Side = "right", depth_mm: float = 3.0,
                  spacing_mm: float = 2.0, layer: str = "mechanism",
                  line: LineType = "thick") -> tuple[Primitive, ...]:

@@ -14,7 +14,7 @@ raises :class:`~velplan.errors.ScaleError` with a one-line message.
 Examples
 --------
 >>> sheet = build_sheet("crank-slider", fmt="A3", lang="en")
->>> sheet.scales["mu_l"], {"mechanism", "diagrams", "table"} <= set(sheet.views)
+>>> sheet.scales["mu_l"], {"mechanism", "table"} <= set(sheet.views)
 (0.002, True)
 """
 
@@ -38,7 +38,8 @@ from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
-from velplan.sheets.layout import GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_PLAN_MM, write_outputs
+from velplan.sheets.layout import (GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM,
+                                   write_outputs)
 from velplan.sheets.skeleton import (
     ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
@@ -47,7 +48,7 @@ from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import Arrangement, diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
-from velplan.views.plan import extent_mm, plan_view
+from velplan.views.plan import MIN_VECTOR_MM, extent_mm, labelled_vectors, plan_view
 from velplan.views.table import table_view
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
@@ -133,11 +134,12 @@ class _Drawings:
     it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view), the
     kinematic diagrams by (arrangement, φ axis mm, height mm)."""
 
-    def __init__(self, req: Request, thick: int, special: Sequence[int] = ()):
-        self.req, self.thick, self.special = req, thick, tuple(special)
+    def __init__(self, req: Request, chosen: Sequence[int]):
+        self.req, self.thick, self.chosen = req, chosen[0], tuple(chosen)
         study = req.study
         self.fine = study.turn.take(slice(None, None, 3))  # 240 steps: the scheme's trajectories
-        self.bold = _extreme_positions(study)
+        # the extreme positions and the other positions whose plans are drawn: bold
+        self.bold = tuple(dict.fromkeys(_extreme_positions(study) + tuple(chosen[1:])))
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.diagrams = Trials(self._diagrams)
@@ -146,7 +148,7 @@ class _Drawings:
         study, req = self.req.study, self.req
         return mechanism_view(study.mechanism, mu_l=mu, n=study.n, thick=self.thick, lang=req.lang,
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
-                              extreme=study.other_extreme, bold=self.bold, special=self.special)
+                              extreme=study.other_extreme, bold=self.bold, special=self.chosen, plans=self.chosen)
 
     def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
         res = self.req.study.plan(kind).at_scale(mu)
@@ -203,9 +205,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         Positions (1-based) whose instant centres found by Kennedy lines are marked on the
         scheme, where they fall on it (`velplan.views.centres.centre_marks`).
     scale_per_plan : bool
-        Fit each plan to its cell at its own μ; by default all velocity plans of the sheet
-        share one μv and all acceleration plans one μa (the largest of their fits), so that
-        they compare by eye.
+        Fit each plan to its cell at its own μ. By default the plans of a kind share one μ
+        (the largest of their fits), so that they compare by eye, where every one of them
+        stays legible at it (`legible_at`); otherwise each states its own.
 
     Raises
     ------
@@ -217,7 +219,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     req = sheet_request(mech, n=n, fmt=fmt, lang=lang, frame_style=frame_style, style=style)
     study, mech = req.study, req.mechanism
     chosen = _check_options(study, plans, kind, diagrams, centres)
-    draw = _Drawings(req, chosen[0], special=chosen)  # Assur's K where its plans are drawn
+    draw = _Drawings(req, chosen)
     views: dict[str, PlacedView] = {}
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
@@ -225,11 +227,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
                                                            fallback=plans is None)
     plan_views, results, cells = fitted
-    if tuple(chosen) != draw.special:  # the first position's plans alone: its K alone
-        draw.special = tuple(chosen)
-        mview = draw._scheme(mview.mu)
+    mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
-        plan_views, results = _one_scale_per_kind(draw, plan_views, results, cells)
+        plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     fx0, _, _, fy1 = req.area
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
@@ -238,7 +238,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         placed = _diagrams_in_free_corner(req, draw, views)
         if placed is None and diagrams:
             raise ScaleError(f"the kinematic diagrams do not fit {fmt} beside the table nor in a "
-                             f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm; "
+                             f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
+                             f"least {MIN_ORDINATE_MM:.0f} mm; "
                              f"use a larger --format")
         if placed is not None:
             views["diagrams"] = placed
@@ -257,6 +258,17 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
                  MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
                  fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
                  MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
+
+
+def _without_dropped(draw: _Drawings, mview, chosen):
+    """The scheme with a position dropped from the plans (the first alone fitted) drawn thin
+    again, where that keeps its box; else `mview` as it is."""
+    extreme = _extreme_positions(draw.req.study)
+    if not set(draw.bold) - set(chosen) - set(extreme) and tuple(chosen) == draw.chosen:
+        return mview
+    draw.bold, draw.chosen = extreme, tuple(chosen)
+    redrawn = draw._scheme(mview.mu)
+    return redrawn if fits(redrawn, mview.width_mm, mview.height_mm) else mview
 
 
 def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centres) -> tuple[int, ...]:
@@ -440,7 +452,8 @@ DIAGRAM_HEIGHTS = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0)
 
 def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row") -> View:
     """The kinematic diagrams in `region`: the longest φ axis that fits with the lowest
-    diagrams, then the highest diagrams that fit with it."""
+    diagrams, then the highest diagrams that fit with it, provided every diagram's ordinate
+    range is at least `MIN_ORDINATE_MM` (diagrams squashed flatter are left out, not drawn)."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     low = DIAGRAM_HEIGHTS[-1]
@@ -455,10 +468,13 @@ def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row
             j = DIAGRAM_HEIGHTS.index(found[0])
             while j > 0 and fits(draw.diagrams(arrangement, length, DIAGRAM_HEIGHTS[j - 1]), w, h):
                 j -= 1
-            return draw.diagrams(arrangement, length, DIAGRAM_HEIGHTS[j])
+            view = draw.diagrams(arrangement, length, DIAGRAM_HEIGHTS[j])
+            if min(view.meta["ranges"]) >= MIN_ORDINATE_MM - 1e-6:
+                return view
     raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} ({w:.0f} × {h:.0f} mm free "
                      f"beside the title block) with a φ axis of at least "
-                     f"{MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+                     f"{MIN_DIAGRAM_MM:.0f} mm and ordinates of at least {MIN_ORDINATE_MM:.0f} mm; "
+                     f"use a larger --format")
 
 
 def _longest_axis(draw_low, w: float, arrangement: str) -> float | None:
@@ -501,6 +517,38 @@ def _one_scale_per_kind(draw: _Drawings, plan_views, results, cells):
         else:
             views[name] = plan_views[name]
         out[name] = res
+    return views, out
+
+
+#: Size (the larger side of its images' box) below which a plan drawn at the sheet's common
+#: scale is too small to read, mm, per format (DRAWING.md: about 80–150 mm on A1), unless
+#: its own scale draws it no larger.
+LEGIBLE_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 80.0, "A2": 60.0, "A3": 40.0})
+
+
+def legible_at(common: PlanResult, own: PlanResult, number: int, fmt: str) -> bool:
+    """Whether the plan of position number `number` (1…n) drawn at the scale of `common` stays as legible
+    as the legibility rule asks, compared with `own`, the same plan at its own fit: every
+    labelled vector at least `MIN_VECTOR_MM` long at its own scale stays so, and the plan
+    spans `LEGIBLE_PLAN_MM` of the format (or as much as its own scale gives)."""
+    at_own = labelled_vectors(own, number)
+    at_common = labelled_vectors(common, number)
+    if any(length >= MIN_VECTOR_MM and at_common[t][1] < MIN_VECTOR_MM
+           for t, (_, length) in at_own.items() if t in at_common):
+        return False
+    size = max(extent_mm(common, number))
+    return size >= min(LEGIBLE_PLAN_MM[fmt], max(extent_mm(own, number))) - 1e-6
+
+
+def _one_scale_where_legible(fmt: str, draw: _Drawings, plan_views, results, cells):
+    """The plans of each kind at one μ where every one of them stays legible at it
+    (`legible_at`), else each plan of that kind at its own μ (its title states it)."""
+    views, out = _one_scale_per_kind(draw, plan_views, results, cells)
+    for kind in {res.kind for res in results.values()}:
+        names = [n for n, res in results.items() if res.kind == kind]
+        if not all(legible_at(out[n], results[n], int(n.rsplit("-", 1)[1]), fmt) for n in names):
+            for n in names:
+                views[n], out[n] = plan_views[n], results[n]
     return views, out
 
 

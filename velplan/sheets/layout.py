@@ -28,6 +28,8 @@ GOOD_PLAN_MM: Mapping[str, float] = MappingProxyType({"A1": 90.0, "A2": 70.0, "A
 MIN_CRANK_MM = 8.0
 #: Shortest φ axis of a diagram, mm.
 MIN_DIAGRAM_MM = 60.0
+#: Shortest ordinate range of a kinematic diagram, mm: a flatter curve cannot be read.
+MIN_ORDINATE_MM = 30.0
 
 
 CLEARANCE_MM = 4.0

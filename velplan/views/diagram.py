@@ -310,5 +310,17 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
     items += _legend(x0, y0 - 4.0, lang, sizes.label_mm)
     return make_view("diagrams", items, pad_mm=2.0,
                      meta={"scales": sc, "error_v": d.error_v, "error_a": d.error_a,
-                           "quantity": d.quantity, "omega": abs(omega)})
+                           "quantity": d.quantity, "omega": abs(omega),
+                           "ranges": ordinate_ranges(d, sc)})
+
+
+def ordinate_ranges(d: Diagrams, sc: DiagramScales) -> tuple[float, float, float]:
+    """The drawn ordinate range (highest minus lowest point of the analytic and the
+    graphical curve) of the s, v and a diagrams at the scales `sc`, mm."""
+    out = []
+    for exact, drawn, mu in ((d.s_exact, d.s, sc.mu_s), (d.v_exact, d.v_chord, sc.mu_v),
+                             (d.a_exact, d.a_chord, sc.mu_a)):
+        y = np.r_[exact, drawn] / mu
+        out.append(float(np.max(y) - np.min(y)))
+    return out[0], out[1], out[2]
 

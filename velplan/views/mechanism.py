@@ -28,8 +28,8 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
-    JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, rotation_arrow, slider_block,
-    straight_guide)
+    JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
+    slider_block, straight_guide)
 from velplan.views.base import (
     View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
 
@@ -354,7 +354,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                    thick: int = 1, lang: Language = "ru", sizes: MechanismSizes = MechanismSizes(),
                    title: bool = True, single: bool = False,
                    extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
-                   bold: Sequence[int] = ()) -> View:
+                   bold: Sequence[int] = (), plans: Sequence[int] = ()) -> View:
     """The kinematic scheme of `mech` in `n` positions at the scale `mu_l` (m/mm).
 
     Parameters
@@ -378,7 +378,11 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         The other extreme position of the output (one position), drawn bold and marked
         ``1′`` at the output point (`velplan.study.Study.other_extreme`).
     bold : sequence of int
-        Positions (1-based) drawn bold rather than thin: the extreme ones among the n.
+        Positions (1-based) drawn bold rather than thin: the extreme ones among the n, and
+        those of the plans on the sheet.
+    plans : sequence of int
+        Positions (1-based) whose plans are drawn, named after the scale ("the plans'
+        positions (thick lines): 4, 10").
     special : bool or sequence of int
         Draw each triad's Assur special point in the thick position (True) or in these
         positions (1-based; the plans' positions of a sheet): the lines of the two
@@ -402,9 +406,13 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
-    items += place_labels(labels, obstacles, rings=8)
+    placed = place_labels(labels, obstacles, rings=8)
+    items += placed
+    out = output_point(mech)
+    if not single and out is not None:
+        items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
     if title:
-        items += _title(items, thick, single, mu_l, lang, sizes)
+        items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
 
@@ -484,7 +492,21 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
+    _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
+    """The centre-of-mass sign at every centre of mass of position t (the mass table's
+    centres, or the points named S2, S3…) that no joint already marks."""
+    centres = {m.centre for m in geo.mech.masses} | {
+        p for p in geo.kin.point_index if p[:1] == "S" and p[1:].isdigit()}
+    joints = [mm(geo.p(t, q)) for q in geo.revolute]
+    for name in sorted(c for c in centres if c in geo.kin.point_index):
+        p = mm(geo.p(t, name))
+        if np.all(np.isfinite(p)) and all(np.hypot(*(p - q)) > JOINT_RADIUS_MM for q in joints):
+            items += centre_of_mass_sign(p, layer="mechanism")
+            obstacles.append(shapely.Point(p).buffer(2.0))
 
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:
@@ -523,14 +545,16 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
-           sizes: MechanismSizes) -> list[Text]:
-    """The view's title and scale, above `items`."""
+           sizes: MechanismSizes, plans: Sequence[int] = ()) -> list[Text]:
+    """The view's title and scale (and the positions of the plans), above `items`."""
     x0, _, _, y1 = bounds_of(items)
+    which = (f";  {label('plan_positions_bold', lang)}: {', '.join(map(str, plans))}"
+             if plans and not single else "")
     return [Text((x0, y1 + 4.0 + 1.6 * sizes.title_mm),
                  f"{label('position', lang)} {thick}" if single else label("mechanism_positions", lang),
                  "labels", sizes.title_mm),
-            Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) + f"  ({scale_mark(mu_l, lang)})",
-                 "labels", sizes.label_mm)]
+            Text((x0, y1 + 4.0), scale_text("μl", mu_l, "m/mm", lang) + f"  ({scale_mark(mu_l, lang)})"
+                 + which, "labels", sizes.label_mm)]
 
 
 def extent_m(mech: Mechanism, kin: Kinematics, fine: Kinematics) -> tuple[float, float]:
@@ -690,6 +714,34 @@ def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool
                 break
         boxes.append(box)
         out.append(text)
+    return out
+
+
+#: A position number of the output point farther than this from its point gets a leader, mm.
+NUMBER_LEADER_MM = 4.0
+
+
+def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
+    """Thin leaders from the output point's positions (`points`, mm, one a position) to
+    their numbers that stand more than `NUMBER_LEADER_MM` off: the numbers stepped out of a
+    crowd (an extreme position, where the points nearly coincide). A number wanted nearer
+    the crank's tip in that position (`tips`, mm) is the crank's, one wanted over 15 mm off
+    the point a link's: they have none."""
+    from velplan.render.layout import label_box
+
+    out = []
+    for before, text in zip(wanted, placed):
+        if not text.text.isdigit() or not 1 <= int(text.text) <= len(points):
+            continue
+        k = int(text.text) - 1
+        p, here = points[k], np.asarray(before.position)
+        if (not np.all(np.isfinite(p)) or np.hypot(*(here - tips[k])) < np.hypot(*(here - p))
+                or np.hypot(*(here - p)) > 15.0):
+            continue  # the crank's number, or a link's
+        box = label_box(text)
+        if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
+            near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
+            out.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
     return out
 
 

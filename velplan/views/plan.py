@@ -29,7 +29,7 @@ from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
-from velplan.views.base import View, make_view, place_labels, scale_text, subscript
+from velplan.views.base import View, make_view, number, place_labels, scale_text, subscript, unit
 
 #: Construction lines run this far past the images they join, mm.
 LINE_OVERRUN_MM = 10.0
@@ -37,6 +37,9 @@ LINE_OVERRUN_MM = 10.0
 AREA_MARGIN_MM = 12.0
 #: Images closer than this share one label ("p, f"), mm.
 COINCIDENT_MM = 0.8
+#: Shortest labelled vector a plan draws as a readable length, mm; a shorter one is listed
+#: under the plan as "≈ 0" with its value (DRAWING.md: the smallest labelled vector reads).
+MIN_VECTOR_MM = 3.0
 
 
 @dataclass(frozen=True)
@@ -220,9 +223,11 @@ def plan_area(res, position: int) -> shapely.Polygon:
 
 
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None) -> list[Text]:
+                  upto: int | None = None, leaders: bool = False) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors."""
+    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
+    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
+    image is joined to it by a thin leader (the leaders follow the letters in the list)."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -270,7 +275,71 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
-    return list(place_labels(texts, obstacles, rings=8))
+    placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
+    if not leaders:
+        return placed
+    anchors = [_xy(_image(res, g[0], i)) for g in groups if np.isfinite(_image(res, g[0], i))]
+    return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
+
+
+#: A letter farther than this from its image gets a leader, mm.
+LEADER_MM = 3.0
+
+
+def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
+    """Thin leaders from each image to its letter's box where the letter stands more than
+    `LEADER_MM` off, mm."""
+    out = []
+    for t, xy in zip(texts, anchors):
+        box, point = label_box(t), shapely.Point(xy)
+        if box.distance(point) > LEADER_MM:
+            near = shapely.shortest_line(box.buffer(0.5), point).coords[0]
+            out.append(Polyline((tuple(xy), (near[0], near[1])), layer, "thin"))
+    return out
+
+
+def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
+    """Image target → (the image its vector starts from, the vector's length, mm) of every
+    image of the plan at position number `position` (1…n): a laid-off vector (a normal, a Coriolis
+    component, n₁, k) from its origin, any other image from the pole."""
+    k, i = _kind(res), res.index_of(position)
+    pole = f"{k}:{'p' if k == 'v' else 'π'}"
+    origin = {s.target: s.origin for s in res.steps
+              if isinstance(s, LayOff) and s.target.startswith(k + ":")}
+    out = {}
+    for t in _image_targets(res, position):
+        if t == pole:
+            continue
+        start = origin.get(t, pole)
+        z = _image(res, t, i) - _image(res, start, i)
+        if np.isfinite(z):
+            out[t] = (start, float(abs(z)))
+    return out
+
+
+def near_zero(res, position: int, lang: str) -> list[str]:
+    """The labelled vectors shorter than `MIN_VECTOR_MM` at the plan's scale at position
+    number `position` (1…n), as the course lists them: ``"πs₄ ≈ 0 (0,092 м/с²)"`` (its
+    value is |vector| · μ); the vectors that vanish (under 10⁻⁶ mm) together:
+    ``"pa₄, pb = 0"``."""
+    u = unit("m/s" if _kind(res) == "v" else "m/s²", lang)
+    out, zero = [], []
+    for t, (start, length) in labelled_vectors(res, position).items():
+        if length < MIN_VECTOR_MM:
+            name = subscript(label_of(start)) + subscript(label_of(t))
+            if length < 1e-6:
+                zero.append(name)
+            else:
+                out.append(f"{name} ≈ 0 ({number(length * res.scale, lang, 2)} {u})")
+    return ([", ".join(zero) + " = 0"] if zero else []) + out
+
+
+def _image_targets(res, position: int) -> list[str]:
+    """Targets of the images drawn on the plan at position number `position` (1…n; finite
+    values only)."""
+    k, i = _kind(res), res.index_of(position)
+    return [t for t, z in res.values.items() if t.startswith(k + ":") and not isinstance(z, tuple)
+            and np.isfinite(complex(z[i]))]
 
 
 def plan_title(res, number: int, lang: Language) -> tuple[str, str]:
@@ -305,7 +374,7 @@ def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = P
     """
     drawings = plan_steps(res, position, lang=lang)
     items: list[Primitive] = [p for d in drawings for p in d.items]
-    items += image_letters(res, position, drawings, size_mm=sizes.label_mm)
+    items += image_letters(res, position, drawings, size_mm=sizes.label_mm, leaders=True)
     if title:
         _, _, text_layer = layer_names(_kind(res), position)
         x0, _, _, y1 = _bounds(items)
@@ -313,10 +382,47 @@ def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = P
         items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
                           sizes.title_mm))
         items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
+        items += _near_zero_lines(res, position, lang, items, sizes.label_mm, items[:-2])
     k, i = _kind(res), res.index_of(position)
     images = {t: _image(res, t, i) for d in drawings for t in d.images}
     return make_view(f"plan-{k}-{position}", items, pad_mm=2.0, mu=None,
                      meta={"kind": k, "number": position, "scale": res.scale, "images": images})
+
+
+def _near_zero_lines(res, position: int, lang: str, items, size: float, body) -> list[Text]:
+    """The ≈ 0 list, two entries a line or one: in a corner of the box of the plan's `body`
+    (its drawing without the title) where no line or letter is, so that the plan keeps its
+    size, else under the plan."""
+    listed = near_zero(res, position, lang)
+    if not listed:
+        return []
+    _, _, text_layer = layer_names(_kind(res), position)
+    x0, y0, x1, y1 = _bounds(body)
+    taken = shapely.union_all([_outline(p) for p in items]).buffer(1.0)
+    step = 1.5 * size
+    for per in (2, 1):
+        lines = ["; ".join(listed[j:j + per]) for j in range(0, len(listed), per)]
+        for x, top, anchor in ((x0, y0 + step * len(lines) + 0.5 * size, "start"),
+                               (x1, y0 + step * len(lines) + 0.5 * size, "end"),
+                               (x1, y1, "end")):
+            texts = [Text((x, top - step * (j + 1)), line, text_layer, size, anchor)
+                     for j, line in enumerate(lines)]
+            if not any(label_box(t).intersects(taken) for t in texts):
+                return texts
+    lines = ["; ".join(listed[j:j + 2]) for j in range(0, len(listed), 2)]
+    return [Text((x0, y0 - 2.0 - step * (j + 1)), line, text_layer, size)
+            for j, line in enumerate(lines)]
+
+
+def _outline(p: Primitive):
+    """The shape a primitive covers on the plan, mm."""
+    if isinstance(p, Text):
+        return label_box(p)
+    if isinstance(p, Arrow):
+        return shapely.LineString([p.start, p.end])
+    if isinstance(p, Circle):
+        return shapely.Point(p.centre).buffer(p.radius)
+    return shapely.LineString(p.points)
 
 
 def _bounds(items):
@@ -337,5 +443,5 @@ def _images(res, position: int) -> list[complex]:
                    if t.startswith(k + ":") and not isinstance(z, tuple)]
 
 
-__all__ = ["StepDrawing", "PlanSizes", "plan_steps", "plan_view", "plan_area", "image_letters",
+__all__ = ["StepDrawing", "PlanSizes", "MIN_VECTOR_MM", "labelled_vectors", "near_zero", "plan_steps", "plan_view", "plan_area", "image_letters",
            "plan_title", "layer_names", "extent_mm", "label_box"]
