@@ -238,11 +238,14 @@ def _svg_geometry(svg: str, height: float) -> dict:
 
 def _dxf_geometry(doc) -> dict:
     """The same from a DXF: LINEs and the edges of width-less LWPOLYLINEs, arrowhead
-    outlines on FILL, CIRCLEs, and donuts (disc centre and radius), mm."""
-    out = {"segments": [], "triangles": [], "circles": [], "dots": [], "tapers": []}
+    outlines on FILL, CIRCLEs, donuts (disc centre and radius), and the lines on FILL that
+    fill a solid polygon (``fills``), mm."""
+    out = {"segments": [], "triangles": [], "circles": [], "dots": [], "tapers": [], "fills": []}
     for e in doc.modelspace():
         kind = e.dxftype()
-        if kind == "LINE":
+        if kind == "LINE" and e.dxf.layer == FILL_LAYER:  # the strokes that fill a solid polygon
+            out["fills"].append((np.array(_xy(e.dxf.start)), np.array(_xy(e.dxf.end))))
+        elif kind == "LINE":
             out["segments"].append((np.array(_xy(e.dxf.start)), np.array(_xy(e.dxf.end))))
         elif kind == "CIRCLE":
             out["circles"].append((*_xy(e.dxf.center), e.dxf.radius))
