@@ -49,7 +49,7 @@ from typing import Any, Callable
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.io import finite_number, write_atomic  # noqa: F401  (finite_number: for _number)
+from velplan.io import finite_number, write_atomic
 
 MAX_TRIES = 50
 """Draws per random variant before it is reported as failed."""
@@ -201,7 +201,7 @@ def apply_overrides(mech, overrides: dict[str, Any]):
     for key, raw in overrides.items():
         if key == "\0extra":
             raise VelplanError(f"the row has {raw}")
-        value = _number(key, raw)
+        value = finite_number(raw, key)
         if key == "positions":
             if value != int(value) or value < 1:
                 raise VelplanError(f"positions: must be a whole number ≥ 1, not {raw!r}")
@@ -209,18 +209,6 @@ def apply_overrides(mech, overrides: dict[str, Any]):
             continue
         values[key] = value
     return keys.apply(mech, values), positions
-
-
-def _number(key: str, raw: Any) -> float | int:
-    if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
-        raise VelplanError(f"{key}: {raw!r} is not a number")
-    try:
-        value = float(raw)
-    except ValueError:
-        raise VelplanError(f"{key}: {raw!r} is not a number") from None
-    if not math.isfinite(value):
-        raise VelplanError(f"{key}: {raw!r} is not a finite number")
-    return value
 
 
 def build_variant(v: Variant):
