@@ -67,7 +67,8 @@ def unit(t):
 
 def distance(x, th, x0, th0, size):
     """`triad._distance` of two configurations (inf where not finite)."""
-    d = abs(x - x0) / size + abs(np.angle(np.exp(1j * (th - th0))))
+    turn = th - th0  # the angle of e^{i·turn}, as arctan2 (np.angle would load numba's array library)
+    d = abs(x - x0) / size + abs(np.arctan2(np.sin(turn), np.cos(turn)))
     return d if np.isfinite(d) else np.inf
 
 
