@@ -353,6 +353,7 @@ def _triad_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, a
         w_[9], w_[10], w_[11]
     r_ = np.zeros((4, 3))
     GT, GW, GE, SD = r_[0], r_[1], r_[2], r_[3]
+    C, work = np.zeros(3, np.complex128), np.zeros((4, 3))
     nl = th.shape[0]
     for t in range(m):
         for i in range(3):
@@ -365,7 +366,7 @@ def _triad_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, a
                 BASE[i] = Q[i] + 1j * f[12 + i] * U[i]
         xr, thr = aux[g, 0, i0 + t] + 1j * aux[g, 1, i0 + t], aux[g, 2, i0 + t]
         theta, w, e, cond, closed, redo = triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, f[15],
-                                                   f[16], J, VJ, AJ, D, GV, GA, SD, COR)
+                                                   f[16], J, VJ, AJ, D, GV, GA, SD, COR, C, work)
         if redo:
             aux[g, 3, i0 + t] = 1.0
         for i in range(3):
@@ -477,8 +478,8 @@ def _env() -> dict:
            "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP, "OP_TRIAD": OP_TRIAD}
     for name in CORES:
         env[name] = _jit(getattr(G, name), env, name)
-    for name in TRIAD_CORES:
-        env[name] = _jit(getattr(T, name), env, name)
+    for name in TRIAD_CORES:  # inlined: a call per angle would pass (and count references to) a dozen arrays
+        env[name] = _jit(getattr(T, name), env, name, inline="always")
     env.update({k: getattr(T, k) for k in ("NEWTON_STEPS", "SETTLED", "QUICK_MOVE", "QUICK_CONDITION")})
     for f in (_put, _turn, _glide, _link, _mark):
         env[f.__name__[1:]] = _jit(f, env, f.__name__)

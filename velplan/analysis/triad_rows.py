@@ -67,8 +67,10 @@ def unit(t):
 
 def distance(x, th, x0, th0, size):
     """`triad._distance` of two configurations (inf where not finite)."""
-    turn = th - th0  # the angle of e^{i·turn}, as arctan2 (np.angle would load numba's array library)
-    d = abs(x - x0) / size + abs(np.arctan2(np.sin(turn), np.cos(turn)))
+    turn = th - th0  # the angle of e^{i·turn} (np.angle would load numba's array library)
+    if not abs(turn) < 3.0:
+        turn = np.arctan2(np.sin(turn), np.cos(turn))
+    d = abs(x - x0) / size + abs(turn)
     return d if np.isfinite(d) else np.inf
 
 
@@ -79,7 +81,6 @@ def triad_newton(c0, c1, c2, u0, u1, u2, rods, lengths, r0, r1, r2, xr, thr, ori
     joints' offsets from J_r in the base link's frame."""
     y, th = xr - origin, thr
     moved = np.nan
-    cond = 0.0
     for _ in range(NEWTON_STEPS):
         e = unit(th)
         f0, a0, b0, k0 = closure_row(rods[0], c0, u0, lengths[0], y, r0 * e)
@@ -88,9 +89,9 @@ def triad_newton(c0, c1, c2, u0, u1, u2, rods, lengths, r0, r1, r2, xr, thr, ori
         dx, dy, dt = cramer3(a0, b0, k0, a1, b1, k1, a2, b2, k2, -f0, -f1, -f2)
         y, th = y + dx + 1j * dy, th + dt
         moved = abs(dx) + abs(dy) + abs(dt) * size
-        cond = condition3(a0, b0, k0, a1, b1, k1, a2, b2, k2, size)
         if not moved > SETTLED * size:
             break
+    cond = condition3(a0, b0, k0, a1, b1, k1, a2, b2, k2, size)  # the last step's rows
     x = y + origin
     ok = moved <= SETTLED * size and distance(x, th, xr, thr, size) <= QUICK_MOVE and cond >= QUICK_CONDITION
     return x, th, ok
@@ -134,28 +135,24 @@ def special_point(ja, da, jb, db):
     return ja + da * tcross(jb - ja, db) / tcross(da, db)
 
 
-def triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, size, scale, J, VJ, AJ, D, GV, GA, SD, COR):
+def triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, size, scale, J, VJ, AJ, D, GV, GA, SD, COR,
+             C, work):
     """The triad at one position from the tracked configuration (J_r ``xr``, θ ``thr``; NaN
     outside the branch): fills the joints J, VJ, AJ, the leads' normals D, the guides' motions
     at the joints GV, GA, the slide speeds SD and Coriolis terms COR (arrays of 3), and returns
-    (θ, ω, ε, condition, closed, redo). Where Newton's correction is ambiguous or the
+    (θ, ω, ε, condition, closed, redo); ``C`` (3, complex) and ``work`` (4, 3) are scratch. Where Newton's correction is ambiguous or the
     position lies off the branch, the joints are NaN; ``redo`` where the position is on the branch
     but the correction ambiguous (`triad._branch` then searches all roots: the caller's numpy engine)."""
     origin = Q[ref]
-    C = BASE - origin
     for i in range(3):
-        if rods[i]:
-            C[i] = Q[i] - origin
+        C[i] = (Q[i] if rods[i] else BASE[i]) - origin
     x, theta, ok = triad_newton(C[0], C[1], C[2], U[0], U[1], U[2], rods, lengths, R[0], R[1], R[2],
                                 xr, thr, origin, size)
     closed = ok and np.isfinite(thr)
     if not closed:
         x, theta = complex(np.nan, np.nan), np.nan
     e = unit(theta)
-    A3 = np.empty(3)
-    B3 = np.empty(3)
-    M3 = np.empty(3)
-    H3 = np.empty(3)
+    A3, B3, M3, H3 = work[0], work[1], work[2], work[3]
     for i in range(3):
         J[i] = x + R[i] * e
         D[i], M3[i], H3[i], GV[i], GA[i] = lead_velocity_row(rods[i], J[i], x, Q[i], QV[i], QA[i], U[i], GW[i], GE[i])
