@@ -3,7 +3,9 @@ position by numba (``pip install velplan[fast]``), on several threads, in one pa
 
 The mechanism is encoded as a small program — one row per crank, group and link point, each
 an opcode, register slots and real parameters — and a kernel interprets that program at every
-crank angle. Each kind of row (crank, link point, RRR, RRP, RPR, PRP, RPP) has its own small
+crank angle. A class III group's row starts from its branch over the turn, tracked once by the
+numpy engine and given per angle (``aux``, `triad_aux`); an angle it finds ambiguous is solved
+again by numpy. Each kind of row (crank, link point, RRR, RRP, RPR, PRP, RPP, triad) has its own small
 function, compiled and cached on disk by numba on its own; the interpreter links them (all
 compiled in ≈ 10 s, once per machine). A new process loads the interpreter's machine code
 without numba's start-up of its whole compiler (`_load_cached`: ≈ 0.05 s, against ≈ 0.4 s for
@@ -409,7 +411,8 @@ def _mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit):
 def _chunks(u0, u1, ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, zero, limit, aux):
     """Interpret the program over the chunks u0 … u1 − 1 of the angles ``phi``; write Z (k, P, n)
     positions, velocities, accelerations; R (k, L, n) angles, ω, ε; S (S, k, n) slides; C (G, n)
-    conditions and ``valid`` (n,) (`_mark`); k = Z.shape[0] is the order + 1.
+    conditions and ``valid`` (n,) (`_mark`); k = Z.shape[0] is the order + 1. ``aux`` (G, 4, n):
+    the class III groups' branches in, their flags of ambiguous angles out (`_triad_rows`).
 
     The angles are V variants × ``nper`` angles (variant-major); variant v has the parameters
     ``par[v]`` (m, NF), ground points ``ground[v]`` and crank rates ``w1s[v]``, ``e1s[v]``. A

@@ -179,8 +179,9 @@ def _auto_compiled(n: int) -> bool:
 
 def _solve_compiled(prep: Prepared, phi, w1, e1, order, on_failure, engine, mech) -> Kinematics | None:
     """The compiled engine's solution of ``mech`` (prepared as ``prep``), or None where it does not
-    apply: a class III group (with a warning when ``engine="compiled"`` was asked for), solved by
-    the numpy engine instead."""
+    apply: a class III group without a branch the kernel can follow (with a warning when
+    ``engine="compiled"`` was asked for), solved by the numpy engine instead. A class III group's
+    angles the kernel finds ambiguous are solved again by the numpy engine."""
     compiled = _compiled()
     tracks = prep.tracks(solve) if prep.class_iii else None
     lay = prep.layout(tracks)
