@@ -132,7 +132,8 @@ def rod_link(j, vj, aj, qp, qv, qa):
 
 def special_point(ja, da, jb, db):
     """Where the line through ``ja`` along ``da`` crosses the one through ``jb`` along ``db``."""
-    return ja + da * tcross(jb - ja, db) / tcross(da, db)
+    s = tcross(jb - ja, db) / tcross(da, db)  # real: inf/NaN for parallel lines, as numpy (no complex division)
+    return ja + da * s
 
 
 def triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, size, scale, J, VJ, AJ, D, GV, GA, SD, COR,
