@@ -111,3 +111,12 @@ def test_the_scalar_formulas_match_the_array_ones():
     np.testing.assert_allclose(np.linalg.solve(m, rhs), y, rtol=1e-12)
     cond = triad._condition([tuple(np.array([c]) for c in r) for r in rows], 2.0)[0]
     assert triad_rows.condition3(*rows[0], *rows[1], *rows[2], 2.0) == pytest.approx(cond, rel=1e-15)
+
+
+def test_parallel_lead_lines_give_no_special_point_and_no_exception():
+    """Where the pair's lines are parallel the special point is not finite (numpy's inf/NaN),
+    not a ZeroDivisionError inside the kernel."""
+    special = compiled._env()["special_point"]
+    k = special(0j, 1 + 0j, 1j, 2 + 0j)
+    assert not np.isfinite(k.real) or not np.isfinite(k.imag)
+    assert special(0j, 1 + 0j, 1 + 1j, 1j) == pytest.approx(1 + 0j)
