@@ -18,6 +18,7 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
 
     python benchmarks/bench_small.py                # ≈ 3 min on 2 cores
     python benchmarks/bench_small.py --quick        # fewer rounds, no 10⁶, no cold commands
+    python benchmarks/bench_small.py --triad-only --clock cpu   # the class III triad at 10⁵ only
     git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
 
 Writes ``benchmarks/results/small.md``.
@@ -113,6 +114,7 @@ CLOCK = {"wall": time.perf_counter, "cpu": time.process_time}
 """``--clock``: wall time, or this process's CPU time (all its threads: steadier on a shared
 machine; the compiled engine runs on one thread up to 4096 angles, pylinkage always)."""
 _clock = CLOCK["wall"]
+_clock_name = "wall"
 
 
 def per_call(fn, budget: float) -> float:
@@ -217,6 +219,65 @@ def large_table(before: str, pairs: int) -> str:
                  rows) + f"\n\nLoad at the end: {load_average()}."
 
 
+TRIADS = ("triad-rocker", "triad-press")
+TRIAD_N = 100_000
+TRIAD_HEADING = "## The class III triad per position against the four-bar"
+
+
+def triad_rows(count: int) -> list[list[str]]:
+    """Per position at `TRIAD_N` angles: the four-bar and the triads, numpy and compiled, every
+    contender in turn each round (one call each, the order rotated); each triad's median per-round
+    ratio to the four-bar on the same engine, and its compiled time over the four-bar's numpy time."""
+    import velplan
+
+    phi = grid(TRIAD_N)
+    calls = {}
+    for name in ("four-bar", *TRIADS):
+        mech = velplan.load(name)
+        for engine in ("numpy", "compiled"):
+            calls[(name, engine)] = lambda m=mech, e=engine: velplan.solve(m, phi, engine=e)
+            calls[(name, engine)]()
+    t = rounds(calls, count, 0.0)
+    rows = []
+    for name in ("four-bar", *TRIADS):
+        cells = [name]
+        for engine in ("numpy", "compiled"):
+            cells += [f"{statistics.median(t[(name, engine)]) / TRIAD_N * 1e6:.3g}",
+                      _ratio_cell(t[(name, engine)], t[("four-bar", engine)])]
+        cells += [_ratio_cell(t[(name, "compiled")], t[("four-bar", "numpy")]), load_average()]
+        rows.append(cells)
+        print(rows[-1], flush=True)
+    return rows
+
+
+def triad_table(count: int) -> str:
+    head = ["mechanism", "numpy µs/position", "÷ four-bar (numpy)", "compiled µs/position", "÷ four-bar (compiled)",
+            "compiled ÷ four-bar numpy", "load"]
+    start = load_average()
+    body = table(head, triad_rows(count))
+    return f"""{TRIAD_HEADING}
+
+{TRIAD_N:,} positions (positions, velocities, accelerations), {_clock_name} clock, the median of {count}
+alternating rounds in one process (one call per contender per round, the order rotated); ratios:
+the median of the per-round ratios (lowest–highest). Load {start} at the start.
+
+{body}
+"""
+
+
+def splice_triad(text: str) -> None:
+    """Put the triad table ``text`` into ``small.md`` in place of its section (or at its end)."""
+    path = RESULTS / "small.md"
+    old = path.read_text("utf-8") if path.exists() else ""
+    if TRIAD_HEADING in old:
+        head, rest = old.split(TRIAD_HEADING, 1)
+        tail = rest[rest.index("\n## "):] if "\n## " in rest else ""
+        new = head + text.rstrip("\n") + "\n" + tail
+    else:
+        new = old.rstrip("\n") + "\n\n" + text
+    write(path, new)
+
+
 def _cold(args, cwd: str) -> float:
     """Wall seconds of one whole process, its bytecode cached outside the tree (as an installed
     package's is)."""
@@ -261,12 +322,17 @@ def main() -> None:
     ap.add_argument("--pairs", type=int, default=5, help="cold runs per command")
     ap.add_argument("--clock", choices=tuple(CLOCK), default="wall", help="what a call's time is")
     ap.add_argument("--no-cold", action="store_true", help="leave out the cold commands")
+    ap.add_argument("--triad-only", action="store_true",
+                    help="only the class III triad against the four-bar, put into small.md in place")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
-    global _clock
-    _clock = CLOCK[a.clock]
+    global _clock, _clock_name
+    _clock, _clock_name = CLOCK[a.clock], a.clock
     count = 5 if a.quick else a.rounds
+    if a.triad_only:
+        splice_triad(triad_table(count))
+        return
     sizes = SIZES if a.quick else (*SIZES, HUGE)
     start = f"load {load_average()} at the start"
     switch = switch_point()
@@ -299,6 +365,7 @@ calls are the compiled kernel's, faster still).
 
 {large_table(a.before, a.pairs)}
 """
+    text += "\n" + triad_table(count)
     if cold:
         text += f"""
 ## Cold commands against the floor `python -c "import numpy, shapely"`

@@ -139,12 +139,12 @@ def test_the_output_layout_is_decided_once_and_results_name_the_same_rows():
     assert a.link_origins == {"1": "O", "2": "A", "3": "D"}
 
 
-def test_time_on_a_class_iii_group_does_not_count_towards_loading_the_kernel(monkeypatch):
-    """The compiled engine hands a triad to numpy: solving one is no reason to load it."""
+def test_time_on_a_class_iii_group_counts_towards_loading_the_kernel(monkeypatch):
+    """The compiled engine covers a triad: the numpy engine's time on one counts as on any other."""
     monkeypatch.setattr(solver, "_AUTO_ON", [False])
     monkeypatch.setattr(solver, "_NUMPY_SECONDS", [0.0])
     mech = velplan.load("triad-rocker")
     velplan.solve(mech, np.linspace(0, 1, 12))
-    assert solver._NUMPY_SECONDS[0] == 0.0 and prepared(mech).class_iii
-    velplan.solve(velplan.load("four-bar"), np.linspace(0, 1, 12), engine="auto")
-    assert solver._NUMPY_SECONDS[0] > 0.0 or solver._AUTO_ON[0]
+    assert (solver._NUMPY_SECONDS[0] > 0.0 or solver._AUTO_ON[0]) and prepared(mech).class_iii
+
+

@@ -3,7 +3,9 @@ position by numba (``pip install velplan[fast]``), on several threads, in one pa
 
 The mechanism is encoded as a small program — one row per crank, group and link point, each
 an opcode, register slots and real parameters — and a kernel interprets that program at every
-crank angle. Each kind of row (crank, link point, RRR, RRP, RPR, PRP, RPP) has its own small
+crank angle. A class III group's row starts from its branch over the turn, tracked once by the
+numpy engine and given per angle (``aux``, `triad_aux`); an angle it finds ambiguous is solved
+again by numpy. Each kind of row (crank, link point, RRR, RRP, RPR, PRP, RPP, triad) has its own small
 function, compiled and cached on disk by numba on its own; the interpreter links them (all
 compiled in ≈ 10 s, once per machine). A new process loads the interpreter's machine code
 without numba's start-up of its whole compiler (`_load_cached`: ≈ 0.05 s, against ≈ 0.4 s for
@@ -28,22 +30,26 @@ from pathlib import Path
 import numpy as np
 
 from velplan.analysis import groups as G
+from velplan.analysis import triad_rows as T
 from velplan.analysis import blocks
 from velplan.analysis.kinematics import SINGULAR_BOUND, Kinematics, length_scale
 from velplan.errors import VelplanError
-from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, kind_entry
+from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Crank, LinkPoint, Mechanism, Triad, kind_entry
 from velplan.mechanism.structure import schedule
 
 
-CRANK, POINT, OP_RRR, OP_RRP, OP_RPR, OP_PRP, OP_RPP = range(7)
-KINDS = ("crank", "point", "rrr", "rrp", "rpr", "prp", "rpp")
+CRANK, POINT, OP_RRR, OP_RRP, OP_RPR, OP_PRP, OP_RPP, OP_TRIAD = range(8)
+KINDS = ("crank", "point", "rrr", "rrp", "rpr", "prp", "rpp", "triad")
 """The opcodes' names, in opcode order: the row function of kind ``x`` is ``_x_rows``."""
-NI, NF = 13, 4
+NI, NF = 26, 17
 """Integer slots and real parameters per program row (unused ones are −1 / 0)."""
 CHUNK = 256
 """Crank angles one thread solves at a time (its slices of the outputs stay in the CPU's caches)."""
 CORES = ("cross", "solve2", "cis", "direction", "wrap_angle", "carry", "crank_tip", "link_point", "guide_line",
          "sqrt_clamped", "rrr", "rrp", "rpr", "prp", "rpp")
+TRIAD_CORES = ("tdot", "tcross", "cramer3", "condition3", "closure_row", "unit", "distance", "triad_newton",
+               "lead_velocity_row", "lead_acceleration_rhs", "rod_link", "special_point", "triad_at")
+"""The class III group's scalar formulas (`velplan.analysis.triad_rows`), compiled in this order."""
 ROUND_OFF = 64 * float(np.finfo(float).eps)
 """The factor of `velplan.analysis.kinematics.velocity_bound`: 64·ε."""
 
@@ -158,9 +164,37 @@ def _row_rpp(item, P, L, S, Gi, opt, origin, scale):
                     Gi[item.name]], [g.angle, g.offset, item.slot_angle]
 
 
-#: The compiled engine's lookup by group kind (a `tracked` kind, the triad, runs on the numpy
-#: engine: `_layout` sends it there before any row is made).
-_ROWS = {RRR: _row_rrr, RRP: _row_rrp, RPR: _row_rpr, PRP: _row_prp, RPP: _row_rpp}
+def _row_triad(item, P, L, S, Gi, opt, origin, scale):
+    """A class III group: its leads' known points, guide links (−1: a rod), joints, links,
+    coincident points, special point and slides; reals: the joints' offsets from the first rod
+    lead's inner joint, the rods' lengths, the guides' angles and offsets, the group's size and
+    the length scale. The special point's pair (slots 23, 24) is set by `_layout` from the track."""
+    from velplan.analysis import triad
+
+    origin[item.base] = item.joints[0]
+    local = item.local()
+    ref = next(i for i, lead in enumerate(item.leads) if not lead.slider)
+    rel = [z - local[ref] for z in local]
+    ints, guides, slides, coinc = [], [], [], []
+    for lead in item.leads:
+        ints.append(P[lead.guide.through] if lead.slider else P[lead.joint])
+        guides.append(L[lead.guide.link] if lead.slider else -1)
+        slides.append(S[G.slide_name(lead.link, lead.guide.link)] if lead.slider else -1)
+        coinc.append(opt(lead.coincident) if lead.slider else -1)
+    for lead, name in zip(item.leads, item.joints):
+        origin[lead.link] = name if lead.slider else lead.joint
+    reals = [c for z in rel for c in (z.real, z.imag)]
+    reals += [0.0 if lead.slider else lead.length for lead in item.leads]
+    reals += [lead.guide.angle if lead.slider else 0.0 for lead in item.leads]
+    reals += [lead.guide.offset if lead.slider else 0.0 for lead in item.leads]
+    return OP_TRIAD, [*ints, *guides, *(P[j] for j in item.joints), L[item.base], *(L[lead.link] for lead in item.leads),
+                      *coinc, P[item.special_name], *slides, Gi[item.name], -1, -1, -1, ref], \
+        [*reals, triad._size(item), scale]
+
+
+#: The compiled engine's lookup by group kind (a `tracked` kind, the triad, needs its branch
+#: over the turn: `_layout` sends it to the numpy engine when none is given).
+_ROWS = {RRR: _row_rrr, RRP: _row_rrp, RPR: _row_rpr, PRP: _row_prp, RPP: _row_rpp, Triad: _row_triad}
 
 # ---- the kernel ------------------------------------------------------------------------------
 # Each kind of program row has its own function over the angles i0 … i0+m−1 of a chunk, all with
@@ -207,7 +241,7 @@ def _link(th, om, ep, lk, zero):
     return zero, zero, zero
 
 
-def _crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """The crank: its tip, and its link at the angle φ, ω1, ε1."""
     q, x, lk = o[1], o[2], o[3]
     for t in range(m):
@@ -216,7 +250,7 @@ def _crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         turn(th, om, ep, lk, t, k, phi[i0 + t], w1, e1)
 
 
-def _point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """A point of a link, ``f[0]`` along its reference direction from its origin and ``f[1]`` to its left."""
     lk, q, x = o[1], o[2], o[3]
     lt, lw, le = link(th, om, ep, lk, zero)
@@ -225,7 +259,7 @@ def _point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         put(p, v, a, x, t, k, c, cv, ca)
 
 
-def _rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """An RRR group on the joints o[1], o[2]: its middle joint and its two links."""
     A, D, x, l1, l2, g = o[1], o[2], o[3], o[4], o[5], o[6]
     for t in range(m):
@@ -237,7 +271,7 @@ def _rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         cn[g, t] = cond if closed else np.nan
 
 
-def _rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """An RRP group: the slider on a guide of link o[3], the rod, the slide."""
     A, Q, gl, x, xc, rod, sld, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9]
     gt, gw, ge = link(th, om, ep, gl, zero)
@@ -253,7 +287,7 @@ def _rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         cn[g, t] = cond if closed else np.nan
 
 
-def _rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """An RPR group: the block on the bar through the pivot o[2], turning with it; the slide."""
     A, Q, xc, blk, bar, s_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
     for t in range(m):
@@ -267,7 +301,7 @@ def _rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         cn[g, t] = cond if closed else np.nan
 
 
-def _prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """A PRP group: the joint on two guides (of links o[2], o[4]), both slides."""
     Q1, g1, Q2, g2, x, xc1, xc2 = o[1], o[2], o[3], o[4], o[5], o[6], o[7]
     m1, m2, s1_, s2_, g = o[8], o[9], o[10], o[11], o[12]
@@ -289,7 +323,7 @@ def _prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         cn[g, t] = cond if closed else np.nan
 
 
-def _rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
+def _rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
     """An RPP group: the block in the runner's slot, the runner on a guide of link o[3]; both slides."""
     B, Q, gl, xc, xk, blk, run, sb_, sr_, g = o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]
     gt, gw, ge = link(th, om, ep, gl, zero)
@@ -306,6 +340,55 @@ def _rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k):
         glide(S, sb_, i0 + t, k, u, ud, udd)
         glide(S, sr_, i0 + t, k, s, sd, sdd)
         cn[g, t] = sine if closed else np.nan
+
+
+def _triad_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux):
+    """A class III group (`velplan.analysis.triad_rows.triad_at`) from its branch over the turn,
+    ``aux[g, 0:3]`` (J_r, θ at each angle; NaN off the branch); ``aux[g, 3]`` is set to 1 where
+    the correction is ambiguous, for the numpy engine to solve that angle again."""
+    g, ref, pa, pb = o[21], o[25], o[23], o[24]
+    rods = np.array([o[4] < 0, o[5] < 0, o[6] < 0])
+    lengths = np.array([f[6], f[7], f[8]])
+    R = np.array([f[0] + 1j * f[1], f[2] + 1j * f[3], f[4] + 1j * f[5]])
+    w_ = np.zeros((12, 3), np.complex128)  # the leads' known motions and the group's, lead by lead
+    Q, QV, QA, U, BASE, J, VJ, AJ, D, GV, GA, COR = w_[0], w_[1], w_[2], w_[3], w_[4], w_[5], w_[6], w_[7], w_[8], \
+        w_[9], w_[10], w_[11]
+    r_ = np.zeros((4, 3))
+    GT, GW, GE, SD = r_[0], r_[1], r_[2], r_[3]
+    C, work = np.zeros(3, np.complex128), np.zeros((4, 3))
+    nl = th.shape[0]
+    for t in range(m):
+        for i in range(3):
+            q = o[1 + i]
+            Q[i], QV[i], QA[i] = p[q, t], v[q, t], a[q, t]
+            if not rods[i]:
+                gt, gw, ge = link(th, om, ep, o[4 + i] if o[4 + i] < nl else nl, zero)
+                GT[i], GW[i], GE[i] = gt[t], gw[t], ge[t]
+                U[i] = cis(GT[i] + f[9 + i])
+                BASE[i] = Q[i] + 1j * f[12 + i] * U[i]
+        xr, thr = aux[g, 0, i0 + t] + 1j * aux[g, 1, i0 + t], aux[g, 2, i0 + t]
+        theta, w, e, cond, closed, redo = triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, f[15],
+                                                   f[16], J, VJ, AJ, D, GV, GA, SD, COR, C, work)
+        if redo:
+            aux[g, 3, i0 + t] = 1.0
+        for i in range(3):
+            put(p, v, a, o[7 + i], t, k, J[i], VJ[i], AJ[i])
+            if rods[i]:
+                lt, lw, le = rod_link(J[i], VJ[i], AJ[i], Q[i], QV[i], QA[i])
+                turn(th, om, ep, o[11 + i], t, k, lt, lw, le)
+            else:
+                turn(th, om, ep, o[11 + i], t, k, GT[i] + f[9 + i], GW[i], GE[i])
+                sdd = tdot(AJ[i] - GA[i] - COR[i], U[i])
+                glide(S, o[18 + i], i0 + t, k, tdot(J[i] - BASE[i], U[i]), SD[i], sdd)
+                if o[14 + i] >= 0:
+                    put(p, v, a, o[14 + i], t, k, J[i], GV[i], GA[i])
+        turn(th, om, ep, o[10], t, k, theta, w, e)
+        da = J[pa] - Q[pa] if rods[pa] else 1j * U[pa]
+        db = J[pb] - Q[pb] if rods[pb] else 1j * U[pb]
+        K = special_point(J[pa], da, J[pb], db)
+        kv, ka = carry(J[0], VJ[0], AJ[0], w, e, K)
+        put(p, v, a, o[17], t, k, K, kv, ka)
+        cn[g, t] = cond if closed else np.nan
 
 
 def _mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit):
@@ -325,10 +408,11 @@ def _mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit):
         valid[i0 + t] = ok and (k < 2 or ROUND_OFF * (1.0 + s) <= limit)
 
 
-def _chunks(u0, u1, ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, zero, limit):
+def _chunks(u0, u1, ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, zero, limit, aux):
     """Interpret the program over the chunks u0 … u1 − 1 of the angles ``phi``; write Z (k, P, n)
     positions, velocities, accelerations; R (k, L, n) angles, ω, ε; S (S, k, n) slides; C (G, n)
-    conditions and ``valid`` (n,) (`_mark`); k = Z.shape[0] is the order + 1.
+    conditions and ``valid`` (n,) (`_mark`); k = Z.shape[0] is the order + 1. ``aux`` (G, 4, n):
+    the class III groups' branches in, their flags of ambiguous angles out (`_triad_rows`).
 
     The angles are V variants × ``nper`` angles (variant-major); variant v has the parameters
     ``par[v]`` (m, NF), ground points ``ground[v]`` and crank rates ``w1s[v]``, ``e1s[v]``. A
@@ -351,19 +435,21 @@ def _chunks(u0, u1, ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ze
             o, f = ops[r], par[vi, r]
             op = o[0]
             if op == CRANK:
-                crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                crank_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             elif op == POINT:
-                point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                point_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             elif op == OP_RRR:
-                rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                rrr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             elif op == OP_RRP:
-                rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                rrp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             elif op == OP_RPR:
-                rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                rpr_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
+            elif op == OP_TRIAD:
+                triad_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             elif op == OP_PRP:
-                prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                prp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
             else:
-                rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k)
+                rpp_rows(o, f, i0, m, phi, w1, e1, p, v, a, th, om, ep, S, cn, zero, k, aux)
         mark(p, v, a, th, om, ep, cn, valid, i0, m, k, limit)
 
 
@@ -392,9 +478,12 @@ def _env() -> dict:
     if not available():
         raise VelplanError("the compiled engine needs numba: pip install numba (in a checkout: pip install '.[fast]')")
     env = {"__name__": __name__, "np": np, "CHUNK": CHUNK, "ROUND_OFF": ROUND_OFF, "CRANK": CRANK, "POINT": POINT,
-           "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP}
+           "OP_RRR": OP_RRR, "OP_RRP": OP_RRP, "OP_RPR": OP_RPR, "OP_PRP": OP_PRP, "OP_TRIAD": OP_TRIAD}
     for name in CORES:
         env[name] = _jit(getattr(G, name), env, name)
+    for name in TRIAD_CORES:  # inlined: a call per angle would pass (and count references to) a dozen arrays
+        env[name] = _jit(getattr(T, name), env, name, inline="always")
+    env.update({k: getattr(T, k) for k in ("NEWTON_STEPS", "SETTLED", "QUICK_MOVE", "QUICK_CONDITION")})
     for f in (_put, _turn, _glide, _link, _mark):
         env[f.__name__[1:]] = _jit(f, env, f.__name__)
     return env
@@ -444,15 +533,21 @@ def _load_cached(kernel, args: tuple) -> None:
         return
 
 
-def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid) -> None:
+NO_AUX = np.zeros((0, 4, 1))
+"""``aux`` of a program without class III groups."""
+
+
+def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, aux=None) -> None:
     """Run the program (`_chunks`' arguments from ``ops`` on) over every angle: on the calling
     thread up to `SERIAL` angles, else in ``numba.get_num_threads()`` equal shares of the chunks,
-    one on the calling thread and the others on `_pool`'s."""
+    one on the calling thread and the others on `_pool`'s. ``aux`` (G, 4, n): each class III
+    group's branch at the angles (`triad_aux`)."""
     import numba
 
     k = kernel()
     units = par.shape[0] * ((nper + CHUNK - 1) // CHUNK)
-    args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, SINGULAR_BOUND)
+    args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, SINGULAR_BOUND,
+            NO_AUX if aux is None else aux)
     if not getattr(k, "overloads", True):  # a plain function under NUMBA_DISABLE_JIT
         _load_cached(k, (0, units, *args))
     if phi.shape[0] <= SERIAL:
@@ -476,7 +571,7 @@ def fingerprint() -> str:
     """A digest of the source the kernels are compiled from (this module and the closed forms)
     and of the numba version: it names their cache files, so that a change makes new ones."""
     h = hashlib.sha256(_numba_version().encode())
-    for module in (__file__, G.__file__):
+    for module in (__file__, G.__file__, T.__file__):
         h.update(Path(module).read_bytes())
     return h.hexdigest()[:16]
 
@@ -537,6 +632,8 @@ class Layout:
     names: dict
     sizes: tuple[int, int, int, int]
     """Points, links, slides, groups."""
+    tracked: tuple = ()
+    """The class III groups the kernel solves from their branches (`triad_aux`)."""
 
 
 _LAYOUTS: dict = {}
@@ -544,13 +641,15 @@ _LAYOUTS: dict = {}
 _LAYOUTS_LOCK = threading.Lock()
 
 
-def layout(mech: Mechanism, points) -> Layout:
+def layout(mech: Mechanism, points, tracks: dict | None = None) -> Layout:
     """The `Layout` of ``mech`` solving ``points`` (None: all), memoised by the mechanism's numbers
-    and names; ``triad`` names its first class III group, which the kernel does not cover."""
-    key = (mech.ground, mech.crank, mech.groups, mech.points, None if points is None else tuple(points))
+    and names; ``tracks``: each class III group's branch over the turn (`velplan.analysis.triad.track`),
+    without which ``triad`` names the first one, which the kernel then does not cover."""
+    key = (mech.ground, mech.crank, mech.groups, mech.points, None if points is None else tuple(points),
+           tracks is not None)
     hit = _LAYOUTS.get(key)
     if hit is None:
-        hit = _layout(mech, key[-1])
+        hit = _layout(mech, key[-2], tracks)
         with _LAYOUTS_LOCK:  # solves from several threads: evict and add one at a time
             if len(_LAYOUTS) >= 32:
                 _LAYOUTS.pop(next(iter(_LAYOUTS)), None)
@@ -558,42 +657,85 @@ def layout(mech: Mechanism, points) -> Layout:
     return hit
 
 
-def _layout(mech: Mechanism, points) -> Layout:
+def _layout(mech: Mechanism, points, tracks=None) -> Layout:
     items = schedule(mech) if points is None else blocks.needed_items(mech, points)
     triad = next((g.name for g in items if getattr(g, "tracked", False)), None)
-    if triad is not None:
+    if triad is not None and (tracks is None or any(np.ndim(tracks[g.name].pair) != 1 for g in items
+                                                    if getattr(g, "tracked", False))):
         return Layout(items, triad, None, None, None, {}, (0, 0, 0, 0))
     scale = length_scale(mech)
     # the numpy engine on one angle fixes the outputs' names, order and link origins
-    st, conditions = blocks.solve_block(mech, np.zeros(1), 1.0, 0.0, scale, "nan", items)
+    st, conditions = blocks.solve_block(mech, np.zeros(1), 1.0, 0.0, scale, "nan", items, tracks)
     pts, links, slides = list(st.points), [k for k in st.links if k != GROUND], list(st.slides)
     ops, par, ground = encode(mech, pts, links, slides, list(conditions), scale, items)
+    for r, item in enumerate(items):  # Assur's special point: the pair of lead lines the branch chose
+        if getattr(item, "tracked", False):
+            ops[r, 23:25] = tracks[item.name].pair
     names = {"point_index": {k: i for i, k in enumerate(pts)}, "link_index": {k: i for i, k in enumerate(links)},
              "link_origins": {k: st.links[k].origin for k in links},
              "slide_index": {k: i for i, k in enumerate(slides)},
              "group_index": {k: i for i, k in enumerate(conditions)}}
     sizes = (len(pts), len(links), len(slides), len(conditions))
-    return Layout(items, None, ops, par[None], ground[None], names, sizes)
+    tracked = tuple(g.name for g in items if getattr(g, "tracked", False))
+    return Layout(items, None, ops, par[None], ground[None], names, sizes, tracked)
+
+
+def triad_aux(lay: Layout, tracks: dict | None, phi: np.ndarray) -> np.ndarray | None:
+    """The kernel's ``aux`` (G, 4, n): for each class III group (row = its group index) the
+    tracked branch's J_r (real, imaginary) and θ at the angles ``phi``, NaN off the branch
+    (`velplan.analysis.triad.Track.reference`); row 3 is the kernel's flag of an angle to solve
+    again. None without class III groups."""
+    if not lay.tracked:
+        return None
+    aux = np.zeros((lay.sizes[3], 4, phi.shape[0]))
+    for name in lay.tracked:
+        x, th, inside = tracks[name].reference(phi)
+        row = aux[lay.names["group_index"][name]]
+        row[0], row[1], row[2] = x.real, x.imag, np.where(inside, th, np.nan)
+    return aux
 
 
 def solve(lay: Layout, mech: Mechanism, phi: np.ndarray, w1: float, e1: float, order: int,
-          shift: complex = 0j) -> Kinematics:
+          shift: complex = 0j, tracks: dict | None = None, again=None) -> Kinematics:
     """`solver.solve` of ``mech`` (its `Layout` ``lay``) at the angles ``phi`` (rad) and one crank
     speed ``w1`` (rad/s) and acceleration ``e1`` (rad/s²), derivatives up to ``order``: the
     outputs are allocated for that order only, and the kernel writes nothing above it. ``shift``
-    (m, x + iy) is added to the positions (``lay`` was made about the crank's pivot)."""
+    (m, x + iy) is added to the positions (``lay`` was made about the crank's pivot).
+    ``tracks``: the class III groups' branches (`layout`); ``again(idx)`` solves the angles
+    ``phi[idx]`` where a branch is ambiguous (near another assembly) with the numpy engine, whose
+    `Kinematics` replaces the kernel's there."""
     n, k = phi.shape[0], order + 1
     P, L, S, G_ = lay.sizes
     z, rates, slides = np.empty((k, P, n), dtype=complex), np.empty((k, L, n)), np.empty((S, k, n))
     condition, valid = np.empty((G_, n)), np.empty(n, dtype=bool)
-    run(lay.ops, lay.par, lay.ground, np.ascontiguousarray(phi), np.array([float(w1)]), np.array([float(e1)]), n,
-        z, rates, slides, condition, valid)
+    phi = np.ascontiguousarray(phi)
+    aux = triad_aux(lay, tracks, phi)
+    run(lay.ops, lay.par, lay.ground, phi, np.array([float(w1)]), np.array([float(e1)]), n,
+        z, rates, slides, condition, valid, aux)
+    redo = np.zeros(0, dtype=np.intp) if aux is None else np.flatnonzero(aux[:, 3].any(axis=0))
     if shift:
         z[0] += shift
     xy = z.view(float).reshape(k, P, n, 2).transpose(0, 2, 1, 3)
     rates = rates.transpose(0, 2, 1)
-    return Kinematics(
+    kin = Kinematics(
         mechanism=mech, phi=phi, omega1=w1, epsilon1=e1, positions=xy[0], velocities=xy[1] if k > 1 else None,
         accelerations=xy[2] if k > 2 else None, angles=rates[0], omegas=rates[1] if k > 1 else None,
         epsilons=rates[2] if k > 2 else None, slides=slides.transpose(2, 0, 1), condition=condition.T, valid=valid,
         order=order, **lay.names)
+    if redo.size:
+        _replace(kin, redo, again(redo))
+    return kin
+
+
+def _replace(kin: Kinematics, idx: np.ndarray, sub: Kinematics) -> None:
+    """Write ``sub`` (the same outputs at the angles ``idx`` of ``kin``) into ``kin``, by name."""
+    groups = (("point_index", ("positions", "velocities", "accelerations")),
+              ("link_index", ("angles", "omegas", "epsilons")), ("slide_index", ("slides",)),
+              ("group_index", ("condition",)))
+    for index, fields in groups:
+        cols = [getattr(sub, index)[name] for name in getattr(kin, index)]
+        for field in fields:
+            mine = getattr(kin, field)
+            if mine is not None and len(cols):
+                mine[idx] = getattr(sub, field)[:, cols]
+    kin.valid[idx] = sub.valid

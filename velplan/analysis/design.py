@@ -16,8 +16,9 @@ each variant be built as its file would be and solved alone.
 A class III group (`Triad`) is solved in the same arrays: its branch is followed over the turn
 in every variant together (`velplan.analysis.triad.tracks`: one batch of roots, the steps in
 all variants at once; a variant whose branch needs shorter steps is tracked alone), and each
-element takes the root nearest its own variant's branch. The compiled kernel does not cover
-class III groups: such a mechanism is solved by the numpy engine.
+element takes the root nearest its own variant's branch. Over variants the compiled kernel does
+not cover class III groups (it does for one mechanism, `velplan.analysis.compiled`): such a
+design is solved by the numpy engine.
 """
 
 from __future__ import annotations

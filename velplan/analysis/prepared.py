@@ -49,7 +49,7 @@ class Prepared:
         self.items = schedule(self.local) if points is None else needed_items(self.local, points)
         self.scale = length_scale(self.local)
         self.class_iii = any(isinstance(g, Triad) for g in self.items)
-        """Whether a class III group is solved (the compiled engine hands it to numpy)."""
+        """Whether a class III group is solved (its branch is tracked before the first solve)."""
         self._tracks: dict | None = None
         self._layout = None
         self.outputs: dict | None = None
@@ -69,12 +69,13 @@ class Prepared:
             self._tracks = found
         return self._tracks
 
-    def layout(self):
-        """The compiled engine's `velplan.analysis.compiled.Layout` of the moved mechanism."""
+    def layout(self, tracks: dict | None = None):
+        """The compiled engine's `velplan.analysis.compiled.Layout` of the moved mechanism (its
+        class III groups solved from ``tracks``, `tracks`; without them the layout hands them to numpy)."""
         if self._layout is None:
             from velplan.analysis import compiled
 
-            self._layout = compiled.layout(self.local, self.points)
+            self._layout = compiled.layout(self.local, self.points, tracks)
         return self._layout
 
 

@@ -115,7 +115,7 @@ def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, eng
         out.write(st, conditions, slice(start, start + block.shape[0]))
     out.shift(prep.shift)
     kin = out.kinematics(mech, phi, w1, e1, st)
-    if engine == "auto" and not prep.class_iii:  # time the compiled engine could have saved
+    if engine == "auto":  # time the compiled engine could have saved
         _NUMPY_SECONDS[0] += perf_counter() - began
     return kin
 
@@ -179,10 +179,12 @@ def _auto_compiled(n: int) -> bool:
 
 def _solve_compiled(prep: Prepared, phi, w1, e1, order, on_failure, engine, mech) -> Kinematics | None:
     """The compiled engine's solution of ``mech`` (prepared as ``prep``), or None where it does not
-    apply: a class III group (with a warning when ``engine="compiled"`` was asked for), solved by
-    the numpy engine instead."""
+    apply: a class III group without a branch the kernel can follow (with a warning when
+    ``engine="compiled"`` was asked for), solved by the numpy engine instead. A class III group's
+    angles the kernel finds ambiguous are solved again by the numpy engine."""
     compiled = _compiled()
-    lay = prep.layout()
+    tracks = prep.tracks(solve) if prep.class_iii else None
+    lay = prep.layout(tracks)
     if lay.triad is not None:
         if engine == "compiled":
             import warnings
@@ -190,7 +192,8 @@ def _solve_compiled(prep: Prepared, phi, w1, e1, order, on_failure, engine, mech
             warnings.warn(f"engine='compiled' does not cover class III groups (group {lay.triad!r}); "
                           "solving with the numpy engine", stacklevel=4)
         return None
-    kin = compiled.solve(lay, mech, phi, w1, e1, order, shift=prep.shift)
+    kin = compiled.solve(lay, mech, phi, w1, e1, order, shift=prep.shift, tracks=tracks,
+                         again=lambda idx: _solve_scalar_rate(prep, mech, phi[idx], w1, e1, order, "nan", "numpy"))
     if on_failure == "raise" and not kin.valid.all():
         for item in lay.items:  # the first group, in solving order, that fails to close
             if not isinstance(item, (Crank, LinkPoint)):

@@ -266,14 +266,20 @@ def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
     return np.linalg.eigvals(comp)
 
 
-def _cramer3(rows, rhs):
+def _minors(rows):
+    """The 2×2 minors of the last two rows that Cramer's rule uses, and the determinant."""
+    (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
+    bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
+    return bc, ac, ab, a1 * bc - b1 * ac + c1 * ab
+
+
+def _cramer3(rows, rhs, minors=None):
     """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns (each
-    2×2 minor computed once)."""
+    2×2 minor computed once; ``minors``: `_minors` of ``rows``, shared by systems with one matrix)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
-    bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
+    bc, ac, ab, det = _minors(rows) if minors is None else minors
     rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
-    det = a1 * bc - b1 * ac + c1 * ab
     x = (r1 * bc - b1 * rc - c1 * br) / det
     y = (a1 * rc - r1 * ac + c1 * ar) / det
     z = (a1 * br - b1 * ar + r1 * ab) / det
@@ -705,7 +711,8 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair):
             rhs_v.append(dot(dvec, lead.carried(j)[0]))
         normals.append(dvec)
         rows.append((dvec.real, dvec.imag, dot(dvec, 1j * rr)))
-    vx, vy, w = _cramer3(rows, rhs_v)
+    minors = _minors(rows)  # one matrix for the velocities and the accelerations
+    vx, vy, w = _cramer3(rows, rhs_v, minors)
     vX = vx + 1j * vy
     vj = [vX + 1j * w * (j - x) for j in joints]
     rhs_a = []
@@ -722,7 +729,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair):
             cor = 2j * lead.omega * sd * u
             rhs_a.append(dot(dvec, ga + cor) + w * w * dot(dvec, rr))
             slides.append((dot(j - base, u), sd, u, ga, cor))
-    ax, ay, e = _cramer3(rows, rhs_a)
+    ax, ay, e = _cramer3(rows, rhs_a, minors)
     aX = ax + 1j * ay
     aj = [aX + (1j * e - w * w) * (j - x) for j in joints]
     return _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair)
