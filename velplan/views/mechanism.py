@@ -111,7 +111,13 @@ class _Geometry:
                 for g in self.mech.groups for link, joints in g.plates()]
 
     def segments(self, i: int) -> list[Segment]:
-        """Lines of every link at position i."""
+        """Lines of every link at position i (worked out once per position)."""
+        cache = self.__dict__.setdefault("_segments_at", {})
+        if i not in cache:
+            cache[i] = tuple(self._segments(i))
+        return list(cache[i])
+
+    def _segments(self, i: int) -> list[Segment]:
         segs: list[Segment] = []
         c = self.mech.crank
         segs.append(self._seg(c.link, c.pivot, c.tip, i))
