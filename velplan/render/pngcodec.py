@@ -34,9 +34,11 @@ def grey_png(argb: np.ndarray) -> bytes | None:
     if (a == 255).all():
         kind, pixels = 0, g
     else:
-        grey = g.astype(np.uint32)
-        alpha = a.astype(np.uint32)
-        un = np.where(alpha > 0, (grey * 255 + alpha // 2) // np.maximum(alpha, 1), 0).astype(np.uint8)
+        # only the pixels not opaque change (a drawing's last row and column, partly covered)
+        part = a != 255
+        grey, alpha = g[part].astype(np.uint32), a[part].astype(np.uint32)
+        un = g.copy()
+        un[part] = np.where(alpha > 0, (grey * 255 + alpha // 2) // np.maximum(alpha, 1), 0)
         kind, pixels = 4, np.stack([un, a], axis=-1).reshape(h, 2 * w)
     rows = np.zeros((h, pixels.shape[1] + 1), np.uint8)  # filter type 0 (none) on every row
     rows[:, 1:] = pixels
