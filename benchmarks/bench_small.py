@@ -20,6 +20,7 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
     python benchmarks/bench_small.py --quick        # fewer rounds, no 10⁶, no cold commands
     python benchmarks/bench_small.py --triad-only --clock cpu   # the class III triad at 10⁵ only
     git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
+    python benchmarks/bench_small.py --cold-only --pairs 5   # the cold table alone, printed
 
 Writes ``benchmarks/results/small.md``.
 """
@@ -324,11 +325,18 @@ def main() -> None:
     ap.add_argument("--no-cold", action="store_true", help="leave out the cold commands")
     ap.add_argument("--triad-only", action="store_true",
                     help="only the class III triad against the four-bar, put into small.md in place")
+    ap.add_argument("--cold-only", action="store_true",
+                    help="time the cold commands alone and print their table (nothing written)")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
     global _clock, _clock_name
     _clock, _clock_name = CLOCK[a.clock], a.clock
+    if a.cold_only:
+        start = load_average()
+        cold = cold_table(a.pairs)
+        print(f"load {start} at the start, {load_average()} at the end\n\n{cold}")
+        return
     count = 5 if a.quick else a.rounds
     if a.triad_only:
         splice_triad(triad_table(count))

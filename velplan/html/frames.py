@@ -94,17 +94,17 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
         marks = _centre_marks(study, i, view, mu_l) if centres else []
         per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
     # a record drawn at two positions or more is stored once
+    keys = [[json.dumps(r, ensure_ascii=False) for r in recs or ()] for recs in per_position]
     count: dict[str, int] = {}
-    for recs in per_position:
-        for key in {json.dumps(r, ensure_ascii=False) for r in recs or ()}:
+    for frame_keys in keys:
+        for key in set(frame_keys):
             count[key] = count.get(key, 0) + 1
     shared: list[list] = []
     where: dict[str, int] = {}
     frames = []
-    for recs in per_position:
+    for recs, frame_keys in zip(per_position, keys):
         frame = []
-        for r in recs or ():
-            key = json.dumps(r, ensure_ascii=False)
+        for r, key in zip(recs or (), frame_keys):
             if count[key] > 1:
                 if key not in where:
                     where[key] = len(shared)

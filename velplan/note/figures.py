@@ -33,7 +33,7 @@ def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
              for view, (x, y) in zip(views, places) for p in view.primitives]
     svg = to_svg(Scene(tuple(items), width, height), style)
-    png = svg_to_png(svg, dpi=dpi * shrink)
+    png = svg_to_png(svg, dpi=dpi * shrink, grey=True)
     return png, width * shrink
 
 

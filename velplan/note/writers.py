@@ -82,7 +82,8 @@ def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
     pypandoc = _module("pypandoc")
     out = tmp / f"out.{to}"
     try:
-        pypandoc.convert_text(source, to, format="markdown", outputfile=str(out),
+        # markdown in, docx or html out, both pandoc's own: no listing of its formats to check them
+        pypandoc.convert_text(source, to, format="markdown", outputfile=str(out), verify_format=False,
                               extra_args=["--resource-path", str(tmp), *extra], cworkdir=str(tmp))
     except (RuntimeError, OSError) as exc:
         raise VelplanError(f"pandoc could not write the note ({to}): {str(exc).splitlines()[0]}") from None

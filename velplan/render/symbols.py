@@ -88,6 +88,22 @@ def ground_hatch(start, end, *, side: Side = "right", depth_mm: float = 3.0,
         ``start, end, end + depth·n, start + depth·n``.
     """
     start, end = np.asarray(start, float), np.asarray(end, float)
+    key = (start.tobytes(), end.tobytes(), side, depth_mm, spacing_mm, layer, line)  # -0.0 is not 0.0
+    if key not in _HATCHES:
+        if len(_HATCHES) >= _HATCHES_KEPT:
+            _HATCHES.clear()
+        _HATCHES[key] = _ground_hatch(start, end, side, depth_mm, spacing_mm, layer, line)
+    return _HATCHES[key]
+
+
+#: Hatched ground lines drawn so far, by their exact inputs: a support or a guide that stays
+#: put from frame to frame (an animation, a layout's trial views) is hatched once.
+_HATCHES: dict[tuple, tuple[Primitive, ...]] = {}
+_HATCHES_KEPT = 4096
+
+
+def _ground_hatch(start: np.ndarray, end: np.ndarray, side: Side, depth_mm: float, spacing_mm: float,
+                  layer: str, line: LineType) -> tuple[Primitive, ...]:
     n = _side_normal(start, end, side)
     band = np.array([start, end, end + depth_mm * n, start + depth_mm * n])
     along = math.degrees(math.atan2(*(end - start)[::-1]))

@@ -428,6 +428,7 @@ def _free_spot(build, sizes, views, region, gap):
     there is no room."""
     x0, y0, x1, y1 = region
     taken = np.array([shapely.box(*v.bounds).buffer(gap) for v in views.values()])
+    near = shapely.bounds(taken)
     corner = np.array([views["mechanism"].bounds[0], views["mechanism"].bounds[1]])
     for size, title in sizes:
         view = build(size, title)
@@ -437,7 +438,12 @@ def _free_spot(build, sizes, views, region, gap):
         xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
         xs, ys = xs.ravel(), ys.ravel()
         boxes = shapely.box(xs, ys, xs + w, ys + h)
-        free = ~shapely.intersects(boxes[:, None], taken[None, :]).any(axis=1)
+        # only a box whose bounds meet a taken view's bounds can meet the view: shapely asked for those
+        meet = ((xs[:, None] <= near[:, 2]) & (near[:, 0] <= (xs + w)[:, None])
+                & (ys[:, None] <= near[:, 3]) & (near[:, 1] <= (ys + h)[:, None]))
+        rows, cols = np.nonzero(meet)
+        meet[rows, cols] = shapely.intersects(boxes[rows], taken[cols])
+        free = ~meet.any(axis=1)
         if free.any():
             k = np.flatnonzero(free)
             best = k[np.argmin(np.hypot(xs[k] - corner[0], ys[k] + h - corner[1]))]

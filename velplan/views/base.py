@@ -395,8 +395,14 @@ class _PlacedLabels:
 def _spots(position, step: float, rings: int) -> np.ndarray:
     """The wanted spot, then `rings` rings of eight directions around it, `step` apart, mm,
     shape (1 + 8·rings, 2)."""
-    radii = np.repeat(np.arange(1, rings + 1), 8)[:, None] * step
-    return np.vstack([position, position + radii * np.tile(_RING_DIRECTIONS, (rings, 1))])
+    if rings not in _RINGS:
+        _RINGS[rings] = (np.repeat(np.arange(1, rings + 1), 8)[:, None], np.tile(_RING_DIRECTIONS, (rings, 1)))
+    ring, directions = _RINGS[rings]
+    return np.vstack([position, position + (ring * step) * directions])
+
+
+#: Per number of rings: each spot's ring (1, 1, …, 2, …) and direction, made once.
+_RINGS: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
 def _enlarged_box(text) -> np.ndarray:

@@ -74,6 +74,12 @@ def _unit(angle: float) -> np.ndarray:
     return np.array([math.cos(angle), math.sin(angle)])
 
 
+#: The link lines of the positions drawn so far, by `_Geometry.row_key` (the mechanism kept
+#: with them, so that a reused id is not mistaken for it); cleared when full.
+_SEGMENTS: dict[tuple, tuple] = {}
+_ROWS_KEPT = 20000
+
+
 class _Geometry:
     """Where every link, block and guide is, at the positions of a `Kinematics`, m."""
 
@@ -110,8 +116,22 @@ class _Geometry:
         return [(link, np.array([self.p(i, j) for j in joints]))
                 for g in self.mech.groups for link, joints in g.plates()]
 
+    def row_key(self, i: int) -> tuple:
+        """What the drawing of position i depends on: the mechanism, its points and its links'
+        angles there (the same key in every view of that position: a frame, a trial)."""
+        return id(self.mech), self.kin.positions[i].tobytes(), self.kin.angles[i].tobytes()
+
     def segments(self, i: int) -> list[Segment]:
-        """Lines of every link at position i."""
+        """Lines of every link at position i (worked out once per position and mechanism)."""
+        key = self.row_key(i)
+        hit = _SEGMENTS.get(key)
+        if hit is None or hit[0] is not self.mech:
+            if len(_SEGMENTS) >= _ROWS_KEPT:
+                _SEGMENTS.clear()
+            hit = _SEGMENTS[key] = (self.mech, tuple(self._segments(i)))
+        return list(hit[1])
+
+    def _segments(self, i: int) -> list[Segment]:
         segs: list[Segment] = []
         c = self.mech.crank
         segs.append(self._seg(c.link, c.pivot, c.tip, i))
@@ -605,16 +625,7 @@ def _ground_side(geo: _Geometry, name: str, t: int, mm) -> float:
 
 
 def _ground_direction(geo: _Geometry, name: str) -> float:
-    dirs = []
-    for i in range(len(geo.kin)):
-        qx, qy = (float(c) for c in geo.p(i, name))
-        tx, ty = 1e-9 + 1e-5 * abs(qx), 1e-9 + 1e-5 * abs(qy)  # np.allclose(here, q, atol=1e-9)
-        for s in geo.segments(i):
-            for here, other in ((s.a, s.b), (s.b, s.a)):
-                if abs(float(here[0]) - qx) <= tx and abs(float(here[1]) - qy) <= ty:
-                    d = other - here
-                    if np.hypot(*d) > 0:
-                        dirs.append(d / np.hypot(*d))
+    dirs = [d for i in range(len(geo.kin)) for d in _directions_at(geo, name, i)]
     if not dirs:
         return -90.0
     mean = np.mean(dirs, axis=0)
@@ -622,6 +633,31 @@ def _ground_direction(geo: _Geometry, name: str) -> float:
         return -90.0
     a = math.degrees(math.atan2(-mean[1], -mean[0]))
     return float(90.0 * round(a / 90.0))  # supports stand square to the sheet
+
+
+def _directions_at(geo: _Geometry, name: str, i: int) -> tuple:
+    """Unit directions (m) of the link lines leaving point `name` at position i (worked out
+    once per position and mechanism)."""
+    key = (name, *geo.row_key(i))
+    hit = _DIRECTIONS.get(key)
+    if hit is not None and hit[0] is geo.mech:
+        return hit[1]
+    dirs = []
+    qx, qy = (float(c) for c in geo.p(i, name))
+    tx, ty = 1e-9 + 1e-5 * abs(qx), 1e-9 + 1e-5 * abs(qy)  # np.allclose(here, q, atol=1e-9)
+    for s in geo.segments(i):
+        for here, other in ((s.a, s.b), (s.b, s.a)):
+            if abs(float(here[0]) - qx) <= tx and abs(float(here[1]) - qy) <= ty:
+                d = other - here
+                if np.hypot(*d) > 0:
+                    dirs.append(d / np.hypot(*d))
+    if len(_DIRECTIONS) >= _ROWS_KEPT:
+        _DIRECTIONS.clear()
+    _DIRECTIONS[key] = (geo.mech, tuple(dirs))
+    return _DIRECTIONS[key][1]
+
+
+_DIRECTIONS: dict[tuple, tuple] = {}
 
 
 def _lead_blocks(mech: Mechanism) -> set[str]:

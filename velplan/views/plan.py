@@ -251,14 +251,16 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
             elif isinstance(p, Polyline):
                 pts = np.asarray(p.points, float)
                 segments += [(pts[j], pts[j + 1]) for j in range(len(pts) - 1)]
-    obstacles = [shapely.LineString([a, b]).buffer(0.5) for a, b in segments
-                 if np.hypot(*(b - a)) > 1e-9]
-    obstacles += [shapely.Point(p.centre).buffer(p.radius + 0.3) for d in drawings[:upto] for p in d.items
-                  if isinstance(p, Circle)]
     # where every spot is crossed, a thin line under a letter reads better than a vector: each
-    # vector counts twice
-    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.5) for d in drawings[:upto] for p in d.items
-                  if isinstance(p, Arrow) and p.length > 1e-9]
+    # vector counts twice; the outlines are buffered all at once (the same as one by one)
+    lines = [(a, b) for a, b in segments if np.hypot(*(b - a)) > 1e-9]
+    lines += [(p.start, p.end) for d in drawings[:upto] for p in d.items
+              if isinstance(p, Arrow) and p.length > 1e-9]
+    circles = [p for d in drawings[:upto] for p in d.items if isinstance(p, Circle)]
+    obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
+                                     quad_segs=16))
+    obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
+                                     np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
     texts = []
     for g in groups:
         z = _image(res, g[0], i)
