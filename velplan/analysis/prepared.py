@@ -16,7 +16,7 @@ import numpy as np
 
 from velplan.analysis.blocks import about_pivot, needed_items
 from velplan.analysis.kinematics import length_scale
-from velplan.mechanism.model import Mechanism, Triad
+from velplan.mechanism.model import Mechanism
 from velplan.mechanism.structure import schedule
 
 KEEP = 64
@@ -48,8 +48,9 @@ class Prepared:
         self.shift = complex(pivot[0], pivot[1])
         self.items = schedule(self.local) if points is None else needed_items(self.local, points)
         self.scale = length_scale(self.local)
-        self.class_iii = any(isinstance(g, Triad) for g in self.items)
-        """Whether a class III group is solved (its branch is tracked before the first solve)."""
+        self.class_iii = any(getattr(g, "tracked", False) for g in self.items)
+        """Whether a group whose branch is tracked (class III) is solved: its branch is tracked
+        before the first solve."""
         self._tracks: dict | None = None
         self._layout = None
         self.outputs: dict | None = None
@@ -60,7 +61,7 @@ class Prepared:
         """Each class III group's branch over the turn (`velplan.analysis.triad.track`, solving
         what comes before it with ``solve``), found once."""
         if self._tracks is None:
-            triads = [g for g in self.items if isinstance(g, Triad)]
+            triads = [g for g in self.items if getattr(g, "tracked", False)]
             found = {}
             if triads:
                 from velplan.analysis import triad
