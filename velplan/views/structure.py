@@ -21,12 +21,17 @@ from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
+from velplan.views.base import subscript
 
 PANEL_MM = 70.0
 """Width the widest panel is drawn at, mm."""
 GAP_MM = 18.0
+"""Gap between the panels of a figure drawn at `PANEL_MM`, mm (in proportion at other widths)."""
 MARGIN_MM = 12.0
 TEXT_MM = 3.5
+"""Height of its letters, mm."""
+TITLE_MM = 5.0
+"""Height of its heading, mm."""
 BLOCK_MM = (10.0, 6.0)
 RING_MM = 3.2
 """Radius of the dashed ring that marks an outer pair, mm."""
@@ -44,8 +49,8 @@ def kind_in(kind: str, lang: str) -> str:
 class _Panel:
     """One part of the figure: its links, and what it draws in metres, before placing."""
 
-    def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...]):
-        self.links, self.known, self.caption = links, known, caption
+    def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...], text_mm: float = TEXT_MM):
+        self.links, self.known, self.caption, self.text_mm = links, known, caption, text_mm
         self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in links}
         self.joints: list[tuple[str, np.ndarray, bool]] = []  # name, at, outer?
         self.blocks: list[tuple[np.ndarray, float, bool]] = []  # at, angle, outer?
@@ -60,14 +65,15 @@ class _Panel:
         return np.array(pts) if pts else np.zeros((1, 2))
 
 
-def _panels(mech: Mechanism, joints: Sequence[Mapping], lang: str) -> list[_Panel]:
+def _panels(mech: Mechanism, joints: Sequence[Mapping], lang: str, text_mm: float) -> list[_Panel]:
     st = structure(mech)
-    first = _Panel({mech.crank.link}, {GROUND}, (label("initial_mechanism", lang), f"I(0, {mech.crank.link})"))
+    first = _Panel({mech.crank.link}, {GROUND}, (label("initial_mechanism", lang), f"I(0, {mech.crank.link})"),
+                   text_mm)
     panels, known = [first], {GROUND, mech.crank.link}
     for (name, kind, cls, order, links) in st.groups:
         caption = (label("group_class", lang).format(cls=_ROMAN.get(cls, str(cls)), order=order),
                    f"{kind_in(kind, lang)}: {', '.join(links)}")
-        panels.append(_Panel(set(links), set(known), caption))
+        panels.append(_Panel(set(links), set(known), caption, text_mm))
         known |= set(links)
     for panel in panels:
         for j in joints:
@@ -105,54 +111,59 @@ def _add_joint(panel: _Panel, j: Mapping) -> None:
         panel.pivots.append(at)
     if len(hinge) >= 2:
         outer = not initial and any(k in panel.known for k in hinge)
-        panel.joints.append((j["name"], at, outer))
+        panel.joints.append((subscript(str(j["name"])), at, outer))
     elif kind == "R":
-        panel.marks.append((j["name"], at))
+        panel.marks.append((subscript(str(j["name"])), at))
 
 
-def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True) -> Scene:
+def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True,
+                   panel_mm: float = PANEL_MM, text_mm: float = TEXT_MM, title_mm: float = TITLE_MM) -> Scene:
     """The figure of the structural analysis (mm, y up) from the drawn joints of ``mech``;
-    ``title``: with its heading, W and the formula of structure above it."""
-    panels = _panels(mech, joints, lang)
+    ``title``: with its heading, W and the formula of structure above it; ``panel_mm``: the
+    width of its widest panel, mm; ``text_mm``, ``title_mm``: its letters' and heading's
+    height, mm."""
+    panels = _panels(mech, joints, lang, text_mm)
     spans = [np.ptp(p.points(), axis=0) for p in panels]
     widest = max(max(float(s[0]), float(s[1])) for s in spans) or 1.0
-    mu = PANEL_MM / widest  # mm per m
+    mu = panel_mm / widest  # mm per m
+    gap, line = GAP_MM * panel_mm / PANEL_MM, text_mm * 1.6
     heights = [float(s[1]) * mu for s in spans]
     tallest = max(heights)
     items: list = []
-    x, base = MARGIN_MM, MARGIN_MM + 4 * TEXT_MM * 1.8 + 8.0
+    x, base = MARGIN_MM, MARGIN_MM + 4 * line + 8.0
     low, high = base, base
     for panel, span in zip(panels, spans):
         lo = panel.points().min(axis=0)
         shift = np.array([0.0, base + (tallest - float(span[1]) * mu) / 2]) - lo * mu
         drawn = _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
         box = _bounds(drawn)
-        captions = max(text_extent(c, TEXT_MM)[0] for c in panel.caption)
+        captions = max(text_extent(c, text_mm)[0] for c in panel.caption)
         width = max(box[2] - box[0], captions)
         shift = shift + (x + (width - (box[2] - box[0])) / 2 - box[0], 0.0)
         items += _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
         panel.centre, low, high = x + width / 2, min(low, box[1]), max(high, box[3])
-        x += width + GAP_MM
+        x += width + gap
+    below = 1.7 * text_mm  # from the lowest drawing to the first caption's middle
     for panel in panels:
-        for k, line in enumerate(panel.caption):
-            items.append(Text((panel.centre, low - 6.0 - k * TEXT_MM * 1.6), line, "labels", TEXT_MM, "middle"))
-    width = x - GAP_MM + MARGIN_MM
+        for k, text in enumerate(panel.caption):
+            items.append(Text((panel.centre, low - below - k * line), text, "labels", text_mm, "middle", "middle"))
+    width = x - gap + MARGIN_MM
     st = structure(mech)
-    top = high + 8.0
+    top = high + 1.7 * text_mm
     if title:
-        items += [Text((MARGIN_MM, top + 2.2 * TEXT_MM), label("structural_analysis", lang), "labels", 5.0),
+        items += [Text((MARGIN_MM, top + 1.3 * title_mm), label("structural_analysis", lang), "labels", title_mm),
                   Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
-                        f"{st.structure_formula(mech.crank.link)}", "labels", TEXT_MM)]
-    else:
-        top = high - 4 * TEXT_MM + 2.0
-    legend = np.array([MARGIN_MM + RING_MM, low - 6.0 - 2 * TEXT_MM * 1.6 - 2 * RING_MM])
-    shift_up = MARGIN_MM - (legend[1] - RING_MM)
+                        f"{st.structure_formula(mech.crank.link)}", "labels", text_mm)]
+        top += 1.3 * title_mm + title_mm
+    ring = RING_MM * text_mm / TEXT_MM
+    legend = np.array([MARGIN_MM + ring, low - below - (len(panels[0].caption) - 1) * line - line - 2 * ring])
+    shift_up = MARGIN_MM - (legend[1] - ring)
     items = [_moved(p, shift_up) for p in items]
     legend = legend + (0.0, shift_up)
-    top += shift_up
-    items += [Circle(legend, RING_MM, "labels", "hidden"),
-              Text(legend + (RING_MM + 2.0, -TEXT_MM / 2), label("outer_pairs", lang), "labels", TEXT_MM)]
-    return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + 4 * TEXT_MM + MARGIN_MM)
+    items += [Circle(legend, ring, "labels", "hidden"),
+              Text(legend + (ring + 0.6 * text_mm, 0.0), label("outer_pairs", lang), "labels", text_mm,
+                   "start", "middle")]
+    return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + shift_up + MARGIN_MM)
 
 
 def _draw(panel: _Panel, place) -> list:
@@ -188,12 +199,12 @@ def _draw(panel: _Panel, place) -> list:
             angle, ringed = blocks[tuple(c)]
             left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
             reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
-            out.append(Text(c + left * reach, name, "labels", TEXT_MM, "middle", "middle"))
+            out.append(Text(c + left * reach, name, "labels", panel.text_mm, "middle", "middle"))
         else:
-            out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes))))
+            out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes)), panel.text_mm))
     for name, at in panel.marks:
         c = place(at)
-        out.append(_label(c, name, _away(c, shapes)))
+        out.append(_label(c, name, _away(c, shapes), panel.text_mm))
     centre = np.mean([p for pts in shapes.values() for p in pts], axis=0)
     for k, pts in shapes.items():
         if pts and k != GROUND:
@@ -231,10 +242,11 @@ def _away(c: np.ndarray, shapes: Mapping[str, list], pivot=None) -> np.ndarray:
     return total / n if n > 1e-9 else np.array([0.7071, 0.7071])
 
 
-def _label(c: np.ndarray, name: str, away: np.ndarray) -> Text:
+def _label(c: np.ndarray, name: str, away: np.ndarray, size_mm: float) -> Text:
+    """A joint's letter ``size_mm`` high beside it, out along ``away``."""
     at = c + away * (RING_MM + 2.0)
     anchor = "start" if away[0] > 0.3 else "end" if away[0] < -0.3 else "middle"
-    return Text(at, name, "labels", TEXT_MM, anchor, "middle")
+    return Text(at, name, "labels", size_mm, anchor, "middle")
 
 
 def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) -> Text:
@@ -244,16 +256,16 @@ def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) ->
             if np.hypot(*(place(at) - pts[0])) < 1e-6:
                 left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
                 reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
-                return Text(pts[0] - left * reach, k, "labels", TEXT_MM, "middle", "middle")
-        return Text(pts[0] + (0.0, -3.0), k, "labels", TEXT_MM, "middle", "top")
+                return Text(pts[0] - left * reach, k, "labels", panel.text_mm, "middle", "middle")
+        return Text(pts[0] + (0.0, -3.0), k, "labels", panel.text_mm, "middle", "top")
     a, b = max(((p, q) for i, p in enumerate(pts) for q in pts[i + 1:]), key=lambda pq: np.hypot(*(pq[0] - pq[1])))
     mid, d = (a + b) / 2, b - a
     normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
     if len(pts) >= 3 and not _collinear(pts):  # a plate: its number inside
-        return Text(np.mean(pts, axis=0), k, "labels", TEXT_MM, "middle", "middle")
+        return Text(np.mean(pts, axis=0), k, "labels", panel.text_mm, "middle", "middle")
     if normal @ (mid - centre) < 0:
         normal = -normal
-    return Text(mid + normal * 3.0, k, "labels", TEXT_MM, "middle", "middle")
+    return Text(mid + normal * (0.9 * panel.text_mm), k, "labels", panel.text_mm, "middle", "middle")
 
 
 def _collinear(pts: list) -> bool:
