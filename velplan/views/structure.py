@@ -124,25 +124,31 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     height, mm."""
     panels = _panels(mech, joints, lang, text_mm)
     spans = [np.ptp(p.points(), axis=0) for p in panels]
-    widest = max(max(float(s[0]), float(s[1])) for s in spans) or 1.0
-    mu = panel_mm / widest  # mm per m
+    mu = _scale(spans, panel_mm)
     gap, line = GAP_MM * panel_mm / PANEL_MM, text_mm * 1.6
     heights = [float(s[1]) * mu for s in spans]
     tallest = max(heights)
     items: list = []
-    x, base = MARGIN_MM, MARGIN_MM + 4 * line + 8.0
+    base = MARGIN_MM + 4 * line + 8.0
     low, high = base, base
+    sized = []  # per panel: its shift, drawn box, half its drawing's and its captions' widths
     for panel, span in zip(panels, spans):
         lo = panel.points().min(axis=0)
         shift = np.array([0.0, base + (tallest - float(span[1]) * mu) / 2]) - lo * mu
-        drawn = _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
-        box = _bounds(drawn)
+        box = _bounds(_draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift))
         captions = max(text_extent(c, text_mm)[0] for c in panel.caption)
-        width = max(box[2] - box[0], captions)
-        shift = shift + (x + (width - (box[2] - box[0])) / 2 - box[0], 0.0)
+        sized.append((shift, box, (box[2] - box[0]) / 2, captions / 2))
+    for i, (panel, (shift, box, half, caption)) in enumerate(zip(panels, sized)):
+        if i:  # drawings `gap` apart, captions two letters apart, whichever needs more
+            before = sized[i - 1]
+            x += max(before[2] + half + gap, before[3] + caption + 2 * text_mm)
+        else:
+            x = MARGIN_MM + max(half, caption)
+        shift = shift + (x - (box[0] + box[2]) / 2, 0.0)
         items += _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
-        panel.centre, low, high = x + width / 2, min(low, box[1]), max(high, box[3])
-        x += width + gap
+        panel.centre, low, high = x, min(low, box[1]), max(high, box[3])
+        right = x + max(half, caption)
+    x = right + gap
     below = 1.7 * text_mm  # from the lowest drawing to the first caption's middle
     for panel in panels:
         for k, text in enumerate(panel.caption):
@@ -150,20 +156,37 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     width = x - gap + MARGIN_MM
     st = structure(mech)
     top = high + 1.7 * text_mm
-    if title:
-        items += [Text((MARGIN_MM, top + 1.3 * title_mm), label("structural_analysis", lang), "labels", title_mm),
-                  Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
-                        f"{st.structure_formula(mech.crank.link)}", "labels", text_mm)]
-        top += 1.3 * title_mm + title_mm
     ring = RING_MM * text_mm / TEXT_MM
-    legend = np.array([MARGIN_MM + ring, low - below - (len(panels[0].caption) - 1) * line - line - 2 * ring])
-    shift_up = MARGIN_MM - (legend[1] - ring)
+    key = label("outer_pairs", lang)
+    key_w = 2 * ring + 0.6 * text_mm + text_extent(key, text_mm)[0]
+    lowest = low - below - (len(panels[0].caption) - 1) * line - 0.7 * text_mm  # the captions' foot
+    legend = np.array([MARGIN_MM + ring, lowest - 0.6 * line - ring])  # under the captions
+    if title:
+        heading = label("structural_analysis", lang)
+        formula = (f"{st.formula()};  {label('structure_formula', lang)}: "
+                   f"{st.structure_formula(mech.crank.link)}")
+        items += [Text((MARGIN_MM, top + 1.3 * title_mm), heading, "labels", title_mm),
+                  Text((MARGIN_MM, top), formula, "labels", text_mm)]
+        right = max(width - MARGIN_MM, MARGIN_MM + text_extent(formula, text_mm)[0]) - text_mm  # slack for wide fonts
+        if MARGIN_MM + text_extent(heading, title_mm)[0] + 2 * text_mm + key_w <= right:
+            legend = np.array([right - key_w + ring, top + 1.3 * title_mm + title_mm / 2])  # beside the heading
+        top += 1.3 * title_mm + title_mm
+    shift_up = MARGIN_MM - min(lowest, legend[1] - ring)
     items = [_moved(p, shift_up) for p in items]
     legend = legend + (0.0, shift_up)
     items += [Circle(legend, ring, "labels", "hidden"),
-              Text(legend + (ring + 0.6 * text_mm, 0.0), label("outer_pairs", lang), "labels", text_mm,
-                   "start", "middle")]
+              Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")]
     return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + shift_up + MARGIN_MM)
+
+
+def _scale(spans, panel_mm: float) -> float:
+    """mm per m at which the widest of the panels' ``spans`` (m) is ``panel_mm`` mm."""
+    return panel_mm / (max(max(float(s[0]), float(s[1])) for s in spans) or 1.0)
+
+
+def figure_scale(mech: Mechanism, joints: Sequence[Mapping], panel_mm: float = PANEL_MM) -> float:
+    """mm per m of the figure `structure_view` draws with its widest panel ``panel_mm`` wide."""
+    return _scale([np.ptp(p.points(), axis=0) for p in _panels(mech, joints, "en", TEXT_MM)], panel_mm)
 
 
 def _draw(panel: _Panel, place) -> list:
@@ -263,9 +286,22 @@ def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) ->
     normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
     if len(pts) >= 3 and not _collinear(pts):  # a plate: its number inside
         return Text(np.mean(pts, axis=0), k, "labels", panel.text_mm, "middle", "middle")
+    for at, angle, frame in panel.guides:  # a link along a fixed guide: its number off the hatching
+        g = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+        if frame and abs(g[0] * d[1] - g[1] * d[0]) < 0.05 * float(np.hypot(*d)):
+            ends = [p + (q - p) / max(float(np.hypot(*(q - p))), 1e-9) * _ring_at(p, panel, place)
+                    for p, q in ((a, b), (b, a))]  # the part clear of a block's ring
+            return Text((ends[0] + ends[1]) / 2 + np.array([-g[1], g[0]]) * (0.9 * panel.text_mm), k,
+                        "labels", panel.text_mm, "middle", "middle")
     if normal @ (mid - centre) < 0:
         normal = -normal
     return Text(mid + normal * (0.9 * panel.text_mm), k, "labels", panel.text_mm, "middle", "middle")
+
+
+def _ring_at(c: np.ndarray, panel: _Panel, place) -> float:
+    """Radius (mm) of the ring drawn round a block at ``c``, 0 where there is none."""
+    return next((0.75 * BLOCK_MM[0] for at, _, ringed in panel.blocks
+                 if ringed and np.hypot(*(place(at) - c)) < 1e-6), 0.0)
 
 
 def _collinear(pts: list) -> bool:
