@@ -54,7 +54,7 @@ Bad input is refused in one line by a `VelplanError` (`AssemblyError`, `Mechanis
     >>> velplan.parse("name = 'no frame'")
     Traceback (most recent call last):
     ...
-    velplan.errors.MechanismError: missing [ground] section
+    velplan.errors.MechanismError: missing [ground] section: give [ground], [crank] and [[group]] tables, or the mechanism as drawn ([[joint]] tables and a [crank])
     >>> errors = (velplan.AssemblyError, velplan.MechanismError, velplan.ScaleError,
     ...           velplan.SingularPositionError, velplan.TableError)
     >>> all(issubclass(e, velplan.VelplanError) for e in errors)
