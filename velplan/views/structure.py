@@ -221,7 +221,7 @@ def _draw(panel: _Panel, place) -> list:
         if tuple(c) in blocks:  # beside the block, across its guide
             angle, ringed = blocks[tuple(c)]
             left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
-            reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
+            reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 3.5
             out.append(Text(c + left * reach, name, "labels", panel.text_mm, "middle", "middle"))
         else:
             out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes)), panel.text_mm))
@@ -278,7 +278,7 @@ def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) ->
         for at, angle, ringed in panel.blocks:
             if np.hypot(*(place(at) - pts[0])) < 1e-6:
                 left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
-                reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
+                reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 3.5
                 return Text(pts[0] - left * reach, k, "labels", panel.text_mm, "middle", "middle")
         return Text(pts[0] + (0.0, -3.0), k, "labels", panel.text_mm, "middle", "top")
     a, b = max(((p, q) for i, p in enumerate(pts) for q in pts[i + 1:]), key=lambda pq: np.hypot(*(pq[0] - pq[1])))
