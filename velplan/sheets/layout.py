@@ -121,11 +121,13 @@ def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[floa
     x0, y0, x1, y1 = region
     if w > x1 - x0 or h > y1 - y0:
         return None
-    boxes_taken = np.array([shapely.box(*b).buffer(gap) for b in taken])
     xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
     xs, ys = xs.ravel(), ys.ravel()
-    boxes = shapely.box(xs, ys, xs + w, ys + h)
-    free = ~shapely.intersects(boxes[:, None], boxes_taken[None, :]).any(axis=1)
+    free = np.ones(xs.shape, bool)
+    for bx0, by0, bx1, by1 in taken:  # free: farther than `gap` from the box
+        dx = np.maximum(np.maximum(bx0 - (xs + w), xs - bx1), 0.0)
+        dy = np.maximum(np.maximum(by0 - (ys + h), ys - by1), 0.0)
+        free &= np.hypot(dx, dy) > gap
     if not free.any():
         return None
     k = np.flatnonzero(free)

@@ -48,11 +48,12 @@ def _drawn_pose(study: Study):
     return at, {n: float(k.angles[i, j]) for n, j in k.link_index.items()}
 
 
-def structure_figure(study: Study, lang: str, panel_mm: float, text_mm: float, title_mm: float) -> View:
+def structure_figure(study: Study, lang: str, panel_mm: float, text_mm: float, title_mm: float,
+                     joints: list | None = None) -> View:
     """The figure as the sheet's view ``"structure"``: its widest panel ``panel_mm`` wide,
     letters ``text_mm`` and heading ``title_mm`` high, mm; its ``meta`` gives ``text_mm`` and
-    ``crank_mm``, the crank's length as drawn, mm."""
-    joints = _joints(study)
+    ``crank_mm``, the crank's length as drawn, mm. ``joints``: the drawn joints, if known."""
+    joints = _joints(study) if joints is None else joints
     crank = study.mechanism.crank.length * figure_scale(study.mechanism, joints, panel_mm)
     scene = structure_view(study.mechanism, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm,
                            title_mm=title_mm)
@@ -67,8 +68,9 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
     (one line) when ``required``."""
     taken = [v.bounds for v in views.values()] + [title_block]
     corner = (views["mechanism"].bounds[0], views["mechanism"].bounds[1])
+    joints = _joints(study)
     for sizes in FIGURE_SIZES:
-        view = structure_figure(study, lang, *sizes)
+        view = structure_figure(study, lang, *sizes, joints=joints)
         if view.meta["crank_mm"] < MIN_CRANK_MM - 1e-9:
             continue
         if overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.05):
@@ -77,7 +79,7 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
         if at is not None:
             return view.at(*at)
     if required:
-        small = structure_figure(study, lang, *FIGURE_SIZES[-1])
+        small = structure_figure(study, lang, *FIGURE_SIZES[-1], joints=joints)
         raise ScaleError(f"the structural analysis ({small.width_mm:.0f} × {small.height_mm:.0f} mm with "
                          f"letters of {FIGURE_SIZES[-1][1]:g} mm) finds no free space on the sheet; "
                          f"use a larger --format, or --structure no")
