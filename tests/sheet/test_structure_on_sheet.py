@@ -110,3 +110,15 @@ def test_the_figure_alone_has_no_letters_over_letters_at_every_size():
         view = structure_figure(study, "zh", *sizes)
         assert not overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.5)
         assert {t.size_mm for t in _texts(view)} == {sizes[1], sizes[2]}
+
+
+def test_the_figure_is_the_same_in_every_process():
+    # the links of a group are sets: the figure must not follow the hash seed's order
+    code = ("import hashlib; from velplan.study import Study; from velplan.sheets.structure import structure_figure;"
+            "v = structure_figure(Study('triad-rocker'), 'en', 70.0, 3.5, 5.0);"
+            "print(hashlib.md5(repr(v.primitives).encode()).hexdigest())")
+    import os
+
+    runs = {subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                           env=os.environ | {"PYTHONHASHSEED": seed}).stdout for seed in ("1", "2", "3")}
+    assert len(runs) == 1

@@ -51,7 +51,7 @@ class _Panel:
 
     def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...], text_mm: float = TEXT_MM):
         self.links, self.known, self.caption, self.text_mm = links, known, caption, text_mm
-        self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in links}
+        self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in sorted(links)}  # a fixed order
         self.joints: list[tuple[str, np.ndarray, bool]] = []  # name, at, outer?
         self.blocks: list[tuple[np.ndarray, float, bool]] = []  # at, angle, outer?
         self.marks: list[tuple[str, np.ndarray]] = []  # a named point of a link, not a joint
