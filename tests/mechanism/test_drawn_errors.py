@@ -11,15 +11,10 @@ from velplan.errors import MechanismError
 from velplan.mechanism import pmks
 from velplan.mechanism.loader import from_dict
 
-FOUR_BAR = [("O", [0, 0], ["0", "1"]), ("A", [0.1, 0.1], ["1", "2"]), ("C", [0.5, 0.4], ["2", "3"]),
-            ("D", [0.6, 0.0], ["3", "0"])]
+from .test_drawn import FOUR_BAR, _file
+
 GOOD = ("M[J[R, color[Green], P[0.0, 0.0], L[ground, L1]], J[R, P[0, 10], L[L1, L2]], "
         "J[R, P[30, 0], L[ground, L3]], J[R, P[13, 20], L[L2, L3]]]")
-
-
-def _file(joints, crank="1") -> dict:
-    return {"crank": {"link": crank, "pivot": "O", "omega": 1.0},
-            "joint": [{"name": n, "at": xy, "links": links} for n, xy, links in joints]}
 
 
 def _one_line(exc) -> str:
