@@ -18,6 +18,7 @@ import shapely
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import structure
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
@@ -176,7 +177,7 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     legend = legend + (0.0, shift_up)
     items += [Circle(legend, ring, "labels", "hidden"),
               Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")]
-    return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + shift_up + MARGIN_MM)
+    return Scene(tuple(items), width_mm=max(_bounds(items)[2] + MARGIN_MM, 120.0), height_mm=top + shift_up + MARGIN_MM)
 
 
 def _scale(spans, panel_mm: float) -> float:
@@ -213,6 +214,7 @@ def _draw(panel: _Panel, place) -> list:
         across = np.array([-away[1], away[0]])
         sides[tuple(c)] = across if across[0] >= 0 else -across
     blocks = {tuple(place(at)): (angle, outer) for at, angle, outer in panel.blocks}
+    letters = []  # (joint, name, the side it is best written on), placed last, clear of the rest
     for name, at, outer in panel.joints:
         c = place(at)
         out += revolute_joint(c)
@@ -224,15 +226,47 @@ def _draw(panel: _Panel, place) -> list:
             reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 3.5
             out.append(Text(c + left * reach, name, "labels", panel.text_mm, "middle", "middle"))
         else:
-            out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes)), panel.text_mm))
-    for name, at in panel.marks:
-        c = place(at)
-        out.append(_label(c, name, _away(c, shapes), panel.text_mm))
+            letters.append((c, name, sides.get(tuple(c), _away(c, shapes))))
+    letters += [(place(at), name, _away(place(at), shapes)) for name, at in panel.marks]
     centre = np.mean([p for pts in shapes.values() for p in pts], axis=0)
     for k, pts in shapes.items():
         if pts and k != GROUND:
             out.append(_link_number(k, pts, centre, panel, place))
+    return out + _clear_letters(out, letters, panel.text_mm)
+
+
+def _clear_letters(drawn: list, letters: list, size_mm: float) -> list[Text]:
+    """Each joint's letter on its best side, or else turned by 45° steps to the first side
+    where it crosses no line, ring or letter already drawn (its best side when none is)."""
+    lines = [_outline(p) for p in drawn if not isinstance(p, Text)]
+    ink = shapely.union_all([g for g in lines if g is not None])
+    boxes = [label_box(t) for t in drawn if isinstance(t, Text)]
+    out: list[Text] = []
+    for c, name, away in letters:
+        choice = None
+        for turn in (0, 45, -45, 90, -90, 135, -135, 180):
+            a = math.radians(turn)
+            side = np.array([away[0] * math.cos(a) - away[1] * math.sin(a), away[0] * math.sin(a) + away[1] * math.cos(a)])
+            text = _label(c, name, side, size_mm)
+            box = label_box(text)
+            if not box.intersects(ink) and not any(box.intersects(b) for b in boxes):
+                choice = text
+                break
+        choice = choice or _label(c, name, away, size_mm)
+        out.append(choice)
+        boxes.append(label_box(choice))
     return out
+
+
+def _outline(p):
+    """The ink of a drawn primitive as a shapely line (a circle by its rim), or None."""
+    if isinstance(p, Circle):
+        return shapely.Point(p.centre).buffer(p.radius, quad_segs=8).boundary
+    if isinstance(p, Polygon):
+        return shapely.LinearRing(p.points)
+    if isinstance(p, Polyline):
+        return shapely.LineString(p.points)
+    return None
 
 
 def _bounds(items: list) -> tuple[float, float, float, float]:
