@@ -54,7 +54,7 @@ Bad input is refused in one line by a `VelplanError` (`AssemblyError`, `Mechanis
     >>> velplan.parse("name = 'no frame'")
     Traceback (most recent call last):
     ...
-    velplan.errors.MechanismError: missing [ground] section
+    velplan.errors.MechanismError: missing [ground] section: give [ground], [crank] and [[group]] tables, or the mechanism as drawn ([[joint]] tables and a [crank])
     >>> errors = (velplan.AssemblyError, velplan.MechanismError, velplan.ScaleError,
     ...           velplan.SingularPositionError, velplan.TableError)
     >>> all(issubclass(e, velplan.VelplanError) for e in errors)
@@ -131,7 +131,7 @@ def sheet(study: Study | Mechanism | str | Path, kind: Literal["velocity", "acce
           n: int = 12, plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",
           frame_style: FrameStyle | None = None, info: TitleInfo | None = None, diagrams: bool | None = None,
           table: bool = True, style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
-          scale_per_plan: bool = False) -> KinematicSheet: ...
+          scale_per_plan: bool = False, structure: bool | None = None) -> KinematicSheet: ...
 @overload
 def sheet(study: Study | Mechanism | str | Path, kind: Literal["forces"], *, n: int = 12,
           plans: Sequence[int] | None = None, fmt: Format = "A1", lang: Language = "ru",

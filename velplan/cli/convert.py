@@ -12,6 +12,7 @@ FORMS = ("explicit", "drawn", "pmks")
 
 
 def register(sub) -> None:
+    """``velplan convert``: its arguments."""
     p = sub.add_parser("convert", help="convert a mechanism between the explicit TOML (groups), the drawn TOML "
                                        "(joints) and a pyslvs/PMKS expression (.pmks)")
     p.add_argument("mechanism", metavar="IN", help="bundled example name, TOML file (explicit or drawn) or .pmks file")
@@ -115,6 +116,7 @@ def convert_text(mech, form: str, *, unit: str = "mm", pose_deg: float | None = 
 
 
 def run_convert(args) -> int:
+    """Write the mechanism in the form asked (by --form, else by the output's suffix), or print it."""
     from velplan.cli.common import emit
 
     mech, form_in, drawn = read(args)

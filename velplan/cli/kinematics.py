@@ -112,6 +112,7 @@ def save_structure(mech, path: str, lang: str | None) -> str:
     from velplan.errors import VelplanError
     from velplan.mechanism.drawn_write import drawn_tables
     from velplan.render import export
+    from velplan.render.style import SheetStyle
     from velplan.render.svg import to_svg
     from velplan.views.structure import structure_view
 
@@ -120,7 +121,8 @@ def save_structure(mech, path: str, lang: str | None) -> str:
     if suffix not in writers:
         raise VelplanError(f"--svg {path}: write a .svg, .png or .pdf file")
     tables = drawn_tables(mech, *pose(mech))
-    svg = to_svg(structure_view(mech, tables["joint"], lang=lang or default_language()))
+    lang = lang or default_language()
+    svg = to_svg(structure_view(mech, tables["joint"], lang=lang), SheetStyle(language=lang))
     writers[suffix](svg, path)
     return path
 

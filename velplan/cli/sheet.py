@@ -44,6 +44,10 @@ def register(sub) -> None:
     p.add_argument("--diagrams", choices=("auto", "yes", "no"), default="auto",
                    help="kinematic diagrams on the sheet: when they fit (auto, the default), "
                         "always (an error if they do not fit), never")
+    p.add_argument("--structure", choices=("auto", "yes", "no"), default="auto",
+                   help="the structural analysis (initial mechanism and Assur groups drawn apart) "
+                        "on the kinematic sheet: where free space is left for it (auto, the "
+                        "default), always (an error where there is none), never")
     p.add_argument("--no-table", action="store_true",
                    help="leave out the table of transfer functions")
     p.add_argument("--scale-per-plan", action="store_true",
@@ -162,7 +166,10 @@ def run_sheet(args) -> int:
                        table=not args.no_table)
     if args.kind in KINEMATIC_SHEET_KINDS:
         options.update(scale_per_plan=args.scale_per_plan,
-                       centres=parse_plans(args.centres, study.n) if args.centres else ())
+                       centres=parse_plans(args.centres, study.n) if args.centres else (),
+                       structure={"auto": None, "yes": True, "no": False}[args.structure])
+    elif args.structure != "auto":
+        raise VelplanError("--structure belongs to the kinematic sheet (--kind velocity, acceleration or both)")
     sheet = build(study, args.kind, **options)
     output = args.output or f"{mech.name}-{file_stem(args.kind)}.svg"
     _report(_write(sheet.svg(), sheet.scene, sheet.style, output, args))

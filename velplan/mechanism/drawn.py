@@ -176,7 +176,40 @@ class Chain:
         return 3 * len(group) - 2 * self.pairs(group, known)
 
 
+def check_joints(chain: Chain) -> None:
+    """One-line errors for revolute joints that cannot be a mechanism's: two joining the same
+    links, two of one link drawn at one point (within `TOLERANCE` of the drawing's size)."""
+    hinges = [(name, hinge) for name, hinge in chain.hinges.items() if len(hinge[1]) > 1]  # not points
+    tol = TOLERANCE * _scale(chain)
+    for i, (a, (at_a, links_a)) in enumerate(hinges):
+        for b, (at_b, links_b) in hinges[i + 1:]:
+            if set(links_a) == set(links_b):
+                raise MechanismError(f"joints {a!r} and {b!r} both join links {links_text(links_a)}")
+            shared = [k for k in links_a if k in links_b and k != GROUND]
+            if shared and abs(at_a - at_b) <= tol:
+                raise MechanismError(f"joints {a!r} and {b!r} of link {shared[0]} are drawn at one point "
+                                     f"({at_a.real:g}, {at_a.imag:g}) m: a link's joints must be apart "
+                                     "(links turning about one point share one joint)")
+
+
+def check_held(chain: Chain, crank: str) -> None:
+    """A one-line error naming the moving links but the ``crank`` that one pair alone holds
+    (each adds a freedom: the usual cause of W ≠ 1 is a mistyped link in a joint)."""
+    held: dict[str, list[str]] = {k: [] for k in chain.links}
+    for name, (_, links) in chain.hinges.items():
+        for k in links if len(links) > 1 else ():  # a point of one link is no pair
+            held.setdefault(k, []).append(name)
+    for s in chain.slides:
+        for k in (s.slot, s.slider):
+            held.setdefault(k, []).append(s.name)
+    alone = [f"{k} (joint {held[k][0]!r})" for k in chain.links if len(held[k]) == 1 and k != crank]
+    if alone:
+        raise MechanismError(f"link{'s' if len(alone) > 1 else ''} held by one joint alone: {', '.join(alone)}; "
+                             "every moving link but the crank needs two pairs at least (check the joints' links)")
+
+
 def fresh_name(stem: str, taken: set[str]) -> str:
+    """``stem``, or ``stem`` with the first number from 2 that makes it none of ``taken``."""
     name, k = stem, 1
     while name in taken:
         k += 1
@@ -185,6 +218,7 @@ def fresh_name(stem: str, taken: set[str]) -> str:
 
 
 def links_text(links) -> str:
+    """Link names for a message: "1, 2, 3", or "(none)"."""
     return ", ".join(links) or "(none)"
 
 
@@ -245,6 +279,7 @@ def _next_group(chain: Chain, left: list[str], known: frozenset) -> frozenset | 
 
 
 def _is_group(chain: Chain, combo: tuple, known: frozenset) -> bool:
+    """Whether the links ``combo`` are an Assur group on the known links: W = 0, no part W ≤ 0."""
     return chain.freedom(frozenset(combo), known) == 0 and not _smaller(chain, combo, known)
 
 
@@ -292,6 +327,7 @@ def _refuse(chain: Chain, left: list[str], known: frozenset) -> None:
 
 
 def _inner_count(chain: Chain, group: frozenset, known: frozenset) -> int:
+    """Number of the inner pairs of ``group`` (pairs between two of its links)."""
     return sum(1 for p in group_pairs(chain, group, known) if p.inner)
 
 
@@ -314,6 +350,8 @@ class GroupPair:
 
 
 def group_pairs(chain: Chain, group: frozenset, known: frozenset) -> list[GroupPair]:
+    """Every pair of ``group``: its outer pairs (to a known link, the frame last) and its inner
+    ones, revolute then prismatic."""
     out = []
     for name, (at, links) in chain.hinges.items():
         mine = [k for k in links if k in group]
@@ -356,8 +394,10 @@ def explicit(data: dict, name: str = "mechanism") -> dict:
     if crank not in chain.links:
         raise MechanismError(f"[crank] link {crank_t.get('link')!r} is not a moving link of the joints; "
                              f"links: {links_text(chain.links)}")
+    check_joints(chain)
     w = chain.mobility()
     if w != 1:
+        check_held(chain, crank)
         raise MechanismError(f"the joints give W = {w} (3·{len(chain.links)} − 2·{chain.p5}), not 1, for links "
                              f"{links_text(chain.links)}: velplan drives a mechanism of one crank")
     groups = decompose(chain, crank)
@@ -378,5 +418,6 @@ def explicit(data: dict, name: str = "mechanism") -> dict:
 
 
 def _scale(chain: Chain) -> float:
+    """The drawing's size: the largest distance between two of its joints, m (1 for one point)."""
     xs = list(chain.position.values())
     return max((abs(a - b) for a in xs for b in xs), default=1.0) or 1.0

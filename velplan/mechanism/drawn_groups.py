@@ -83,12 +83,15 @@ def degrees_of(angle: float) -> float:
 
 
 def _sign(x: float, what: str) -> int:
+    """The sign (±1) of ``x``, read off the drawing; a one-line error naming ``what`` at 0."""
     if x == 0:
         raise MechanismError(f"{what} is drawn exactly at a dead point: the branch cannot be read from the drawing")
     return 1 if x > 0 else -1
 
 
 def crank_table(build: Builder, link: str, t: dict) -> dict:
+    """The explicit ``[crank]`` of the drawn crank ``link`` (``t``: its table): its tip its
+    other joint, its length (m) the tip's distance from the pivot."""
     chain = build.chain
     pivot = str(t.get("pivot", ""))
     if pivot not in chain.hinges or not {GROUND, link} <= set(chain.hinges[pivot][1]):
@@ -108,6 +111,8 @@ def crank_table(build: Builder, link: str, t: dict) -> dict:
 
 
 def group_tables(build: Builder, group: frozenset) -> None:
+    """The explicit ``[[group]]`` table of the dyad or triad ``group`` (its links) added to
+    ``build``, lengths (m) and branch read from the drawn pose."""
     known = frozenset(build.frames)
     pairs = group_pairs(build.chain, group, known)
     inner = [p for p in pairs if p.inner]
@@ -131,6 +136,8 @@ def group_tables(build: Builder, group: frozenset) -> None:
 
 
 def _rrr(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
+    """The RRR dyad (outer pairs ``oa``, ``ob``, inner ``mid``): its lengths (m) and branch,
+    from the drawing."""
     a, b = oa.link, ob.link
     A, D, C = oa.at, ob.at, mid.at
     if abs(D - A) <= TOLERANCE * build.scale:
@@ -149,6 +156,8 @@ def _rrr(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
 
 
 def _rrp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
+    """The RRP dyad (``ob``: its slider on a known link's guide): the rod's length (m), the
+    guide through the slider's pin and the branch, from the drawing."""
     rod, slider = oa.link, ob.link
     A, C, u = oa.at, mid.at, ob.slide.u
     out = {"kind": "RRP", "links": [rod, slider], "joint": build.known_point(oa.name, oa.outer),
@@ -164,6 +173,8 @@ def _rrp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
 
 
 def _rpr(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
+    """The RPR dyad (``mid``: its block sliding on its bar): the bar line's offset (m) from
+    its pivot and the branch, from the drawing."""
     s = mid.slide
     block, bar = (oa, ob) if s.slot == ob.link else (ob, oa)
     A, O, u = block.at, bar.at, s.u
@@ -182,6 +193,8 @@ def _rpr(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
 
 
 def _prp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
+    """The PRP dyad (two outer slides on known guides, ``mid`` the pin between its links):
+    the guides through the pin, from the drawing."""
     if build.chain.slides.index(oa.slide) > build.chain.slides.index(ob.slide):
         oa, ob = ob, oa
     C = mid.at
@@ -197,6 +210,9 @@ def _prp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
 
 
 def _rpp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
+    """The RPP dyad (``oa``: the block's pin on a known link, ``mid``: the block in the
+    runner's slot, ``ob``: the runner on a known guide): the guide through K, where the slot's
+    line meets it, and the slot's angle to the guide (deg), from the drawing."""
     block, runner = oa.link, ob.link
     B, v, u = oa.at, mid.slide.u, ob.slide.u
     # K: the slot's line through B crosses the guide's line through the runner's P joint
@@ -220,6 +236,8 @@ def _rpp(build: Builder, oa: GroupPair, mid: GroupPair, ob: GroupPair) -> dict:
 
 
 def _triad(build: Builder, names: list[str], pairs: list[GroupPair]) -> None:
+    """The class III triad of links ``names`` added to ``build``: its base, inner joints,
+    sides (m), leads and the drawn pose as its assembly; a one-line error for another group."""
     inner = [p for p in pairs if p.inner]
     count = {k: sum(1 for p in inner if k in (p.link, p.other)) for k in names}
     bases = [k for k in names if count[k] == 3]

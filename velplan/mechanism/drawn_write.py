@@ -68,6 +68,7 @@ def drawn_tables(mech, at: Mapping[str, complex], angles: Mapping[str, float]) -
 
 
 def _xy(z) -> list[float]:
+    """A point (m, as x + iy) as [x, y] for a table."""
     return [float(z.real), float(z.imag)]
 
 
@@ -92,14 +93,17 @@ class _Slides:
 
 
 def _rrp(g, s: _Slides) -> None:
+    """The RRP dyad's slide: its block on the guide, at its point."""
     s.rp_at(g.point, g.guide.link, g.links[1], s.guide_angle(g.guide), g.coincident)
 
 
 def _rpr(g, s: _Slides) -> None:
+    """The RPR dyad's slide: the block on the bar, at its pin."""
     s.rp_at(g.joint, g.links[1], g.links[0], s.theta[g.links[1]], g.coincident)
 
 
 def _prp(g, s: _Slides) -> None:
+    """The PRP dyad's two slides, each on its guide."""
     a, b = g.links
     name = fresh_name(f"{g.point}_{a}", s.taken)
     s.taken.add(name)
@@ -108,12 +112,14 @@ def _prp(g, s: _Slides) -> None:
 
 
 def _rpp(g, s: _Slides) -> None:
+    """The RPP dyad's slides: the slot on the pin's block, the runner on its guide."""
     block, runner = g.links
     s.rp_at(g.joint, runner, block, s.guide_angle(g.guide) + g.slot_angle, g.coincident)
     s.p_at(g.origin_name, g.origin_name, [g.guide.link, runner], s.guide_angle(g.guide))
 
 
 def _triad(g, s: _Slides) -> None:
+    """A triad's sliding leads, each a block on its guide."""
     for j, lead in zip(g.joints, g.leads):
         if lead.slider:
             s.rp_at(j, lead.guide.link, lead.link, s.guide_angle(lead.guide), lead.coincident)

@@ -151,6 +151,9 @@ def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
         data = explicit(data, name)
     elif "special" in data:
         raise MechanismError("[[special]] belongs to a drawn file (one with [[joint]] tables)")
+    elif "ground" not in data and "group" not in data:
+        raise MechanismError("missing [ground] section: give [ground], [crank] and [[group]] tables, or the "
+                             "mechanism as drawn ([[joint]] tables and a [crank])")
     for key, most in SIZE_LIMITS.items():
         count = len(data.get(key) or ())
         if count > most:

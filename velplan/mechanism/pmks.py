@@ -33,6 +33,8 @@ _MARK = "# velplan "
 
 
 class _Tokens:
+    """The tokens of an expression (numbers, names, brackets), each with its character (1-based)."""
+
     def __init__(self, text: str):
         self.items: list[tuple[str, str, int]] = []
         pos, end = 0, len(text)
@@ -49,18 +51,21 @@ class _Tokens:
         self.i = 0
 
     def peek(self) -> tuple[str, str, int]:
+        """The next token (kind, text, character), or ("end", …, −1)."""
         return self.items[self.i] if self.i < len(self.items) else ("end", "end of text", -1)
 
     def take(self, value: str | None = None, kind: str | None = None) -> str:
+        """The next token's text, which must be ``value`` or of ``kind`` (one-line error else)."""
         k, v, at = self.peek()
         if (value is not None and v != value) or (kind is not None and k != kind):
             where = "at the end" if at < 0 else f"at character {at}"
-            wanted = repr(value) if value else kind
+            wanted = repr(value) if value else {"num": "a number", "name": "a name"}.get(kind or "", kind)
             raise MechanismError(f"malformed expression {where}: expected {wanted}, found {v!r}")
         self.i += 1
         return v
 
     def keyword(self, word: str) -> None:
+        """``word[`` (the word in any case)."""
         self.take(kind="name") if self.peek()[1].lower() == word.lower() else self.take(word)
         self.take("[")
 
@@ -111,10 +116,12 @@ def parse(text: str, *, unit: str = "mm", names: Sequence[str] | None = None) ->
 
 
 def _number(tok: _Tokens) -> float:
+    """The next token as a number."""
     return float(tok.take(kind="num"))
 
 
 def _joint(tok: _Tokens, i: int) -> tuple:
+    """Joint ``i`` read: (kind, guide angle deg, colour, x, y in the expression's unit, links)."""
     tok.keyword("J")
     kind = tok.take(kind="name")
     if kind.upper() not in ("R", "P", "RP"):
@@ -127,6 +134,8 @@ def _joint(tok: _Tokens, i: int) -> tuple:
         angle = _number(tok)
         tok.take("]")
         tok.take(",")
+    elif kind != "R":
+        raise MechanismError(f"joint {i}: a {kind} joint needs A[deg], its guide's direction, after its kind")
     if tok.peek()[1].lower() == "color":
         tok.keyword("color")
         if tok.peek()[1] == "(":
@@ -161,6 +170,7 @@ def _joint(tok: _Tokens, i: int) -> tuple:
 
 
 def _link_in(name: str) -> str:
+    """velplan's name of an expression's link: ``ground`` → "0", ``L3`` → "3"."""
     if name in FRAME_NAMES:
         return GROUND
     m = _LINK.match(name)
@@ -168,6 +178,7 @@ def _link_in(name: str) -> str:
 
 
 def _link_out(name: str) -> str:
+    """An expression's name of velplan's link: "0" → ``ground``, "3" → ``L3``."""
     if name == GROUND:
         return "ground"
     if name.isdigit():
@@ -178,6 +189,7 @@ def _link_out(name: str) -> str:
 
 
 def _num(v: float) -> str:
+    """A coordinate or angle as written: exact (repr), or "10.0" for a whole number."""
     return repr(float(v)) if v != int(v) or abs(v) >= 1e15 else f"{float(v):.1f}"
 
 

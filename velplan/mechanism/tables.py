@@ -45,6 +45,7 @@ def meta_tables(mech: Mechanism) -> dict[str, Any]:
 
 
 def crank_table(mech: Mechanism) -> dict[str, Any]:
+    """The ``[crank]`` table of ``mech``: link, pivot, tip, length (m), omega (rad/s), epsilon (rad/s²)."""
     c = mech.crank
     out = {"link": c.link, "pivot": c.pivot, "tip": c.tip, "length": c.length, "omega": c.omega}
     if c.epsilon:
@@ -65,10 +66,12 @@ def explicit_tables(mech: Mechanism) -> dict[str, Any]:
 
 
 def guide_table(g: Guide) -> dict[str, Any]:
+    """A guide as its table: link, through (a point), angle_deg (deg), offset (m)."""
     return {"link": g.link, "through": g.through, "angle_deg": math.degrees(g.angle), "offset": g.offset}
 
 
 def _triad_table(g) -> dict[str, Any]:
+    """The ``[[group]]`` table of a triad: sides (m), leads, its assembly pose (deg, m)."""
     out = {"base": g.base, "joints": list(g.joints), "sides": list(g.sides), "side": g.side,
            "leads": [{"link": ld.link, "guide": guide_table(ld.guide)} | (
                {"coincident": ld.coincident} if ld.coincident else {}) if ld.slider else
@@ -82,6 +85,7 @@ def _triad_table(g) -> dict[str, Any]:
 
 
 def _prp_table(g) -> dict[str, Any]:
+    """The ``[[group]]`` table of a PRP dyad: its point and its two guides."""
     out = {"links": list(g.links), "point": g.point, "guides": [guide_table(x) for x in g.guides]}
     if any(g.coincident):
         out["coincident"] = [c or "" for c in g.coincident]
@@ -89,6 +93,7 @@ def _prp_table(g) -> dict[str, Any]:
 
 
 def _rpp_table(g) -> dict[str, Any]:
+    """The ``[[group]]`` table of an RPP dyad: its joint, guide and slot angle (deg)."""
     out = {"links": list(g.links), "joint": g.joint, "guide": guide_table(g.guide),
            "slot_angle_deg": math.degrees(g.slot_angle)}
     return out | ({"origin": g.origin} if g.origin else {})
@@ -125,10 +130,12 @@ _BARE = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
 def _key(k: str) -> str:
+    """A TOML key, quoted unless bare."""
     return k if _BARE.match(k) else json.dumps(k, ensure_ascii=False)
 
 
 def _value(v: Any) -> str:
+    """A TOML value: a string, number, boolean, array or inline table."""
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, int):
@@ -147,6 +154,7 @@ def _value(v: Any) -> str:
 
 
 def _table_of_tables(v: Any) -> bool:
+    """Whether ``v`` is written as an array of tables ([[…]])."""
     return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
 
 
@@ -155,6 +163,7 @@ _ORDER = ("ground", "crank", "joint", "group", "point", "special", "link", "load
 
 
 def _section(lines: list[str], path: str, table: dict) -> None:
+    """The lines of the TOML section ``path`` (and its sub-tables) appended to ``lines``."""
     if not path:
         table = dict(sorted(table.items(), key=lambda kv: _ORDER.index(kv[0]) if kv[0] in _ORDER else -1))
     plain = {k: v for k, v in table.items() if not isinstance(v, dict) and not _table_of_tables(v)}

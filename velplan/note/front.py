@@ -65,10 +65,11 @@ def _structure_figure(note, mech) -> None:
     from velplan.mechanism.drawn_write import drawn_tables
     from velplan.note.figures import views_png
     from velplan.render.i18n import label
+    from velplan.render.style import SheetStyle
     from velplan.views.structure import structure_view
 
     scene = structure_view(mech, drawn_tables(mech, *pose(mech))["joint"], lang=note.lang, title=False)
-    png, width = views_png([scene], None)
+    png, width = views_png([scene], SheetStyle(language=note.lang))
     note.figure(label("structural_analysis", note.lang), png, width)
 
 

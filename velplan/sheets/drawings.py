@@ -38,7 +38,8 @@ README = """# drawings
 The current kinematic-analysis sheets of the bundled examples, as `velplan sheet NAME`
 draws them: A1, Russian labels, ESKD frame and title block, the scheme in 12 positions,
 velocity and acceleration plans for two positions, the kinematic diagrams (chord method
-beside the analytic curves) and the table of transfer functions.
+beside the analytic curves), the table of transfer functions and, where free space is left
+for it, the structural analysis (the initial mechanism and each Assur group drawn apart).
 
 {files}
 

@@ -28,7 +28,6 @@ from types import MappingProxyType
 from typing import Mapping, Sequence
 
 import numpy as np
-import shapely
 
 from velplan.analysis.numbering import position_index, position_number
 from velplan.errors import ScaleError, VelplanError
@@ -38,8 +37,8 @@ from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
-from velplan.sheets.layout import (GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM,
-                                   write_outputs)
+from velplan.sheets.layout import (
+    GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM, free_spot, write_outputs)
 from velplan.sheets.skeleton import (
     ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
@@ -166,7 +165,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
                 frame_style: FrameStyle | None = None, info: TitleInfo | None = None,
                 diagrams: bool | None = None, table: bool = True,
                 style: SheetStyle | None = None, data: bool = True, centres: Sequence[int] = (),
-                scale_per_plan: bool = False) -> Sheet:
+                scale_per_plan: bool = False, structure: bool | None = None) -> Sheet:
     """Compose the kinematic-analysis sheet of `mech`.
 
     Parameters
@@ -208,6 +207,10 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         Fit each plan to its cell at its own μ. By default the plans of a kind share one μ
         (the largest of their fits), so that they compare by eye, where every one of them
         stays legible at it (`legible_at`); otherwise each states its own.
+    structure : bool or None
+        Draw the structural analysis (`velplan.sheets.structure`) where free space is left
+        for it legibly (None, the default); the same but raise ScaleError where there is none
+        (True); leave it out (False).
 
     Raises
     ------
@@ -235,20 +238,15 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
     if "diagrams" not in views and with_diagrams:
-        placed = _diagrams_in_free_corner(req, draw, views)
-        if placed is None and diagrams:
-            raise ScaleError(f"the kinematic diagrams do not fit {fmt} beside the table nor in a "
-                             f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
-                             f"least {MIN_ORDINATE_MM:.0f} mm; "
-                             f"use a larger --format")
-        if placed is not None:
-            views["diagrams"] = placed
+        _diagrams_if_room(req, draw, views, required=bool(diagrams))
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
+    if structure is not False:
+        _place_structure(req, views, required=bool(structure))
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
-        k for k in ("data", "readings", "diagrams", "table") if k in views]
+        k for k in ("data", "readings", "diagrams", "table", "structure") if k in views]
     scene = compose(req, views, order, info)
     if centres:
         scene = scene.extend(_centre_marks(study, centres, views["mechanism"], mview.mu))
@@ -409,6 +407,15 @@ def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
         views["readings"] = placed
 
 
+def _place_structure(req: Request, views: dict, *, required: bool) -> None:
+    """The structural analysis in free space of the sheet, where it fits legibly."""
+    from velplan.sheets.structure import place_structure
+
+    placed = place_structure(req.study, req.lang, views, req.area, req.title_block, req.gap, required)
+    if placed is not None:
+        views["structure"] = placed
+
+
 def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> list:
     """The instant centres of the chosen positions (`Study.centres`), on the scheme."""
     from velplan.views.centres import centre_marks
@@ -426,28 +433,13 @@ def _free_spot(build, sizes, views, region, gap):
     """``build(text size, title size)`` placed where no view is in ``region``, at the largest
     of ``sizes`` that fits: the free spot nearest the scheme's lower left corner; None when
     there is no room."""
-    x0, y0, x1, y1 = region
-    taken = np.array([shapely.box(*v.bounds).buffer(gap) for v in views.values()])
-    near = shapely.bounds(taken)
-    corner = np.array([views["mechanism"].bounds[0], views["mechanism"].bounds[1]])
+    taken = [v.bounds for v in views.values()]
+    corner = (views["mechanism"].bounds[0], views["mechanism"].bounds[1])
     for size, title in sizes:
         view = build(size, title)
-        w, h = view.width_mm, view.height_mm
-        if w > x1 - x0 or h > y1 - y0:
-            continue
-        xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
-        xs, ys = xs.ravel(), ys.ravel()
-        boxes = shapely.box(xs, ys, xs + w, ys + h)
-        # only a box whose bounds meet a taken view's bounds can meet the view: shapely asked for those
-        meet = ((xs[:, None] <= near[:, 2]) & (near[:, 0] <= (xs + w)[:, None])
-                & (ys[:, None] <= near[:, 3]) & (near[:, 1] <= (ys + h)[:, None]))
-        rows, cols = np.nonzero(meet)
-        meet[rows, cols] = shapely.intersects(boxes[rows], taken[cols])
-        free = ~meet.any(axis=1)
-        if free.any():
-            k = np.flatnonzero(free)
-            best = k[np.argmin(np.hypot(xs[k] - corner[0], ys[k] + h - corner[1]))]
-            return view.at(xs[best], ys[best])
+        at = free_spot(view.width_mm, view.height_mm, taken, region, gap, corner)
+        if at is not None:
+            return view.at(*at)
     return None
 
 
@@ -556,6 +548,19 @@ def _one_scale_where_legible(fmt: str, draw: _Drawings, plan_views, results, cel
             for n in names:
                 views[n], out[n] = plan_views[n], results[n]
     return views, out
+
+
+def _diagrams_if_room(req: Request, draw: _Drawings, views: dict, *, required: bool) -> None:
+    """The kinematic diagrams in a free corner where they fit; ScaleError where they do not
+    and are ``required``."""
+    placed = _diagrams_in_free_corner(req, draw, views)
+    if placed is None and required:
+        raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table nor in a "
+                         f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
+                         f"least {MIN_ORDINATE_MM:.0f} mm; "
+                         f"use a larger --format")
+    if placed is not None:
+        views["diagrams"] = placed
 
 
 def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):

@@ -9,6 +9,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping
 
+import numpy as np
 import shapely
 
 from velplan.errors import ScaleError, VelplanError, deprecated
@@ -113,3 +114,24 @@ def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) ->
             if boxes[a].intersection(boxes[b]).area > 1e-6:
                 raise ScaleError(f"the {a} and {b} views overlap on {fmt}; use a larger "
                                  f"--format or fewer --plans")
+
+
+def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[float, float] | None:
+    """The lower left corner (sheet mm) of a free w × h mm box in ``region`` (x0, y0, x1, y1),
+    at least ``gap`` mm from every box of ``taken``, on a 5 mm grid: the one whose upper left
+    corner is nearest the point ``near``; None when there is none."""
+    x0, y0, x1, y1 = region
+    if w > x1 - x0 or h > y1 - y0:
+        return None
+    xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
+    xs, ys = xs.ravel(), ys.ravel()
+    free = np.ones(xs.shape, bool)
+    for bx0, by0, bx1, by1 in taken:  # free: farther than `gap` from the box
+        dx = np.maximum(np.maximum(bx0 - (xs + w), xs - bx1), 0.0)
+        dy = np.maximum(np.maximum(by0 - (ys + h), ys - by1), 0.0)
+        free &= np.hypot(dx, dy) > gap
+    if not free.any():
+        return None
+    k = np.flatnonzero(free)
+    best = k[np.argmin(np.hypot(xs[k] - near[0], ys[k] + h - near[1]))]
+    return float(xs[best]), float(ys[best])

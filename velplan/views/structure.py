@@ -18,15 +18,21 @@ import shapely
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import structure
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
+from velplan.views.base import subscript
 
 PANEL_MM = 70.0
 """Width the widest panel is drawn at, mm."""
 GAP_MM = 18.0
+"""Gap between the panels of a figure drawn at `PANEL_MM`, mm (in proportion at other widths)."""
 MARGIN_MM = 12.0
 TEXT_MM = 3.5
+"""Height of its letters, mm."""
+TITLE_MM = 5.0
+"""Height of its heading, mm."""
 BLOCK_MM = (10.0, 6.0)
 RING_MM = 3.2
 """Radius of the dashed ring that marks an outer pair, mm."""
@@ -44,9 +50,9 @@ def kind_in(kind: str, lang: str) -> str:
 class _Panel:
     """One part of the figure: its links, and what it draws in metres, before placing."""
 
-    def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...]):
-        self.links, self.known, self.caption = links, known, caption
-        self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in links}
+    def __init__(self, links: set[str], known: set[str], caption: tuple[str, ...], text_mm: float = TEXT_MM):
+        self.links, self.known, self.caption, self.text_mm = links, known, caption, text_mm
+        self.vertices: dict[str, list[np.ndarray]] = {k: [] for k in sorted(links)}  # a fixed order
         self.joints: list[tuple[str, np.ndarray, bool]] = []  # name, at, outer?
         self.blocks: list[tuple[np.ndarray, float, bool]] = []  # at, angle, outer?
         self.marks: list[tuple[str, np.ndarray]] = []  # a named point of a link, not a joint
@@ -60,14 +66,15 @@ class _Panel:
         return np.array(pts) if pts else np.zeros((1, 2))
 
 
-def _panels(mech: Mechanism, joints: Sequence[Mapping], lang: str) -> list[_Panel]:
+def _panels(mech: Mechanism, joints: Sequence[Mapping], lang: str, text_mm: float) -> list[_Panel]:
     st = structure(mech)
-    first = _Panel({mech.crank.link}, {GROUND}, (label("initial_mechanism", lang), f"I(0, {mech.crank.link})"))
+    first = _Panel({mech.crank.link}, {GROUND}, (label("initial_mechanism", lang), f"I(0, {mech.crank.link})"),
+                   text_mm)
     panels, known = [first], {GROUND, mech.crank.link}
     for (name, kind, cls, order, links) in st.groups:
         caption = (label("group_class", lang).format(cls=_ROMAN.get(cls, str(cls)), order=order),
                    f"{kind_in(kind, lang)}: {', '.join(links)}")
-        panels.append(_Panel(set(links), set(known), caption))
+        panels.append(_Panel(set(links), set(known), caption, text_mm))
         known |= set(links)
     for panel in panels:
         for j in joints:
@@ -105,54 +112,82 @@ def _add_joint(panel: _Panel, j: Mapping) -> None:
         panel.pivots.append(at)
     if len(hinge) >= 2:
         outer = not initial and any(k in panel.known for k in hinge)
-        panel.joints.append((j["name"], at, outer))
+        panel.joints.append((subscript(str(j["name"])), at, outer))
     elif kind == "R":
-        panel.marks.append((j["name"], at))
+        panel.marks.append((subscript(str(j["name"])), at))
 
 
-def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True) -> Scene:
+def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True,
+                   panel_mm: float = PANEL_MM, text_mm: float = TEXT_MM, title_mm: float = TITLE_MM) -> Scene:
     """The figure of the structural analysis (mm, y up) from the drawn joints of ``mech``;
-    ``title``: with its heading, W and the formula of structure above it."""
-    panels = _panels(mech, joints, lang)
+    ``title``: with its heading, W and the formula of structure above it; ``panel_mm``: the
+    width of its widest panel, mm; ``text_mm``, ``title_mm``: its letters' and heading's
+    height, mm."""
+    panels = _panels(mech, joints, lang, text_mm)
     spans = [np.ptp(p.points(), axis=0) for p in panels]
-    widest = max(max(float(s[0]), float(s[1])) for s in spans) or 1.0
-    mu = PANEL_MM / widest  # mm per m
+    mu = _scale(spans, panel_mm)
+    gap, line = GAP_MM * panel_mm / PANEL_MM, text_mm * 1.6
     heights = [float(s[1]) * mu for s in spans]
     tallest = max(heights)
     items: list = []
-    x, base = MARGIN_MM, MARGIN_MM + 4 * TEXT_MM * 1.8 + 8.0
+    base = MARGIN_MM + 4 * line + 8.0
     low, high = base, base
+    sized = []  # per panel: its shift, drawn box, half its drawing's and its captions' widths
     for panel, span in zip(panels, spans):
         lo = panel.points().min(axis=0)
         shift = np.array([0.0, base + (tallest - float(span[1]) * mu) / 2]) - lo * mu
-        drawn = _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
-        box = _bounds(drawn)
-        captions = max(text_extent(c, TEXT_MM)[0] for c in panel.caption)
-        width = max(box[2] - box[0], captions)
-        shift = shift + (x + (width - (box[2] - box[0])) / 2 - box[0], 0.0)
+        box = _bounds(_draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift))
+        captions = max(text_extent(c, text_mm)[0] for c in panel.caption)
+        sized.append((shift, box, (box[2] - box[0]) / 2, captions / 2))
+    for i, (panel, (shift, box, half, caption)) in enumerate(zip(panels, sized)):
+        if i:  # drawings `gap` apart, captions two letters apart, whichever needs more
+            before = sized[i - 1]
+            x += max(before[2] + half + gap, before[3] + caption + 2 * text_mm)
+        else:
+            x = MARGIN_MM + max(half, caption)
+        shift = shift + (x - (box[0] + box[2]) / 2, 0.0)
         items += _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
-        panel.centre, low, high = x + width / 2, min(low, box[1]), max(high, box[3])
-        x += width + GAP_MM
+        panel.centre, low, high = x, min(low, box[1]), max(high, box[3])
+        right = x + max(half, caption)
+    x = right + gap
+    below = 1.7 * text_mm  # from the lowest drawing to the first caption's middle
     for panel in panels:
-        for k, line in enumerate(panel.caption):
-            items.append(Text((panel.centre, low - 6.0 - k * TEXT_MM * 1.6), line, "labels", TEXT_MM, "middle"))
-    width = x - GAP_MM + MARGIN_MM
+        for k, text in enumerate(panel.caption):
+            items.append(Text((panel.centre, low - below - k * line), text, "labels", text_mm, "middle", "middle"))
+    width = x - gap + MARGIN_MM
     st = structure(mech)
-    top = high + 8.0
+    top = high + 1.7 * text_mm
+    ring = RING_MM * text_mm / TEXT_MM
+    key = label("outer_pairs", lang)
+    key_w = 2 * ring + 0.6 * text_mm + text_extent(key, text_mm)[0]
+    lowest = low - below - (len(panels[0].caption) - 1) * line - 0.7 * text_mm  # the captions' foot
+    legend = np.array([MARGIN_MM + ring, lowest - 0.6 * line - ring])  # under the captions
     if title:
-        items += [Text((MARGIN_MM, top + 2.2 * TEXT_MM), label("structural_analysis", lang), "labels", 5.0),
-                  Text((MARGIN_MM, top), f"{st.formula()};  {label('structure_formula', lang)}: "
-                        f"{st.structure_formula(mech.crank.link)}", "labels", TEXT_MM)]
-    else:
-        top = high - 4 * TEXT_MM + 2.0
-    legend = np.array([MARGIN_MM + RING_MM, low - 6.0 - 2 * TEXT_MM * 1.6 - 2 * RING_MM])
-    shift_up = MARGIN_MM - (legend[1] - RING_MM)
+        heading = label("structural_analysis", lang)
+        formula = (f"{st.formula()};  {label('structure_formula', lang)}: "
+                   f"{st.structure_formula(mech.crank.link)}")
+        items += [Text((MARGIN_MM, top + 1.3 * title_mm), heading, "labels", title_mm),
+                  Text((MARGIN_MM, top), formula, "labels", text_mm)]
+        right = max(width - MARGIN_MM, MARGIN_MM + text_extent(formula, text_mm)[0]) - text_mm  # slack for wide fonts
+        if MARGIN_MM + text_extent(heading, title_mm)[0] + 2 * text_mm + key_w <= right:
+            legend = np.array([right - key_w + ring, top + 1.3 * title_mm + title_mm / 2])  # beside the heading
+        top += 1.3 * title_mm + title_mm
+    shift_up = MARGIN_MM - min(lowest, legend[1] - ring)
     items = [_moved(p, shift_up) for p in items]
     legend = legend + (0.0, shift_up)
-    top += shift_up
-    items += [Circle(legend, RING_MM, "labels", "hidden"),
-              Text(legend + (RING_MM + 2.0, -TEXT_MM / 2), label("outer_pairs", lang), "labels", TEXT_MM)]
-    return Scene(tuple(items), width_mm=max(width, 120.0), height_mm=top + 4 * TEXT_MM + MARGIN_MM)
+    items += [Circle(legend, ring, "labels", "hidden"),
+              Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")]
+    return Scene(tuple(items), width_mm=max(_bounds(items)[2] + MARGIN_MM, 120.0), height_mm=top + shift_up + MARGIN_MM)
+
+
+def _scale(spans, panel_mm: float) -> float:
+    """mm per m at which the widest of the panels' ``spans`` (m) is ``panel_mm`` mm."""
+    return panel_mm / (max(max(float(s[0]), float(s[1])) for s in spans) or 1.0)
+
+
+def figure_scale(mech: Mechanism, joints: Sequence[Mapping], panel_mm: float = PANEL_MM) -> float:
+    """mm per m of the figure `structure_view` draws with its widest panel ``panel_mm`` wide."""
+    return _scale([np.ptp(p.points(), axis=0) for p in _panels(mech, joints, "en", TEXT_MM)], panel_mm)
 
 
 def _draw(panel: _Panel, place) -> list:
@@ -179,6 +214,7 @@ def _draw(panel: _Panel, place) -> list:
         across = np.array([-away[1], away[0]])
         sides[tuple(c)] = across if across[0] >= 0 else -across
     blocks = {tuple(place(at)): (angle, outer) for at, angle, outer in panel.blocks}
+    letters = []  # (joint, name, the side it is best written on), placed last, clear of the rest
     for name, at, outer in panel.joints:
         c = place(at)
         out += revolute_joint(c)
@@ -187,18 +223,50 @@ def _draw(panel: _Panel, place) -> list:
         if tuple(c) in blocks:  # beside the block, across its guide
             angle, ringed = blocks[tuple(c)]
             left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
-            reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
-            out.append(Text(c + left * reach, name, "labels", TEXT_MM, "middle", "middle"))
+            reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 3.5
+            out.append(Text(c + left * reach, name, "labels", panel.text_mm, "middle", "middle"))
         else:
-            out.append(_label(c, name, sides.get(tuple(c), _away(c, shapes))))
-    for name, at in panel.marks:
-        c = place(at)
-        out.append(_label(c, name, _away(c, shapes)))
+            letters.append((c, name, sides.get(tuple(c), _away(c, shapes))))
+    letters += [(place(at), name, _away(place(at), shapes)) for name, at in panel.marks]
     centre = np.mean([p for pts in shapes.values() for p in pts], axis=0)
     for k, pts in shapes.items():
         if pts and k != GROUND:
             out.append(_link_number(k, pts, centre, panel, place))
+    return out + _clear_letters(out, letters, panel.text_mm)
+
+
+def _clear_letters(drawn: list, letters: list, size_mm: float) -> list[Text]:
+    """Each joint's letter on its best side, or else turned by 45° steps to the first side
+    where it crosses no line, ring or letter already drawn (its best side when none is)."""
+    lines = [_outline(p) for p in drawn if not isinstance(p, Text)]
+    ink = shapely.union_all([g for g in lines if g is not None])
+    boxes = [label_box(t) for t in drawn if isinstance(t, Text)]
+    out: list[Text] = []
+    for c, name, away in letters:
+        choice = None
+        for turn in (0, 45, -45, 90, -90, 135, -135, 180):
+            a = math.radians(turn)
+            side = np.array([away[0] * math.cos(a) - away[1] * math.sin(a), away[0] * math.sin(a) + away[1] * math.cos(a)])
+            text = _label(c, name, side, size_mm)
+            box = label_box(text)
+            if not box.intersects(ink) and not any(box.intersects(b) for b in boxes):
+                choice = text
+                break
+        choice = choice or _label(c, name, away, size_mm)
+        out.append(choice)
+        boxes.append(label_box(choice))
     return out
+
+
+def _outline(p):
+    """The ink of a drawn primitive as a shapely line (a circle by its rim), or None."""
+    if isinstance(p, Circle):
+        return shapely.Point(p.centre).buffer(p.radius, quad_segs=8).boundary
+    if isinstance(p, Polygon):
+        return shapely.LinearRing(p.points)
+    if isinstance(p, Polyline):
+        return shapely.LineString(p.points)
+    return None
 
 
 def _bounds(items: list) -> tuple[float, float, float, float]:
@@ -231,10 +299,11 @@ def _away(c: np.ndarray, shapes: Mapping[str, list], pivot=None) -> np.ndarray:
     return total / n if n > 1e-9 else np.array([0.7071, 0.7071])
 
 
-def _label(c: np.ndarray, name: str, away: np.ndarray) -> Text:
+def _label(c: np.ndarray, name: str, away: np.ndarray, size_mm: float) -> Text:
+    """A joint's letter ``size_mm`` high beside it, out along ``away``."""
     at = c + away * (RING_MM + 2.0)
     anchor = "start" if away[0] > 0.3 else "end" if away[0] < -0.3 else "middle"
-    return Text(at, name, "labels", TEXT_MM, anchor, "middle")
+    return Text(at, name, "labels", size_mm, anchor, "middle")
 
 
 def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) -> Text:
@@ -243,17 +312,30 @@ def _link_number(k: str, pts: list, centre: np.ndarray, panel: _Panel, place) ->
         for at, angle, ringed in panel.blocks:
             if np.hypot(*(place(at) - pts[0])) < 1e-6:
                 left = np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
-                reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 2.5
-                return Text(pts[0] - left * reach, k, "labels", TEXT_MM, "middle", "middle")
-        return Text(pts[0] + (0.0, -3.0), k, "labels", TEXT_MM, "middle", "top")
+                reach = (0.75 * BLOCK_MM[0] if ringed else BLOCK_MM[1] / 2) + 3.5
+                return Text(pts[0] - left * reach, k, "labels", panel.text_mm, "middle", "middle")
+        return Text(pts[0] + (0.0, -3.0), k, "labels", panel.text_mm, "middle", "top")
     a, b = max(((p, q) for i, p in enumerate(pts) for q in pts[i + 1:]), key=lambda pq: np.hypot(*(pq[0] - pq[1])))
     mid, d = (a + b) / 2, b - a
     normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
     if len(pts) >= 3 and not _collinear(pts):  # a plate: its number inside
-        return Text(np.mean(pts, axis=0), k, "labels", TEXT_MM, "middle", "middle")
+        return Text(np.mean(pts, axis=0), k, "labels", panel.text_mm, "middle", "middle")
+    for at, angle, frame in panel.guides:  # a link along a fixed guide: its number off the hatching
+        g = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+        if frame and abs(g[0] * d[1] - g[1] * d[0]) < 0.05 * float(np.hypot(*d)):
+            ends = [p + (q - p) / max(float(np.hypot(*(q - p))), 1e-9) * _ring_at(p, panel, place)
+                    for p, q in ((a, b), (b, a))]  # the part clear of a block's ring
+            return Text((ends[0] + ends[1]) / 2 + np.array([-g[1], g[0]]) * (0.9 * panel.text_mm), k,
+                        "labels", panel.text_mm, "middle", "middle")
     if normal @ (mid - centre) < 0:
         normal = -normal
-    return Text(mid + normal * 3.0, k, "labels", TEXT_MM, "middle", "middle")
+    return Text(mid + normal * (0.9 * panel.text_mm), k, "labels", panel.text_mm, "middle", "middle")
+
+
+def _ring_at(c: np.ndarray, panel: _Panel, place) -> float:
+    """Radius (mm) of the ring drawn round a block at ``c``, 0 where there is none."""
+    return next((0.75 * BLOCK_MM[0] for at, _, ringed in panel.blocks
+                 if ringed and np.hypot(*(place(at) - c)) < 1e-6), 0.0)
 
 
 def _collinear(pts: list) -> bool:
