@@ -78,9 +78,9 @@ def test_no_structure_gives_the_same_sheet_without_it(sheets, name):
 
 def test_structure_required_where_there_is_no_room_fails_in_one_line():
     with pytest.raises(ScaleError) as err:
-        build_sheet("four-bar", fmt="A3", lang="en", structure=True)
+        build_sheet("press", fmt="A3", lang="en", structure=True)
     assert "\n" not in str(err.value) and "structural analysis" in str(err.value)
-    assert "structure" not in build_sheet("four-bar", fmt="A3", lang="en").views  # auto: left out
+    assert "structure" not in build_sheet("press", fmt="A3", lang="en").views  # auto: left out
 
 
 def _cli(*args, cwd):
@@ -88,7 +88,7 @@ def _cli(*args, cwd):
 
 
 def test_cli_structure_option(tmp_path):
-    out = _cli("sheet", "four-bar", "--format", "A3", "--structure", "yes", "-o", "s.svg", cwd=tmp_path)
+    out = _cli("sheet", "press", "--format", "A3", "--structure", "yes", "-o", "s.svg", cwd=tmp_path)
     assert out.returncode != 0 and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1 and "structural analysis" in out.stderr
     assert not (tmp_path / "s.svg").exists()
