@@ -172,7 +172,8 @@ def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_labe
         if abs(y) < clear:
             continue
         items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size, "end", "middle"))
+        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
+                           "end", "middle"))
     if base != 0:
         items.append(Text((-1.8, 0.0), base_label or number(base, lang, 4), LABELS, size, "end", "middle"))
     return items
