@@ -119,9 +119,9 @@ def ordinate_ranges(sheet) -> list[float]:
 
 
 def ambiguous_plan_letters(sheet) -> list[str]:
-    """The image letters of the plans whose own image is not the image nearest to them or lies
-    farther than :data:`ANCHOR_MM` from their box (a letter joined to its image by a leader
-    excepted: the leader names its point)."""
+    """The image letters of the plans whose own image is not the image nearest to them
+    ("nearer: …") or lies farther than :data:`ANCHOR_MM` from their box ("far: …"); a letter
+    joined to its image by a leader excepted: the leader names its point."""
     out = []
     for name in sheet.plans:
         placed = sheet.views[name]
@@ -144,14 +144,35 @@ def ambiguous_plan_letters(sheet) -> list[str]:
                       if label not in t.text.split(", ") and min(np.hypot(*(xy - o)) for o in own) > 0.5]
             led = any(min(np.hypot(*(lp[0] - o)) for o in own) < 1e-6 and box.buffer(0.6).contains(shapely.Point(lp[1]))
                       for lp in leaders)
-            if not led and (d_own > ANCHOR_MM or (others and min(others) < d_own)):
-                out.append(f"{name}:{t.text}")
+            if not led and others and min(others) < d_own:
+                out.append(f"nearer: {name}:{t.text}")
+            elif not led and d_own > ANCHOR_MM:
+                out.append(f"far: {name}:{t.text} {d_own:.1f} mm")
+    return out
+
+
+def ambiguous_scheme_letters(sheet, kin) -> list[str]:
+    """The point letters of the scheme's thick position whose own point is not the point
+    nearest to them ("nearer: …"), or lies farther than :data:`ANCHOR_MM` from their box ("far: …")."""
+    scheme = sheet.views["mechanism"]
+    t = int(scheme.view.meta["thick"]) - 1  # a position number, 1-based
+    points = {subscript(n): scheme.to_sheet(kin.position(n)[t]) for n in kin.point_index}
+    points = {k: xy for k, xy in points.items() if np.all(np.isfinite(xy))}
+    out = []
+    for label in (p for p in scheme.primitives if isinstance(p, Text) and p.text in points):
+        own, box = points[label.text], label_box(label)
+        d_own = box.distance(shapely.Point(own))
+        others = [box.distance(shapely.Point(xy)) for k, xy in points.items() if np.hypot(*(xy - own)) > 1.0]
+        if others and min(others) < d_own:
+            out.append(f"nearer: mechanism:{label.text}")
+        elif d_own > ANCHOR_MM:
+            out.append(f"far: mechanism:{label.text} {d_own:.1f} mm")
     return out
 
 
 def class_iii_marks(sheet, kin) -> list[str]:
     """What a class III sheet misses: each triad's special point K (a dot with its letter
-    within 8 mm and two lead lines through it) on the scheme in every drawn position, and its
+    within :data:`ANCHOR_MM` and two lead lines through it) on the scheme in every drawn position, and its
     base link's image as a closed triangle with a dot at each corner on every plan."""
     from velplan.views.mechanism import special_points
 
@@ -164,7 +185,7 @@ def class_iii_marks(sheet, kin) -> list[str]:
         for k in sheet.positions:
             at = scheme.to_sheet(kin.position(k_name)[k - 1])
             letters = [t for t in prims if isinstance(t, Text) and t.text.startswith(subscript(k_name))
-                       and np.hypot(*(np.asarray(t.position) - at)) < 8.0]
+                       and label_box(t).distance(shapely.Point(at)) <= ANCHOR_MM]
             dot = any(isinstance(p, Circle) and p.fill == "solid" and np.allclose(p.centre, at, atol=1e-6) for p in prims)
             through = sum(a.distance(shapely.Point(at)) < 1e-6 for a in axes)
             if not letters or not dot or through < 2:
@@ -186,7 +207,7 @@ def class_iii_marks(sheet, kin) -> list[str]:
 def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
     out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
-                                                  "diagram", "ambiguous", "class_iii")}
+                                                  "diagram", "ambiguous", "far_label", "class_iii")}
     for name, kind, sheet in gallery.all():
         if kind not in kinds:
             continue
@@ -201,7 +222,9 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
             continue
         out["short_vector"] += [f"{where}: {v}" for v in short_unlisted_vectors(sheet)]
         out["diagram"] += [f"{where}: {r:.1f} mm" for r in ordinate_ranges(sheet) if r < 30.0 - 0.5]
-        out["ambiguous"] += [f"{where}: {v}" for v in ambiguous_plan_letters(sheet)]
+        for v in ambiguous_plan_letters(sheet) + ambiguous_scheme_letters(sheet, gallery.studies[name].kinematics):
+            why, _, what = v.partition(": ")
+            out["ambiguous" if why == "nearer" else "far_label"].append(f"{where}: {what}")
         if any(g.kind == "triad" for g in sheet.mechanism.groups):
             out["class_iii"] += [f"{where}: {v}" for v in class_iii_marks(sheet, gallery.studies[name].kinematics)]
     return out
