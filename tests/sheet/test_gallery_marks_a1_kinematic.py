@@ -17,7 +17,7 @@ BOUNDS: dict[str, int] = {
     # (sheets/layout.py SIZES["A1"].table), so that the table of its 13 points fits its zone
     "title_small": 165,  # the title block's captions (ESKD "Изм.", "Т.контр."…: 3 a sheet; ISO "Organisation",
     # "Designed"…: 8) shrunk to 1.8 mm by fit_text to fit their 7-17 mm cells (sheets/frame.py)
-    "ambiguous": 4,  # shaper's plan-v-4 s₅; the scheme's C on shaking-conveyor, K₃ and S₅ on triad-rocker
+    "ambiguous": 3,  # shaper's plan-v-4 s₅; the scheme's K₃ (nearer S₄) and S₅ (nearer G) on triad-rocker
     "far_label": 79,  # mostly the scheme's letters of sliders and ground pivots, 6-9 mm off (beyond the block
     # or the hatching); nothing nearer names another point
     "class_iii": 3,  # K₃ (5), K₃ (9) on triad-rocker and K₅ (11) on triad-eight-link: their letters 7-9 mm off,
