@@ -34,3 +34,12 @@ def found():
                                    "ambiguous", "far_label", "class_iii"])
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
+
+
+def test_the_gallery_covers_every_mechanism_each_language_and_the_class_iii_ones():
+    import velplan
+
+    assert len(gm.NAMES) == len(velplan.example_names()) + 25
+    assert {gm.lang_of(n) for n in gm.NAMES} == set(gm.LANGS)
+    triads = [n for n in gm.NAMES if any(g.kind == "triad" for g in velplan.load(n).groups)]
+    assert triads == ["triad-eight-link", "triad-press", "triad-rocker"]
