@@ -57,11 +57,12 @@ class GallerySheets(dict):
         self[key] = sheet
         return sheet
 
-    def all(self):
-        """(name, kind, sheet) of every sheet the gallery has."""
+    def all(self, kinds=("kinematic", "forces", "dynamics")):
+        """(name, kind, sheet) of every sheet of `kinds` the gallery has."""
         for name in NAMES:
-            kinds = ("kinematic", "forces", "dynamics") if has_forces(velplan.load(name)) else ("kinematic", "dynamics")
             for kind in kinds:
+                if kind == "forces" and not has_forces(velplan.load(name)):
+                    continue
                 if (sheet := self[name, kind]) is not None:
                     yield name, kind, sheet
 
@@ -208,9 +209,7 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
     out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
                                                   "diagram", "ambiguous", "far_label", "class_iii")}
-    for name, kind, sheet in gallery.all():
-        if kind not in kinds:
-            continue
+    for name, kind, sheet in gallery.all(kinds):
         where = f"{name}/{kind}"
         out["overlap"] += [f"{where}: {a} | {b}" for a, b in overlaps(sheet.scene)]
         crossed = crossed_texts(sheet.scene)
