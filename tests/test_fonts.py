@@ -20,7 +20,7 @@ from velplan.render import fontbuild, fonts
 from velplan.render.fonts import BUNDLED_FAMILY, BUNDLED_FONT, missing_in_bundled
 from velplan.render.i18n import LANGUAGES, label, label_keys
 from velplan.render.scene import Scene, Text
-from velplan.render.shapes import (NARROW_CHAR_WIDTH, SCRIPT_SCALE, SUBSCRIPT_DROP, text_extent,
+from velplan.render.shapes import (NARROW_CHAR_WIDTH, SCRIPT_SCALE, SUBSCRIPT_DROP, script_size, text_extent,
                                    text_runs)
 from velplan.render.style import SheetStyle
 from velplan.render.svg import to_svg
@@ -226,7 +226,8 @@ def test_indices_are_drawn_as_shifted_smaller_characters():
     assert text.get("aria-label") == "ω₃/ω₂, aⁿ"  # the label's meaning, for readers
     size = float(text.get("font-size"))
     sub, back = text[0], text[1]
-    assert float(sub.get("font-size")) == pytest.approx(SCRIPT_SCALE * size, abs=1e-3)
+    # 2.5 mm, the ESKD minimum, not 0.7 × 3.5 = 2.45 mm
+    assert float(sub.get("font-size")) == pytest.approx(2.5 / 3.5 * size, abs=1e-3)
     assert float(sub.get("dy")) == pytest.approx(SUBSCRIPT_DROP * 3.5)
     assert float(back.get("dy")) == pytest.approx(-SUBSCRIPT_DROP * 3.5)
     assert back.get("font-size") is None
@@ -239,8 +240,10 @@ def test_a_text_without_indices_is_one_text_as_before():
 
 
 def test_text_extent_counts_indices_at_their_drawn_size():
-    width, _ = text_extent("S₄", 2.0)
-    assert width == pytest.approx(2.0 * NARROW_CHAR_WIDTH * (1 + SCRIPT_SCALE))
+    width, _ = text_extent("S₄", 5.0)
+    assert width == pytest.approx(5.0 * NARROW_CHAR_WIDTH * (1 + SCRIPT_SCALE))
+    width, _ = text_extent("S₄", 2.0)  # an index never below 2.5 mm, nor above its letter
+    assert width == pytest.approx(2 * 2.0 * NARROW_CHAR_WIDTH) and script_size(3.0) == 2.5
     assert [r.script for r in text_runs("aᵏ₅²")] == ["", "super", "sub", ""]
 
 

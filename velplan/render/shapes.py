@@ -27,6 +27,19 @@ WIDE_CHAR_WIDTH = 1.0
 DESCENDER_DEPTH = 0.25
 #: Size of an index (sub- or superscript) drawn as a shifted character, relative to the text.
 SCRIPT_SCALE = 0.7
+#: The smallest index drawn, mm: the ESKD minimum text height (letters of 3.5 mm take indices of
+#: 2.5 mm); an index of a letter smaller than this is drawn at the letter's own size.
+MIN_INDEX_MM = 2.5
+
+
+def script_size(size_mm: float) -> float:
+    """The height of an index of a text `size_mm` high, mm: :data:`SCRIPT_SCALE` of it, but
+    never below :data:`MIN_INDEX_MM` (nor above the letter).
+
+    >>> script_size(5.0), script_size(3.5), script_size(2.0)
+    (3.5, 2.5, 2.0)
+    """
+    return max(SCRIPT_SCALE * size_mm, min(size_mm, MIN_INDEX_MM))
 #: How far an index's baseline is moved from the text's, as a fraction of the text height:
 #: down for a subscript (its digits stay above the descender line), up for a superscript.
 SUBSCRIPT_DROP = 0.25
@@ -219,7 +232,7 @@ class TextRun(NamedTuple):
         The characters, indices already turned into the plain ones ("₅" → "5").
     script : {"", "sub", "super"}
         "" for the text's own size and baseline, else an index drawn at
-        :data:`SCRIPT_SCALE` of the size, moved by :data:`SUBSCRIPT_DROP` or
+        :func:`script_size` of the size, moved by :data:`SUBSCRIPT_DROP` or
         :data:`SUPERSCRIPT_RISE`.
     """
 
@@ -316,13 +329,13 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     -------
     (float, float)
         Width ≈ 0.7·h per Latin/Cyrillic character and 1.0·h per CJK character, an index
-        ("₅", "ⁿ") counted at :data:`SCRIPT_SCALE` of that, as backends draw it;
+        ("₅", "ⁿ") counted at its :func:`script_size`, as backends draw it;
         height from the descender line to the capital line, 1.25·h.
     """
-    units = 0.0
+    units, index = 0.0, script_size(size_mm) / size_mm if size_mm > 0 else SCRIPT_SCALE
     for plain, script in _characters(text):
         width = WIDE_CHAR_WIDTH if is_wide_char(plain) else NARROW_CHAR_WIDTH
-        units += width * (SCRIPT_SCALE if script else 1.0)
+        units += width * (index if script else 1.0)
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
 
 

@@ -20,8 +20,8 @@ from __future__ import annotations
 from velplan.render.canvas import render
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import (
-    SCRIPT_SCALE, SUBSCRIPT_DROP, SUPERSCRIPT_RISE, Stroke, arrow_shape, arrow_size,
-    circle_outline, hatch_segments, hatch_stroke, stroke_for, text_origin, text_runs)
+    SUBSCRIPT_DROP, SUPERSCRIPT_RISE, Stroke, arrow_shape, arrow_size,
+    circle_outline, hatch_segments, hatch_stroke, script_size, stroke_for, text_origin, text_runs)
 from velplan.render.style import SheetStyle
 
 _NAMESPACES = {"xmlns": "http://www.w3.org/2000/svg", "xmlns:ev": "http://www.w3.org/2001/xml-events",
@@ -172,7 +172,7 @@ class SvgCanvas:
                 attributes["dy"] = self._num((target - shift) * size_mm)
             if run.script:
                 attributes["font-size"] = self._num(
-                    self.style.font_size_em(size_mm * SCRIPT_SCALE))
+                    self.style.font_size_em(script_size(size_mm)))
             tspans.append(element("tspan", attributes, escape_text(run.text)))
             shift = target
         return tspans

@@ -144,7 +144,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                           "baseline"))
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    items += list(place_labels(names, lines + axes))
+    items += list(place_labels(names, lines + axes + _text_boxes(items)))
     # title, scales and notes above the plot
     scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
@@ -154,6 +154,14 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base})
+
+
+def _text_boxes(items) -> list:
+    """The boxes of the texts among `items`: the curves' names are placed clear of the
+    numbers and titles already written."""
+    from velplan.render.layout import label_box
+
+    return [label_box(t) for t in items if isinstance(t, Text)]
 
 
 def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_label: str, lang: Language,
@@ -172,7 +180,8 @@ def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_labe
         if abs(y) < clear:
             continue
         items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size, "end", "middle"))
+        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
+                           "end", "middle"))
     if base != 0:
         items.append(Text((-1.8, 0.0), base_label or number(base, lang, 4), LABELS, size, "end", "middle"))
     return items
@@ -247,7 +256,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     lines = [shapely.LineString(np.column_stack([x, y])),
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
     lines += [shapely.LineString([(0.0, ay), end]) for ay, end in ((ky, ends["k"]), (ly, ends["l"]))]
-    items += list(place_labels(names, lines))
+    items += list(place_labels(names, lines + _text_boxes(items)))
     w2d = omega_mean**2 * delta
     mu_j, mu_t, wm = indexed("μ", "J"), indexed("μ", "T"), indexed("ω", "m")
     text = [f"{mu_j} = {number(mJ, lang)} {unit('kg·m²', lang)}/{unit('mm', lang)};  "

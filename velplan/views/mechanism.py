@@ -426,6 +426,9 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
+    # no letter over a point of the thick position: next to another point it would name that one
+    points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
+    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
     placed = place_labels(labels, obstacles, rings=8)
     items += placed
     out = output_point(mech)
@@ -435,6 +438,10 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+#: The letters keep this far off every point of the thick position (its own included), mm.
+POINT_CLEAR_MM = 1.5
 
 
 def _other_positions(items: list, obstacles: list, geo: _Geometry, fine: Kinematics, t: int, mm,

@@ -19,6 +19,7 @@ Layers: ``plan-v-K`` (vectors), ``plan-v-K-lines`` (construction lines) and
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 import shapely
@@ -223,11 +224,12 @@ def plan_area(res, position: int) -> shapely.Polygon:
 
 
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None, leaders: bool = False) -> list:
+                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
     `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
     (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
-    image is joined to it by a thin leader (the leaders follow the letters in the list)."""
+    image is joined to it by a thin leader (the leaders follow the letters in the list).
+    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -261,6 +263,7 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
                                      quad_segs=16))
     obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
                                      np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
+    obstacles += list(avoid)
     texts = []
     for g in groups:
         z = _image(res, g[0], i)

@@ -21,7 +21,7 @@ from velplan.mechanism.model import Mechanism
 from velplan.options import Language
 from velplan.plans.engine import POSITION_PLAN_MM, PlanResult
 from velplan.render.i18n import label
-from velplan.render.layout import fit_text
+from velplan.render.layout import fit_text, label_box
 from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
     image_letters, plan_steps, plan_title, plan_view)
@@ -124,9 +124,10 @@ def partial_plan(res, position: int, k: int, *, full, drawings, lang: Language) 
     `plan_steps` of the plan."""
     ox, oy = full.origin
     items = [shift(_emphasis(p, j == k - 1), ox, oy) for j, d in enumerate(drawings[:k]) for p in d.items]
-    items += [shift(t, ox, oy) for t in image_letters(res, position, drawings, upto=k)]
-    heads = plan_title(res, position, lang)
-    return items + [p for p in full.primitives if isinstance(p, Text) and p.text in heads]
+    heads = [p for p in full.primitives if isinstance(p, Text) and p.text in plan_title(res, position, lang)]
+    avoid = [label_box(shift(t, -ox, -oy)) for t in heads]  # the letters keep off the title and μ
+    items += [shift(t, ox, oy) for t in image_letters(res, position, drawings, upto=k, avoid=avoid)]
+    return items + heads
 
 
 def _emphasis(p, new: bool):

@@ -1,0 +1,235 @@
+"""What the gallery checks of issue 32's "Done when" share (`test_gallery_marks_a1.py`,
+`test_gallery_marks_a3.py`, `test_gallery_figures.py`, split so that the test workers share the
+sheets out): every bundled and catalogue mechanism's kinematic, force and dynamics sheets, in a
+rotating language (the mechanism's index mod 4: en, ru, uk, zh), each built once per module,
+and the measures the checks make on them."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+import velplan
+from velplan.errors import VelplanError
+from velplan.mechanism.loader import catalogue_names
+from velplan.render.layout import label_box, overlapping_labels
+from velplan.render.scene import Arrow, Circle, Polyline, Text
+from velplan.render.shapes import script_size, text_runs
+from velplan.sheets.dynamics import build_dynamics_sheet
+from velplan.sheets.forces import build_force_sheet, has_forces
+from velplan.plans.text import label_of
+from velplan.sheets.kinematic import build_sheet
+from velplan.views.base import subscript
+from velplan.views.plan import MIN_VECTOR_MM, labelled_vectors
+
+LANGS = ("en", "ru", "uk", "zh")
+NAMES = tuple(velplan.example_names()) + tuple(catalogue_names())
+#: The ESKD minimum height of printed text, letters and indices, mm.
+MIN_TEXT_MM = 2.5
+#: A label's own anchor must be within this of it, at print size, mm.
+ANCHOR_MM = 6.0
+
+
+def lang_of(name: str) -> str:
+    """The language the gallery checks `name` in: its index in :data:`NAMES` mod 4."""
+    return LANGS[NAMES.index(name) % 4]
+
+
+class GallerySheets(dict):
+    """(name, kind) → the sheet in the format `fmt` and the mechanism's language; a sheet the
+    mechanism cannot have (a dynamics sheet without masses, a force sheet too large for A3)
+    is None, with the one-line reason in `refused`."""
+
+    MAKERS = {"kinematic": build_sheet, "forces": build_force_sheet, "dynamics": build_dynamics_sheet}
+
+    def __init__(self, fmt: str):
+        super().__init__()
+        self.fmt, self.studies, self.refused = fmt, {}, {}
+
+    def __missing__(self, key):
+        name, kind = key
+        study = self.studies.setdefault(name, velplan.Study(name))
+        try:
+            sheet = self.MAKERS[kind](study, lang=lang_of(name), fmt=self.fmt)
+        except VelplanError as exc:
+            self.refused[key] = str(exc)
+            sheet = None
+        self[key] = sheet
+        return sheet
+
+    def all(self, kinds=("kinematic", "forces", "dynamics")):
+        """(name, kind, sheet) of every sheet of `kinds` the gallery has."""
+        for name in NAMES:
+            for kind in kinds:
+                if kind == "forces" and not has_forces(velplan.load(name)):
+                    continue
+                if (sheet := self[name, kind]) is not None:
+                    yield name, kind, sheet
+
+
+def overlaps(scene) -> list[tuple[str, str]]:
+    """The pairs of texts that overlap by more than 0.5 mm²."""
+    return [(a.text, b.text) for a, b in overlapping_labels(scene, min_area=0.5)]
+
+
+def crossed_texts(scene) -> list[str]:
+    """The texts whose estimated box a thick line or a vector crosses over more than 1 mm
+    (the measure of `test_sheet_quality_ru.py`)."""
+    lines = [shapely.LineString(p.points) for p in scene.primitives if isinstance(p, Polyline) and p.line == "thick"]
+    lines += [shapely.LineString([p.start, p.end]) for p in scene.primitives if isinstance(p, Arrow) and p.length > 0]
+    tree = shapely.STRtree(lines)
+    out = []
+    for t in scene.of_kind(Text):
+        box = label_box(t)
+        if any(lines[j].intersection(box).length > 1.0 for j in tree.query(box, predicate="intersects")):
+            out.append(t.text)
+    return out
+
+
+def printed_height(t: Text) -> float:
+    """The smallest height a text is printed at, mm: its letters', or its indices' if it has any."""
+    indexed = any(r.script for r in text_runs(t.text))
+    return min(t.size_mm, script_size(t.size_mm)) if indexed else t.size_mm
+
+
+def small_texts(scene, *, title: bool) -> list[str]:
+    """The texts printed below :data:`MIN_TEXT_MM` (indices included), of the title block
+    (`title`) or of the rest of the sheet."""
+    return [t.text for t in scene.of_kind(Text)
+            if (t.layer == "title") == title and printed_height(t) < MIN_TEXT_MM - 1e-9]
+
+
+def short_unlisted_vectors(sheet) -> list[str]:
+    """The labelled plan vectors shorter than 3 mm not listed under their plan as ≈ 0."""
+    out = []
+    for name, res in sheet.plans.items():
+        number = sheet.plan_index[name] + 1
+        texts = " ".join(t.text for t in sheet.views[name].primitives if isinstance(t, Text))
+        for target, (_, length) in labelled_vectors(res, number).items():
+            if length < MIN_VECTOR_MM and ("≈ 0 (" if length > 1e-6 else " = 0") not in texts:
+                out.append(f"{name}:{target}")
+    return out
+
+
+def ordinate_ranges(sheet) -> list[float]:
+    """The ordinate range of each graphical curve of the kinematic diagrams, mm (none without them)."""
+    if "diagrams" not in sheet.views:
+        return []
+    return [float(np.ptp(np.asarray(p.points)[:, 1])) for p in sheet.views["diagrams"].primitives
+            if isinstance(p, Polyline) and p.line == "thick" and len(p.points) > 5]
+
+
+def ambiguous_plan_letters(sheet) -> list[str]:
+    """The image letters of the plans whose own image is not the image nearest to them
+    ("nearer: …") or lies farther than :data:`ANCHOR_MM` from their box ("far: …"); a letter
+    joined to its image by a leader excepted: the leader names its point."""
+    out = []
+    for name in sheet.plans:
+        placed = sheet.views[name]
+        anchors: dict[str, list] = {}
+        for target, z in placed.view.meta["images"].items():
+            if np.isfinite(z):
+                anchors.setdefault(subscript(label_of(target)), []).append(placed.to_sheet((z.real, z.imag)))
+        leaders = [np.asarray(p.points) for p in placed.primitives if isinstance(p, Polyline) and p.line == "thin"
+                   and len(p.points) == 2]
+        points = [(label, xy) for label, xys in anchors.items() for xy in xys]
+        for t in placed.primitives:
+            if not isinstance(t, Text):
+                continue
+            own = [xy for part in t.text.split(", ") for xy in anchors.get(part, [])]
+            if not own:
+                continue
+            box = label_box(t)
+            d_own = min(box.distance(shapely.Point(xy)) for xy in own)
+            others = [box.distance(shapely.Point(xy)) for label, xy in points
+                      if label not in t.text.split(", ") and min(np.hypot(*(xy - o)) for o in own) > 0.5]
+            led = any(min(np.hypot(*(lp[0] - o)) for o in own) < 1e-6 and box.buffer(0.6).contains(shapely.Point(lp[1]))
+                      for lp in leaders)
+            if not led and others and min(others) < d_own:
+                out.append(f"nearer: {name}:{t.text}")
+            elif not led and d_own > ANCHOR_MM:
+                out.append(f"far: {name}:{t.text} {d_own:.1f} mm")
+    return out
+
+
+def ambiguous_scheme_letters(sheet, kin) -> list[str]:
+    """The point letters of the scheme's thick position whose own point is not the point
+    nearest to them ("nearer: …"), or lies farther than :data:`ANCHOR_MM` from their box ("far: …")."""
+    scheme = sheet.views["mechanism"]
+    t = int(scheme.view.meta["thick"]) - 1  # a position number, 1-based
+    points = {subscript(n): scheme.to_sheet(kin.position(n)[t]) for n in kin.point_index}
+    points = {k: xy for k, xy in points.items() if np.all(np.isfinite(xy))}
+    out = []
+    for label in (p for p in scheme.primitives if isinstance(p, Text) and p.text in points):
+        own, box = points[label.text], label_box(label)
+        d_own = box.distance(shapely.Point(own))
+        others = [box.distance(shapely.Point(xy)) for k, xy in points.items() if np.hypot(*(xy - own)) > 1.0]
+        if others and min(others) < d_own:
+            out.append(f"nearer: mechanism:{label.text}")
+        elif d_own > ANCHOR_MM:
+            out.append(f"far: mechanism:{label.text} {d_own:.1f} mm")
+    return out
+
+
+def class_iii_marks(sheet, kin) -> list[str]:
+    """What a class III sheet misses: each triad's special point K (a dot with its letter
+    within :data:`ANCHOR_MM` and two lead lines through it) on the scheme in every drawn position, and its
+    base link's image as a closed triangle with a dot at each corner on every plan."""
+    from velplan.views.mechanism import special_points
+
+    mech = sheet.mechanism
+    scheme = sheet.views["mechanism"]
+    prims = scheme.primitives
+    axes = [shapely.LineString(p.points) for p in prims if isinstance(p, Polyline) and p.line == "axis"]
+    missing = []
+    for k_name in sorted(special_points(mech)):
+        for k in sheet.positions:
+            at = scheme.to_sheet(kin.position(k_name)[k - 1])
+            letters = [t for t in prims if isinstance(t, Text) and t.text.startswith(subscript(k_name))
+                       and label_box(t).distance(shapely.Point(at)) <= ANCHOR_MM]
+            dot = any(isinstance(p, Circle) and p.fill == "solid" and np.allclose(p.centre, at, atol=1e-6) for p in prims)
+            through = sum(a.distance(shapely.Point(at)) < 1e-6 for a in axes)
+            if not letters or not dot or through < 2:
+                missing.append(f"{k_name} in position {k}: letter {bool(letters)}, dot {dot}, lead lines {through}")
+    for group in (g for g in mech.groups if g.kind == "triad"):
+        for name in (k for k in sheet.views if k.startswith("plan-")):
+            placed, res, i = sheet.views[name], sheet.plans[name], sheet.plan_index[name]
+            corners = [placed.to_sheet(res.image(p)[i]) for p in group.joints]
+            closed = [np.asarray(p.points) for p in placed.primitives if isinstance(p, Polyline)
+                      and len(p.points) == 4 and np.allclose(p.points[0], p.points[-1])]
+            dots = [np.asarray(p.centre) for p in placed.primitives if isinstance(p, Circle) and p.fill == "solid"]
+            if not any(np.allclose(c[:3], corners, atol=1e-6) for c in closed):
+                missing.append(f"{name}: no triangle {''.join(group.joints)}")
+            if any(min(np.hypot(*(d - c)) for d in dots) > 1e-6 for c in corners):
+                missing.append(f"{name}: a corner of {''.join(group.joints)} without its dot")
+    return missing
+
+
+def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
+    """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
+    out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
+                                                  "diagram", "ambiguous", "far_label", "class_iii")}
+    for name, kind, sheet in gallery.all(kinds):
+        where = f"{name}/{kind}"
+        out["overlap"] += [f"{where}: {a} | {b}" for a, b in overlaps(sheet.scene)]
+        crossed = crossed_texts(sheet.scene)
+        if len(crossed) > (4 if name.startswith("triad") else 1):  # the bar of test_sheet_quality_ru.py
+            out["crossed"].append(f"{where}: {crossed}")
+        out["small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=False)]
+        out["title_small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=True)]
+        if kind != "kinematic":
+            continue
+        out["short_vector"] += [f"{where}: {v}" for v in short_unlisted_vectors(sheet)]
+        out["diagram"] += [f"{where}: {r:.1f} mm" for r in ordinate_ranges(sheet) if r < 30.0 - 0.5]
+        for v in ambiguous_plan_letters(sheet) + ambiguous_scheme_letters(sheet, gallery.studies[name].kinematics):
+            why, _, what = v.partition(": ")
+            out["ambiguous" if why == "nearer" else "far_label"].append(f"{where}: {what}")
+        if any(g.kind == "triad" for g in sheet.mechanism.groups):
+            out["class_iii"] += [f"{where}: {v}" for v in class_iii_marks(sheet, gallery.studies[name].kinematics)]
+    return out
+
+
+def check_bounds(found: dict[str, list[str]], bounds: dict[str, int]) -> None:
+    """Every check's count of violations at most its bound (0 unless `bounds` names a ratchet)."""
+    over = {k: (len(v), bounds.get(k, 0), v[:6]) for k, v in found.items() if len(v) > bounds.get(k, 0)}
+    assert not over, over
