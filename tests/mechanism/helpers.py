@@ -10,16 +10,17 @@ ANGLES = np.radians(np.arange(0.0, 360.0, 5.0))
 """72 crank angles, rad."""
 
 
-def same_motion(first, second, *, skip=(), phis=ANGLES, tol=1e-12) -> int:
-    """Assert that the points both mechanisms name (but ``skip``, and Assur's special points:
-    a triad's K is where the lines of the two leads its labelling pairs meet, so two labellings
-    of one group name different points K) have the same positions, velocities and
-    accelerations at ``phis`` to ``tol`` of each quantity's largest value; returns the number
-    of points compared."""
+def same_motion(first, second, *, skip=(), phis=ANGLES, tol=1e-12, special: bool = True) -> int:
+    """Assert that the points both mechanisms name (but ``skip``, and with ``special=False``
+    Assur's special points: a triad's K is where the lines of the two leads its labelling pairs
+    meet, so two labellings of one group that name no pair name different points K) have the
+    same positions, velocities and accelerations at ``phis`` to ``tol`` of each quantity's
+    largest value; returns the number of points compared."""
     k1, k2 = solve(first, phis), solve(second, phis)
     assert np.array_equal(k1.valid, k2.valid)
-    special = {p for m in (first, second) for g in m.groups for p in g.special_points()}
-    names = [n for n in k1.point_index if n in k2.point_index and n not in set(skip) | special]
+    left_out = set(skip) | (set() if special else
+                            {p for m in (first, second) for g in m.groups for p in g.special_points()})
+    names = [n for n in k1.point_index if n in k2.point_index and n not in left_out]
     assert names
     i1 = [k1.point_index[n] for n in names]
     i2 = [k2.point_index[n] for n in names]

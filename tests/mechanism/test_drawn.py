@@ -9,7 +9,7 @@ import math
 import random
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, example, given, settings, strategies as st
 
 import velplan
 from velplan.cli.convert import convert_text
@@ -321,6 +321,7 @@ class _Chain:
 
 
 @settings(max_examples=60, deadline=None)
+@example(seed=43357, kinds=["triad"])  # two labellings of one triad: their points K differ
 @given(st.integers(0, 2**32 - 1), st.lists(st.sampled_from(["RRR", "RRP", "RPR", "PRP", "RPP", "triad"]),
                                                   min_size=1, max_size=4))
 def test_random_chains_given_as_joints_decompose_into_their_groups(seed, kinds):
@@ -337,7 +338,7 @@ def test_random_chains_given_as_joints_decompose_into_their_groups(seed, kinds):
     except MechanismError:  # a triad that comes back in another assembly after a turn
         assume(False)
     assume(k.valid.all() and k.condition.min() > 0.05)
-    assert same_motion(made, found, phis=phis, tol=1e-9) >= len(chain.points)
+    assert same_motion(made, found, phis=phis, tol=1e-9, special=False) >= len(chain.points)
 
 
 def canonical_key(group) -> tuple:
