@@ -1,6 +1,6 @@
 """The structural analysis on the kinematic sheet: the figure of `velplan.views.structure`
 (the initial mechanism and each Assur group drawn apart) in free space of the drawing area,
-where it fits legibly — its letters at least 2.5 mm, none over another, nothing over another
+where it fits legibly — its letters at least 2.5 mm, none over another nor crossed by its lines, nothing over another
 view or the title block. It never takes room from the views already placed.
 
 Examples
@@ -14,11 +14,12 @@ Examples
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from velplan.errors import ScaleError
 from velplan.mechanism.drawn_write import drawn_tables
-from velplan.render.layout import overlapping_labels
-from velplan.render.scene import Scene
+from velplan.render.layout import label_box, overlapping_labels
+from velplan.render.scene import Arrow, Polyline, Scene, Text
 from velplan.sheets.layout import free_spot
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, make_view
@@ -60,9 +61,26 @@ def structure_figure(study: Study, lang: str, panel_mm: float, text_mm: float, t
     return make_view("structure", scene.primitives, meta={"text_mm": text_mm, "crank_mm": crank})
 
 
+#: How far a thick line or a vector may run through a letter's box before it is crossed, mm.
+CROSSING_MM = 1.0
+
+
+def _crossed(view: View) -> bool:
+    """Whether a thick line or a vector of the figure runs through one of its letters."""
+    lines = [shapely.LineString(p.points) for p in view.primitives if isinstance(p, Polyline) and p.line == "thick"]
+    lines += [shapely.LineString([p.start, p.end]) for p in view.primitives if isinstance(p, Arrow) and p.length > 0]
+    if not lines:
+        return False
+    tree = shapely.STRtree(lines)
+    return any(lines[j].intersection(box).length > CROSSING_MM
+               for box in (label_box(t) for t in view.primitives if isinstance(t, Text))
+               for j in tree.query(box, predicate="intersects"))
+
+
 def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area, title_block,
                     gap: float, required: bool) -> PlacedView | None:
-    """The figure at the largest of `FIGURE_SIZES` whose letters do not overlap, in a free
+    """The figure at the largest of `FIGURE_SIZES` whose letters neither overlap nor are
+    crossed by its lines, in a free
     spot of ``area`` (sheet mm) clear of ``views`` and the ``title_block`` by ``gap`` mm, the
     spot nearest the scheme's lower left corner; None where there is none, or ScaleError
     (one line) when ``required``."""
@@ -73,7 +91,8 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
         view = structure_figure(study, lang, *sizes, joints=joints)
         if view.meta["crank_mm"] < MIN_CRANK_MM - 1e-9:
             continue
-        if overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.05):
+        if overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.05) \
+                or _crossed(view):
             continue
         at = free_spot(view.width_mm, view.height_mm, taken, area, gap, corner)
         if at is not None:
