@@ -142,60 +142,75 @@ def _bridge(sk: Sketch, a, b, layer: str) -> None:
 
 
 def _beside(a, b, drawn, centre) -> tuple[np.ndarray, np.ndarray]:
-    """(tail, head) of the vector a → b, moved OFFSET_MM aside (away from `centre`) where it
-    would lie along a vector drawn before it."""
+    """(tail, head) of the vector a → b, moved OFFSET_MM aside (away from the other vector,
+    or from `centre` where the two are collinear) where
+    more than 3 mm of it would lie within 1 mm of a vector drawn before it and nearly along
+    it (within 10° of a vector it meets, 1° of another)."""
     u = unit_vector(b - a)
     n = np.array([-u[1], u[0]])
+    shaft = shapely.LineString([a, b])
     for _, c, d, _ in drawn:
-        w = d - c
-        length = float(np.hypot(*w))
-        if abs(float(u[0] * w[1] - u[1] * w[0])) > 0.02 * length:
-            continue  # not parallel
-        if abs(float((c - a) @ n)) > 1.0:
-            continue  # parallel, apart
-        s = sorted(float((q - a) @ u) for q in (c, d))
-        if min(s[1], float(np.hypot(*(b - a)))) - max(s[0], 0.0) > 1.0:
-            side = -1.0 if float(((a + b) / 2 - centre) @ n) < -1e-6 else 1.0
-            if abs(float(((a + b) / 2 - centre) @ n)) <= 1e-6:
-                side = -1.0 if float((c - a) @ n) > 0 else 1.0
-            return a + side * OFFSET_MM * n, b + side * OFFSET_MM * n
+        w = unit_vector(d - c)
+        sine = abs(float(u[0] * w[1] - u[1] * w[0]))
+        shared = min(np.hypot(*(p - q)) for p in (a, b) for q in (c, d)) < 0.1
+        if (sine > (0.17 if shared else 0.02)
+                or shaft.intersection(shapely.LineString([c, d]).buffer(1.0)).length <= 3.0):
+            continue  # at an angle (10° from a neighbour, 1° from another), or apart
+        other = float(((c + d) / 2 - a) @ n)
+        off = other if abs(other) > 0.05 else -float(((a + b) / 2 - centre) @ n)
+        side = -1.0 if off > 0 else 1.0  # away from the other, else from the centre
+        return a + side * OFFSET_MM * n, b + side * OFFSET_MM * n
     return a, b
 
 
 def _vector_labels(drawn, sk: Sketch, layer: str, size: float) -> list[Text]:
     """A label for each drawn vector beside its middle on the free side (else nearer an
-    end, else on the other side), nearer its own vector than any other."""
+    end, farther out, or on the other side), nearer its own vector than any other; the
+    shortest vectors, with the fewest places, labelled first."""
     segments = [shapely.LineString([a, b]) for _, a, b, _ in drawn]
     pts = [p for _, a, b, _ in drawn for p in (a, b)]
     centre = np.mean(pts, axis=0) if pts else np.zeros(2)
     obstacles = sk.clear_of()
     boxes: list = []
-    texts: list[Text] = []
-    for idx, (name, a, b, _) in enumerate(drawn):
-        u = unit_vector(b - a)
-        n = np.array([-u[1], u[0]])
-        out = 1.0 if float(((a + b) / 2 - centre) @ n) >= 0 else -1.0
-        best = None
-        rank = 0
-        for t in (0.5, 0.38, 0.62, 0.26, 0.74):
+    texts: dict[int, Text] = {}
+    for idx in sorted(range(len(drawn)), key=lambda j: segments[j].length):
+        name, a, b, _ = drawn[idx]
+        best = min(_label_spots(name, a, b, centre, layer, size),
+                   key=lambda spot: _spot_cost(spot, idx, segments, obstacles, boxes))
+        texts[idx] = best[1]
+        boxes.append(label_box(best[1]).buffer(1.5))
+    return [texts[j] for j in range(len(drawn))]
+
+
+def _label_spots(name: str, a, b, centre, layer: str, size: float) -> list[tuple[int, Text]]:
+    """(rank, label) of the places tried for the label of vector a → b, the best first."""
+    u = unit_vector(b - a)
+    n = np.array([-u[1], u[0]])
+    out = 1.0 if float(((a + b) / 2 - centre) @ n) >= 0 else -1.0
+    spots = []
+    for gap in (0.8, 2.0, 3.5):
+        for t in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
             for side in (out, -out):
-                for gap in (0.8, 2.0):
-                    m = side * n
-                    where = a + t * (b - a) + m * (gap + 0.3 * size)
-                    text = Text(where, force_text(name), layer, size, anchor_of(m), "middle")
-                    box = label_box(text)
-                    own = box.distance(segments[idx])
-                    other = min((g.distance(box) for j, g in enumerate(segments) if j != idx),
-                                default=np.inf)
-                    cost = (rank + 100.0 * sum(box.intersects(o) for o in obstacles)
-                            + 300.0 * sum(box.intersects(o) for o in boxes)
-                            + (1000.0 if own > 6.0 or other <= own else 0.0))
-                    if best is None or cost < best[0]:
-                        best = (cost, text, box)
-                    rank += 1
-        texts.append(best[1])
-        boxes.append(best[2].buffer(0.3))
-    return texts
+                m = side * n
+                at = a + t * (b - a)
+                text = Text(at, force_text(name), layer, size, anchor_of(m), "middle")
+                # the box's edge nearest the vector `gap` from it
+                reach = max(float((at - c) @ m) for c in np.asarray(label_box(text).exterior.coords))
+                spots.append((len(spots), Text(at + m * (gap + reach), force_text(name), layer,
+                                               size, anchor_of(m), "middle")))
+    return spots
+
+
+def _spot_cost(spot, idx: int, segments, obstacles, boxes) -> float:
+    """How bad a label's place is: over lines and arrows, over labels placed before it,
+    nearer another vector than its own or farther than 6 mm from it; then its rank."""
+    rank, text = spot
+    box = label_box(text)
+    own = box.distance(segments[idx])
+    other = min((g.distance(box) for j, g in enumerate(segments) if j != idx), default=np.inf)
+    return (rank + 100.0 * sum(box.intersects(o) for o in obstacles)
+            + 1000.0 * sum(box.intersects(o) for o in boxes)
+            + (1000.0 if own > 6.0 or other <= own else 0.0))
 
 
 def _small_lines(small, mu_f: float, lang: Language) -> list[str]:
