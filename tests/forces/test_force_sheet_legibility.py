@@ -3,7 +3,7 @@ polygon each drawn vector is at least 3 mm long with its own arrowhead and its o
 beside it, the shorter ones listed as ≈ 0 with their values; the crank's two collinear
 reactions both show; every reaction is written with the equation it comes from, and that
 equation holds; on the groups the labels of the forces and of the couples sit by their own
-arrows and arcs, and no force runs along a link."""
+arrows' free ends and arcs, and no force runs along a link."""
 
 import math
 import re
@@ -196,7 +196,13 @@ def test_group_labels_by_their_arrows_and_arcs(name, lang, sheets):
         texts = _of(placed, Text, text_layer)
         labels = [force_text(n) for n, _, _ in meta["forces"]]
         own = [next(t for t in texts if t.text == lab) for lab in labels]
-        _assert_own_nearest(own, [_segment(a) for a in arrows], view_name)
+        # a force's label names the free end of its arrow (away from the force's point)
+        ends = []
+        for (_, z, _), a in zip(meta["forces"], arrows):
+            p = placed.to_sheet([z.real, z.imag])
+            far = a.end if math.dist(a.end, p) >= math.dist(a.start, p) else a.start
+            ends.append(shapely.Point(far))
+        _assert_own_nearest(own, ends, view_name)
         couple_texts = [next(t for t in texts if t.text == c[0]) for c in meta["couples"]]
         assert len(arcs) == len(couple_texts)
         _assert_own_nearest(couple_texts, [shapely.LineString(a.points) for a in arcs],
