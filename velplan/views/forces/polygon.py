@@ -1,7 +1,10 @@
 """A force polygon (plan of forces): the known vectors head to tail from the pole at a
 standard μF (N/mm), then the two unknown reactions found where the lines of their known
 directions meet (thin construction lines through the last vertex and through the pole); the
-found vectors thick. Vertices are `ForcePolygon.vertices`."""
+found vectors thick. Vertices are `ForcePolygon.vertices`. What a teacher cannot measure is
+written instead of drawn: a vector shorter than SHORT_VECTOR_MM is listed as ≈ 0 with its
+value under the polygon; a vector that would lie along another is drawn beside it; every
+reaction is written with the equation it comes from (`reaction_equations`)."""
 
 from __future__ import annotations
 
