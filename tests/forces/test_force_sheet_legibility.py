@@ -17,7 +17,8 @@ from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Polyline, Text
 from velplan.render.style import SheetStyle
 from velplan.sheets.forces import build_force_sheet
-from velplan.views.forces import force_text, group_layers, polygon_layers
+from velplan.render.i18n import label
+from velplan.views.forces import force_text, group_layers, lever_layers, polygon_layers
 from velplan.views.forces.equations import reaction_equations
 from velplan.views.forces.polygon import SHORT_VECTOR_MM
 
@@ -221,3 +222,28 @@ def test_no_force_runs_along_a_link(name, lang, sheets):
             shaft = _segment(a)
             hidden = shaft.intersection(links).length / shaft.length
             assert hidden < 0.5, (view_name, label, round(hidden, 2))
+
+
+@pytest.mark.parametrize("name, lang", CASES)
+def test_lever_labels_by_their_arrows(name, lang, sheets):
+    sheet = sheets(name, lang)
+    for view_name, placed in _views(sheet, "lever-").items():
+        meta = placed.view.meta
+        _, force_layer, text_layer = lever_layers(meta["number"])
+        arrows = _of(placed, Arrow, force_layer)
+        # the balancing force first, then the forces carried to their images
+        assert len(arrows) == len(meta["forces"]) + 1
+        names = [label("symbol_balancing_force", lang)] + [force_text(n) for n, _, _ in
+                                                           meta["forces"]]
+        ends = [[shapely.Point(arrows[0].start), shapely.Point(arrows[0].end)]]
+        for (_, p, _), a in zip(meta["forces"], arrows[1:]):
+            q = placed.to_sheet(np.asarray(p, float))
+            ends.append([shapely.Point(a.end if math.dist(a.end, q) >= math.dist(a.start, q)
+                                       else a.start)])
+        for t in _of(placed, Text, text_layer):
+            if t.text not in names:
+                continue  # a letter of an image point, or a line of the balance
+            box = label_box(t)
+            d = [min(box.distance(e) for e in es) for es in ends]
+            k = int(np.argmin(d))
+            assert names[k] == t.text and d[k] <= NEAR_MM, (view_name, t.text, names[k], d[k])

@@ -55,8 +55,11 @@ def place_arrows(entries, length: float, obstacles=(), points=(), texts=(), *,
         p, u, text = entries[idx]
         p, u = np.asarray(p, float), np.asarray(u, float)
         near = [shapely.Point(q).buffer(2.5) for q in marks if np.hypot(*(q - p)) > 1.0]
+        # a force with an opposite one at its point leaves the side it points away from to it
+        facing = any(np.hypot(*(np.asarray(q, float) - p)) < 0.5
+                     and float(np.asarray(w, float) @ u) < -0.995 for q, w, _ in entries)
         a, b, k, span, tag = _best_arrow(p, u, text, length, fixed_parts + near, drawn, boxes,
-                                         layer, size, beside)
+                                         layer, size, beside, facing)
         out[idx] = (a, b, tag)
         drawn.append((p, u, k, span, shapely.LineString([a, b]).buffer(0.8)))
         boxes.append(label_box(tag).buffer(0.5))
@@ -74,7 +77,7 @@ def _stacking_order(entries) -> list[int]:
 
 
 def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes: list,
-                layer: str, size: float, beside: bool = False) -> tuple:
+                layer: str, size: float, beside: bool = False, facing: bool = False) -> tuple:
     """(start, end, orientation, span, label) of the arrow at `p` along `u` that runs least
     along `lines` and the arrows `drawn` and keeps its label clear, shorter ones preferred."""
     best = None
@@ -84,6 +87,9 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
         arrows = [geom for q, w, kk, sp, geom in drawn
                   if not (np.hypot(*(q - p)) < 0.5 and float(w @ u) > 0.995 and kk == 0
                           and span >= sp + 0.45 * length)]
+        # an opposite force at the same point: along it, one of the two heads would be lost
+        arrows += [geom for q, w, kk, sp, geom in drawn
+                   if np.hypot(*(q - p)) < 0.5 and float(w @ u) < -0.995] * 3
         for k, (a0, b0) in enumerate(((p, p + u * span), (p - u * span, p))):
             for shift, extra in ((0.0, 0.0), (1.0, 4.0), (-1.0, 4.0))[:3 if beside else 1]:
                 a, b = a0 + shift * side, b0 + shift * side
@@ -99,7 +105,7 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
                     box = label_box(tag)
                     crowded = any(g.intersects(box) for g in lines + arrows + boxes)
                     cost = (over + 3.0 * step + (5.0 if crowded else 0.0) + 0.8 * spot
-                            + 0.01 * k + extra)
+                            + (0.01 + (20.0 if facing else 0.0)) * k + extra)
                     if best is None or cost < best[0] - 1e-9:
                         best = (cost, a, b, k, span, tag)
     return best[1:]
