@@ -178,9 +178,15 @@ def test_every_reaction_is_written_with_an_equation_that_holds(name, sheets):
     # written under the polygons: "R₃₂ = −(R₁₂ + G₂ + Φ₂) = 6295 Н"
     for view_name, placed in _views(sheet, "polygon-").items():
         meta = placed.view.meta
-        texts = [t.text for t in _of(placed, Text, polygon_layers(meta["number"], meta["group"])[2])]
+        texts: list[str] = []
+        for t in _of(placed, Text, polygon_layers(meta["number"], meta["group"])[2]):
+            if t.text.startswith("= ") and texts:  # an equation broken before its result
+                texts[-1] = texts[-1].removesuffix(" =") + " = " + t.text.removeprefix("= ")
+            else:
+                texts.append(t.text)
         for e in reaction_equations(fa, meta["group"], meta["number"]):
             line = next(t for t in texts if t.startswith(force_text(e.label) + " = "))
+            assert line.count(" = ") == (2 if e.terms else 1), line
             for term in e.terms:
                 assert force_text(term) in line, (view_name, line)
             assert _value(line.rsplit(" = ", 1)[1].split()[0]) == pytest.approx(e.value, rel=1e-3)
@@ -247,3 +253,23 @@ def test_lever_labels_by_their_arrows(name, lang, sheets):
             d = [min(box.distance(e) for e in es) for es in ends]
             k = int(np.argmin(d))
             assert names[k] == t.text and d[k] <= NEAR_MM, (view_name, t.text, names[k], d[k])
+
+
+def test_on_a3_the_notes_keep_to_the_polygon_width_and_the_triad_press_fits():
+    """The ≈ 0 list and the equations are wrapped to the polygon's width (an equation broken
+    before its result), so the class III press's force sheet fits A3 as before."""
+    sheet = build_force_sheet("triad-press", lang="ru", fmt="A3")
+    for view_name, placed in _views(sheet, "polygon-").items():
+        meta = placed.view.meta
+        layers = polygon_layers(meta["number"], meta["group"])
+        arrows = _of(placed, Arrow, layers[0])
+        bottom = min(min(a.start[1], a.end[1]) for a in arrows)
+        texts = _of(placed, Text, layers[2])
+        notes = [t for t in texts if label_box(t).bounds[3] < bottom - 1.0]
+        others = [shapely.LineString(p.points) for p in _of(placed, Polyline, layers[1])]
+        others += [_segment(a) for a in arrows] + [label_box(t) for t in texts if t not in notes]
+        x0, _, x1, _ = shapely.union_all(others).bounds
+        assert notes, view_name
+        for t in notes:
+            box = label_box(t).bounds
+            assert box[2] - box[0] <= max(x1 - x0, 40.0) + 0.5, (view_name, t.text)

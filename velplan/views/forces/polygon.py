@@ -17,8 +17,9 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Text
+from velplan.render.shapes import text_extent
 from velplan.render.style import SheetStyle
-from velplan.views.base import View, make_view, unit
+from velplan.views.base import View, bounds_of, make_view, unit
 from velplan.views.base import number as _num
 from velplan.views.forces.arrows import arrow_obstacle
 from velplan.views.forces.common import (
@@ -77,7 +78,11 @@ def polygon_view(fa: ForceAnalysis, group: str, position: int, *, mu_f: float, l
         (head, sizes.title_mm),
         (f"μF = {number_text(mu_f, lang)} {newton(lang)}/{unit('mm', lang)}", sizes.label_mm)],
         text_layer)
-    notes = _small_lines(small, mu_f, lang) + _results(fa, group, number, lang)
+    x0, _, x1, _ = bounds_of(items)
+    width = max(x1 - x0, 40.0)  # the notes no wider than the polygon and its title
+    notes = (_small_lines(small, mu_f, lang, width, sizes.label_mm)
+             + [part for r in _results(fa, group, number, lang)
+                for part in _broken(r, width, sizes.label_mm)])
     items += note_lines(items, [(r, sizes.label_mm) for r in notes], text_layer)
     return make_view(f"polygon-{number}-{slug(group)}", items, pad_mm=2.0, mu=None,
                      origin=(0.0, 0.0),
@@ -216,8 +221,18 @@ def _spot_cost(spot, idx: int, segments, obstacles, boxes) -> float:
             + (1000.0 if own > 6.0 or other <= own else 0.0))
 
 
-def _small_lines(small, mu_f: float, lang: Language) -> list[str]:
-    """The vectors left out of the drawing, with their values: "≈ 0 …: G₃ = 58,9 Н; …"."""
+def _broken(line: str, width: float, size: float) -> list[str]:
+    """An equation wider than `width` mm at `size` broken before its result:
+    "R₃₅ = −(R₀₅ + P + G₅ + Φ₅) =" and "= 8449 Н"."""
+    if text_extent(line, size)[0] <= width or line.count(" = ") < 2:
+        return [line]
+    head, result = line.rsplit(" = ", 1)
+    return [head + " =", "= " + result]
+
+
+def _small_lines(small, mu_f: float, lang: Language, width: float, size: float) -> list[str]:
+    """The vectors left out of the drawing, with their values: "≈ 0 …: G₃ = 58,9 Н; …", in
+    lines no wider than `width` mm at `size`."""
     if not small:
         return []
     head = label("force_small", lang).format(mm=number_text(SHORT_VECTOR_MM, lang),
@@ -226,11 +241,12 @@ def _small_lines(small, mu_f: float, lang: Language) -> list[str]:
               for name, mm in small]
     lines, line = [], head
     for v in values:
-        if len(line) + len(v) > 44 and line != head:
-            lines.append(line + ";")
+        if text_extent(f"{line}; {v};", size)[0] > width:
+            lines.append(line if line == head else line + ";")
             line = v
         else:
-            line = f"{line} {v}" if line == head else f"{line}; {v}"
+            line = (head + ("" if head.endswith("：") else " ") + v if line == head
+                    else f"{line}; {v}")
     return lines + [line]
 
 
