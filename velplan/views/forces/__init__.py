@@ -69,7 +69,7 @@ Every view of the slider press's force sheet at position 2, from its study's res
 ('R₁₂τ', 'F(MΦ₄)', 'crank-a')
 >>> newton("ru"), newton_metre("en"), number_text(1234.5678, "ru")
 ('Н', 'N·m', '1235')
->>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter vectors listed as ≈ 0, mm
+>>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter: listed as ≈ 0
 (8.0, 3.0)
 >>> (start, end, text), = place_arrows([((0.0, 0.0), (1.0, 0.0), "F")], 16.0)
 >>> end.tolist(), text.text
@@ -85,6 +85,7 @@ from velplan.views.forces.common import (
     ForceSizes, force_text, group_layers, lever_layers, newton, newton_metre, number_text,
     polygon_layers, slug)
 from velplan.views.forces.diagram import MomentCurve, moment_diagram_view
+from velplan.views.forces.equations import ReactionEquation, reaction_equations
 from velplan.views.forces.group import (
     group_extent_m, group_forces, group_links, group_view)
 from velplan.views.forces.lever import lever_balance, lever_extent, lever_view
@@ -97,4 +98,5 @@ __all__ = ["ForceSizes", "MomentCurve", "group_forces", "group_view",
            "moment_diagram_view", "group_layers", "polygon_layers", "lever_layers",
            "force_text", "slug", "group_extent_m", "polygon_extent", "lever_extent",
            "group_links", "moment_decimals", "newton", "newton_metre",
-           "number_text", "place_arrows", "LINE_OVERRUN_MM", "SHORT_VECTOR_MM"]
+           "number_text", "place_arrows", "LINE_OVERRUN_MM", "SHORT_VECTOR_MM",
+           "ReactionEquation", "reaction_equations"]

@@ -82,6 +82,8 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
     along `lines` and the arrows `drawn` and keeps its label clear, shorter ones preferred."""
     best = None
     side = np.array([-u[1], u[0]]) * BESIDE_MM
+    fixed = np.array(lines, dtype=object)
+    shapes: dict = {}  # a label's box about its point, by anchor
     for step, mult in enumerate(LENGTHS):
         span = length * mult
         arrows = [geom for q, w, kk, sp, geom in drawn
@@ -90,25 +92,41 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
         # an opposite force at the same point: along it, one of the two heads would be lost
         arrows += [geom for q, w, kk, sp, geom in drawn
                    if np.hypot(*(q - p)) < 0.5 and float(w @ u) < -0.995] * 3
+        moving = np.array(arrows, dtype=object)
+        crowd = np.array(lines + arrows + boxes, dtype=object)
         for k, (a0, b0) in enumerate(((p, p + u * span), (p - u * span, p))):
+            along = 0.0
             for shift, extra in ((0.0, 0.0), (1.0, 4.0), (-1.0, 4.0))[:3 if beside else 1]:
+                if shift and along <= 0.3 * span:
+                    break  # on its point it runs along no link: not beside it
                 a, b = a0 + shift * side, b0 + shift * side
                 shaft = shapely.LineString([a, b])
-                over = sum(shaft.intersection(g).length for g in lines if g.intersects(shaft))
+                over = _run_along(shaft, fixed)
+                along = along if shift else over
                 if shift and over > 0.3 * span:
                     continue  # beside the point only where that clears it
-                over += 3.0 * sum(shaft.intersection(g).length for g in arrows
-                                  if g.intersects(shaft))
+                over += 3.0 * _run_along(shaft, moving)
                 free, out_dir = (b, u) if k == 0 else (a, -u)
                 near = a + (p - a0)  # the shaft's point level with the force's point
                 for spot, tag in enumerate(_label_spots(near, free, out_dir, text, layer, size)):
-                    box = label_box(tag)
-                    crowded = any(g.intersects(box) for g in lines + arrows + boxes)
+                    if tag.anchor not in shapes:
+                        shapes[tag.anchor] = np.asarray(label_box(Text(
+                            (0.0, 0.0), text, layer, size, tag.anchor, "middle")).exterior.coords)
+                    box = shapely.Polygon(shapes[tag.anchor] + np.asarray(tag.position, float))
+                    crowded = bool(crowd.size) and bool(shapely.intersects(box, crowd).any())
                     cost = (over + 3.0 * step + (5.0 if crowded else 0.0) + 0.8 * spot
                             + (0.01 + (20.0 if facing else 0.0)) * k + extra)
                     if best is None or cost < best[0] - 1e-9:
                         best = (cost, a, b, k, span, tag)
     return best[1:]
+
+
+def _run_along(shaft, shapes) -> float:
+    """How far `shaft` runs inside the `shapes` (an array of geometries), mm, summed."""
+    if not shapes.size:
+        return 0.0
+    hit = shapes[shapely.intersects(shaft, shapes)]
+    return float(shapely.length(shapely.intersection(shaft, hit)).sum()) if hit.size else 0.0
 
 
 def arrow_obstacle(a: Arrow):

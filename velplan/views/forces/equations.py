@@ -86,7 +86,8 @@ def reaction_equations(fa: ForceAnalysis, group: str, position: int) -> list[Rea
                                         None))
             continue
         k0, k1 = p.links
-        if group != "crank" and _inner_pairs(fa, k0, group) > 1 and _inner_pairs(fa, k1, group) == 1:
+        if (group != "crank" and _inner_pairs(fa, k0, group) > 1
+                and _inner_pairs(fa, k1, group) == 1):
             # the other link closes alone: the reaction on it, from its equilibrium
             out.append(ReactionEquation(reaction_label(k0, k1), tuple(_forces_on(fa, k1, p.name)),
                                         True, value, k1))

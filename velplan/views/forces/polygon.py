@@ -178,45 +178,53 @@ def _vector_labels(drawn, sk: Sketch, layer: str, size: float) -> list[Text]:
     segments = [shapely.LineString([a, b]) for _, a, b, _ in drawn]
     pts = [p for _, a, b, _ in drawn for p in (a, b)]
     centre = np.mean(pts, axis=0) if pts else np.zeros(2)
-    obstacles = sk.clear_of()
+    tree = shapely.STRtree(sk.clear_of())
     boxes: list = []
     texts: dict[int, Text] = {}
     for idx in sorted(range(len(drawn)), key=lambda j: segments[j].length):
         name, a, b, _ = drawn[idx]
-        best = min(_label_spots(name, a, b, centre, layer, size),
-                   key=lambda spot: _spot_cost(spot, idx, segments, obstacles, boxes))
+        best = None
+        for rank, text, box in _label_spots(name, a, b, centre, layer, size):
+            cost = _spot_cost(rank, box, idx, segments, tree, boxes)
+            if best is None or cost < best[0]:
+                best = (cost, text, box)
+            if cost < rank + 1:  # clean: no later place (of a higher rank) can be better
+                break
         texts[idx] = best[1]
-        boxes.append(label_box(best[1]).buffer(1.5))
+        boxes.append(best[2].buffer(1.5))
     return [texts[j] for j in range(len(drawn))]
 
 
-def _label_spots(name: str, a, b, centre, layer: str, size: float) -> list[tuple[int, Text]]:
-    """(rank, label) of the places tried for the label of vector a → b, the best first."""
+def _label_spots(name: str, a, b, centre, layer: str, size: float):
+    """(rank, label, its box) of the places tried for the label of vector a → b, the best
+    first: the box's edge nearest the vector a gap (0.8, 2, 3.5 mm) from it."""
     u = unit_vector(b - a)
     n = np.array([-u[1], u[0]])
     out = 1.0 if float(((a + b) / 2 - centre) @ n) >= 0 else -1.0
-    spots = []
+    text = force_text(name)
+    shapes = {}  # anchor → the box's corners about the text's point
+    rank = 0
     for gap in (0.8, 2.0, 3.5):
         for t in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
             for side in (out, -out):
                 m = side * n
-                at = a + t * (b - a)
-                text = Text(at, force_text(name), layer, size, anchor_of(m), "middle")
-                # the box's edge nearest the vector `gap` from it
-                reach = max(float((at - c) @ m) for c in np.asarray(label_box(text).exterior.coords))
-                spots.append((len(spots), Text(at + m * (gap + reach), force_text(name), layer,
-                                               size, anchor_of(m), "middle")))
-    return spots
+                anchor = anchor_of(m)
+                if anchor not in shapes:
+                    shapes[anchor] = np.asarray(label_box(Text(
+                        (0.0, 0.0), text, layer, size, anchor, "middle")).exterior.coords)
+                corners = shapes[anchor]
+                at = a + t * (b - a) + m * (gap + float(np.max(-(corners @ m))))
+                yield (rank, Text(at, text, layer, size, anchor, "middle"),
+                       shapely.Polygon(corners + at))
+                rank += 1
 
 
-def _spot_cost(spot, idx: int, segments, obstacles, boxes) -> float:
+def _spot_cost(rank: int, box, idx: int, segments, tree, boxes) -> float:
     """How bad a label's place is: over lines and arrows, over labels placed before it,
     nearer another vector than its own or farther than 6 mm from it; then its rank."""
-    rank, text = spot
-    box = label_box(text)
     own = box.distance(segments[idx])
     other = min((g.distance(box) for j, g in enumerate(segments) if j != idx), default=np.inf)
-    return (rank + 100.0 * sum(box.intersects(o) for o in obstacles)
+    return (rank + 100.0 * len(tree.query(box, predicate="intersects"))
             + 1000.0 * sum(box.intersects(o) for o in boxes)
             + (1000.0 if own > 6.0 or other <= own else 0.0))
 
