@@ -273,3 +273,17 @@ def test_on_a3_the_notes_keep_to_the_polygon_width_and_the_triad_press_fits():
         for t in notes:
             box = label_box(t).bounds
             assert box[2] - box[0] <= max(x1 - x0, 40.0) + 0.5, (view_name, t.text)
+
+
+@pytest.mark.parametrize("name, lang", CASES)
+def test_no_line_crosses_a_polygon_label(name, lang, sheets):
+    sheet = sheets(name, lang)
+    for view_name, placed in _views(sheet, "polygon-").items():
+        meta = placed.view.meta
+        vec_layer, line_layer, text_layer = polygon_layers(meta["number"], meta["group"])
+        lines = [_segment(a) for a in _of(placed, Arrow, vec_layer)]
+        lines += [shapely.LineString(p.points) for layer in (vec_layer, line_layer)
+                  for p in _of(placed, Polyline, layer)]
+        for t in _of(placed, Text, text_layer):
+            box = label_box(t)
+            assert all(line.intersection(box).length < 0.5 for line in lines), (view_name, t.text)

@@ -318,8 +318,8 @@ def _draw_couples(sk: Sketch, couples, radius: float, layer: str, text_layer: st
         arc, tag = _moment_arc(c, value, text, _busy_angles(c, sk.lines), radius=radius,
                                layer=layer, text_layer=text_layer, size=size)
         sk.items += arc
-        sk.obstacles += [shapely.LineString(a.points).buffer(0.5) for a in arc
-                         if isinstance(a, Polyline)]
+        sk.obstacles += [shapely.LineString(a.points).buffer(0.5) if isinstance(a, Polyline)
+                         else arrow_obstacle(a) for a in arc]
         labels.append(tag)
         arcs.append(shapely.LineString([p for a in arc for p in (
             a.points if isinstance(a, Polyline) else (a.start, a.end))]))

@@ -197,14 +197,14 @@ def _vector_labels(drawn, sk: Sketch, layer: str, size: float) -> list[Text]:
 
 def _label_spots(name: str, a, b, centre, layer: str, size: float):
     """(rank, label, its box) of the places tried for the label of vector a → b, the best
-    first: the box's edge nearest the vector a gap (0.8, 2, 3.5 mm) from it."""
+    first: the box's edge nearest the vector a gap (0.8 to 5 mm) from it."""
     u = unit_vector(b - a)
     n = np.array([-u[1], u[0]])
     out = 1.0 if float(((a + b) / 2 - centre) @ n) >= 0 else -1.0
     text = force_text(name)
     shapes = {}  # anchor → the box's corners about the text's point
     rank = 0
-    for gap in (0.8, 2.0, 3.5):
+    for gap in (0.8, 2.0, 3.5, 5.0):
         for t in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
             for side in (out, -out):
                 m = side * n
