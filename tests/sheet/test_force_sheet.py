@@ -14,6 +14,8 @@ from velplan.cli import main
 from velplan.errors import ScaleError, VelplanError
 from velplan.sheets.forces import build_force_sheet, force_sheet_text
 from velplan.views.forces import group_layers, lever_layers, polygon_layers
+from velplan.views.forces.arrows import BESIDE_MM
+from velplan.views.forces.polygon import OFFSET_MM
 from velplan.render.layout import overlapping_labels
 from velplan.render.scene import Polyline
 from velplan.views.base import number
@@ -66,16 +68,22 @@ def test_every_force_polygon_closes_through_its_vertices(name, force_sheets, for
         meta = placed.view.meta
         arrows = canvas.arrows(polygon_layers(meta["number"], meta["group"])[0])
         assert len(arrows) >= 2, view_name
-        # head to tail, back to the start
-        for a, b in zip(arrows, arrows[1:] + arrows[:1]):
-            assert math.dist(a.end, b.start) < 0.01, (view_name, a, b)
-        # the vertices are the analysis' ForcePolygon.vertices at the written μF
+        # every vector drawn (or listed as ≈ 0), from its vertex to the next: the vertices
+        # are the analysis' ForcePolygon.vertices at the written μF, which close
         poly = sheet.analysis.kinetostatics.polygons[meta["group"]]
         z = poly.vertices(meta["mu_f"])[meta["index"]]
+        assert abs(z[-1] - z[0]) < 1e-6
         corners = [placed.to_sheet([v.real, v.imag]) for v in z]
-        for a in arrows:
-            assert any(math.dist(a.start, c) < 1e-6 for c in corners), (view_name, a)
-            assert any(math.dist(a.end, c) < 1e-6 for c in corners), (view_name, a)
+        assert sorted(meta["drawn"] + tuple(n for n, _ in meta["small"])) == sorted(meta["labels"])
+        assert len(arrows) == len(meta["drawn"])
+        for name_, a in zip(meta["drawn"], arrows):
+            k = meta["labels"].index(name_)
+            tail, head = corners[k], corners[k + 1]
+            # on its vertices, or beside them (OFFSET_MM) where it would cover another vector
+            shift = np.asarray(a.start) - tail
+            assert np.allclose(np.asarray(a.end) - head, shift, atol=1e-6), (view_name, a)
+            assert min(abs(math.hypot(*shift) - d) for d in (0.0, OFFSET_MM)) < 1e-6
+            assert abs(float(shift @ (head - tail))) < 1e-6
         assert np.isclose(sheet.scales[view_name], meta["mu_f"])
 
 
@@ -117,10 +125,15 @@ def test_force_arrows_on_the_groups_point_the_way_the_forces_act(name, force_she
         arrows = [a for a in canvas.arrows(group_layers(meta["number"], meta["group"])[1])
                   if a.length > 5.0]  # the moments' curved arrows end in short heads
         assert len(arrows) >= len(meta["forces"])
+        def at(end, p, u):  # at the point, or level with it beside a link (BESIDE_MM)
+            d = np.asarray(end) - p
+            return abs(float(d @ u)) < 1e-6 and min(abs(math.hypot(*d) - s)
+                                                    for s in (0.0, BESIDE_MM)) < 1e-6
+
         for label, point, force in meta["forces"]:
             p = placed.to_sheet([point.real, point.imag])
             u = np.array([force.real, force.imag]) / abs(force)
-            assert any((math.dist(a.start, p) < 1e-6 or math.dist(a.end, p) < 1e-6)
+            assert any((at(a.start, p, u) or at(a.end, p, u))
                        and float(_unit(a.start, a.end) @ u) > 1 - 1e-9 for a in arrows), \
                 (view_name, label)
 

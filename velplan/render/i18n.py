@@ -87,6 +87,8 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
                                   "силы на группах и рычаге — без масштаба",
                                   "сили на групах і важелі — без масштабу",
                                   "杆组和杠杆上的力不按比例"),
+    "force_small": _entry("≈ 0 (< {mm} {unit} at μF):", "≈ 0 (< {mm} {unit} при μF):",
+                          "≈ 0 (< {mm} {unit} при μF):", "≈ 0（μF 下 < {mm} {unit}）："),
     "zhukovsky_lever": _entry("Zhukovsky's lever", "Рычаг Жуковского", "Важіль Жуковського",
                               "茹科夫斯基杠杆"),
     "plan_turned": _entry("velocity plan turned by 90°", "план скоростей, повёрнутый на 90°",

@@ -1,7 +1,7 @@
 """The structural analysis on the kinematic sheet: the figure of `velplan.views.structure`
 (the initial mechanism and each Assur group drawn apart) in free space of the drawing area,
-where it fits legibly — its letters at least 2.5 mm, none over another nor crossed by its lines, nothing over another
-view or the title block. It never takes room from the views already placed.
+where it fits legibly — its letters at least 2.5 mm, none over another nor crossed by its
+lines, nothing over another view or the title block. It never takes room from the views already placed.
 
 Examples
 --------

@@ -15,7 +15,10 @@ What each view draws, as a course sheet does (METHOD.md §5, §7):
 * **A force polygon** (:func:`polygon_view`): the known vectors head to tail from the pole at
   a standard μF (N/mm), then the two unknown reactions found where the lines of their known
   directions meet (thin construction lines through the last vertex and through the pole); the
-  found vectors thick. Vertices are `ForcePolygon.vertices`.
+  found vectors thick. Vertices are `ForcePolygon.vertices`. A vector shorter than 3 mm is
+  not drawn but listed as ≈ 0 with its value; one that would cover another is drawn beside
+  it; each reaction is written under the polygon with the equation it comes from
+  (`reaction_equations`: its components, or the equilibrium of one link).
 * **Zhukovsky's lever** (:func:`lever_view`): the velocity plan turned by 90° (counter-
   clockwise, as `velplan.forces.lever` turns it), every force carried to the image of its
   point with its own direction, a couple replaced by a pair of forces at the images of two
@@ -66,8 +69,8 @@ Every view of the slider press's force sheet at position 2, from its study's res
 ('R₁₂τ', 'F(MΦ₄)', 'crank-a')
 >>> newton("ru"), newton_metre("en"), number_text(1234.5678, "ru")
 ('Н', 'N·m', '1235')
->>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter vectors share a label, mm
-(8.0, 2.5)
+>>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter: listed as ≈ 0
+(8.0, 3.0)
 >>> (start, end, text), = place_arrows([((0.0, 0.0), (1.0, 0.0), "F")], 16.0)
 >>> end.tolist(), text.text
 ([16.0, 0.0], 'F')
@@ -82,6 +85,7 @@ from velplan.views.forces.common import (
     ForceSizes, force_text, group_layers, lever_layers, newton, newton_metre, number_text,
     polygon_layers, slug)
 from velplan.views.forces.diagram import MomentCurve, moment_diagram_view
+from velplan.views.forces.equations import ReactionEquation, reaction_equations
 from velplan.views.forces.group import (
     group_extent_m, group_forces, group_links, group_view)
 from velplan.views.forces.lever import lever_balance, lever_extent, lever_view
@@ -94,4 +98,5 @@ __all__ = ["ForceSizes", "MomentCurve", "group_forces", "group_view",
            "moment_diagram_view", "group_layers", "polygon_layers", "lever_layers",
            "force_text", "slug", "group_extent_m", "polygon_extent", "lever_extent",
            "group_links", "moment_decimals", "newton", "newton_metre",
-           "number_text", "place_arrows", "LINE_OVERRUN_MM", "SHORT_VECTOR_MM"]
+           "number_text", "place_arrows", "LINE_OVERRUN_MM", "SHORT_VECTOR_MM",
+           "ReactionEquation", "reaction_equations"]

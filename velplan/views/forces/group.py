@@ -19,7 +19,8 @@ from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
-from velplan.views.base import View, free_direction, make_view, place_labels, scale_mark, scale_text, subscript
+from velplan.views.base import View, free_direction, make_view, scale_mark, scale_text, subscript
+from velplan.views.forces.anchored import place_anchored
 from velplan.views.forces.arrows import arrow_obstacle, place_arrows
 from velplan.views.forces.common import (
     ForceSizes, Sketch, anchor_of, away_from_lines, force_text, group_layers, slug, title_lines,
@@ -138,15 +139,21 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
     axes, joints, centres = _draw_links(sk, fa, links, i, mm, body_layer)
     # letters of the points, then the forces: arrows of a conventional length at their points
     named = joints + centres + [f.point for f in fa.actions.forces if f.link in links]
-    letters = _point_letters(fa.kinematics, i, mm, named, sk.lines, text_layer, sizes.label_mm)
+    letters, at = _point_letters(fa.kinematics, i, mm, named, sk.lines, text_layer,
+                                 sizes.label_mm)
     forces = group_forces(fa, group, position)
-    force_labels = _draw_forces(sk, forces, [mm(fa.kinematics.position(q)[i])
-                                             for q in dict.fromkeys(named)],
-                                letters, mm, force_layer, text_layer, sizes)
+    force_labels, ends = _draw_forces(sk, forces, [mm(fa.kinematics.position(q)[i])
+                                                     for q in dict.fromkeys(named)],
+                                        letters, mm, force_layer, text_layer, sizes)
     couples = _couples(fa, group, links, i, mm, lang)
     radius = max(4.5, 0.35 * sizes.arrow_mm)
-    force_labels += _draw_couples(sk, couples, radius, force_layer, text_layer, sizes.label_mm)
-    items = sk.items + list(place_labels(letters + force_labels, sk.clear_of() + axes, rings=10))
+    couple_labels, arcs = _draw_couples(sk, couples, radius, force_layer, text_layer,
+                                        sizes.label_mm)
+    # each label kept by its own point, arrow or arc (the nearest of its kind to it)
+    anchors = [shapely.Point(p) for p in at] + ends + arcs
+    kinds = ["point"] * len(at) + ["force"] * len(ends) + ["couple"] * len(arcs)
+    items = sk.items + place_anchored(letters + force_labels + couple_labels, anchors, kinds,
+                                      sk.clear_of() + axes)
     head = (label("initial_link", lang).format(name=mech.crank.link) if group == "crank"
             else label("assur_group", lang).format(name=group))
     items += title_lines(items, [
@@ -236,8 +243,9 @@ def _draw_joints(sk: Sketch, mech, kin, links, i: int, mm, layer: str) -> list[s
     return joints
 
 
-def _point_letters(kin, i, mm, names, lines, layer, size) -> list[Text]:
-    """The letters of the named points (once per place), opposite the lines that leave them."""
+def _point_letters(kin, i, mm, names, lines, layer, size) -> tuple[list[Text], list[np.ndarray]]:
+    """The letters of the named points (once per place), opposite the lines that leave them,
+    and their points (mm)."""
     out: list[Text] = []
     placed: list[np.ndarray] = []
     for name in dict.fromkeys(names):
@@ -251,26 +259,30 @@ def _point_letters(kin, i, mm, names, lines, layer, size) -> list[Text]:
         away = away / np.hypot(*away)
         pos = p + away * (JOINT_RADIUS_MM + 1.2 + 0.5 * size)
         out.append(Text(pos, subscript(name), layer, size, anchor_of(away), "middle"))
-    return out
+    return out, placed
 
 
 # -- the forces and the couples ----------------------------------------------------------
 
 
 def _draw_forces(sk: Sketch, forces, marks, letters, mm, layer: str, text_layer: str,
-                 sizes: ForceSizes) -> list[Text]:
+                 sizes: ForceSizes) -> tuple[list[Text], list]:
     """The arrows of `forces` (label, point m, force N), kept clear of the points `marks` (mm)
-    and of the letters. Returns their labels."""
+    and of the letters, beside a link rather than along it. Returns their labels and the
+    arrows' free ends (away from the force's point), which the labels name."""
     entries = [(mm(xy(z)), unit_vector(xy(f)), force_text(name)) for name, z, f in forces]
     labels: list[Text] = []
-    for a, b, tag in place_arrows(entries, sizes.arrow_mm, sk.obstacles, marks, letters,
-                                  layer=text_layer, size=sizes.label_mm):
+    ends = []
+    for (p, _, _), (a, b, tag) in zip(entries, place_arrows(
+            entries, sizes.arrow_mm, sk.obstacles, marks, letters, layer=text_layer,
+            size=sizes.label_mm, beside=True)):
         arrow = Arrow(a, b, layer, "thin")
         sk.items.append(arrow)
         sk.obstacles.append(arrow_obstacle(arrow))
         sk.lines.append((a, b))
         labels.append(tag)
-    return labels
+        ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
+    return labels, ends
 
 
 def _couples(fa: ForceAnalysis, group: str, links, i: int, mm, lang: Language) -> list[tuple[str, np.ndarray, float]]:
@@ -297,18 +309,21 @@ def _couples(fa: ForceAnalysis, group: str, links, i: int, mm, lang: Language) -
 
 
 def _draw_couples(sk: Sketch, couples, radius: float, layer: str, text_layer: str,
-                  size: float) -> list[Text]:
+                  size: float) -> tuple[list[Text], list]:
     """Curved arrows of the couples, each towards the freest direction about its centre.
-    Returns their labels."""
+    Returns their labels and arcs."""
     labels: list[Text] = []
+    arcs = []
     for text, c, value in couples:
         arc, tag = _moment_arc(c, value, text, _busy_angles(c, sk.lines), radius=radius,
                                layer=layer, text_layer=text_layer, size=size)
         sk.items += arc
-        sk.obstacles += [shapely.LineString(a.points).buffer(0.5) for a in arc
-                         if isinstance(a, Polyline)]
+        sk.obstacles += [shapely.LineString(a.points).buffer(0.5) if isinstance(a, Polyline)
+                         else arrow_obstacle(a) for a in arc]
         labels.append(tag)
-    return labels
+        arcs.append(shapely.LineString([p for a in arc for p in (
+            a.points if isinstance(a, Polyline) else (a.start, a.end))]))
+    return labels, arcs
 
 
 def _busy_angles(centre, segments) -> list[float]:

@@ -17,7 +17,8 @@ from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.render.shapes import text_extent
-from velplan.views.base import View, bounds_of, fixed, make_view, place_labels, scale_text, subscript
+from velplan.views.base import View, bounds_of, fixed, make_view, scale_text, subscript
+from velplan.views.forces.anchored import place_anchored
 from velplan.views.base import number as _num
 from velplan.views.forces.arrows import arrow_obstacle, place_arrows
 from velplan.views.forces.common import (
@@ -69,9 +70,12 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     letters = [_image_letter(p, names, sk.lines, text_layer, sizes.label_mm)
                for p, names in images]
     forces = _lever_forces(lever, i)
-    texts = _draw_forces(sk, fa, lever, i, forces, [p for p, _ in images], letters, lang, sizes,
-                         force_layer, text_layer)
-    items = sk.items + list(place_labels(letters + texts, sk.clear_of(), rings=10))
+    texts, ends = _draw_forces(sk, fa, lever, i, forces, [p for p, _ in images], letters, lang,
+                               sizes, force_layer, text_layer)
+    # each label kept by its own image point or arrow end (the nearest of its kind to it)
+    anchors = [shapely.Point(p) for p, _ in images] + ends
+    kinds = ["point"] * len(images) + ["force"] * len(ends)
+    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of())
     mb_lever = float(lever.balancing_moment[i])
     mb_kin = float(fa.kinetostatics.balancing_moment[i])
     pct = float(fa.lever_difference_percent[i])
@@ -143,9 +147,10 @@ def _image_letter(p, names, lines, layer: str, size: float) -> Text:
 
 
 def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: Language,
-                 sizes: ForceSizes, layer: str, text_layer: str) -> list[Text]:
+                 sizes: ForceSizes, layer: str, text_layer: str) -> tuple[list[Text], list]:
     """The forces at their images and the balancing force (thick) at the crank tip's image,
-    drawn first so that it keeps its place there. Returns their labels."""
+    drawn first so that it keeps its place there. Returns their labels and the arrows' free
+    ends (away from their points), which the labels name."""
     fb = float(lever.balancing_force[i])
     fb_dir = xy(complex(lever.direction[i]) * (1.0 if fb >= 0 else -1.0))
     tip = xy(complex(lever.tip_image[i]))
@@ -156,13 +161,16 @@ def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: La
                                           sk.obstacles, marks, letters,
                                           layer=text_layer, size=sizes.label_mm)))
     texts: list[Text] = []
+    ends = []
     for k in order:
         a, b, tag = placed[k]
         arrow = Arrow(a, b, layer, "thick" if k == len(entries) - 1 else "thin")
         sk.items.append(arrow)
         sk.obstacles.append(arrow_obstacle(arrow))
         texts.append(tag)
-    return texts
+        p = np.asarray(entries[k][0], float)
+        ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
+    return texts, ends
 
 
 def _balance_lines(mech, mb_lever: float, mb_kin: float, pct: float, fb: float,

@@ -1,0 +1,81 @@
+"""Labels kept by what they name: each label is moved, if it must, only to places where the
+thing it names (a point, a force arrow, a couple's arc) stays the nearest of its kind to it
+and within reach — never to a free spot that reads as another arrow's label.
+
+>>> import shapely
+>>> from velplan.render.scene import Text
+>>> arrows = [shapely.LineString([(0, 0), (20, 0)]), shapely.LineString([(0, 6), (20, 6)])]
+>>> texts = [Text((10.0, 3.0), "F₁", "t", 3.5), Text((10.0, 3.0), "F₂", "t", 3.5)]
+>>> placed = place_anchored(texts, arrows, ["force", "force"], [a.buffer(0.5) for a in arrows])
+>>> [[round(label_box(t).distance(a), 1) for a in arrows] for t in placed]
+[[0.6, 1.0], [6.7, 0.7]]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import shapely
+
+from velplan.render.layout import label_box
+from velplan.render.scene import Text
+
+#: A label farther than this from what it names does not read as its label, mm.
+REACH_MM = 6.0
+
+
+def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
+    """The label's own place, then rings of twelve places around it, half a letter apart."""
+    x, y = text.position
+    step = 0.5 * text.size_mm
+    out = [(x, y)]
+    for r in range(1, rings + 1):
+        for k in range(12):
+            a = math.radians(30.0 * k)
+            out.append((x + r * step * math.cos(a), y + r * step * math.sin(a)))
+    return out
+
+
+def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
+                   reach: float = REACH_MM) -> list[Text]:
+    """Move labels, in order, clear of `obstacles` and of each other, each kept nearer to its
+    own anchor than to any other anchor of its kind and within `reach` mm of it.
+
+    Parameters
+    ----------
+    texts : sequence of Text
+        The labels at their wanted places.
+    anchors : sequence of shapely geometry
+        What each label names (a point, a segment, an arc), mm.
+    kinds : sequence of str
+        The kind of each anchor; a label is compared with the anchors of its own kind.
+    obstacles : iterable of shapely geometry
+        What the labels keep off (lines, arrows, marks).
+    """
+    shapes = [g for g in obstacles if g is not None and not g.is_empty]
+    tree = shapely.STRtree(shapes) if shapes else None
+    anchors = np.asarray(list(anchors), dtype=object)
+    kinds = np.asarray(list(kinds))
+    placed: list = []
+    out = []
+    for i, text in enumerate(texts):
+        mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
+        best = None
+        for rank, spot in enumerate(_spots(text, rings)):
+            cand = dataclasses.replace(text, position=spot)
+            box = label_box(cand)
+            own = float(shapely.distance(box, anchors[i]))
+            others = shapely.distance(box, anchors[mates]) if mates.size else np.array([np.inf])
+            hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
+            cost = (0.05 * rank + 100.0 * hits
+                    + 1000.0 * sum(box.intersects(b) for b in placed)
+                    + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
+            if best is None or cost < best[0]:
+                best = (cost, cand, box)
+            if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
+                break
+        out.append(best[1])
+        placed.append(best[2].buffer(0.5))
+    return out
