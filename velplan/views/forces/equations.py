@@ -30,7 +30,12 @@ COMPONENTS = ("τ", "n", "∥", "⊥")
 class ReactionEquation:
     """``label = (−)(Σ terms)``, |label| = ``value`` N. ``link``: the link whose equilibrium
     gives it (None: read off the polygon as the sum of its components); no terms: the
-    reaction is itself a vector of the polygon."""
+    reaction is itself a vector of the polygon.
+
+    >>> e = ReactionEquation("R32", ("R12", "G2", "Φ2"), True, 6295.0, "2")
+    >>> e.negated, e.link
+    (True, '2')
+    """
 
     label: str
     terms: tuple[str, ...]
@@ -69,7 +74,13 @@ def _inner(fa: ForceAnalysis, pair, group: str) -> bool:
 
 def reaction_equations(fa: ForceAnalysis, group: str, position: int) -> list[ReactionEquation]:
     """The equation of every reaction of `group` (or ``"crank"``) at position number
-    ``position`` (1…n), in the order of the pairs."""
+    ``position`` (1…n), in the order of the pairs.
+
+    >>> import velplan
+    >>> fa = velplan.Study("slider-press", n=4).forces()
+    >>> [e.label for e in reaction_equations(fa, "2-3", 2)]
+    ['R12', 'R32', 'R03']
+    """
     i = position_index(position, len(fa.kinematics))
     ks = fa.kinetostatics
     names = [n for n, _ in ks.polygons[group].vectors] + [
