@@ -148,3 +148,22 @@ def test_time_on_a_class_iii_group_counts_towards_loading_the_kernel(monkeypatch
     assert (solver._NUMPY_SECONDS[0] > 0.0 or solver._AUTO_ON[0]) and prepared(mech).class_iii
 
 
+
+
+def test_a_mechanism_at_its_pivot_is_not_kept_alive_by_the_cache():
+    """A crank pivot at the origin makes `about_pivot` return the mechanism itself: the cache
+    must still let each variant be collected (it held every one of them)."""
+    import dataclasses
+    import gc
+
+    from velplan.analysis import prepared as P
+
+    m = velplan.load("crank-slider")
+    assert m.crank.pivot in dict(m.ground) and dict(m.ground)[m.crank.pivot] == (0.0, 0.0)
+    before = len(P._BY_ID)
+    for k in range(20):
+        v = dataclasses.replace(m, crank=dataclasses.replace(m.crank, length=m.crank.length * (1 + 1e-3 * k)))
+        velplan.solve(v, np.linspace(0.0, 6.0, 12))
+        del v
+    gc.collect()
+    assert len(P._BY_ID) <= before

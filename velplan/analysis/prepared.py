@@ -9,6 +9,7 @@ for an equal mechanism loaded again, by content (the latest `KEEP`).
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import weakref
 
@@ -45,6 +46,8 @@ class Prepared:
     def __init__(self, mech: Mechanism, points: tuple | None):
         self.points = points
         self.local, pivot = about_pivot(mech)
+        if self.local is mech:  # held by the caches: an equal copy, so that `mech` may be collected
+            self.local = dataclasses.replace(mech)
         self.shift = complex(pivot[0], pivot[1])
         self.items = schedule(self.local) if points is None else needed_items(self.local, points)
         self.scale = length_scale(self.local)
