@@ -255,10 +255,9 @@ def point_marks(mech) -> dict[str, dict[str, str]]:
     """The points whose velocity and acceleration are not the derivatives of their position:
     name → {"kind": "special" (Assur's special point of a triad) or "coincident" (a guide
     link's point at a slider's joint), "link": the link whose point it is at each instant}."""
-    from velplan.mechanism.model import Triad
     from velplan.mechanism.structure import coincident_points
 
-    special = {g.special_name for g in mech.groups if isinstance(g, Triad)}
+    special = {p for g in mech.groups for p in g.special_points()}
     return {name: {"kind": "special" if name in special else "coincident", "link": link}
             for name, link in coincident_points(mech).items()}
 
