@@ -26,6 +26,7 @@ from _common import grid, median_time, table
 
 import velplan
 from velplan.analysis import groups as G
+from velplan.analysis.solvers import solve_group
 from velplan.analysis import solver as S
 from velplan.mechanism.model import GROUND, Crank, LinkPoint
 from velplan.mechanism.structure import schedule
@@ -96,7 +97,7 @@ def _solve_block(mech, phi, w1, e1, *, crank_cs: bool = False, unit_cache: bool 
                 st.points[item.name] = G.Motion(x, *G.carry(origin.p, origin.v, origin.a, link.omega, link.epsilon, x))
                 lap(f"point {item.name}: `np.exp(1j*theta)` + `carry`")
             else:
-                res = G.solve_group(item, st, scale)
+                res = solve_group(item, st, scale)
                 st.points.update(res.points)
                 st.links.update(res.links)
                 st.slides.update(res.slides)

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import velplan
-from velplan.analysis import compiled, groups
+from velplan.analysis import compiled, solvers
 from velplan.analysis.design import design_keys
 from velplan.errors import MechanismError
 import velplan.forces as vf
@@ -36,7 +36,7 @@ fk = importlib.import_module("velplan.forces.kinetostatics")  # the package's na
 
 #: Each layer's lookup by kind: (module, its registry, its kinds may be absent when `tracked`).
 REGISTRIES = (
-    ("velplan.analysis.groups", lambda: groups.SOLVERS, False),
+    ("velplan.analysis.solvers", lambda: solvers.SOLVERS, False),
     ("velplan.analysis.compiled", lambda: compiled._ROWS, True),  # a tracked kind runs on numpy
     ("velplan.plans.build", lambda: build.BUILDERS, False),
     ("velplan.forces.kinetostatics", lambda: fk.POLYGONS, False),
@@ -106,7 +106,7 @@ def test_a_fake_kind_is_refused_by_every_layer_naming_it():
     kin = velplan.solve(mech, np.radians([10.0, 50.0]))
     acts = vf.mechanism_actions(mech, kin)
     runs = {
-        "velplan.analysis.groups": lambda: velplan.solve(fake, np.radians([10.0]), engine="numpy"),
+        "velplan.analysis.solvers": lambda: velplan.solve(fake, np.radians([10.0]), engine="numpy"),
         "velplan.analysis.compiled": lambda: compiled._program(fake, *_registers(mech), 1.0, None),
         "velplan.plans.build": lambda: build.construct(fake),
         "velplan.forces.kinetostatics": lambda: fk.kinetostatics(fake, kin, acts),

@@ -9,7 +9,8 @@ from typing import Iterable
 
 import numpy as np
 
-from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, solve_group, wrap_angle
+from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, wrap_angle
+from velplan.analysis.solvers import solve_group
 from velplan.analysis.kinematics import SINGULAR_BOUND, WELL_CONDITIONED, Kinematics, velocity_bound
 from velplan.errors import AssemblyError, MechanismError
 from velplan.mechanism.model import GROUND, Crank, Group, LinkPoint, Mechanism

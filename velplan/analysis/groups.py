@@ -16,11 +16,9 @@ values; the `solve_*` wrappers below fit them to the named points and links of a
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
-
 import numpy as np
 
-from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Guide, Triad, kind_entry
+from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Guide
 
 
 @dataclass
@@ -333,27 +331,3 @@ def solve_rpp(g: RPP, st: State) -> GroupResult:
         condition=np.full(st.n, abs(np.sin(g.slot_angle))),
         closed=closed,
     )
-
-
-def _solve_triad(g, st: State, length_scale: float, phi, track) -> GroupResult:
-    from velplan.analysis import triad
-
-    return triad.solve_triad(g, st, phi, track, length_scale)
-
-
-#: The analysis layer's one lookup by group kind: kind → solver(g, st, length_scale, φ, track);
-#: ``track`` is the branch followed over the turn of a kind that is `tracked` (else None).
-SOLVERS: dict[type, Callable[..., GroupResult]] = {
-    RRR: lambda g, st, scale, phi, track: solve_rrr(g, st),
-    RRP: lambda g, st, scale, phi, track: solve_rrp(g, st),
-    RPR: lambda g, st, scale, phi, track: solve_rpr(g, st, scale),
-    PRP: lambda g, st, scale, phi, track: solve_prp(g, st),
-    RPP: lambda g, st, scale, phi, track: solve_rpp(g, st),
-    Triad: _solve_triad,
-}
-
-
-def solve_group(g: Group, st: State, length_scale: float, phi=None, track=None) -> GroupResult:
-    """Dispatch to the solver of ``g``'s kind (call under ``np.errstate(all="ignore")``:
-    singular positions give inf/NaN); a `MechanismError` for a kind with no solver."""
-    return kind_entry(SOLVERS, g, "velplan.analysis.groups.SOLVERS")(g, st, length_scale, phi, track)

@@ -21,13 +21,14 @@ from itertools import combinations
 from typing import Any
 
 from velplan.errors import MechanismError
+from velplan.mechanism.fields import finite, no_unknown, optional_name
 from velplan.mechanism.model import GROUND
 
 FRAME_NAMES = (GROUND, "ground")
 """Names of the frame in a joint's ``links``."""
 JOINT_KINDS = ("R", "P", "RP")
 _JOINT_KEYS = {"name", "at", "kind", "links", "angle_deg", "block", "coincident", "color"}
-_CRANK_KEYS = {"link", "pivot", "omega", "rpm", "epsilon"}
+CRANK_KEYS = {"link", "pivot", "omega", "rpm", "epsilon"}
 TOLERANCE = 1e-9
 """Relative tolerance of the drawn geometry (a point on a line, coincident joints)."""
 
@@ -50,8 +51,6 @@ class Joint:
 
 def parse_joints(tables: Any) -> tuple[Joint, ...]:
     """The ``[[joint]]`` tables as `Joint` values, each checked (one-line errors)."""
-    from velplan.mechanism.loader import _finite, _no_unknown, _opt_name
-
     if not isinstance(tables, list) or not tables:
         raise MechanismError("joint must be an array of tables ([[joint]]) with at least one joint")
     out, seen = [], set()
@@ -62,7 +61,7 @@ def parse_joints(tables: Any) -> tuple[Joint, ...]:
         if not name:
             raise MechanismError(f"joint #{i + 1}: missing name")
         where = f"joint {name!r}"
-        _no_unknown(t, _JOINT_KEYS, where)
+        no_unknown(t, _JOINT_KEYS, where)
         if name in seen:
             raise MechanismError(f"duplicate joint name {name!r}")
         seen.add(name)
@@ -72,7 +71,7 @@ def parse_joints(tables: Any) -> tuple[Joint, ...]:
         at = t.get("at")
         if not (isinstance(at, list) and len(at) == 2):
             raise MechanismError(f"{where}: at must be [x, y] in m, not {at!r}")
-        xy = (_finite(at[0], f"{where} x"), _finite(at[1], f"{where} y"))
+        xy = (finite(at[0], f"{where} x"), finite(at[1], f"{where} y"))
         links = t.get("links")
         if not (isinstance(links, list) and links and all(isinstance(k, (str, int)) and str(k) for k in links)):
             raise MechanismError(f"{where}: links must be a list of link names, not {links!r}")
@@ -87,14 +86,14 @@ def parse_joints(tables: Any) -> tuple[Joint, ...]:
                 raise MechanismError(f"{where}: a P joint joins two links (the guide's, the slider), not {len(links)}")
             if "angle_deg" not in t:
                 raise MechanismError(f"{where}: a {kind} joint needs angle_deg, the guide's direction")
-            angle = math.radians(_finite(t["angle_deg"], f"{where} angle_deg"))
+            angle = math.radians(finite(t["angle_deg"], f"{where} angle_deg"))
         elif "angle_deg" in t or "block" in t or "coincident" in t:
             raise MechanismError(f"{where}: angle_deg, block and coincident belong to P and RP joints")
-        block = _opt_name(t, "block")
+        block = optional_name(t, "block")
         if block is not None and kind != "RP":
             raise MechanismError(f"{where}: block names the block of an RP joint")
         color = t.get("color")
-        out.append(Joint(name, kind, xy, links, angle, block, _opt_name(t, "coincident"),
+        out.append(Joint(name, kind, xy, links, angle, block, optional_name(t, "coincident"),
                          None if color is None else str(color)))
     return tuple(out)
 
@@ -180,7 +179,7 @@ def check_joints(chain: Chain) -> None:
     """One-line errors for revolute joints that cannot be a mechanism's: two joining the same
     links, two of one link drawn at one point (within `TOLERANCE` of the drawing's size)."""
     hinges = [(name, hinge) for name, hinge in chain.hinges.items() if len(hinge[1]) > 1]  # not points
-    tol = TOLERANCE * _scale(chain)
+    tol = TOLERANCE * drawing_size(chain)
     for i, (a, (at_a, links_a)) in enumerate(hinges):
         for b, (at_b, links_b) in hinges[i + 1:]:
             if set(links_a) == set(links_b):
@@ -373,51 +372,8 @@ def group_pairs(chain: Chain, group: frozenset, known: frozenset) -> list[GroupP
             out.append(GroupPair("P", mine, s.name, s.at, outer=other, slide=s))
     return out
 
-# -- the explicit tables --------------------------------------------------------------------
 
-
-def explicit(data: dict, name: str = "mechanism") -> dict:
-    """The explicit tables (``[ground]``, ``[crank]``, ``[[group]]``, ``[[point]]``) of a drawn
-    file's parsed TOML ``data``; the other keys are passed through to the loader."""
-    from velplan.mechanism.drawn_groups import Builder, crank_table, drawn_points, group_tables, leftover_points, special
-    from velplan.mechanism.loader import _no_unknown
-
-    if "ground" in data or "group" in data:
-        raise MechanismError("a drawn file gives [[joint]] tables instead of [ground] and [[group]], not both")
-    joints = parse_joints(data.get("joint"))
-    crank_t = data.get("crank")
-    if not isinstance(crank_t, dict):
-        raise MechanismError("missing [crank] section: link, pivot (a joint) and omega or rpm")
-    _no_unknown(crank_t, _CRANK_KEYS, "[crank]")
-    chain = Chain(joints)
-    crank = str(crank_t.get("link", ""))
-    if crank not in chain.links:
-        raise MechanismError(f"[crank] link {crank_t.get('link')!r} is not a moving link of the joints; "
-                             f"links: {links_text(chain.links)}")
-    check_joints(chain)
-    w = chain.mobility()
-    if w != 1:
-        check_held(chain, crank)
-        raise MechanismError(f"the joints give W = {w} (3·{len(chain.links)} − 2·{chain.p5}), not 1, for links "
-                             f"{links_text(chain.links)}: velplan drives a mechanism of one crank")
-    groups = decompose(chain, crank)
-    build = Builder(chain, crank_t, _scale(chain))
-    tables = dict(data)
-    del tables["joint"]
-    tables["crank"] = crank_table(build, crank, crank_t)
-    for g in groups:
-        group_tables(build, g)
-    leftover_points(build, joints)
-    tables["ground"] = build.ground
-    tables["group"] = build.groups
-    tables["point"] = build.points + drawn_points(build, data.get("point", []))
-    special(build, data.get("special"))
-    tables.pop("special", None)
-    return tables
-
-
-
-def _scale(chain: Chain) -> float:
+def drawing_size(chain: Chain) -> float:
     """The drawing's size: the largest distance between two of its joints, m (1 for one point)."""
     xs = list(chain.position.values())
     return max((abs(a - b) for a in xs for b in xs), default=1.0) or 1.0

@@ -1,4 +1,4 @@
-"""The explicit tables of a drawn file's Assur groups (`velplan.mechanism.drawn.explicit`): each
+"""The explicit tables of a drawn file's Assur groups (`explicit`): each
 group's lengths, offsets and guide angles from the joints' coordinates, its branch or assembly
 from the drawn pose, and the frame (origin, angle) of each link it brings, so that the points
 and guides of later groups can be placed on it."""
@@ -10,8 +10,11 @@ import math
 from typing import Any
 
 from velplan.errors import MechanismError
-from velplan.mechanism.drawn import TOLERANCE, Chain, GroupPair, Joint, group_pairs, links_text
+from velplan.mechanism.drawn import (CRANK_KEYS, TOLERANCE, Chain, GroupPair, Joint, check_held, check_joints, decompose,
+                                     drawing_size, group_pairs, links_text, parse_joints)
+from velplan.mechanism.fields import no_unknown
 from velplan.mechanism.model import GROUND
+
 
 class Builder:
     """Turns the decomposition into the loader's explicit tables, tracking each known link's
@@ -331,3 +334,43 @@ def special(build: Builder, t: Any) -> None:
                 raise MechanismError(f"[[special]] of triad {base}: leads must be two of its lead links "
                                      f"{', '.join(links)}, not {s['leads']!r}")
             group["pair"] = [links.index(k) + 1 for k in pair]
+
+
+# -- the explicit tables --------------------------------------------------------------------
+
+
+def explicit(data: dict, name: str = "mechanism") -> dict:
+    """The explicit tables (``[ground]``, ``[crank]``, ``[[group]]``, ``[[point]]``) of a drawn
+    file's parsed TOML ``data``; the other keys are passed through to the loader."""
+    if "ground" in data or "group" in data:
+        raise MechanismError("a drawn file gives [[joint]] tables instead of [ground] and [[group]], not both")
+    joints = parse_joints(data.get("joint"))
+    crank_t = data.get("crank")
+    if not isinstance(crank_t, dict):
+        raise MechanismError("missing [crank] section: link, pivot (a joint) and omega or rpm")
+    no_unknown(crank_t, CRANK_KEYS, "[crank]")
+    chain = Chain(joints)
+    crank = str(crank_t.get("link", ""))
+    if crank not in chain.links:
+        raise MechanismError(f"[crank] link {crank_t.get('link')!r} is not a moving link of the joints; "
+                             f"links: {links_text(chain.links)}")
+    check_joints(chain)
+    w = chain.mobility()
+    if w != 1:
+        check_held(chain, crank)
+        raise MechanismError(f"the joints give W = {w} (3·{len(chain.links)} − 2·{chain.p5}), not 1, for links "
+                             f"{links_text(chain.links)}: velplan drives a mechanism of one crank")
+    groups = decompose(chain, crank)
+    build = Builder(chain, crank_t, drawing_size(chain))
+    tables = dict(data)
+    del tables["joint"]
+    tables["crank"] = crank_table(build, crank, crank_t)
+    for g in groups:
+        group_tables(build, g)
+    leftover_points(build, joints)
+    tables["ground"] = build.ground
+    tables["group"] = build.groups
+    tables["point"] = build.points + drawn_points(build, data.get("point", []))
+    special(build, data.get("special"))
+    tables.pop("special", None)
+    return tables

@@ -44,7 +44,8 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from velplan.errors import MechanismError
-from velplan.mechanism.loader import MAGNITUDE, SLOWEST, SMALLEST_LENGTH
+from velplan.mechanism.fields import MAGNITUDE
+from velplan.mechanism.loader import SLOWEST, SMALLEST_LENGTH
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Mechanism, Table, Triad
 
 @dataclass(frozen=True)

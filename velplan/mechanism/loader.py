@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from velplan.errors import MechanismError, deprecated
+from velplan.mechanism.fields import finite as _finite, no_unknown as _no_unknown, optional_name as _opt_name
 from velplan.mechanism.model import (
     GROUND,
     PRP,
@@ -146,7 +147,7 @@ def from_dict(data: dict[str, Any], *, name: str = "mechanism") -> Mechanism:
     file (``[[joint]]`` tables) is first decomposed into groups (`velplan.mechanism.drawn`)."""
     _no_unknown(data, _TOP_KEYS, "the file")
     if "joint" in data:
-        from velplan.mechanism.drawn import explicit
+        from velplan.mechanism.drawn_groups import explicit
 
         data = explicit(data, name)
     elif "special" in data:
@@ -519,10 +520,6 @@ def _list(data: dict, key: str) -> list:
     return t
 
 
-def _no_unknown(t: dict, allowed: set[str], where: str) -> None:
-    extra = sorted(set(t) - allowed)
-    if extra:
-        raise MechanismError(f"{where}: unknown key {extra[0]!r}; allowed: {', '.join(sorted(allowed))}")
 
 
 def _name(t: dict, key: str, where: str) -> str:
@@ -532,31 +529,16 @@ def _name(t: dict, key: str, where: str) -> str:
     return str(v)
 
 
-def _opt_name(t: dict, key: str) -> str | None:
-    v = t.get(key)
-    return None if v in (None, "") else str(v)
 
 
 SHEET_LANGUAGES = LANGUAGES
 """Languages a ``[names]`` table may give (those of the sheets)."""
 SIZE_LIMITS = {"ground": 200, "group": 100, "point": 500, "link": 200, "load": 100, "joint": 400}
 """Most entries of each table of a file (a 4000-point file took 1.4 GB to draw)."""
-MAGNITUDE = 1e9
-"""Largest magnitude of any number in a mechanism file (m, rad/s, rpm, kg, kg·m², °): beyond it
-products of lengths, speeds and masses leave double precision."""
 SMALLEST_LENGTH = 1e-9
 """Shortest length a link may have, m."""
 
 
-def _finite(v: Any, what: str) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise MechanismError(f"{what} must be a number, not {v!r}")
-    v = float(v)
-    if not math.isfinite(v):
-        raise MechanismError(f"{what} must be finite, not {v}")
-    if abs(v) > MAGNITUDE:
-        raise MechanismError(f"{what} = {v:g} is out of range (at most {MAGNITUDE:g} in magnitude)")
-    return v
 
 
 SLOWEST = 1e-9

@@ -65,7 +65,7 @@ class DynamicsSheet(ComposedSheet):
 
 def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the dynamics sheet: the third document of the course work."""
-    from velplan.sheets.kinds import default_title_of
+    from velplan.sheets.documents import default_title_of
 
     return default_title_of("dynamics", mech, lang, scale)
 

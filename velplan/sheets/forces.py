@@ -107,7 +107,7 @@ def default_force_positions(fa: ForceAnalysis) -> tuple[int, ...]:
 
 def default_force_title(mech: Mechanism, lang: Language, scale: str) -> TitleInfo:
     """Title block of the force sheet: the second document of the course work."""
-    from velplan.sheets.kinds import default_title_of
+    from velplan.sheets.documents import default_title_of
 
     return default_title_of("forces", mech, lang, scale)
 

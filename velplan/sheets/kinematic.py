@@ -123,7 +123,7 @@ def default_plan_positions(res: PlanResult) -> tuple[int, ...]:
 
 def default_title(mech, lang: Language, fmt: str, scale: str, frame_style: str) -> TitleInfo:
     """Title block of the kinematic sheet: the first document of the course work."""
-    from velplan.sheets.kinds import default_title_of
+    from velplan.sheets.documents import default_title_of
 
     return default_title_of("both", mech, lang, scale)
 
