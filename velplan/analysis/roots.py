@@ -46,15 +46,10 @@ def newton_bisection(f: Function, lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarr
         lo, hi = np.where(same, x, lo), np.where(same, hi, x)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = x - fx / dfx
-        tol = ulps * eps * np.maximum(np.abs(x), 1.0)
-        # a Newton step within the tolerance is convergence, even where it rounds onto the
-        # bracket's end that x now is (else an open bracket would bisect away from the root)
-        settled = np.isfinite(step) & (np.abs(step - x) <= tol)
         inside = ((step >= lo) & (step <= hi)) if closed else ((step > lo) & (step < hi))
-        x_new = np.where((fx == 0) | settled, np.where(settled, step, x),
-                         np.where(inside & np.isfinite(step), step, 0.5 * (lo + hi)))
+        x_new = np.where(fx == 0, x, np.where(inside & np.isfinite(step), step, 0.5 * (lo + hi)))
         tol = ulps * eps * np.maximum(np.abs(x_new), 1.0)
-        done = settled | (np.abs(x_new - x) <= tol) | (fx == 0) | (hi - lo <= tol)
+        done = (np.abs(x_new - x) <= tol) | (fx == 0) | (hi - lo <= tol)
         x = x_new
         if done.all():
             break
