@@ -19,7 +19,7 @@ import pytest
 from velplan.html import Page
 from velplan.study import Study
 from velplan.views.base import number
-from velplan.views.steps import readable
+from velplan.html.frames import readable  # the page writes whole indices in Unicode (vA₄)
 
 CHROMIUM = Path("/usr/bin/chromium")
 DRIVER = Path("/usr/bin/chromedriver")
@@ -106,7 +106,7 @@ def test_the_page_plays_and_builds_the_plans_step_by_step(browser, tmp_path):
     d.find_element("id", "next").click()
     rows = d.find_elements("css selector", "#values-body tr.now")
     assert rows and all(r.text.split()[0] == "v5" for r in rows)
-    assert "VA₄" in " ".join(r.text for r in rows)
+    assert "vA₄" in " ".join(r.text for r in rows)  # the course writes velocities in lowercase v
 
     # on into the acceleration plan: the velocity plan stays whole, the acceleration plan grows
     for _ in range(total - 5 + 2):
