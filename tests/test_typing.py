@@ -10,21 +10,27 @@ ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = ROOT / "pyproject.toml"
 
 
-def _mypy(tmp_path, *args: str) -> tuple[str, int]:
+@pytest.fixture(scope="module")
+def cache(tmp_path_factory) -> Path:
+    """One mypy cache for the module: the second run reads velplan's modules from the first's."""
+    return tmp_path_factory.mktemp("mypy-cache")
+
+
+def _mypy(cache: Path, *args: str) -> tuple[str, int]:
     api = pytest.importorskip("mypy.api", reason="mypy is not installed (pip install '.[test]')")
-    out, err, status = api.run(["--config-file", str(PYPROJECT), "--cache-dir", str(tmp_path / "cache"),
+    out, err, status = api.run(["--config-file", str(PYPROJECT), "--cache-dir", str(cache),
                                 "--no-error-summary", *args])
     return out + err, status
 
 
-def test_the_public_modules_are_clean(tmp_path, monkeypatch):
+def test_the_public_modules_are_clean(cache, monkeypatch):
     monkeypatch.chdir(ROOT)  # the configured files are relative to the checkout
-    text, status = _mypy(tmp_path)
+    text, status = _mypy(cache)
     errors = [line for line in text.splitlines() if ": error:" in line]
     assert errors == [] and status == 0, "\n".join(errors or [text])
 
 
-def test_the_overloads_tell_the_sheets_apart_and_refuse_a_wrong_option(tmp_path, monkeypatch):
+def test_the_overloads_tell_the_sheets_apart_and_refuse_a_wrong_option(cache, tmp_path, monkeypatch):
     monkeypatch.chdir(ROOT)
     monkeypatch.setenv("MYPYPATH", str(ROOT))  # this checkout's velplan, not an installed one
     use = tmp_path / "use.py"
@@ -36,7 +42,7 @@ def test_the_overloads_tell_the_sheets_apart_and_refuse_a_wrong_option(tmp_path,
         "velplan.sheet('shaper', 'dynamics', plans=[1])\n"
         "velplan.sheet('shaper', lang='fr')\n"
         "reveal_type(velplan.Study('shaper').forces())\n", "utf-8")
-    text, status = _mypy(tmp_path, str(use))
+    text, status = _mypy(cache, str(use))
     lines = [line.split(": ", 1)[1] for line in text.splitlines() if line.startswith(str(use))]
     assert status == 1
     assert 'note: Revealed type is "velplan.sheets.kinematic.Sheet"' in lines
