@@ -27,9 +27,10 @@ def _gamma_min_deg(mech) -> float:
 
 def test_require_never_emits_a_variant_that_breaks_a_constraint():
     stats: dict = {}
-    kept, failed = batch.random_variants("four-bar", 140, "TMM-2026 work 3", spread=0.1,
+    # 50 kept of about 390 drawn (about 340 rejected, a few not assembled): every one checked
+    kept, failed = batch.random_variants("four-bar", 50, "TMM-2026 work 3", spread=0.1,
                                          require=parse_require(REQUIRE), stats=stats)
-    assert stats["drawn"] >= 1000 and stats["rejected"] > 0
+    assert stats["drawn"] >= 300 and stats["rejected"] >= 250 and stats["not_assembled"] > 0
     assert stats["drawn"] == stats["rejected"] + stats["not_assembled"] + len(kept) and not failed
     for v in kept:
         mech, _ = batch.build_variant(v)
