@@ -320,3 +320,21 @@ def test_chinese_sheet_is_labelled_in_chinese():
     assert sheet.frame_style == "iso" and overlapping_labels(sheet.scene) == []
     assert not any(isinstance(p, Polyline) and not np.all(np.isfinite(p.points))
                    for p in sheet.scene)
+
+
+@pytest.mark.parametrize("name, partner", [("v-compressor", "2-3"), ("triad-press", "3-2-4-5"), ("shaper", "3-4")])
+def test_the_initial_links_polygon_shares_the_muF_of_the_group_that_loads_it(name, partner):
+    """R₂₁ = −R₁₂ is a side of both polygons: at one μF the student carries it over with dividers
+    (the triad press's crank polygon was one 314 mm segment at 20 N/mm beside its group's at 100)."""
+    from velplan.sheets.forces import crank_partner
+
+    sheet = build_force_sheet(name, fmt="A1", lang="en")
+    k = sheet.positions[0]
+    assert crank_partner(sheet.analysis, k) == partner
+    assert sheet.scales[f"polygon-{k}-crank"] == sheet.scales[f"polygon-{k}-{partner}"]
+    # R₂₁ is one of the partner's sides, so the crank's polygon is no larger than the partner's
+    def side(view):
+        x0, y0, x1, y1 = sheet.views[view].bounds
+        return max(x1 - x0, y1 - y0)
+
+    assert side(f"polygon-{k}-crank") <= 1.1 * side(f"polygon-{k}-{partner}")

@@ -292,6 +292,7 @@ class _Rows(ShrinkingRows):
         layout = [[[("group", k, grp), ("poly", k, grp)] for grp in order] + [[("lever", k, None)]]
                   for k in chosen]
         span, scale = _spans_and_scales(fa, chosen, order, row_h)
+        self.partner = {k: crank_partner(fa, k) for k in chosen}
         super().__init__(layout, region, req.gap, row_h, mode, span, scale)
 
     def fail(self, why: str) -> ScaleError:
@@ -307,11 +308,15 @@ class _Rows(ShrinkingRows):
         """The polygons' and levers' scales are recorded by view; the groups' is μl."""
         return ref[0] != "group"
 
-    @staticmethod
-    def entity(ref):
-        """What a drawing's scale belongs to: all the groups, one polygon, one lever."""
+    def entity(self, ref):
+        """What a drawing's scale belongs to: all the groups, one polygon (the initial link's
+        shares the μF of the group that loads it, `crank_partner`), one lever."""
         kind, k, grp = ref
-        return "groups" if kind == "group" else ((kind, k, grp) if kind == "poly" else (kind, k))
+        if kind == "group":
+            return "groups"
+        if kind == "poly":
+            return (kind, k, self.partner[k] if grp == "crank" else grp)
+        return (kind, k)
 
     def view(self, ref) -> View:
         return self.draw.view(*ref, self.scale[self.entity(ref)])
@@ -353,6 +358,15 @@ class _Rows(ShrinkingRows):
                 x += self.unit_size(unit)[0] + gap + extra
             y -= height + gap + spare
         return placed, scales
+
+
+def crank_partner(fa: ForceAnalysis, k: int) -> str:
+    """The group whose polygon the initial link's polygon shares μF with: of the groups joined
+    to the crank's tip (the reaction R₂₁ = −R₁₂ is a side of both polygons, so the student
+    carries it over with dividers), the one with the larger polygon at position `k`."""
+    mech = fa.kinetostatics.mechanism
+    joined = [g.name for g in mech.groups if mech.crank.tip in g.joints_in()] or [mech.groups[0].name]
+    return max(joined, key=lambda grp: max(polygon_extent(fa.kinetostatics.polygons[grp], k)))
 
 
 def _spans_and_scales(fa: ForceAnalysis, chosen, order, row_h: float) -> tuple[dict, dict]:
