@@ -66,3 +66,12 @@ def test_fit_text_shrinks_then_wraps():
 
 def test_fit_text_empty():
     assert fit_text("  ", (0, 0, 10, 5), layer="title") == ()
+
+
+def test_fit_text_never_starts_a_line_with_the_unit_of_the_number_before_it():
+    sentence = "Шаг 5/11. Пересечение прямых даёт точку a4: aa4 = 20,8 мм; pa4 = 63,9 мм (синус угла между ними 1)."
+    for width in range(60, 300, 7):
+        lines = [t.text for t in fit_text(sentence, (0, 0, width, 40), layer="labels", size_mm=5.0)]
+        assert " ".join(lines) == sentence
+        assert not any(line.startswith(("мм", "(мм")) for line in lines), (width, lines)
+        assert not any(line.endswith(("20,8", "63,9")) for line in lines), (width, lines)

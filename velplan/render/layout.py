@@ -6,6 +6,8 @@ Everything works on estimated boxes in sheet millimetres (see
 
 from __future__ import annotations
 
+import re
+
 from typing import Literal, Sequence
 
 import numpy as np
@@ -171,7 +173,7 @@ _CELL_MARGIN = 1.15
 def _wrap(text: str, width: float, size: float, count: int) -> list[str] | None:
     """Greedy word wrap onto at most `count` lines no wider than `width`; None if not."""
     width = width / _CELL_MARGIN
-    words = text.split()
+    words = glued_words(text)
     lines: list[str] = []
     for word in words:
         trial = f"{lines[-1]} {word}" if lines else word
@@ -181,7 +183,23 @@ def _wrap(text: str, width: float, size: float, count: int) -> list[str] | None:
             lines.append(word)
     if len(lines) > count or any(text_extent(line, size)[0] > width for line in lines):
         return None
-    return lines
+    return [line.replace("\u00a0", " ") for line in lines]
+
+
+#: A unit after a number (mm, м/с, Н·м, rad/s², %, …, in the four languages): never the first
+#: word of a line.
+_UNIT = re.compile(r"^\(?(mm|m|s|N|kg|rad|мм|м|с|Н|кг|рад|毫米|米|秒|牛|%|°)([/·][^\s]*)?[²³]?\)?[,.;:)]*$")
+
+
+def glued_words(text: str) -> list[str]:
+    """The words of `text` for wrapping, a unit kept with the number before it ("63,9 мм")."""
+    words: list[str] = []
+    for word in text.split():
+        if words and words[-1][-1:].isdigit() and _UNIT.match(word):
+            words[-1] = f"{words[-1]}\u00a0{word}"
+        else:
+            words.append(word)
+    return words
 
 
 def _cell_lines(lines, cell, layer, size, anchor, padding) -> tuple[Text, ...]:
