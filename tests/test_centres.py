@@ -265,3 +265,17 @@ def test_the_html_page_marks_the_centres_when_asked():
     study = velplan.Study("shaper", n=12)
     assert "P₂₄" in Page(study, lang="en", centres=True).html
     assert "P₂₄" not in Page(study, lang="en").html
+
+
+@pytest.mark.parametrize("suffix", [".svg", ".png"])
+def test_output_named_as_a_drawing_gets_the_figure_and_the_table_is_printed(tmp_path, capsys, suffix):
+    target = tmp_path / f"c{suffix}"
+    assert main(["centres", "four-bar", "--position", "2", "--lang", "ru", "-o", str(target)]) == 0
+    assert "P13" in capsys.readouterr().out  # the table still comes, on standard output
+    svg = target.with_suffix(".svg").read_text("utf-8")
+    assert svg.startswith("<?xml") and svg.rstrip().endswith("</svg>") and "Кругов" in svg  # the circle diagram
+    if suffix == ".png":
+        assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    text = tmp_path / "c.txt"
+    assert main(["centres", "four-bar", "--position", "2", "-o", str(text)]) == 0
+    assert "P13" in text.read_text("utf-8")

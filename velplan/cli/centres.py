@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 
 from velplan.analysis.centres import instant_centres
 from velplan.analysis.solver import length_scale
 from velplan.analysis.numbering import position_index, position_number
-from velplan.cli.common import add_mechanism, add_output, default_language, emit, parse_angles, positive_int
+from velplan.cli.common import add_mechanism, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
 from velplan.options import Language
 from velplan.plans import EXACT, Drafting
@@ -41,8 +42,14 @@ def register(sub) -> None:
                    help="language of the steps and the drawing (default: the locale's, else en)")
     p.add_argument("--svg", metavar="FILE", help="draw the scheme with every centre, the Kennedy lines and the "
                    "circle diagram (the first position asked for) to FILE (.svg, or .png beside it)")
-    add_output(p)
+    p.add_argument("-o", "--output", metavar="FILE",
+                   help="write the table to FILE instead of standard output; a .svg, .png or .pdf name "
+                   "draws the figure there (as --svg) and prints the table")
     p.set_defaults(run=run_centres)
+
+
+#: An ``-o`` name with one of these suffixes is the figure's (`velplan.render.export.save_drawing`).
+DRAWING_SUFFIXES = (".svg", ".png", ".pdf")
 
 
 def _study(args) -> tuple[Study, list[int], list[int | None]]:
@@ -75,6 +82,8 @@ def run_centres(args) -> int:
     exact = instant_centres(kin)
     if args.svg is not None and not str(args.svg).strip():
         raise VelplanError("--svg: give a file name, not an empty string")
+    if args.svg is None and args.output and Path(args.output).suffix.lower() in DRAWING_SUFFIXES:
+        args.svg, args.output = args.output, None  # -o figure.svg asks for the figure, not the table
     cons = [study.centres(position_number(i), drafting=drafting, mu_l=mu_l) for i in idx]
     if args.format == "json":
         doc = {"mechanism": study.mechanism.name,
