@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from velplan.note.page_text import boxed, settle
 from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
 from velplan.views.base import ESKD_RATIOS, number, ratio_text, shift
@@ -16,6 +17,9 @@ TEXT_WIDTH_MM = 170.0
 FIGURE_HEIGHT_MM = 200.0
 """Tallest figure on the page, mm (room left for its caption)."""
 GAP_MM = 6.0
+ROOM = 0.002
+"""A figure whose box grew for its text is fitted again this much larger (the fixed point of
+the shrink is approached from the side where the figure fits)."""
 LETTER_MM = 2.5
 """The smallest printed lettering (ГОСТ 2.304): a figure shrunk to the page has its text
 enlarged back to this where the sheet's text would print smaller."""
@@ -27,14 +31,29 @@ def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
     from velplan.render.export import svg_to_png
 
-    views = [_view(v) for v in views]
-    (width, height, places), shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)),
-                                          key=lambda x: x[1])
-    items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
-             for view, (x, y) in zip(views, places) for p in view.primitives]
-    svg = to_svg(Scene(tuple(items), width, height), style)
+    scene, shrink = page_scene(views)
+    svg = to_svg(scene, style)
     png = svg_to_png(svg, dpi=dpi * shrink, grey=True)
-    return png, width * shrink
+    return png, scene.width_mm * shrink
+
+
+def page_scene(views) -> tuple[Scene, float]:
+    """The figure of `views` as drawn for the page, and its shrink (printed/sheet size): the
+    layout that shrinks them least, its text enlarged to `LETTER_MM` printed and laid out
+    for that (`velplan.note.page_text`), its box grown to hold the text — and the shrink
+    fitted again to the grown box until it fits the page."""
+    views = [_view(v) for v in views]
+    layout, shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)), key=lambda x: x[1])
+    width, height, places = layout
+    drawn = [(shift(p, x, y), getattr(view, "mu", None)) for view, (x, y) in zip(views, places)
+             for p in view.primitives]
+    for _ in range(12):
+        items = settle([p for p, _ in drawn], [for_page(p, mu, shrink) for p, mu in drawn])
+        items, w, h = boxed(items, width, height)
+        if w * shrink <= TEXT_WIDTH_MM * (1 + 1e-9) and h * shrink <= FIGURE_HEIGHT_MM * (1 + 1e-9):
+            break
+        shrink = min(_fit(views, (w * (1 + ROOM), h * (1 + ROOM), None)), shrink * (1 - ROOM))
+    return Scene(tuple(items), w, h), shrink
 
 
 def _layouts(views):
