@@ -42,18 +42,40 @@ def page_scene(views) -> tuple[Scene, float]:
     layout that shrinks them least, its text enlarged to `LETTER_MM` printed and laid out
     for that (`velplan.note.page_text`), its box grown to hold the text — and the shrink
     fitted again to the grown box until it fits the page."""
+    return _laid_out(views)
+
+
+def _laid_out(views) -> tuple[Scene, float]:
     views = [_view(v) for v in views]
     layout, shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)), key=lambda x: x[1])
     width, height, places = layout
     drawn = [(shift(p, x, y), getattr(view, "mu", None)) for view, (x, y) in zip(views, places)
              for p in view.primitives]
     for _ in range(12):
-        items = settle([p for p, _ in drawn], [for_page(p, mu, shrink) for p, mu in drawn])
+        items = settle([p for p, _ in drawn], [for_page(p, mu, shrink) for p, mu in drawn], shrink)
         items, w, h = boxed(items, width, height)
         if w * shrink <= TEXT_WIDTH_MM * (1 + 1e-9) and h * shrink <= FIGURE_HEIGHT_MM * (1 + 1e-9):
             break
         shrink = min(_fit(views, (w * (1 + ROOM), h * (1 + ROOM), None)), shrink * (1 - ROOM))
     return Scene(tuple(items), w, h), shrink
+
+
+def lettered_for_page(draw, sizes, *, rounds: int = 4):
+    """The view ``draw(sizes)`` drawn again with its lettering (a frozen dataclass of text
+    heights, mm) enlarged until its smallest text prints at `LETTER_MM` at the size it
+    takes on the page: the view lays out the larger text itself (a view of several panels
+    whose titles and scales the enlargement in place would run into each other)."""
+    from dataclasses import fields
+
+    view = draw(sizes)
+    for _ in range(rounds):
+        least = min(getattr(sizes, f.name) for f in fields(sizes))
+        need = LETTER_MM / (least * _laid_out([view])[1])
+        if need <= 1.0 + 1e-6:
+            break
+        sizes = replace(sizes, **{f.name: getattr(sizes, f.name) * need * (1 + ROOM) for f in fields(sizes)})
+        view = draw(sizes)
+    return view
 
 
 def _layouts(views):

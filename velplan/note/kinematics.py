@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from velplan.analysis.numbering import position_number
-from velplan.note.figures import views_png
+from velplan.note.figures import lettered_for_page, views_png
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Heading, Para
 from velplan.note.steps import rate_equation, step_equations
@@ -162,13 +162,15 @@ def _diagrams_for_page(sheet, study):
     small for their titles and scales at 2.5 mm. The sheet's view where its scales cannot be
     told again."""
     from velplan.sheets.kinematic import DIAGRAM_HEIGHTS
-    from velplan.views.diagram import choose_scales, diagram_view
+    from velplan.views.diagram import DiagramSizes, choose_scales, diagram_view
 
     view = getattr(sheet.views["diagrams"], "view", sheet.views["diagrams"])
     scales = view.meta.get("scales")
     for height in DIAGRAM_HEIGHTS:
         if scales is not None and choose_scales(study.diagrams, length_mm=scales.length_mm,
                                                 height_mm=height) == scales:
-            return diagram_view(study.diagrams, length_mm=scales.length_mm, height_mm=height, lang=sheet.style.language,
-                                arrangement="column", omega=study.mechanism.crank.omega)
+            return lettered_for_page(lambda sizes: diagram_view(
+                study.diagrams, length_mm=scales.length_mm, height_mm=height, lang=sheet.style.language,
+                arrangement="column", omega=study.mechanism.crank.omega, sizes=sizes,
+                wrap_mm=scales.length_mm), DiagramSizes())
     return view

@@ -27,10 +27,11 @@ OVERLAP_MM2 = 0.1
 _NUMBER = re.compile(r"^[−\-+]?[\d.,]+$")
 
 
-def settle(before, after) -> list:
-    """``after`` (the primitives of ``before`` with their text enlarged for the page) with
-    the blocks of lines re-spaced and the texts that now overlap moved apart."""
-    items = _respace_blocks(list(before), list(after))
+def settle(before, after, shrink: float = 1.0) -> list:
+    """``after`` (the primitives of ``before`` with their text enlarged for the page, printed
+    at ``shrink``) with the blocks of lines re-spaced and the texts that now overlap moved
+    apart."""
+    items = _respace_blocks(list(before), list(after), shrink)
     return _apart(items)
 
 
@@ -77,26 +78,51 @@ def _block_of(texts: list[tuple[int, Text]]) -> list[list[int]]:
     return [b for b in blocks if len(b) > 1]
 
 
-def _respace_blocks(before: list, after: list) -> list:
-    """Each block of lines spaced in proportion to its enlarged lettering: the line nearest the
+def _respace_blocks(before: list, after: list, shrink: float) -> list:
+    """Each block of lines spaced in proportion to its enlarged lettering, a line of several
+    statements (``"μ = …;  μφ = …"``) broken into one line each: the line nearest the
     drawing stays, the others move away from it (a title block over a diagram grows upwards,
     notes under a plan grow downwards)."""
     lines = [(i, t) for i, t in enumerate(before) if isinstance(t, Text) and t.rotation_deg == 0.0
              and t.baseline == "baseline" and not _NUMBER.match(t.text.strip())]
     drawing = [p for p in before if not isinstance(p, Text)]
     middle = 0.5 * (bounds_of(drawing)[1] + bounds_of(drawing)[3]) if drawing else 0.0
-    out = list(after)
+    out, extra = list(after), []
     for block in _block_of(lines):
         ys = [before[i].position[1] for i in block]  # top first
         grow = [after[i].size_mm / before[i].size_mm for i in block]
-        steps = [(ys[k] - ys[k + 1]) * max(grow[k], grow[k + 1]) for k in range(len(block) - 1)]
+        parts = [_statements(after[i], shrink) if grow[k] > SPLIT_GROWTH else [after[i].text]
+                 for k, i in enumerate(block)]
+        pitch = [PITCH * after[i].size_mm for i in block]
+        steps = [(ys[k] - ys[k + 1]) * max(grow[k], grow[k + 1]) + (len(parts[k]) - 1) * pitch[k]
+                 for k in range(len(block) - 1)]
         if min(ys) >= middle:  # above the drawing: the lowest line stays
-            new = [ys[-1] + sum(steps[k:]) for k in range(len(block))]
+            new = [ys[-1] + sum(steps[k:]) + (len(parts[-1]) - 1) * pitch[-1] for k in range(len(block))]
         else:  # beside or below it: the top line stays
             new = [ys[0] - sum(steps[:k]) for k in range(len(block))]
-        for i, y in zip(block, new):
-            out[i] = replace(out[i], position=(out[i].position[0], y))
-    return out
+        for k, (i, y) in enumerate(zip(block, new)):
+            out[i] = replace(out[i], text=parts[k][0], position=(out[i].position[0], y))
+            extra += [replace(out[i], text=part, position=(out[i].position[0], y - j * pitch[k]))
+                      for j, part in enumerate(parts[k][1:], 1)]
+    return out + extra
+
+
+SPLIT_GROWTH = 1.1
+"""Only a line enlarged by more than this for the page is broken (a view drawn for the page
+breaks its own lines)."""
+SPLIT_MM = 80.0
+"""A line of several statements printed wider than this, mm, is broken into one line each."""
+PITCH = 1.6
+"""Baselines of the lines a statement block is broken into, text heights apart."""
+
+
+def _statements(text: Text, shrink: float) -> list[str]:
+    """The statements of a line written ``"a;  b;  c"`` (two spaces after each semicolon), one
+    line each where the line prints wider than `SPLIT_MM`."""
+    box = rendered_box(text)
+    if ";  " not in text.text or (box[:, 0].max() - box[:, 0].min()) * shrink <= SPLIT_MM:
+        return [text.text]
+    return [s.strip() for s in text.text.split(";  ")]
 
 
 def _apart(items: list) -> list:
