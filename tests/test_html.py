@@ -15,7 +15,7 @@ from velplan.html import Page
 from velplan.html.text import fill, templates
 from velplan.render.i18n import label
 from velplan.study import Study
-from velplan.html.frames import readable  # the page writes the plain-text form of a caption
+from velplan.html.frames import readable  # the page's form of a caption: whole indices marked _{…}
 
 
 def data_of(page_html: str) -> dict:
@@ -91,7 +91,7 @@ def test_analytic_values_are_the_solvers_and_drafting_errors_small(shaper_ru):
     study, page = shaper_ru
     data = data_of(page.html)
     pv = data["plans"][0]
-    row = next(j for j, rows in enumerate(pv["rows"]) if "vA" in rows)  # v, lowercase (issue 32)
+    row = next(j for j, rows in enumerate(pv["rows"]) if "v_{A}" in rows)  # v, lowercase, its index marked (issue 32)
     at = 2 * sum(len(r) for r in pv["rows"][:row])
     kin = study.kinematics
     for i in range(12):

@@ -9,6 +9,8 @@ Skipped, saying why, where /usr/bin/chromium, its driver or selenium is missing.
 
 from __future__ import annotations
 
+import re
+
 import os
 import time
 from pathlib import Path
@@ -19,7 +21,8 @@ import pytest
 from velplan.html import Page
 from velplan.study import Study
 from velplan.views.base import number
-from velplan.html.frames import readable  # the page writes whole indices in Unicode (vA₄)
+from velplan.html.frames import readable  # whole indices marked (v_{A4}), set as <sub> by the page
+from velplan.render.shapes import plain_text
 
 CHROMIUM = Path("/usr/bin/chromium")
 DRIVER = Path("/usr/bin/chromedriver")
@@ -99,14 +102,17 @@ def test_the_page_plays_and_builds_the_plans_step_by_step(browser, tmp_path):
         d.find_element("id", "next").click()
         assert _steps_shown(d, "v") == list(range(1, step + 1))
     sentence = readable(res.describe(k, "ru")[3])
-    assert _text(d, "caption") == f"Шаг 4/{total}. {sentence}"
+    assert _text(d, "caption") == f"Шаг 4/{total}. {plain_text(sentence)}"  # the index below the line
+    subs = d.execute_script("return Array.from(document.querySelectorAll('#caption sub')).map(e => e.textContent)")
+    assert subs == [m.group(1) for m in re.finditer(r"_\{([^{}]*)\}", sentence)] and subs
     assert _text(d, "step-readout") == f"План скоростей · Шаг 4/{total}"
     assert d.execute_script("return document.querySelectorAll('#plan-v .now').length") >= 1
     # the intersection's step: its rows in the table, highlighted, with the analytic values
     d.find_element("id", "next").click()
     rows = d.find_elements("css selector", "#values-body tr.now")
     assert rows and all(r.text.split()[0] == "v5" for r in rows)
-    assert "vA₄" in " ".join(r.text for r in rows)  # the course writes velocities in lowercase v
+    assert "vA4" in " ".join(r.text for r in rows)  # the course writes velocities in lowercase v
+    assert d.execute_script("return document.querySelectorAll('#values-body sub').length") > 0
 
     # on into the acceleration plan: the velocity plan stays whole, the acceleration plan grows
     for _ in range(total - 5 + 2):

@@ -24,7 +24,6 @@ from velplan.plans.engine import PlanResult
 from velplan.plans.steps import Intersect, LayOff, Similar
 from velplan.plans.text import label_of
 from velplan.render.scene import Polyline
-from velplan.render.shapes import unicode_text
 from velplan.render.style import SheetStyle
 from velplan.study import Study
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
@@ -48,9 +47,10 @@ PHI_DECIMALS = 2
 
 
 def readable(sentence: str) -> str:
-    """`velplan.views.steps.readable` for the page's plain text: a whole index's digits as
-    subscripts (``v_{A4A}`` → ``vA₄A``)."""
-    return unicode_text(_readable(sentence))
+    """`velplan.views.steps.readable` for the page: whole indices keep the sheets' marks
+    (``v_{A4A}``), which the page's script sets as ``<sub>`` (``v<sub>A4A</sub>``), as the
+    sheets set them below the line."""
+    return _readable(sentence)
 
 
 def _centre_marks(study: Study, i: int, view, mu_l: float) -> list:

@@ -12,6 +12,10 @@
   function esc(s) {
     return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
   }
+  // text with the sheets' index marks (v_{BA}, 10^{−3}) as HTML: <sub>, <sup> (velplan.render.shapes)
+  function marked(s) {
+    return esc(s).replace(/_\{([^{}]*)\}/g, "<sub>$1</sub>").replace(/\^\{([^{}]*)\}/g, "<sup>$1</sup>");
+  }
   // x to 4 significant figures, decimal comma in ru and uk, no exponent (velplan.views.base.number)
   function num(x, digits) {
     if (x === null || !isFinite(x)) return "—";
@@ -123,7 +127,7 @@
     }
     var q = c <= NV ? 0 : 1, k = q === 0 ? c : c - NV, P = PL[q];
     head.textContent = (q === 0 ? W.velocity_plan : W.acceleration_plan) + " · " + W.step + " " + k + "/" + P.steps;
-    if (D.valid[state.pos]) cap.textContent = W.step + " " + k + "/" + P.steps + ". " + sentence(q, k);
+    if (D.valid[state.pos]) cap.innerHTML = esc(W.step + " " + k + "/" + P.steps + ". ") + marked(sentence(q, k));
   }
 
   function drawValues() {
@@ -142,7 +146,7 @@
           var a = vals[at], e = vals[at + 1];
           var d = a === null || e === null ? null : a + e;
           var rel = a !== null && Math.abs(a) > P.floor && e !== null ? 100 * e / a : null;
-          body.push("<tr" + cls + "><td>" + tag + "</td><td>" + esc(rows[j]) + "</td><td>" + num(a) + "</td><td>" +
+          body.push("<tr" + cls + "><td>" + tag + "</td><td>" + marked(rows[j]) + "</td><td>" + num(a) + "</td><td>" +
             num(d) + "</td><td>" + (e === null ? "—" : (e > 0 ? "+" : "") + num(e, 2)) + "</td><td>" +
             (rel === null ? "—" : (rel > 0 ? "+" : "") + num(rel, 2) + " %") + "</td></tr>");
         }

@@ -57,7 +57,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
                 if f"plan-{kind}-{k}" in sheet.plans:
                     K.plan_section(note, sheet, k, kind)
         K.analogues_section(note, study, sheet)
-        K.diagrams_section(note, sheet)
+        K.diagrams_section(note, sheet, study)
     if "forces" in parts:
         if has_forces(study.mechanism):
             _optional("forces", asked, lambda: F.forces_section(note, _force_sheet(study, sheet.positions, fmt, lang)))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from velplan.note.page_text import boxed, settle
 from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
 from velplan.views.base import ESKD_RATIOS, number, ratio_text, shift
@@ -16,6 +17,9 @@ TEXT_WIDTH_MM = 170.0
 FIGURE_HEIGHT_MM = 200.0
 """Tallest figure on the page, mm (room left for its caption)."""
 GAP_MM = 6.0
+ROOM = 0.002
+"""A figure whose box grew for its text is fitted again this much larger (the fixed point of
+the shrink is approached from the side where the figure fits)."""
 LETTER_MM = 2.5
 """The smallest printed lettering (ГОСТ 2.304): a figure shrunk to the page has its text
 enlarged back to this where the sheet's text would print smaller."""
@@ -27,14 +31,51 @@ def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
     sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
     from velplan.render.export import svg_to_png
 
-    views = [_view(v) for v in views]
-    (width, height, places), shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)),
-                                          key=lambda x: x[1])
-    items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
-             for view, (x, y) in zip(views, places) for p in view.primitives]
-    svg = to_svg(Scene(tuple(items), width, height), style)
+    scene, shrink = page_scene(views)
+    svg = to_svg(scene, style)
     png = svg_to_png(svg, dpi=dpi * shrink, grey=True)
-    return png, width * shrink
+    return png, scene.width_mm * shrink
+
+
+def page_scene(views) -> tuple[Scene, float]:
+    """The figure of `views` as drawn for the page, and its shrink (printed/sheet size): the
+    layout that shrinks them least, its text enlarged to `LETTER_MM` printed and laid out
+    for that (`velplan.note.page_text`), its box grown to hold the text — and the shrink
+    fitted again to the grown box until it fits the page."""
+    return _laid_out(views)
+
+
+def _laid_out(views) -> tuple[Scene, float]:
+    views = [_view(v) for v in views]
+    layout, shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)), key=lambda x: x[1])
+    width, height, places = layout
+    drawn = [(shift(p, x, y), getattr(view, "mu", None)) for view, (x, y) in zip(views, places)
+             for p in view.primitives]
+    for _ in range(12):
+        items = settle([p for p, _ in drawn], [for_page(p, mu, shrink) for p, mu in drawn], shrink)
+        items, w, h = boxed(items, width, height)
+        if w * shrink <= TEXT_WIDTH_MM * (1 + 1e-9) and h * shrink <= FIGURE_HEIGHT_MM * (1 + 1e-9):
+            break
+        shrink = min(_fit(views, (w * (1 + ROOM), h * (1 + ROOM), None)), shrink * (1 - ROOM))
+    return Scene(tuple(items), w, h), shrink
+
+
+def lettered_for_page(draw, sizes, *, rounds: int = 4):
+    """The view ``draw(sizes)`` drawn again with its lettering (a frozen dataclass of text
+    heights, mm) enlarged until its smallest text prints at `LETTER_MM` at the size it
+    takes on the page: the view lays out the larger text itself (a view of several panels
+    whose titles and scales the enlargement in place would run into each other)."""
+    from dataclasses import fields
+
+    view = draw(sizes)
+    for _ in range(rounds):
+        least = min(getattr(sizes, f.name) for f in fields(sizes))
+        need = LETTER_MM / (least * _laid_out([view])[1])
+        if need <= 1.0 + 1e-6:
+            break
+        sizes = replace(sizes, **{f.name: getattr(sizes, f.name) * need * (1 + ROOM) for f in fields(sizes)})
+        view = draw(sizes)
+    return view
 
 
 def _layouts(views):

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from velplan.analysis.numbering import position_number
-from velplan.note.figures import views_png
+from velplan.note.figures import lettered_for_page, views_png
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Heading, Para
 from velplan.note.steps import rate_equation, step_equations
@@ -145,11 +145,32 @@ def analogues_section(note, study, sheet) -> None:
     note.table(label("table_transfer", lang), head, rows, key="analogues")
 
 
-def diagrams_section(note, sheet) -> None:
+def diagrams_section(note, sheet, study=None) -> None:
     """The diagrams of the output by the chord method, as drawn on the sheet."""
     lang = note.lang
     if "diagrams" not in sheet.views:
         return
     note.add(Heading(p("sec_diagrams", lang), 2), Para.of(p("diagrams_text", lang)))
-    png, width = views_png([sheet.views["diagrams"]], sheet.style)
+    view = _diagrams_for_page(sheet, study) if study is not None else sheet.views["diagrams"]
+    png, width = views_png([view], sheet.style)
     note.figure(p("diagrams_fig", lang), png, width)
+
+
+def _diagrams_for_page(sheet, study):
+    """The sheet's three diagrams one above the other, φ axes aligned, at the sheet's own
+    scales: side by side (as on the sheet) they would print at a third of their size, too
+    small for their titles and scales at 2.5 mm. The sheet's view where its scales cannot be
+    told again."""
+    from velplan.sheets.kinematic import DIAGRAM_HEIGHTS
+    from velplan.views.diagram import DiagramSizes, choose_scales, diagram_view
+
+    view = getattr(sheet.views["diagrams"], "view", sheet.views["diagrams"])
+    scales = view.meta.get("scales")
+    for height in DIAGRAM_HEIGHTS:
+        if scales is not None and choose_scales(study.diagrams, length_mm=scales.length_mm,
+                                                height_mm=height) == scales:
+            return lettered_for_page(lambda sizes: diagram_view(
+                study.diagrams, length_mm=scales.length_mm, height_mm=height, lang=sheet.style.language,
+                arrangement="column", omega=study.mechanism.crank.omega, sizes=sizes,
+                wrap_mm=scales.length_mm), DiagramSizes())
+    return view

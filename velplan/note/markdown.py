@@ -45,7 +45,7 @@ def _block(b, note, target: str, images: dict[str, str]) -> str:
     if isinstance(b, Table):
         if target == "md":
             return f"**{md_text(b.caption)}**\n\n" + _pipe_table(b)
-        return _pipe_table(b) + f"\n\n: {md_text(b.caption)}"
+        return _pipe_table(b, subscripts=True) + f"\n\n: {md_text(b.caption)}"
     if isinstance(b, Figure):
         size = f"{{width={b.width_mm:.0f}mm}}" if target != "md" else ""
         return f"![{md_text(b.caption)}]({images[b.name]}){size}"
@@ -60,7 +60,7 @@ def _block(b, note, target: str, images: dict[str, str]) -> str:
     raise TypeError(f"unknown block {b!r}")
 
 
-def _pipe_table(t: Table) -> str:
+def _pipe_table(t: Table, subscripts: bool = False) -> str:
     """A pipe table whose separator is long enough that pandoc wraps its cells to the text width,
     each column's share following its longest cell."""
     cols = len(t.header)
@@ -69,6 +69,10 @@ def _pipe_table(t: Table) -> str:
     dashes = [max(3, round(100 * w / total)) for w in widths]
 
     def row(cells):
+        if subscripts:  # symbols typeset (`velplan.note.cells`): pandoc's own Markdown reads ~…~
+            from velplan.note.cells import cell_markdown
+
+            return "| " + " | ".join(cell_markdown(str(c), md_text) for c in cells) + " |"
         return "| " + " | ".join(md_text(str(c)) for c in cells) + " |"
 
     sep = "|" + "|".join("-" * d for d in dashes) + "|"

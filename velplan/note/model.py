@@ -15,6 +15,10 @@ from velplan.note.blocks import (  # noqa: F401  (the blocks, re-exported)
 from velplan.options import Language
 
 
+ROWS_PER_PAGE = 30
+"""Rows of a table on one page of the note (A4, 11–12 pt): a longer table is split in parts."""
+
+
 @dataclass
 class Note:
     """The note: its language, title and blocks; `figure` and `table` number them."""
@@ -45,12 +49,18 @@ class Note:
         return self.figures
 
     def table(self, caption: str, header, rows, key: str = "") -> int:
-        """Add a table with the next number; returns the number."""
+        """Add a table with the next number; returns the number. A table of more than
+        `ROWS_PER_PAGE` rows goes in parts of that many, each after the first captioned
+        "Продолжение таблицы N" (ГОСТ 2.105) over its header repeated."""
         from velplan.note.text import p
 
         self.tables += 1
-        self.add(Table(f"{p('table', self.lang)} {self.tables} — {caption}", tuple(header),
-                       tuple(tuple(r) for r in rows), key))
+        rows = [tuple(r) for r in rows]
+        parts = [rows[k:k + ROWS_PER_PAGE] for k in range(0, len(rows), ROWS_PER_PAGE)] or [[]]
+        self.add(Table(f"{p('table', self.lang)} {self.tables} — {caption}", tuple(header), tuple(parts[0]), key))
+        for j, part in enumerate(parts[1:], 2):
+            self.add(Table(p("table_continued", self.lang, self.tables), tuple(header), tuple(part),
+                           f"{key}-part-{j}" if key else ""))
         return self.tables
 
     @property

@@ -26,6 +26,7 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "contents": ("Contents", "Содержание", "Зміст", "目录"),
     "figure": ("Figure", "Рисунок", "Рисунок", "图"),
     "table": ("Table", "Таблица", "Таблиця", "表"),
+    "table_continued": ("Table {0} (continued)", "Продолжение таблицы {0}", "Продовження таблиці {0}", "续表 {0}"),
     "sec_data": ("Input data", "Исходные данные", "Вихідні дані", "原始数据"),
     "sec_structure": ("Structural analysis", "Структурный анализ механизма", "Структурний аналіз механізму",
                       "机构结构分析"),

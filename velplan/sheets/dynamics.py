@@ -36,7 +36,7 @@ from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
 from velplan.views.dynamics import (
-    DynamicsSizes, Series, curve_panel, flywheel_view, results_rows, results_view, wittenbauer_view)
+    DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, results_rows, results_view, wittenbauer_view)
 
 PANELS = ("moments", "works", "inertia", "omega")
 """The curve panels, top to bottom."""
@@ -80,7 +80,8 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
     loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
     m_drv, m_res = indexed("M", drv), indexed("M", res)
-    drive = f"{m_drv} = {_n(d.driving, lang)} {nm}" if d.run is None and d.periodic is None else m_drv
+    driving = number(d.driving, lang, 5, scale=moment_scale(c["M_red"]))
+    drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
     moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
     views = {"moments": curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
                                     title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **kw)}

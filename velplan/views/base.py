@@ -209,11 +209,24 @@ def indexed(base: str, index: str, marked: bool = True) -> str:
     return f"{base}_{{{index}}}" if marked and index else f"{base}{index}"
 
 
-def number(x: float, lang: Language, digits: int = 4) -> str:
+ROUND_OFF = 1e-10
+"""A value within this fraction of its quantity's scale is zero to round-off (a driving
+moment of a cycle whose loads do no work: 7.97·10⁻¹⁶ N·m beside moments of 8 N·m)."""
+
+
+def number(x: float, lang: Language, digits: int = 4, scale: float | None = None) -> str:
     """`x` to `digits` significant figures, decimal comma in ru and uk, the minus sign "−";
-    a power of ten (`power_of_ten`) below `POWER_BELOW` or from `POWER_FROM`, never "e-14"."""
+    a power of ten (`power_of_ten`) below `POWER_BELOW` or from `POWER_FROM`, never "e-14".
+    ``scale``: the magnitude of the quantity (its largest value over the cycle); an `x`
+    within `ROUND_OFF` of it prints as 0.
+
+    >>> number(7.97e-16, "ru", 5, scale=8.5), number(7.97e-16, "ru", 5), number(0.5, "en", scale=8.5)
+    ('0', '7,97·10⁻¹⁶', '0.5')
+    """
     if not math.isfinite(x):
         return "—"
+    if scale is not None and abs(x) <= ROUND_OFF * abs(scale):
+        x = 0.0
     if x != 0 and not POWER_BELOW <= abs(float(f"{x:.{digits}g}")) < POWER_FROM:
         return power_of_ten(x, lang, digits)
     return _signs(_significant(x, digits), lang)

@@ -23,6 +23,7 @@ from velplan.errors import ScaleError
 from velplan.options import Language
 from velplan.plans.scale import standard_scale
 from velplan.render.i18n import label
+from velplan.render.shapes import text_extent
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, number, scale_text, unit
 
@@ -166,7 +167,7 @@ def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *,
 
 
 def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: DiagramSizes,
-          text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
+          text_top: float | None = None, omega: float = 0.0, wrap_mm: float | None = None) -> list[Primitive]:
     """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
     ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
     μt = μφ/ω — else as the analogues."""
@@ -188,6 +189,9 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: D
                             "solid"))
     # title, scales and error, above the plot
     lines = _scale_lines(kind, d, sc, c, lang, abs(omega))
+    if wrap_mm is not None:  # one statement a line where a line runs wider than wrap_mm
+        lines = [part.strip() for line in lines
+                 for part in (line.split(";  ") if text_extent(line, sizes.label_mm)[0] > wrap_mm else [line])]
     y = (top if text_top is None else text_top) + 8.0 + 1.6 * sizes.label_mm * len(lines)
     items.append(Text((-(c.H or 0.0), y + 1.8 * sizes.label_mm), c.title, "diagram-labels",
                       sizes.title_mm))
@@ -252,18 +256,23 @@ def _tops(d: Diagrams, sc: DiagramScales) -> list[float]:
 
 
 def _legend(x: float, y: float, lang: Language, size: float) -> list[Primitive]:
+    """The two line samples and their names; the second sample 45 mm along, or further where
+    the first name (at `size`) runs longer."""
+    from velplan.render.shapes import text_extent
+
+    first = label("chord_method", lang)
+    second = x + max(45.0, 12.0 + 1.25 * text_extent(first, size)[0] + size)
     return [Polyline([(x, y), (x + 10.0, y)], "diagram", "thick"),
-            Text((x + 12.0, y), label("chord_method", lang), "diagram-labels", size, "start",
-                 "middle"),
-            Polyline([(x + 45.0, y), (x + 55.0, y)], "diagram", "hidden"),
-            Text((x + 57.0, y), label("analytic", lang), "diagram-labels", size, "start",
+            Text((x + 12.0, y), first, "diagram-labels", size, "start", "middle"),
+            Polyline([(second, y), (second + 10.0, y)], "diagram", "hidden"),
+            Text((second + 12.0, y), label("analytic", lang), "diagram-labels", size, "start",
                  "middle")]
 
 
 def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40.0,
                  lang: Language = "ru", arrangement: Arrangement = "column",
                  sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0,
-                 omega: float = 0.0) -> View:
+                 omega: float = 0.0, wrap_mm: float | None = None) -> View:
     """The three diagrams of `d` as one view.
 
     Parameters
@@ -281,11 +290,14 @@ def diagram_view(d: Diagrams, *, length_mm: float = 180.0, height_mm: float = 40
         The crank's constant speed, rad/s: the velocity and acceleration diagrams are then
         read in time (V in m/s, a in m/s², with the time scale μt = μφ/ω); 0 draws the
         analogues dS/dφ, d²S/dφ² (m) under their own titles.
+    wrap_mm : float, optional
+        A line of scales wider than this, mm, is written one statement a line.
     """
     sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
     tops = _tops(d, sc)
     common = max(tops) if arrangement != "column" else None
-    plots = [_plot(k, d, sc, lang=lang, sizes=sizes, text_top=common, omega=omega) for k in "sva"]
+    plots = [_plot(k, d, sc, lang=lang, sizes=sizes, text_top=common, omega=omega, wrap_mm=wrap_mm)
+             for k in "sva"]
     from velplan.views.base import bounds_of, shift
 
     items: list[Primitive] = []

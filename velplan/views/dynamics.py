@@ -368,6 +368,14 @@ def results_rows(d, w, lang: Language, errors: bool = True, marked: bool = False
     return rows + (error_rows(d, lang, marked) if errors else [])
 
 
+def moment_scale(resisting) -> float:
+    """The scale of the moments on the crank, N·m: the largest reduced moment of the loads
+    over the cycle (``resisting``, `Dynamics.curves` ``"M_red"``); the driving moment within
+    round-off of none of it is 0 (`velplan.views.base.number`'s ``scale``)."""
+    values = np.abs(np.asarray(resisting, float))
+    return float(values[np.isfinite(values)].max(initial=0.0))
+
+
 def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str]]:
     deg = unit("deg", lang)
     rads = unit("rad/s", lang)
@@ -385,8 +393,8 @@ def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str
                 (j_one, number(d.inertia, lang, 5), unit("kg·m²", lang))]
     rows = []
     if d.periodic is None:
-        rows.append((label("driving_moment", lang) + " " + indexed("M", label("symbol_drive", lang), marked), number(d.driving, lang, 5),
-                     unit("N·m", lang)))
+        rows.append((label("driving_moment", lang) + " " + indexed("M", label("symbol_drive", lang), marked),
+                     number(d.driving, lang, 5, scale=moment_scale(d.curves(72)["M_red"])), unit("N·m", lang)))
     st = d.steady or d.periodic
     if st is not None:
         rows += [
@@ -429,5 +437,5 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_m
     return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm})
 
 
-__all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "nice_step",
+__all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "moment_scale", "nice_step",
            "results_rows", "results_view", "wittenbauer_view"]
