@@ -34,7 +34,9 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
+from velplan.analysis import triad_settle
 from velplan.analysis.groups import GroupResult, LinkMotion, Motion, carry, cis, cross, guide_line, slide_name
+from velplan.analysis.triad_settle import QUICK_CONDITION, QUICK_MOVE, SETTLED  # noqa: F401 (the triad's numbers)
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND, Mechanism, Triad
 
@@ -93,7 +95,11 @@ class Lead3:
                      pick(self.omega), pick(self.epsilon), self.angle, self.offset)
 
     def line(self):
-        """Guide: unit direction u and base point (arrays)."""
+        """Guide: unit direction u and base point (arrays), found once."""
+        return self._line
+
+    @cached_property
+    def _line(self):
         return guide_line(self.p, self.theta, self.angle, self.offset)
 
     def carried(self, x):
@@ -296,7 +302,10 @@ class Track:
     ``t`` (rad, increasing) are crank angles relative to the assembly angle ``phi0``, with the
     first rod's inner joint ``x`` (complex, m) and the base link's angle ``theta`` (rad) at
     each; the branch exists on [t[0], t[-1]] (``full``: the whole turn, t from 0 to 2π).
-    ``pair`` are the two leads whose lines give Assur's special point.
+    ``pair`` are the two leads whose lines give Assur's special point. ``pieces`` (4, K, 3): on
+    each of the K intervals between nodes, the coefficients of u⁰ … u³ (u = t − t_k, rad) of the
+    cubic through (x.real, x.imag, θ unwrapped): Hermite's from the nodes' slopes where that was
+    found nearer the branch than the chord (`_pieces`), else the chord; None: chords throughout.
     """
 
     phi0: float
@@ -306,6 +315,7 @@ class Track:
     full: bool
     pair: tuple[int, int]
     size: float
+    pieces: np.ndarray | None = None
 
     @cached_property
     def unwrapped(self) -> np.ndarray:
@@ -313,7 +323,7 @@ class Track:
         return np.unwrap(self.theta)
 
     def reference(self, phi: np.ndarray):
-        """(x, θ, inside) of the branch at crank angles ``phi`` (linear between nodes)."""
+        """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes)."""
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
             return nan + 0j, nan, np.zeros(phi.shape, bool)
@@ -322,9 +332,37 @@ class Track:
             t = np.where(t > self.t[-1] + EDGE_TOL, t - 2 * np.pi, t)
         inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
         tc = np.clip(t, self.t[0], self.t[-1])
+        if self.pieces is not None:
+            return (*self._cubic(tc), inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
         th = np.interp(tc, self.t, self.unwrapped)
         return x, th, inside
+
+    @cached_property
+    def _spacing(self) -> float:
+        """The nodes' step where they are evenly spaced (rad), else 0."""
+        h = np.diff(self.t)
+        return float(h[0]) if h.size and np.ptp(h) <= 1e-9 * h[0] else 0.0
+
+    def _cubic(self, tc: np.ndarray):
+        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]])."""
+        last = self.pieces.shape[1] - 1
+        if self._spacing:
+            k = ((tc - self.t[0]) * (1.0 / self._spacing)).astype(np.intp)
+        else:
+            k = np.searchsorted(self.t, tc, side="right") - 1
+        np.clip(k, 0, last, out=k)
+        u = (tc - self.t[k])[:, None]
+        c = self.pieces[:, k]
+        v = c[3] * u
+        v += c[2]
+        v *= u
+        v += c[1]
+        v *= u
+        v += c[0]
+        x = np.empty(tc.shape, complex)
+        x.real, x.imag = v[:, 0], v[:, 1]
+        return x, np.ascontiguousarray(v[:, 2])
 
 
 def _distance(x, th, x0, th0, size):
@@ -416,7 +454,50 @@ def _finish(mech: Mechanism, g: Triad, start: tuple, fwd: list, solve) -> Track:
     t = np.array([n[0] for n in nodes])
     x = np.array([n[1] for n in nodes])
     th = np.array([n[2] for n in nodes])
-    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size)
+    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size,
+                 _pieces(mech, g, t, x, np.unwrap(th), solve))
+
+
+def _pieces(mech: Mechanism, g: Triad, t, x, th, solve) -> np.ndarray | None:
+    """`Track.pieces` of the nodes (t, x, θ unwrapped): on each interval Hermite's cubic from the
+    slopes dx/dφ, dθ/dφ at its ends (the velocities at unit crank speed), where at the interval's
+    middle it lies nearer the branch (Newton's correction from the chord) than the chord does;
+    elsewhere (near a limit of the branch, where the slopes grow without bound) the chord."""
+    m = t.size
+    if m < 2:
+        return None
+    size, h = _size(g), np.diff(t)
+    mid = t[:-1] + 0.5 * h
+    leads = leads_at(mech, g, g.assembly_phi + np.concatenate([t, mid]), solve)
+    at_nodes = _Closure(g, [lead.take(slice(0, m)) for lead in leads])
+    at_mid = _Closure(g, [lead.take(slice(m, None)) for lead in leads])
+    y = np.stack([x.real, x.imag, th], axis=1)
+    vx, w = _slopes(at_nodes, x, th)
+    slope = np.stack([vx.real, vx.imag, w], axis=1)
+    chord = (y[1:] - y[:-1]) / h[:, None]
+    hermite = [y[:-1], slope[:-1], (3 * chord - 2 * slope[:-1] - slope[1:]) / h[:, None],
+               (slope[:-1] + slope[1:] - 2 * chord) / (h * h)[:, None]]
+    lin = 0.5 * (y[:-1] + y[1:])
+    her = lin + (h / 8)[:, None] * (slope[:-1] - slope[1:])
+    with np.errstate(all="ignore"):
+        xm, thm, ok = _correct(at_mid, lin[:, 0] + 1j * lin[:, 1], lin[:, 2], size)
+        near = lambda p: _distance(p[:, 0] + 1j * p[:, 1], p[:, 2], xm, thm, size)  # noqa: E731
+        use = ok & np.isfinite(slope[:-1]).all(axis=1) & np.isfinite(slope[1:]).all(axis=1) & (near(her) < near(lin))
+    linear = [y[:-1], chord, np.zeros_like(chord), np.zeros_like(chord)]
+    return np.stack([np.where(use[:, None], a, b) for a, b in zip(hermite, linear)])
+
+
+def _slopes(cl: _Closure, x, th):
+    """dJ_r/dφ and dθ/dφ of the assemblies (J_r ``x``, θ ``th``) of ``cl``'s positions, its leads'
+    motions at unit crank speed: the velocity system of `_motion`."""
+    joints = [x + r for r in cl.offsets(th)]
+    rows, rhs = [], []
+    for lead, j in zip(cl.leads, joints):
+        d = j - lead.p if lead.rod else 1j * lead.line()[0]
+        rhs.append(dot(d, lead.v if lead.rod else lead.carried(j)[0]))
+        rows.append((d.real, d.imag, dot(d, 1j * (j - x))))
+    vx, vy, w = _cramer3(rows, rhs)
+    return vx + 1j * vy, w
 
 
 def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
@@ -470,21 +551,21 @@ def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
 def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
     (J_r, θ, whether it is unambiguous: converged, moved less than `QUICK_MOVE`, well
-    conditioned). Up to 5 steps, fewer once every correction is below `SETTLED` (over the
-    group's size): a position whose last correction is that small has converged (the error left
-    is about its square), and its closure's conditioning is read from that last step's rows."""
-    y, th = (xr - cl.origin)[:, None], thr[:, None]
-    with np.errstate(all="ignore"):
-        for _ in range(5):
-            f, rows = cl._equations(y, th)
-            dx, dy, dt = _cramer3(rows, [-x for x in f])
-            y, th = y + dx + 1j * dy, th + dt
-            moved = (np.abs(dx) + np.abs(dy) + np.abs(dt) * cl.size)[:, 0]
-            if not np.fmax.reduce(moved, axis=None) > SETTLED * cl.size:
-                break
-        cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
-    x, th = y[:, 0] + cl.origin, th[:, 0]
-    return x, th, (moved <= SETTLED * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    conditioned), by `velplan.analysis.triad_settle.settle`."""
+    return _settled(cl, xr, thr)[:3]
+
+
+def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray):
+    """`_correct`, and cos θ + i·sin θ at the result."""
+    y0 = xr - cl.origin
+    yx, yy, th = y0.real.copy(), y0.imag.copy(), np.array(thr, dtype=float)
+    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE)
+    x = np.empty(th.shape, complex)
+    np.add(yx, cl.origin.real, out=x.real)
+    np.add(yy, cl.origin.imag, out=x.imag)
+    e = np.empty(th.shape, complex)
+    e.real, e.imag = c, s
+    return x, th, ok, e
 
 
 def _track_grid() -> np.ndarray:
@@ -661,27 +742,18 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     and the same rows for a_X, ε3 with the known normal, Coriolis terms on the right."""
     leads = inputs_from_state(g, st)
     cl = _Closure(g, leads)
-    x, theta, closed = _branch(cl, trk, phi)
-    joints = [x + ri for ri in cl.offsets(theta)]
+    x, theta, closed, e = _branch(cl, trk, phi)
+    joints = [x if z == 0 else x + z * e for z in cl.local]
     return _motion(g, leads, x, theta, joints, closed, scale, trk.pair)
-
-
-QUICK_MOVE = 1e-3
-"""Newton from the tracked branch is taken as it is when it moves the configuration less than
-this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is well conditioned."""
-QUICK_CONDITION = 0.05
-SETTLED = 1e-9
-"""Newton from the tracked branch stops once its largest correction is below this (over the
-group's size), and a position counts as converged where its last correction is: the error left
-is about its square, below round-off (`QUICK_CONDITION` bounds the closure's curvature)."""
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     """The tracked branch's assembly at each crank angle: Newton from the tracked configuration
     where that is unambiguous (well conditioned, a small correction), else every assembly
-    found and the nearest to the branch taken. Returns J_r, θ and the mask of closed positions."""
+    found and the nearest to the branch taken. Returns J_r, θ, the mask of closed positions and
+    cos θ + i·sin θ."""
     xr, thr, inside = trk.reference(phi)
-    x, th, quick = _correct(cl, xr, thr, trk.size)
+    x, th, quick, e = _settled(cl, xr, thr)
     good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
@@ -694,8 +766,9 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
         x[rest] = np.where(hit, xs[row, k], np.nan)
         th[rest] = np.where(hit, ths[row, k], np.nan)
         good[rest] = hit
+        e[rest] = cis(th[rest])
     closed = inside & good
-    return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed
+    return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
 def _motion(g, leads, x, theta, joints, closed, scale, pair):
