@@ -743,8 +743,9 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     leads = inputs_from_state(g, st)
     cl = _Closure(g, leads)
     x, theta, closed, e = _branch(cl, trk, phi)
-    joints = [x if z == 0 else x + z * e for z in cl.local]
-    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair)
+    offsets = [None if z == 0 else z * e for z in cl.local]
+    joints = [x if r is None else x + r for r in offsets]
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets)
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
@@ -771,82 +772,115 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
-def _motion(g, leads, x, theta, joints, closed, scale, pair):
-    rows, rhs_v, normals = [], [], []
-    for lead, j in zip(leads, joints):
-        rr = j - x
+def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
+    """The velocities and accelerations of the assemblies (J_r ``x``, θ, the joints ``joints``,
+    their ``offsets`` from J_r: None where J_r itself): one matrix, its minors found once, for
+    both right sides."""
+    if offsets is None:
+        offsets = [j - x for j in joints]
+    rows, rhs_v, normals, guides = [], [], [], []
+    for lead, j, r in zip(leads, joints, offsets):
         if lead.rod:
-            dvec = j - lead.p
-            rhs_v.append(dot(dvec, lead.v))
+            d, gm = j - lead.p, None
+            rhs_v.append(dot(d, lead.v))
         else:
-            u, _ = lead.line()
-            dvec = 1j * u
-            rhs_v.append(dot(dvec, lead.carried(j)[0]))
-        normals.append(dvec)
-        rows.append((dvec.real, dvec.imag, dot(dvec, 1j * rr)))
+            d, gm = 1j * lead.line()[0], lead.carried(j)
+            rhs_v.append(dot(d, gm[0]))
+        normals.append(d)
+        guides.append(gm)
+        rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
+                     np.zeros(d.shape) if r is None else cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
-    vx, vy, w = _cramer3(rows, rhs_v, minors)
-    vX = vx + 1j * vy
-    vj = [vX + 1j * w * (j - x) for j in joints]
-    rhs_a = []
-    slides = []
-    for lead, j, v, dvec in zip(leads, joints, vj, normals):
-        rr = j - x
+    w2, vj = _joints_at(rows, rhs_v, minors, offsets)
+    w = w2[1]
+    rhs_a, slides = [], []
+    for lead, j, v, d, r, gm in zip(leads, joints, vj, normals, offsets, guides):
+        turn = 0.0 if r is None else w2[0] * dot(d, r)
         if lead.rod:
             rel = v - lead.v
-            rhs_a.append(dot(dvec, lead.a) + w * w * dot(dvec, rr) - dot(rel, rel))
+            rhs_a.append(dot(d, lead.a) + turn - dot(rel, rel))
         else:
             u, base = lead.line()
-            gv, ga = lead.carried(j)
+            gv, ga = gm
             sd = dot(v - gv, u)
             cor = 2j * lead.omega * sd * u
-            rhs_a.append(dot(dvec, ga + cor) + w * w * dot(dvec, rr))
-            slides.append((dot(j - base, u), sd, u, ga, cor))
-    ax, ay, e = _cramer3(rows, rhs_a, minors)
-    aX = ax + 1j * ay
-    aj = [aX + (1j * e - w * w) * (j - x) for j in joints]
-    return _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair)
+            rhs_a.append(dot(d, ga + cor) + turn)
+            slides.append((dot(j - base, u), sd, u, gv, ga, cor))
+    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0])
+    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, normals, offsets, slides, (minors[3], closed),
+                   scale, pair)
 
 
-def _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair):
-    """The group's points (joints, special point, coincident points), links and slides."""
+def _joints_at(rows, rhs, minors, offsets, w2=None):
+    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω) or (ε's
+    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r)."""
+    ux, uy, rate = _cramer3(rows, rhs, minors)
+    X = np.empty(rate.shape, complex)
+    X.real, X.imag = ux, uy
+    k = np.empty(rate.shape, complex)
+    k.imag = rate
+    if w2 is None:
+        k.real = 0.0
+        first = rate * rate
+    else:
+        np.negative(w2, out=k.real)
+        first = k
+    return (first, rate), [X if r is None else X + k * r for r in offsets]
+
+
+def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair):
+    """The group's points (joints, special point, coincident points), links and slides; the
+    base link's unit vector and the rods' (their reference directions: the link points on them
+    need no sine)."""
+    w, e = rates
+    det, closed = det_closed
     B = joints[0]
     points = {name: Motion(j, v, a) for name, j, v, a in zip(g.joints, joints, vj, aj)}
     links = {g.base: LinkMotion(g.joints[0], theta, w, e)}
     slide_out = {}
     si = iter(slides)
-    for lead, spec, name, j, v, a in zip(leads, g.leads, g.joints, joints, vj, aj):
+    norm = 1.0 / scale ** 2
+    norms = np.ones(theta.shape)
+    for lead, spec, name, j, v, a, d, r in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets):
+        moment = 0.0 if r is None else cross(r, d) ** 2 * norm
         if lead.rod:
-            dvec = j - lead.p
-            d2 = dot(dvec, dvec)
-            wl = cross(dvec, v - lead.v) / d2
-            el = cross(dvec, a - lead.a + wl * wl * dvec) / d2
-            links[spec.link] = LinkMotion(spec.joint, np.angle(dvec), wl, el)
+            k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
+            wl = cross(d, v - lead.v) * k
+            el = cross(d, a - lead.a) * k  # d × (a_J − a_P + ω²·d): the last term is d × d = 0
+            links[spec.link] = LinkMotion(spec.joint, np.angle(d), wl, el)
+            norms *= moment + lead.length ** 2
         else:
-            s, sd, u, ga, cor = next(si)
-            gv, _ = lead.carried(j)
+            s, sd, u, gv, ga, cor = next(si)
             sdd = dot(a - ga - cor, u)
             links[spec.link] = LinkMotion(name, lead.theta + lead.angle, lead.omega, lead.epsilon)
             slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
-    K = _special_point(leads, joints, pair)
-    kv, ka = carry(B, vj[0], aj[0], w, e, K)
+            norms *= moment + 1.0
+    K = _special_point(leads, joints, pair, normals)
+    rK = K - B
+    kv = vj[0] + 1j * w * rK
+    ka = aj[0] + (1j * e - w * w) * rK
     points[g.special_name] = Motion(K, kv, ka)
-    cond = _condition(rows, scale)
-    return GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
-                       closed=closed)
+    # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
+    cond = np.abs(det) / scale / np.sqrt(norms)
+    out = GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
+                      closed=closed)
+    out.units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
+    out.units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    return out
 
 
-def _special_point(leads, joints, pair):
+def _special_point(leads, joints, pair, normals=None):
     """Assur's special point: where the lines of the two leads ``pair`` cross (a pair, or one
-    per position, (n, 2))."""
+    per position, (n, 2)); ``normals``: the leads' velocity-system normals, a rod's its line's
+    direction."""
     if np.ndim(pair) == 2:
         K = np.full(joints[0].shape, np.nan + 0j)
         for p in {tuple(int(i) for i in row) for row in pair}:
-            K = np.where(np.all(pair == p, axis=1), _special_point(leads, joints, p), K)
+            K = np.where(np.all(pair == p, axis=1), _special_point(leads, joints, p, normals), K)
         return K
-    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i])) for i in pair)
+    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
         return a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
 
