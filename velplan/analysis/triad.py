@@ -352,17 +352,25 @@ class Track:
         else:
             k = np.searchsorted(self.t, tc, side="right") - 1
         np.clip(k, 0, last, out=k)
-        u = (tc - self.t[k])[:, None]
-        c = self.pieces[:, k]
-        v = c[3] * u
-        v += c[2]
-        v *= u
-        v += c[1]
-        v *= u
-        v += c[0]
+        u = tc - self.t.take(k)
+        out = []
+        for c0, c1, c2, c3 in self._columns:
+            v = c3.take(k)
+            v *= u
+            v += c2.take(k)
+            v *= u
+            v += c1.take(k)
+            v *= u
+            v += c0.take(k)
+            out.append(v)
         x = np.empty(tc.shape, complex)
-        x.real, x.imag = v[:, 0], v[:, 1]
-        return x, np.ascontiguousarray(v[:, 2])
+        x.real, x.imag = out[0], out[1]
+        return x, out[2]
+
+    @cached_property
+    def _columns(self) -> list:
+        """`pieces` as contiguous columns: per quantity, its four coefficients over the intervals."""
+        return [[np.ascontiguousarray(self.pieces[j, :, q]) for j in range(4)] for q in range(3)]
 
 
 def _distance(x, th, x0, th0, size):
