@@ -801,12 +801,14 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
     w2, vj = _joints_at(rows, rhs_v, minors, offsets)
     w = w2[1]
-    rhs_a, slides = [], []
+    rhs_a, slides, spins = [], [], []
     for lead, j, v, d, r, gm in zip(leads, joints, vj, normals, offsets, guides):
         turn = 0.0 if r is None else w2[0] * dot(d, r)
         if lead.rod:
-            rel = v - lead.v
-            rhs_a.append(dot(d, lead.a) + turn - dot(rel, rel))
+            wl = cross(d, v - lead.v) * (1.0 / lead.length ** 2)  # the rod's ω: |d| = its length
+            spins.append(wl)
+            # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
+            rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
         else:
             u, base = lead.line()
             gv, ga = gm
@@ -815,8 +817,8 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
             rhs_a.append(dot(d, ga + cor) + turn)
             slides.append((dot(j - base, u), sd, u, gv, ga, cor))
     e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0])
-    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, normals, offsets, slides, (minors[3], closed),
-                   scale, pair)
+    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
+                   (slides, spins), (minors[3], closed), scale, pair)
 
 
 def _joints_at(rows, rhs, minors, offsets, w2=None):
@@ -842,6 +844,9 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     need no sine)."""
     w, e = rates
     det, closed = det_closed
+    normals, moments = normals
+    slides, spins = slides
+    wi = iter(spins)
     B = joints[0]
     points = {name: Motion(j, v, a) for name, j, v, a in zip(g.joints, joints, vj, aj)}
     links = {g.base: LinkMotion(g.joints[0], theta, w, e)}
@@ -849,11 +854,11 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     si = iter(slides)
     norm = 1.0 / scale ** 2
     norms = np.ones(theta.shape)
-    for lead, spec, name, j, v, a, d, r in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets):
-        moment = 0.0 if r is None else cross(r, d) ** 2 * norm
+    for lead, spec, name, j, v, a, d, r, c in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets, moments):
+        moment = 0.0 if r is None else c * c * norm
         if lead.rod:
             k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
-            wl = cross(d, v - lead.v) * k
+            wl = next(wi)
             el = cross(d, a - lead.a) * k  # d × (a_J − a_P + ω²·d): the last term is d × d = 0
             links[spec.link] = LinkMotion(spec.joint, np.angle(d), wl, el)
             norms *= moment + lead.length ** 2
