@@ -23,7 +23,9 @@ The file's ``assembly`` (approximate joints at one crank angle) picks one root; 
 follows it over the turn in steps of at most 0.5° (halved where the nearest root is not
 clearly the nearest), finds where it ends (an assembly limit, by bisection) or checks that it
 comes back to itself after a full turn. At any crank angle the solver takes the root nearest
-to the tracked branch.
+to the tracked branch: Newton's correction from the branch's Hermite cubic between nodes (off
+by ≈ 1e-11 of the group's size, so one step settles it to round-off), every root only where
+that correction is ambiguous.
 """
 
 from __future__ import annotations
@@ -328,10 +330,12 @@ class Track:
             nan = np.full(phi.shape, np.nan)
             return nan + 0j, nan, np.zeros(phi.shape, bool)
         t = np.mod(phi - self.phi0, 2 * np.pi)
-        if not self.full:
+        if self.full:  # t in [0, 2π] = [t[0], t[-1]]: every angle on the branch
+            inside, tc = np.ones(t.shape, bool), t
+        else:
             t = np.where(t > self.t[-1] + EDGE_TOL, t - 2 * np.pi, t)
-        inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
-        tc = np.clip(t, self.t[0], self.t[-1])
+            inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
+            tc = np.clip(t, self.t[0], self.t[-1])
         if self.pieces is not None:
             return (*self._cubic(tc), inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
@@ -777,6 +781,8 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
         good[rest] = hit
         e[rest] = cis(th[rest])
     closed = inside & good
+    if closed.all():
+        return x, th, closed, e
     return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
@@ -797,7 +803,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
         normals.append(d)
         guides.append(gm)
         rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
-                     np.zeros(d.shape) if r is None else cross(r, d)))  # d·(i·r)
+                     0.0 if r is None else cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
     w2, vj = _joints_at(rows, rhs_v, minors, offsets)
     w = w2[1]
@@ -850,7 +856,7 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     B = joints[0]
     points = {name: Motion(j, v, a) for name, j, v, a in zip(g.joints, joints, vj, aj)}
     links = {g.base: LinkMotion(g.joints[0], theta, w, e)}
-    slide_out = {}
+    slide_out, units = {}, {}
     si = iter(slides)
     norm = 1.0 / scale ** 2
     norms = np.ones(theta.shape)
@@ -870,6 +876,7 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
             norms *= moment + 1.0
+            units[spec.link] = u  # cis(θ_guide + angle), as the link's angle
     K = _special_point(leads, joints, pair, normals)
     rK = K - B
     kv = vj[0] + 1j * w * rK
@@ -877,11 +884,10 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     points[g.special_name] = Motion(K, kv, ka)
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
     cond = np.abs(det) / scale / np.sqrt(norms)
-    out = GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
-                      closed=closed)
-    out.units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
-    out.units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
-    return out
+    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
+    units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    return GroupResult(points=points, links=links, slides=slide_out,
+                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units)
 
 
 def _special_point(leads, joints, pair, normals=None):
