@@ -324,8 +324,9 @@ class Track:
         """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
         return np.unwrap(self.theta)
 
-    def reference(self, phi: np.ndarray):
-        """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes)."""
+    def reference(self, phi: np.ndarray, cubic: bool = True):
+        """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes; with
+        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap)."""
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
             return nan + 0j, nan, np.zeros(phi.shape, bool)
@@ -336,7 +337,7 @@ class Track:
             t = np.where(t > self.t[-1] + EDGE_TOL, t - 2 * np.pi, t)
             inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
             tc = np.clip(t, self.t[0], self.t[-1])
-        if self.pieces is not None:
+        if self.pieces is not None and cubic:
             return (*self._cubic(tc), inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
         th = np.interp(tc, self.t, self.unwrapped)
