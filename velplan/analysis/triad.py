@@ -619,11 +619,11 @@ class Tracks:
             return pairs[0]
         return np.repeat(np.array(pairs), self.n, axis=0)
 
-    def reference(self, phi: np.ndarray):
-        """(x, θ, inside) of each variant's branch at its crank angles ``phi``."""
+    def reference(self, phi: np.ndarray, cubic: bool = True):
+        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`)."""
         n = self.n
         empty = Track(0.0, np.zeros(0), np.zeros(0, complex), np.zeros(0), False, (0, 1), 1.0)
-        parts = [(t or empty).reference(phi[v * n:(v + 1) * n]) for v, t in enumerate(self.tracks)]
+        parts = [(t or empty).reference(phi[v * n:(v + 1) * n], cubic) for v, t in enumerate(self.tracks)]
         return tuple(np.concatenate(a) for a in zip(*parts))
 
 
