@@ -485,17 +485,18 @@ def _pieces(mech: Mechanism, g: Triad, t, x, th, solve) -> np.ndarray | None:
     at_nodes = _Closure(g, [lead.take(slice(0, m)) for lead in leads])
     at_mid = _Closure(g, [lead.take(slice(m, None)) for lead in leads])
     y = np.stack([x.real, x.imag, th], axis=1)
-    vx, w = _slopes(at_nodes, x, th)
-    slope = np.stack([vx.real, vx.imag, w], axis=1)
-    chord = (y[1:] - y[:-1]) / h[:, None]
-    hermite = [y[:-1], slope[:-1], (3 * chord - 2 * slope[:-1] - slope[1:]) / h[:, None],
-               (slope[:-1] + slope[1:] - 2 * chord) / (h * h)[:, None]]
-    lin = 0.5 * (y[:-1] + y[1:])
-    her = lin + (h / 8)[:, None] * (slope[:-1] - slope[1:])
-    with np.errstate(all="ignore"):
+    with np.errstate(all="ignore"):  # a branch's last node may repeat the one before (h = 0)
+        vx, w = _slopes(at_nodes, x, th)
+        slope = np.stack([vx.real, vx.imag, w], axis=1)
+        chord = np.where((h > 0)[:, None], (y[1:] - y[:-1]) / h[:, None], 0.0)
+        hermite = [y[:-1], slope[:-1], (3 * chord - 2 * slope[:-1] - slope[1:]) / h[:, None],
+                   (slope[:-1] + slope[1:] - 2 * chord) / (h * h)[:, None]]
+        lin = 0.5 * (y[:-1] + y[1:])
+        her = lin + (h / 8)[:, None] * (slope[:-1] - slope[1:])
         xm, thm, ok = _correct(at_mid, lin[:, 0] + 1j * lin[:, 1], lin[:, 2], size)
         near = lambda p: _distance(p[:, 0] + 1j * p[:, 1], p[:, 2], xm, thm, size)  # noqa: E731
-        use = ok & np.isfinite(slope[:-1]).all(axis=1) & np.isfinite(slope[1:]).all(axis=1) & (near(her) < near(lin))
+        use = ok & (h > 0) & np.isfinite(slope[:-1]).all(axis=1) & np.isfinite(slope[1:]).all(axis=1) \
+            & (near(her) < near(lin))
     linear = [y[:-1], chord, np.zeros_like(chord), np.zeros_like(chord)]
     return np.stack([np.where(use[:, None], a, b) for a, b in zip(hermite, linear)])
 
