@@ -19,6 +19,8 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
     python benchmarks/bench_small.py                # ≈ 3 min on 2 cores
     python benchmarks/bench_small.py --quick        # fewer rounds, no 10⁶, no cold commands
     python benchmarks/bench_small.py --triad-only --clock cpu   # the class III triad at 10⁵ only
+    python benchmarks/bench_small.py --triad-only --clock cpu --print   # the same, printed (nothing written)
+    python benchmarks/bench_small.py --triad-before /tmp/old --pairs 5   # the triad, old tree against this one
     git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
     python benchmarks/bench_small.py --cold-only --pairs 5   # the cold table alone, printed
 
@@ -266,6 +268,52 @@ the median of the per-round ratios (lowest–highest). Load {start} at the start
 """
 
 
+TRIAD_CALLS = """
+import json, statistics, time, numpy as np, velplan
+out = {}
+for name in ("four-bar", "triad-rocker", "triad-press"):
+    mech = velplan.load(name)
+    for engine in ("numpy", "compiled"):
+        for n, reps in ((12, 300), (100_000, 5)):
+            phi = np.arange(n) * (2 * np.pi / n)
+            velplan.solve(mech, phi, engine=engine)
+            ts = []
+            for _ in range(reps):
+                t0 = time.process_time()
+                velplan.solve(mech, phi, engine=engine)
+                ts.append(time.process_time() - t0)
+            out[f"{name}, {engine}, {n:,}"] = statistics.median(ts) * 1e6
+print(json.dumps(out))
+"""
+
+
+def triad_before_table(before: str, pairs: int) -> str:
+    """µs per call (CPU time, median of repeats in one process) of the four-bar and the triads at
+    12 and 10⁵ positions, both engines, ``before`` (an older tree) against this one in alternating
+    processes; and each triad's ratio to the four-bar in the same process, before and after."""
+    import json
+
+    runs: dict[str, list[dict]] = {"before": [], "after": []}
+    for _ in range(pairs):
+        for key, tree in (("before", before), ("after", str(ROOT))):
+            out = subprocess.run([sys.executable, "-c", TRIAD_CALLS], capture_output=True, text=True, check=True,
+                                 env=dict(os.environ, PYTHONPATH=tree)).stdout
+            runs[key].append(json.loads(out.strip().splitlines()[-1]))
+            print(key, runs[key][-1], flush=True)
+    rows = []
+    for case in runs["after"][0]:
+        b, a = [r[case] for r in runs["before"]], [r[case] for r in runs["after"]]
+        ratio = [y / x for x, y in zip(b, a)]
+        four = case.replace(case.split(",")[0], "four-bar")
+        per_four = lambda key: statistics.median(r[case] / r[four] for r in runs[key])  # noqa: E731
+        rows.append([case, f"{statistics.median(b):.4g}", f"{statistics.median(a):.4g}",
+                     f"{statistics.median(ratio):.2f} ({min(ratio):.2f}–{max(ratio):.2f})",
+                     f"{per_four('before'):.2f}", f"{per_four('after'):.2f}"])
+    head = ["mechanism, engine, positions", "before µs/call", "after µs/call", "after ÷ before, pair by pair",
+            "÷ four-bar before", "÷ four-bar after"]
+    return table(head, rows) + f"\n\nLoad at the end: {load_average()}."
+
+
 def splice_triad(text: str) -> None:
     """Put the triad table ``text`` into ``small.md`` in place of its section (or at its end)."""
     path = RESULTS / "small.md"
@@ -327,6 +375,9 @@ def main() -> None:
                     help="only the class III triad against the four-bar, put into small.md in place")
     ap.add_argument("--cold-only", action="store_true",
                     help="time the cold commands alone and print their table (nothing written)")
+    ap.add_argument("--print", action="store_true", help="with --triad-only: print the table, write nothing")
+    ap.add_argument("--triad-before", metavar="TREE",
+                    help="the triad and the four-bar at 12 and 10⁵ positions, an older tree against this one (printed)")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
@@ -338,8 +389,13 @@ def main() -> None:
         print(f"load {start} at the start, {load_average()} at the end\n\n{cold}")
         return
     count = 5 if a.quick else a.rounds
+    if a.triad_before:
+        start = load_average()
+        print(f"load {start} at the start\n\n{triad_before_table(a.triad_before, a.pairs)}")
+        return
     if a.triad_only:
-        splice_triad(triad_table(count))
+        text = triad_table(count)
+        print(text) if a.print else splice_triad(text)
         return
     sizes = SIZES if a.quick else (*SIZES, HUGE)
     start = f"load {load_average()} at the start"

@@ -9,7 +9,7 @@ from typing import Iterable
 
 import numpy as np
 
-from velplan.analysis.groups import LinkMotion, Motion, State, crank_tip, link_point, wrap_angle
+from velplan.analysis.groups import LinkMotion, Motion, State, carry, cis, crank_tip, wrap_angle
 from velplan.analysis.solvers import solve_group
 from velplan.analysis.kinematics import SINGULAR_BOUND, WELL_CONDITIONED, Kinematics, velocity_bound
 from velplan.errors import AssemblyError, MechanismError
@@ -91,14 +91,18 @@ def solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tra
         elif isinstance(item, LinkPoint):
             link = st.links[item.link]
             o = st.points[link.origin]
-            st.points[item.name] = Motion(*link_point(o.p, o.v, o.a, link.theta, link.omega, link.epsilon,
-                                                      item.along, item.offset))
+            e = st.units.get(item.link)
+            if e is None:  # `link_point`, its unit vector kept for the link's other points
+                e = st.units[item.link] = cis(link.theta)
+            x = o.p + (item.along + 1j * item.offset) * e
+            st.points[item.name] = Motion(x, *carry(o.p, o.v, o.a, link.omega, link.epsilon, x))
         else:
             res = solve_group(item, st, scale, phi, tracks[item.name] if item.tracked else None)
             check_closed(item, res.closed, phi, on_failure)
             st.points.update(res.points)
             st.links.update(res.links)
             st.slides.update(res.slides)
+            st.units.update(res.units)
             conditions[item.name] = np.where(res.closed, res.condition, np.nan)
 
 

@@ -680,6 +680,11 @@ def _layout(mech: Mechanism, points, tracks=None) -> Layout:
     return Layout(items, None, ops, par[None], ground[None], names, sizes, tracked)
 
 
+CUBIC_FROM = 256
+"""From this many angles the kernel starts Newton from the branch's cubic (one step settles it);
+below, from its chords (two steps, cheaper there than the cubic's dozen numpy calls)."""
+
+
 def triad_aux(lay: Layout, tracks: dict | None, phi: np.ndarray) -> np.ndarray | None:
     """The kernel's ``aux`` (G, 4, n): for each class III group (row = its group index) the
     tracked branch's J_r (real, imaginary) and θ at the angles ``phi``, NaN off the branch
@@ -689,7 +694,7 @@ def triad_aux(lay: Layout, tracks: dict | None, phi: np.ndarray) -> np.ndarray |
         return None
     aux = np.zeros((lay.sizes[3], 4, phi.shape[0]))
     for name in lay.tracked:
-        x, th, inside = tracks[name].reference(phi)
+        x, th, inside = tracks[name].reference(phi, cubic=phi.shape[0] >= CUBIC_FROM)
         row = aux[lay.names["group_index"][name]]
         row[0], row[1], row[2] = x.real, x.imag, np.where(inside, th, np.nan)
     return aux

@@ -15,7 +15,7 @@ values; the `solve_*` wrappers below fit them to the named points and links of a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import numpy as np
 
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Guide
@@ -50,6 +50,9 @@ class GroupResult:
     slides: dict[str, Motion]
     condition: np.ndarray
     closed: np.ndarray
+    units: dict = field(default_factory=dict)
+    """Unit vectors cos θ + i·sin θ of links' reference directions where the group knows them
+    without a sine (link name → complex array), for the points on those links."""
 
 
 # ---- closed forms on plain complex values --------------------------------------------------
@@ -221,6 +224,9 @@ class State:
         self.points: dict[str, Motion] = {}
         self.links: dict[str, LinkMotion] = {}
         self.slides: dict[str, Motion] = {}
+        self.units: dict[str, np.ndarray] = {}
+        """Unit vectors of links' reference directions (`GroupResult.units`), and those found for
+        their points."""
 
     def guide(self, g: Guide) -> tuple:
         """Arguments of a closed form for guide ``g``: its point's p, v, a, its link's θ, ω, ε,

@@ -23,7 +23,9 @@ The file's ``assembly`` (approximate joints at one crank angle) picks one root; 
 follows it over the turn in steps of at most 0.5° (halved where the nearest root is not
 clearly the nearest), finds where it ends (an assembly limit, by bisection) or checks that it
 comes back to itself after a full turn. At any crank angle the solver takes the root nearest
-to the tracked branch.
+to the tracked branch: Newton's correction from the branch's Hermite cubic between nodes (off
+by ≈ 1e-11 of the group's size, so one step settles it to round-off), every root only where
+that correction is ambiguous.
 """
 
 from __future__ import annotations
@@ -34,7 +36,9 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
+from velplan.analysis import triad_settle
 from velplan.analysis.groups import GroupResult, LinkMotion, Motion, carry, cis, cross, guide_line, slide_name
+from velplan.analysis.triad_settle import QUICK_CONDITION, QUICK_MOVE, SETTLED  # noqa: F401 (the triad's numbers)
 from velplan.errors import MechanismError
 from velplan.mechanism.model import GROUND, Mechanism, Triad
 
@@ -93,7 +97,11 @@ class Lead3:
                      pick(self.omega), pick(self.epsilon), self.angle, self.offset)
 
     def line(self):
-        """Guide: unit direction u and base point (arrays)."""
+        """Guide: unit direction u and base point (arrays), found once."""
+        return self._line
+
+    @cached_property
+    def _line(self):
         return guide_line(self.p, self.theta, self.angle, self.offset)
 
     def carried(self, x):
@@ -296,7 +304,10 @@ class Track:
     ``t`` (rad, increasing) are crank angles relative to the assembly angle ``phi0``, with the
     first rod's inner joint ``x`` (complex, m) and the base link's angle ``theta`` (rad) at
     each; the branch exists on [t[0], t[-1]] (``full``: the whole turn, t from 0 to 2π).
-    ``pair`` are the two leads whose lines give Assur's special point.
+    ``pair`` are the two leads whose lines give Assur's special point. ``pieces`` (4, K, 3): on
+    each of the K intervals between nodes, the coefficients of u⁰ … u³ (u = t − t_k, rad) of the
+    cubic through (x.real, x.imag, θ unwrapped): Hermite's from the nodes' slopes where that was
+    found nearer the branch than the chord (`_pieces`), else the chord; None: chords throughout.
     """
 
     phi0: float
@@ -306,25 +317,65 @@ class Track:
     full: bool
     pair: tuple[int, int]
     size: float
+    pieces: np.ndarray | None = None
 
     @cached_property
     def unwrapped(self) -> np.ndarray:
         """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
         return np.unwrap(self.theta)
 
-    def reference(self, phi: np.ndarray):
-        """(x, θ, inside) of the branch at crank angles ``phi`` (linear between nodes)."""
+    def reference(self, phi: np.ndarray, cubic: bool = True):
+        """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes; with
+        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap)."""
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
             return nan + 0j, nan, np.zeros(phi.shape, bool)
         t = np.mod(phi - self.phi0, 2 * np.pi)
-        if not self.full:
+        if self.full:  # t in [0, 2π] = [t[0], t[-1]]: every angle on the branch
+            inside, tc = np.ones(t.shape, bool), t
+        else:
             t = np.where(t > self.t[-1] + EDGE_TOL, t - 2 * np.pi, t)
-        inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
-        tc = np.clip(t, self.t[0], self.t[-1])
+            inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
+            tc = np.clip(t, self.t[0], self.t[-1])
+        if self.pieces is not None and cubic:
+            return (*self._cubic(tc), inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
         th = np.interp(tc, self.t, self.unwrapped)
         return x, th, inside
+
+    @cached_property
+    def _spacing(self) -> float:
+        """The nodes' step where they are evenly spaced (rad), else 0."""
+        h = np.diff(self.t)
+        return float(h[0]) if h.size and np.ptp(h) <= 1e-9 * h[0] else 0.0
+
+    def _cubic(self, tc: np.ndarray):
+        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]])."""
+        last = self.pieces.shape[1] - 1
+        if self._spacing:
+            k = ((tc - self.t[0]) * (1.0 / self._spacing)).astype(np.intp)
+        else:
+            k = np.searchsorted(self.t, tc, side="right") - 1
+        np.clip(k, 0, last, out=k)
+        u = tc - self.t.take(k)
+        out = []
+        for c0, c1, c2, c3 in self._columns:
+            v = c3.take(k)
+            v *= u
+            v += c2.take(k)
+            v *= u
+            v += c1.take(k)
+            v *= u
+            v += c0.take(k)
+            out.append(v)
+        x = np.empty(tc.shape, complex)
+        x.real, x.imag = out[0], out[1]
+        return x, out[2]
+
+    @cached_property
+    def _columns(self) -> list:
+        """`pieces` as contiguous columns: per quantity, its four coefficients over the intervals."""
+        return [[np.ascontiguousarray(self.pieces[j, :, q]) for j in range(4)] for q in range(3)]
 
 
 def _distance(x, th, x0, th0, size):
@@ -416,7 +467,51 @@ def _finish(mech: Mechanism, g: Triad, start: tuple, fwd: list, solve) -> Track:
     t = np.array([n[0] for n in nodes])
     x = np.array([n[1] for n in nodes])
     th = np.array([n[2] for n in nodes])
-    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size)
+    return Track(phi0, t, x, th, bool(full), _pair(g, (mech, x, th, t), solve), size,
+                 _pieces(mech, g, t, x, np.unwrap(th), solve))
+
+
+def _pieces(mech: Mechanism, g: Triad, t, x, th, solve) -> np.ndarray | None:
+    """`Track.pieces` of the nodes (t, x, θ unwrapped): on each interval Hermite's cubic from the
+    slopes dx/dφ, dθ/dφ at its ends (the velocities at unit crank speed), where at the interval's
+    middle it lies nearer the branch (Newton's correction from the chord) than the chord does;
+    elsewhere (near a limit of the branch, where the slopes grow without bound) the chord."""
+    m = t.size
+    if m < 2:
+        return None
+    size, h = _size(g), np.diff(t)
+    mid = t[:-1] + 0.5 * h
+    leads = leads_at(mech, g, g.assembly_phi + np.concatenate([t, mid]), solve)
+    at_nodes = _Closure(g, [lead.take(slice(0, m)) for lead in leads])
+    at_mid = _Closure(g, [lead.take(slice(m, None)) for lead in leads])
+    y = np.stack([x.real, x.imag, th], axis=1)
+    with np.errstate(all="ignore"):  # a branch's last node may repeat the one before (h = 0)
+        vx, w = _slopes(at_nodes, x, th)
+        slope = np.stack([vx.real, vx.imag, w], axis=1)
+        chord = np.where((h > 0)[:, None], (y[1:] - y[:-1]) / h[:, None], 0.0)
+        hermite = [y[:-1], slope[:-1], (3 * chord - 2 * slope[:-1] - slope[1:]) / h[:, None],
+                   (slope[:-1] + slope[1:] - 2 * chord) / (h * h)[:, None]]
+        lin = 0.5 * (y[:-1] + y[1:])
+        her = lin + (h / 8)[:, None] * (slope[:-1] - slope[1:])
+        xm, thm, ok = _correct(at_mid, lin[:, 0] + 1j * lin[:, 1], lin[:, 2], size)
+        near = lambda p: _distance(p[:, 0] + 1j * p[:, 1], p[:, 2], xm, thm, size)  # noqa: E731
+        use = ok & (h > 0) & np.isfinite(slope[:-1]).all(axis=1) & np.isfinite(slope[1:]).all(axis=1) \
+            & (near(her) < near(lin))
+    linear = [y[:-1], chord, np.zeros_like(chord), np.zeros_like(chord)]
+    return np.stack([np.where(use[:, None], a, b) for a, b in zip(hermite, linear)])
+
+
+def _slopes(cl: _Closure, x, th):
+    """dJ_r/dφ and dθ/dφ of the assemblies (J_r ``x``, θ ``th``) of ``cl``'s positions, its leads'
+    motions at unit crank speed: the velocity system of `_motion`."""
+    joints = [x + r for r in cl.offsets(th)]
+    rows, rhs = [], []
+    for lead, j in zip(cl.leads, joints):
+        d = j - lead.p if lead.rod else 1j * lead.line()[0]
+        rhs.append(dot(d, lead.v if lead.rod else lead.carried(j)[0]))
+        rows.append((d.real, d.imag, dot(d, 1j * (j - x))))
+    vx, vy, w = _cramer3(rows, rhs)
+    return vx + 1j * vy, w
 
 
 def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
@@ -470,21 +565,21 @@ def tracks(ups: list[Mechanism], gs: list[Triad], solve) -> list[Track | None]:
 def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     """Newton's correction of the configurations (J_r ``xr``, θ ``thr``) of ``cl``'s positions:
     (J_r, θ, whether it is unambiguous: converged, moved less than `QUICK_MOVE`, well
-    conditioned). Up to 5 steps, fewer once every correction is below `SETTLED` (over the
-    group's size): a position whose last correction is that small has converged (the error left
-    is about its square), and its closure's conditioning is read from that last step's rows."""
-    y, th = (xr - cl.origin)[:, None], thr[:, None]
-    with np.errstate(all="ignore"):
-        for _ in range(5):
-            f, rows = cl._equations(y, th)
-            dx, dy, dt = _cramer3(rows, [-x for x in f])
-            y, th = y + dx + 1j * dy, th + dt
-            moved = (np.abs(dx) + np.abs(dy) + np.abs(dt) * cl.size)[:, 0]
-            if not np.fmax.reduce(moved, axis=None) > SETTLED * cl.size:
-                break
-        cond = _condition([tuple(np.broadcast_to(c, y.shape)[:, 0] for c in r) for r in rows], cl.size)
-    x, th = y[:, 0] + cl.origin, th[:, 0]
-    return x, th, (moved <= SETTLED * cl.size) & (_distance(x, th, xr, thr, size) <= QUICK_MOVE) & (cond >= QUICK_CONDITION)
+    conditioned), by `velplan.analysis.triad_settle.settle`."""
+    return _settled(cl, xr, thr)[:3]
+
+
+def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray):
+    """`_correct`, and cos θ + i·sin θ at the result."""
+    y0 = xr - cl.origin
+    yx, yy, th = y0.real.copy(), y0.imag.copy(), np.array(thr, dtype=float)
+    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE)
+    x = np.empty(th.shape, complex)
+    np.add(yx, cl.origin.real, out=x.real)
+    np.add(yy, cl.origin.imag, out=x.imag)
+    e = np.empty(th.shape, complex)
+    e.real, e.imag = c, s
+    return x, th, ok, e
 
 
 def _track_grid() -> np.ndarray:
@@ -525,11 +620,11 @@ class Tracks:
             return pairs[0]
         return np.repeat(np.array(pairs), self.n, axis=0)
 
-    def reference(self, phi: np.ndarray):
-        """(x, θ, inside) of each variant's branch at its crank angles ``phi``."""
+    def reference(self, phi: np.ndarray, cubic: bool = True):
+        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`)."""
         n = self.n
         empty = Track(0.0, np.zeros(0), np.zeros(0, complex), np.zeros(0), False, (0, 1), 1.0)
-        parts = [(t or empty).reference(phi[v * n:(v + 1) * n]) for v, t in enumerate(self.tracks)]
+        parts = [(t or empty).reference(phi[v * n:(v + 1) * n], cubic) for v, t in enumerate(self.tracks)]
         return tuple(np.concatenate(a) for a in zip(*parts))
 
 
@@ -661,27 +756,19 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     and the same rows for a_X, ε3 with the known normal, Coriolis terms on the right."""
     leads = inputs_from_state(g, st)
     cl = _Closure(g, leads)
-    x, theta, closed = _branch(cl, trk, phi)
-    joints = [x + ri for ri in cl.offsets(theta)]
-    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair)
-
-
-QUICK_MOVE = 1e-3
-"""Newton from the tracked branch is taken as it is when it moves the configuration less than
-this (the branch's nodes are 0.5° apart: it moves ≈ 1e-5) and the closure is well conditioned."""
-QUICK_CONDITION = 0.05
-SETTLED = 1e-9
-"""Newton from the tracked branch stops once its largest correction is below this (over the
-group's size), and a position counts as converged where its last correction is: the error left
-is about its square, below round-off (`QUICK_CONDITION` bounds the closure's curvature)."""
+    x, theta, closed, e = _branch(cl, trk, phi)
+    offsets = [None if z == 0 else z * e for z in cl.local]
+    joints = [x if r is None else x + r for r in offsets]
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets)
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     """The tracked branch's assembly at each crank angle: Newton from the tracked configuration
     where that is unambiguous (well conditioned, a small correction), else every assembly
-    found and the nearest to the branch taken. Returns J_r, θ and the mask of closed positions."""
+    found and the nearest to the branch taken. Returns J_r, θ, the mask of closed positions and
+    cos θ + i·sin θ."""
     xr, thr, inside = trk.reference(phi)
-    x, th, quick = _correct(cl, xr, thr, trk.size)
+    x, th, quick, e = _settled(cl, xr, thr)
     good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
@@ -694,86 +781,127 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
         x[rest] = np.where(hit, xs[row, k], np.nan)
         th[rest] = np.where(hit, ths[row, k], np.nan)
         good[rest] = hit
+        e[rest] = cis(th[rest])
     closed = inside & good
-    return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed
+    if closed.all():
+        return x, th, closed, e
+    return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
-def _motion(g, leads, x, theta, joints, closed, scale, pair):
-    rows, rhs_v, normals = [], [], []
-    for lead, j in zip(leads, joints):
-        rr = j - x
+def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
+    """The velocities and accelerations of the assemblies (J_r ``x``, θ, the joints ``joints``,
+    their ``offsets`` from J_r: None where J_r itself): one matrix, its minors found once, for
+    both right sides."""
+    if offsets is None:
+        offsets = [j - x for j in joints]
+    rows, rhs_v, normals, guides = [], [], [], []
+    for lead, j, r in zip(leads, joints, offsets):
         if lead.rod:
-            dvec = j - lead.p
-            rhs_v.append(dot(dvec, lead.v))
+            d, gm = j - lead.p, None
+            rhs_v.append(dot(d, lead.v))
         else:
-            u, _ = lead.line()
-            dvec = 1j * u
-            rhs_v.append(dot(dvec, lead.carried(j)[0]))
-        normals.append(dvec)
-        rows.append((dvec.real, dvec.imag, dot(dvec, 1j * rr)))
+            d, gm = 1j * lead.line()[0], lead.carried(j)
+            rhs_v.append(dot(d, gm[0]))
+        normals.append(d)
+        guides.append(gm)
+        rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
+                     0.0 if r is None else cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
-    vx, vy, w = _cramer3(rows, rhs_v, minors)
-    vX = vx + 1j * vy
-    vj = [vX + 1j * w * (j - x) for j in joints]
-    rhs_a = []
-    slides = []
-    for lead, j, v, dvec in zip(leads, joints, vj, normals):
-        rr = j - x
+    w2, vj = _joints_at(rows, rhs_v, minors, offsets)
+    w = w2[1]
+    rhs_a, slides, spins = [], [], []
+    for lead, j, v, d, r, gm in zip(leads, joints, vj, normals, offsets, guides):
+        turn = 0.0 if r is None else w2[0] * dot(d, r)
         if lead.rod:
-            rel = v - lead.v
-            rhs_a.append(dot(dvec, lead.a) + w * w * dot(dvec, rr) - dot(rel, rel))
+            wl = cross(d, v - lead.v) * (1.0 / lead.length ** 2)  # the rod's ω: |d| = its length
+            spins.append(wl)
+            # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
+            rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
         else:
             u, base = lead.line()
-            gv, ga = lead.carried(j)
+            gv, ga = gm
             sd = dot(v - gv, u)
             cor = 2j * lead.omega * sd * u
-            rhs_a.append(dot(dvec, ga + cor) + w * w * dot(dvec, rr))
-            slides.append((dot(j - base, u), sd, u, ga, cor))
-    ax, ay, e = _cramer3(rows, rhs_a, minors)
-    aX = ax + 1j * ay
-    aj = [aX + (1j * e - w * w) * (j - x) for j in joints]
-    return _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair)
+            rhs_a.append(dot(d, ga + cor) + turn)
+            slides.append((dot(j - base, u), sd, u, gv, ga, cor))
+    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0])
+    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
+                   (slides, spins), (minors[3], closed), scale, pair)
 
 
-def _result(g, leads, theta, w, e, joints, vj, aj, rows, slides, closed, scale, pair):
-    """The group's points (joints, special point, coincident points), links and slides."""
+def _joints_at(rows, rhs, minors, offsets, w2=None):
+    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω) or (ε's
+    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r)."""
+    ux, uy, rate = _cramer3(rows, rhs, minors)
+    X = np.empty(rate.shape, complex)
+    X.real, X.imag = ux, uy
+    k = np.empty(rate.shape, complex)
+    k.imag = rate
+    if w2 is None:
+        k.real = 0.0
+        first = rate * rate
+    else:
+        np.negative(w2, out=k.real)
+        first = k
+    return (first, rate), [X if r is None else X + k * r for r in offsets]
+
+
+def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair):
+    """The group's points (joints, special point, coincident points), links and slides; the
+    base link's unit vector and the rods' (their reference directions: the link points on them
+    need no sine)."""
+    w, e = rates
+    det, closed = det_closed
+    normals, moments = normals
+    slides, spins = slides
+    wi = iter(spins)
     B = joints[0]
     points = {name: Motion(j, v, a) for name, j, v, a in zip(g.joints, joints, vj, aj)}
     links = {g.base: LinkMotion(g.joints[0], theta, w, e)}
-    slide_out = {}
+    slide_out, units = {}, {}
     si = iter(slides)
-    for lead, spec, name, j, v, a in zip(leads, g.leads, g.joints, joints, vj, aj):
+    norm = 1.0 / scale ** 2
+    norms = np.ones(theta.shape)
+    for lead, spec, name, j, v, a, d, r, c in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets, moments):
+        moment = 0.0 if r is None else c * c * norm
         if lead.rod:
-            dvec = j - lead.p
-            d2 = dot(dvec, dvec)
-            wl = cross(dvec, v - lead.v) / d2
-            el = cross(dvec, a - lead.a + wl * wl * dvec) / d2
-            links[spec.link] = LinkMotion(spec.joint, np.angle(dvec), wl, el)
+            k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
+            wl = next(wi)
+            el = cross(d, a - lead.a) * k  # d × (a_J − a_P + ω²·d): the last term is d × d = 0
+            links[spec.link] = LinkMotion(spec.joint, np.angle(d), wl, el)
+            norms *= moment + lead.length ** 2
         else:
-            s, sd, u, ga, cor = next(si)
-            gv, _ = lead.carried(j)
+            s, sd, u, gv, ga, cor = next(si)
             sdd = dot(a - ga - cor, u)
             links[spec.link] = LinkMotion(name, lead.theta + lead.angle, lead.omega, lead.epsilon)
             slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
-    K = _special_point(leads, joints, pair)
-    kv, ka = carry(B, vj[0], aj[0], w, e, K)
+            norms *= moment + 1.0
+            units[spec.link] = u  # cis(θ_guide + angle), as the link's angle
+    K = _special_point(leads, joints, pair, normals)
+    rK = K - B
+    kv = vj[0] + 1j * w * rK
+    ka = aj[0] + (1j * e - w * w) * rK
     points[g.special_name] = Motion(K, kv, ka)
-    cond = _condition(rows, scale)
-    return GroupResult(points=points, links=links, slides=slide_out, condition=np.where(closed, cond, np.nan),
-                       closed=closed)
+    # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
+    cond = np.abs(det) / scale / np.sqrt(norms)
+    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
+    units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    return GroupResult(points=points, links=links, slides=slide_out,
+                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units)
 
 
-def _special_point(leads, joints, pair):
+def _special_point(leads, joints, pair, normals=None):
     """Assur's special point: where the lines of the two leads ``pair`` cross (a pair, or one
-    per position, (n, 2))."""
+    per position, (n, 2)); ``normals``: the leads' velocity-system normals, a rod's its line's
+    direction."""
     if np.ndim(pair) == 2:
         K = np.full(joints[0].shape, np.nan + 0j)
         for p in {tuple(int(i) for i in row) for row in pair}:
-            K = np.where(np.all(pair == p, axis=1), _special_point(leads, joints, p), K)
+            K = np.where(np.all(pair == p, axis=1), _special_point(leads, joints, p, normals), K)
         return K
-    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i])) for i in pair)
+    a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
         return a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
 

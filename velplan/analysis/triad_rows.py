@@ -44,11 +44,8 @@ def condition3(a1, b1, c1, a2, b2, c2, a3, b3, c3, scale):
     """Hadamard ratio of the 3×3 matrix, moment column over ``scale`` (`triad._condition`)."""
     c1, c2, c3 = c1 / scale, c2 / scale, c3 / scale
     det = a1 * (b2 * c3 - b3 * c2) - b1 * (a2 * c3 - a3 * c2) + c1 * (a2 * b3 - a3 * b2)
-    norm = 1.0
-    norm = norm * np.sqrt(a1 * a1 + b1 * b1 + c1 * c1)
-    norm = norm * np.sqrt(a2 * a2 + b2 * b2 + c2 * c2)
-    norm = norm * np.sqrt(a3 * a3 + b3 * b3 + c3 * c3)
-    return abs(det) / norm
+    norm = (a1 * a1 + b1 * b1 + c1 * c1) * (a2 * a2 + b2 * b2 + c2 * c2) * (a3 * a3 + b3 * b3 + c3 * c3)
+    return abs(det) / np.sqrt(norm)  # one root for the three rows' norms
 
 
 def closure_row(rod, c, u, length, y, r):
@@ -76,11 +73,13 @@ def distance(x, th, x0, th0, size):
 
 def triad_newton(c0, c1, c2, u0, u1, u2, rods, lengths, r0, r1, r2, xr, thr, origin, size):
     """Newton's correction of the tracked configuration (J_r ``xr``, θ ``thr``): (J_r, θ,
-    unambiguous) as `velplan.analysis.triad._correct` at one position. ``c``, ``u``: the leads'
+    unambiguous, cos θ + i·sin θ) as `velplan.analysis.triad._correct` at one position (the last
+    step's dθ is below `SETTLED` where unambiguous: the unit vector is the last step's turned by
+    it, e·(1 + i·dθ), to round-off, without a new sine). ``c``, ``u``: the leads'
     points and guide directions (relative to ``origin``, the first rod's outer joint); ``r``: the
     joints' offsets from J_r in the base link's frame."""
     y, th = xr - origin, thr
-    moved = np.nan
+    moved, dt, e = np.nan, 0.0, 1.0 + 0j
     for _ in range(NEWTON_STEPS):
         e = unit(th)
         f0, a0, b0, k0 = closure_row(rods[0], c0, u0, lengths[0], y, r0 * e)
@@ -94,7 +93,7 @@ def triad_newton(c0, c1, c2, u0, u1, u2, rods, lengths, r0, r1, r2, xr, thr, ori
     cond = condition3(a0, b0, k0, a1, b1, k1, a2, b2, k2, size)  # the last step's rows
     x = y + origin
     ok = moved <= SETTLED * size and distance(x, th, xr, thr, size) <= QUICK_MOVE and cond >= QUICK_CONDITION
-    return x, th, ok
+    return x, th, ok, e * (1.0 + 1j * dt)
 
 
 def lead_velocity_row(rod, j, x, qp, qv, qa, u, gw, ge):
@@ -147,12 +146,11 @@ def triad_at(rods, ref, Q, QV, QA, GW, GE, U, BASE, R, lengths, xr, thr, size, s
     origin = Q[ref]
     for i in range(3):
         C[i] = (Q[i] if rods[i] else BASE[i]) - origin
-    x, theta, ok = triad_newton(C[0], C[1], C[2], U[0], U[1], U[2], rods, lengths, R[0], R[1], R[2],
-                                xr, thr, origin, size)
+    x, theta, ok, e = triad_newton(C[0], C[1], C[2], U[0], U[1], U[2], rods, lengths, R[0], R[1], R[2],
+                                   xr, thr, origin, size)
     closed = ok and np.isfinite(thr)
     if not closed:
-        x, theta = complex(np.nan, np.nan), np.nan
-    e = unit(theta)
+        x, theta, e = complex(np.nan, np.nan), np.nan, complex(np.nan, np.nan)
     A3, B3, M3, H3 = work[0], work[1], work[2], work[3]
     for i in range(3):
         J[i] = x + R[i] * e
