@@ -1,9 +1,11 @@
-"""Figures of the note: the sheets' own views, drawn side by side and rasterised to PNG at print
-resolution through the sheets' PNG export (cairosvg, with the bundled font)."""
+"""Figures of the note: the sheets' own views, drawn side by side as one SVG for the page, and
+rasterised to PNG at print resolution through the sheets' PNG export (cairosvg, with the
+bundled font) only when a format asks for pixels."""
 
 from __future__ import annotations
 
-from dataclasses import replace
+import functools
+from dataclasses import dataclass, replace
 
 from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
@@ -21,20 +23,44 @@ LETTER_MM = 2.5
 enlarged back to this where the sheet's text would print smaller."""
 
 
-def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
-    """PNG of `views` (placed or bare `View` objects) side by side — or one above the other
-    where that shrinks them less —, and the width (mm) it takes on the page: its size on the
-    sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
+@dataclass(frozen=True)
+class Picture:
+    """A figure's drawing: its SVG document (sized in mm, at its size on the sheet) and the
+    resolution its PNG is made at (dots per inch of the SVG's millimetres)."""
+
+    svg: str
+    dpi: float
+
+    def png(self) -> bytes:
+        """The PNG (grey where the drawing has no colour), made once."""
+        return _png(self.svg, self.dpi)
+
+
+@functools.lru_cache(maxsize=64)
+def _png(svg: str, dpi: float) -> bytes:
     from velplan.render.export import svg_to_png
 
+    return svg_to_png(svg, dpi=dpi, grey=True)
+
+
+def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
+    """PNG of `views_figure` and the width (mm) it takes on the page."""
+    picture, width = views_figure(views, style, dpi=dpi)
+    return picture.png(), width
+
+
+def views_figure(views, style, *, dpi: float = DPI) -> tuple[Picture, float]:
+    """The `Picture` of `views` (placed or bare `View` objects) side by side — or one above
+    the other where that shrinks them less —, and the width (mm) it takes on the page: its
+    size on the sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`; its PNG prints
+    at ``dpi``."""
     views = [_view(v) for v in views]
     (width, height, places), shrink = max(((lay, _fit(views, lay)) for lay in _layouts(views)),
                                           key=lambda x: x[1])
     items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
              for view, (x, y) in zip(views, places) for p in view.primitives]
     svg = to_svg(Scene(tuple(items), width, height), style)
-    png = svg_to_png(svg, dpi=dpi * shrink, grey=True)
-    return png, width * shrink
+    return Picture(svg, dpi * shrink), width * shrink
 
 
 def _layouts(views):
