@@ -11,8 +11,10 @@ from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
 from velplan.views.base import ESKD_RATIOS, number, ratio_text, shift
 
-DPI = 200.0
-"""Resolution of the figures, dots per inch (print quality at their size on the page)."""
+DPI = 150.0
+"""Resolution of the figures' PNGs, dots per inch at their size on the page: a figure the text's
+width (170 mm) is 1000 pixels wide, print quality for grey line drawings (a .docx also
+carries the SVG, which Word draws instead)."""
 TEXT_WIDTH_MM = 170.0
 """Width of the text on an A4 page with the note's margins, mm."""
 FIGURE_HEIGHT_MM = 200.0
@@ -36,8 +38,16 @@ class Picture:
         return _png(self.svg, self.dpi)
 
 
+ASIDE = None
+"""The helper process that rasterises figures as they are drawn, while one is running
+(`velplan.note.raster.rasterise_aside`)."""
+
+
 @functools.lru_cache(maxsize=64)
 def _png(svg: str, dpi: float) -> bytes:
+    made = ASIDE.png(svg, dpi) if ASIDE is not None else None
+    if made is not None:
+        return made
     from velplan.render.export import svg_to_png
 
     return svg_to_png(svg, dpi=dpi, grey=True)
@@ -60,6 +70,8 @@ def views_figure(views, style, *, dpi: float = DPI) -> tuple[Picture, float]:
     items = [for_page(shift(p, x, y), getattr(view, "mu", None), shrink)
              for view, (x, y) in zip(views, places) for p in view.primitives]
     svg = to_svg(Scene(tuple(items), width, height), style)
+    if ASIDE is not None:
+        ASIDE.submit(svg, dpi * shrink)
     return Picture(svg, dpi * shrink), width * shrink
 
 
