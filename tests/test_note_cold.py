@@ -71,45 +71,52 @@ def test_docx_figures_are_svg_with_velplans_png_behind(note, tmp_path):
     assert sum(n.endswith(".svg") for n in names) == sum(n.endswith(".png") for n in names) == len(figs)
 
 
-def test_pngs_made_aside_are_the_same_bytes(monkeypatch):
+@pytest.mark.parametrize("fork", [True, False] if raster.FORK else [False])
+def test_pngs_made_aside_are_the_same_bytes(monkeypatch, fork):
+    monkeypatch.setattr(raster, "FORK", fork)
     monkeypatch.setattr(raster, "core_free", lambda: True)
+    monkeypatch.setattr(raster, "cores", lambda: 2)
     figures._png.cache_clear()
     with raster.rasterise_aside():
         aside = figures.ASIDE
-        assert aside is not None and aside.proc is not None
+        assert aside is not None and aside.helper is not None
         made = build_note("four-bar", n=4, parts=["kinematics"], lang="en", plans=[2])
         pngs = [f.png for f in _figures(made)]
         assert len(aside.numbers) == len(pngs) and all(aside.answers.values())
         folder = aside.folder
-    assert figures.ASIDE is None and not folder.exists() and aside.proc is None
+    assert figures.ASIDE is None and not folder.exists() and aside.helper is None
     figures._png.cache_clear()
     assert pngs == [svg_to_png(f.svg, dpi=f.picture.dpi, grey=True) for f in _figures(made)]
 
 
 def test_a_helper_gone_leaves_the_figures_to_this_process(monkeypatch):
     monkeypatch.setattr(raster, "core_free", lambda: True)
+    monkeypatch.setattr(raster, "cores", lambda: 2)
     figures._png.cache_clear()
     with raster.rasterise_aside():
         aside = figures.ASIDE
         made = build_note("four-bar", n=4, parts=["kinematics"], lang="en", plans=[2])
-        aside.proc.kill()
-        aside.proc.wait()
+        aside.helper._stop()  # the process ends; its pipes stay open here
         pngs = [f.png for f in _figures(made)]
-        assert aside.proc is None  # noticed at the first figure asked for, and closed
+        assert aside.helper is None  # noticed at the first figure asked for, and closed
     figures._png.cache_clear()
     assert pngs == [svg_to_png(f.svg, dpi=f.picture.dpi, grey=True) for f in _figures(made)]
 
 
-def test_no_helper_on_a_busy_or_single_core_machine(monkeypatch):
+def test_no_helper_where_it_would_not_help(monkeypatch):
     monkeypatch.setattr(raster, "cores", lambda: 1)
     assert not raster.core_free()
+    with raster.rasterise_aside():
+        assert figures.ASIDE is None  # one core
     monkeypatch.setattr(raster, "cores", lambda: 2)
     monkeypatch.setattr(raster.os, "getloadavg", lambda: (3.0, 3.0, 3.0))
     assert not raster.core_free()
     with raster.rasterise_aside():
-        assert figures.ASIDE is None
+        assert figures.ASIDE is None  # a busy machine
     monkeypatch.setattr(raster.os, "getloadavg", lambda: (1.2, 3.0, 3.0))
     assert raster.core_free()
+    with raster.rasterise_aside(enabled=False):
+        assert figures.ASIDE is None
 
 
 def test_the_helper_answers_each_drawing(tmp_path):
