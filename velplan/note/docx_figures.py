@@ -25,15 +25,20 @@ def svg_blips(doc):
     return out
 
 
-def add_png_fallbacks(doc, pngs: dict[bytes, bytes]) -> int:
-    """Give every SVG picture of ``doc`` its PNG: ``pngs`` maps an SVG's bytes (as pandoc
-    embedded them) to the PNG. Returns the pictures given one; a KeyError names an SVG with
-    no PNG."""
+def add_png_fallbacks(doc, figures: list[tuple[bytes, bytes]]) -> int:
+    """Give every SVG picture of ``doc`` its PNG: ``figures`` are the note's (SVG bytes, PNG) in
+    order; a picture finds its own by the SVG pandoc embedded, else (a pandoc that rewrote the
+    SVG) by its place in the document. Returns the pictures given one."""
     part = doc.part
+    by_svg = dict(figures)
+    blips = svg_blips(doc)
     done = 0
-    for blip, svg in svg_blips(doc):
+    for k, (blip, svg) in enumerate(blips):
+        png = by_svg.get(svg) or (figures[k][1] if len(blips) == len(figures) else None)
+        if png is None:
+            continue  # not a figure of the note's: left as pandoc wrote it
         old = blip.get(qn("r:embed"))
-        rid, _ = part.get_or_add_image(io.BytesIO(pngs[svg]))
+        rid, _ = part.get_or_add_image(io.BytesIO(png))
         blip.set(qn("r:embed"), rid)
         if old and old != rid:
             part.drop_rel(old)  # pandoc's own fallback, now referred to by nothing

@@ -108,7 +108,7 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
         (tmp / images[fig.name]).write_bytes(svgs[fig.name])
     run = Pandoc(to_markdown(note, "docx", images), "docx", tmp, ["--number-sections"])
     try:
-        pngs = {svgs[fig.name]: fig.png for fig in _figures(note)}
+        pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
         docx = _module("docx")
         raw = run.result()
     finally:
@@ -160,8 +160,13 @@ def _update_fields_on_open(docx, settings) -> None:
 
 
 def _pdf(note, tmp: Path, path: Path) -> bytes:
-    images = _png_files(note, tmp)
-    body = _pandoc(to_markdown(note, "typst", images), "typst", tmp).decode("utf-8")
+    images = {fig.name: f"{fig.name}.png" for fig in _figures(note)}
+    run = Pandoc(to_markdown(note, "typst", images), "typst", tmp)  # it names the figures' files only
+    try:
+        _png_files(note, tmp)
+        body = run.result().decode("utf-8")
+    finally:
+        run.cancel()
     from velplan.note.markdown import typ_text
 
     source = TYPST_PREAMBLE.format(title=typ_text(note.title), lang=note.lang) + body
