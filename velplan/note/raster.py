@@ -5,8 +5,9 @@ Linux the helper is a fork of this process, so it has velplan and numpy already 
 only cairo, which this process then never imports; elsewhere it is a fresh interpreter.
 Only where a core is free for it (`core_free`): on a busy machine the helper's overhead (a
 fork's copied pages, ≈ 5 % more CPU; a fresh interpreter's imports, as much again as the
-rasterising) made the note slower, measured. The PNGs are the same bytes either way. Where the helper cannot start, dies or fails on a
-figure, that figure is rasterised in this process as without it, errors included."""
+rasterising) made the note slower, measured. The PNGs are the same bytes either way. Where
+the helper cannot start, dies or fails on a figure, that figure is rasterised in this process
+as without it, errors included."""
 
 from __future__ import annotations
 
