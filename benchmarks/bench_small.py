@@ -23,6 +23,7 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
     python benchmarks/bench_small.py --triad-before /tmp/old --pairs 5   # the triad, old tree against this one
     git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
     python benchmarks/bench_small.py --cold-only --pairs 5   # the cold table alone, printed
+    python benchmarks/bench_small.py --cold-only --cold-match note   # only the rows naming "note"
 
 Writes ``benchmarks/results/small.md``.
 """
@@ -338,11 +339,14 @@ def _cold(args, cwd: str) -> float:
     return time.perf_counter() - t0
 
 
-def cold_table(pairs: int) -> str:
+def cold_table(pairs: int, match: str = "") -> str:
+    """The cold commands whose label contains ``match`` (all by default) against the floor."""
     floor = ("-c", "import numpy, shapely")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for label, args in COLD.items():
+            if match not in label:
+                continue
             cmd = ("-m", "velplan", *args)
             _cold(floor, tmp), _cold(cmd, tmp)  # untimed: bytecode and OS caches
             f, c = [], []
@@ -378,6 +382,8 @@ def main() -> None:
     ap.add_argument("--print", action="store_true", help="with --triad-only: print the table, write nothing")
     ap.add_argument("--triad-before", metavar="TREE",
                     help="the triad and the four-bar at 12 and 10⁵ positions, an older tree against this one (printed)")
+    ap.add_argument("--cold-match", metavar="TEXT", default="",
+                    help="with --cold-only: only the commands whose label contains TEXT")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
@@ -385,7 +391,7 @@ def main() -> None:
     _clock, _clock_name = CLOCK[a.clock], a.clock
     if a.cold_only:
         start = load_average()
-        cold = cold_table(a.pairs)
+        cold = cold_table(a.pairs, a.cold_match)
         print(f"load {start} at the start, {load_average()} at the end\n\n{cold}")
         return
     count = 5 if a.quick else a.rounds

@@ -55,12 +55,24 @@ class Table:
 
 @dataclass(frozen=True)
 class Figure:
-    """A numbered figure: a PNG of the sheets' drawings and its size on the page."""
+    """A numbered figure: the sheets' drawings (a `velplan.note.figures.Picture`: SVG, and
+    its PNG when a format needs pixels) and its size on the page."""
 
     caption: str
-    png: bytes = field(repr=False)
+    picture: object = field(repr=False)
     width_mm: float
     name: str
+    """The file's stem (``figure-3``): the writers add ``.png`` or ``.svg``."""
+
+    @property
+    def png(self) -> bytes:
+        """The figure's PNG (made on first use)."""
+        return self.picture.png()
+
+    @property
+    def svg(self) -> str:
+        """The figure's SVG document, sized in mm."""
+        return self.picture.svg
 
 
 @dataclass(frozen=True)

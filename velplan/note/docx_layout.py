@@ -8,6 +8,7 @@ Everything here edits the WordprocessingML tree of a python-docx ``Document``.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 from docx.oxml import OxmlElement
@@ -186,13 +187,16 @@ def math_size(doc, lang: str) -> None:
     look = LOOKS.get(lang, LOOKS["en"])
     m_r = "{http://schemas.openxmlformats.org/officeDocument/2006/math}r"
     m_rpr = "{http://schemas.openxmlformats.org/officeDocument/2006/math}rPr"
+    sized = OxmlElement("w:rPr")  # a bare run's properties: made once, copied to each
+    _size(sized, look.body)
+    w_rpr = qn("w:rPr")
     for run in doc.element.body.iter(m_r):
-        rpr = run.find(qn("w:rPr"))
+        rpr = run.find(w_rpr)
         if rpr is None:
-            rpr = OxmlElement("w:rPr")
             mr = run.find(m_rpr)
-            run.insert(1 if mr is not None else 0, rpr)
-        _size(rpr, look.body)
+            run.insert(1 if mr is not None else 0, copy.deepcopy(sized))
+        else:
+            _size(rpr, look.body)
     for para in doc.element.body.iter(qn("w:p")):  # LibreOffice sizes a formula by its paragraph
         if para.find("{http://schemas.openxmlformats.org/officeDocument/2006/math}oMathPara") is not None:
             ppr = para.find(qn("w:pPr"))

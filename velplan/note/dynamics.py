@@ -3,7 +3,7 @@ numbers, the sheet's table of results and its diagrams."""
 
 from __future__ import annotations
 
-from velplan.note.figures import views_png
+from velplan.note.figures import views_figure
 from velplan.note.formulas import txt
 from velplan.note.numbers import tidy
 from velplan.note.model import Equation, Heading, Para
@@ -42,5 +42,5 @@ def dynamics_section(note, sheet) -> None:
                key="dynamics")
     for view, key in PANELS:
         if view in sheet.views:
-            png, width = views_png([sheet.views[view]], sheet.style)
-            note.figure(label(key, lang), png, width)
+            picture, width = views_figure([sheet.views[view]], sheet.style)
+            note.figure(label(key, lang), picture, width)

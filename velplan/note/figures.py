@@ -1,17 +1,21 @@
-"""Figures of the note: the sheets' own views, drawn side by side and rasterised to PNG at print
-resolution through the sheets' PNG export (cairosvg, with the bundled font)."""
+"""Figures of the note: the sheets' own views, drawn side by side as one SVG for the page, and
+rasterised to PNG at print resolution through the sheets' PNG export (cairosvg, with the
+bundled font) only when a format asks for pixels."""
 
 from __future__ import annotations
 
-from dataclasses import replace
+import functools
+from dataclasses import dataclass, replace
 
 from velplan.note.page_text import boxed, settle
 from velplan.render.scene import Scene, Text
 from velplan.render.svg import to_svg
 from velplan.views.base import ESKD_RATIOS, number, ratio_text, shift
 
-DPI = 200.0
-"""Resolution of the figures, dots per inch (print quality at their size on the page)."""
+DPI = 150.0
+"""Resolution of the figures' PNGs, dots per inch at their size on the page: a figure the text's
+width (170 mm) is 1000 pixels wide, print quality for grey line drawings (a .docx also
+carries the SVG, which Word draws instead)."""
 TEXT_WIDTH_MM = 170.0
 """Width of the text on an A4 page with the note's margins, mm."""
 FIGURE_HEIGHT_MM = 200.0
@@ -25,16 +29,49 @@ LETTER_MM = 2.5
 enlarged back to this where the sheet's text would print smaller."""
 
 
-def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
-    """PNG of `views` (placed or bare `View` objects) side by side — or one above the other
-    where that shrinks them less —, and the width (mm) it takes on the page: its size on the
-    sheet, or less to fit the text width and `FIGURE_HEIGHT_MM`."""
+@dataclass(frozen=True)
+class Picture:
+    """A figure's drawing: its SVG document (sized in mm, at its size on the sheet) and the
+    resolution its PNG is made at (dots per inch of the SVG's millimetres)."""
+
+    svg: str
+    dpi: float
+
+    def png(self) -> bytes:
+        """The PNG (grey where the drawing has no colour), made once."""
+        return _png(self.svg, self.dpi)
+
+
+ASIDE = None
+"""The helper process that rasterises figures as they are drawn, while one is running
+(`velplan.note.raster.rasterise_aside`)."""
+
+
+@functools.lru_cache(maxsize=64)
+def _png(svg: str, dpi: float) -> bytes:
+    made = ASIDE.png(svg, dpi) if ASIDE is not None else None
+    if made is not None:
+        return made
     from velplan.render.export import svg_to_png
 
+    return svg_to_png(svg, dpi=dpi, grey=True)
+
+
+def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
+    """PNG of `views_figure` and the width (mm) it takes on the page."""
+    picture, width = views_figure(views, style, dpi=dpi)
+    return picture.png(), width
+
+
+def views_figure(views, style, *, dpi: float = DPI) -> tuple[Picture, float]:
+    """The `Picture` of `views` (placed or bare `View` objects) as laid out for the page
+    (`page_scene`), and the width (mm) it takes on the page: its size on the sheet, or less
+    to fit the text width and `FIGURE_HEIGHT_MM`; its PNG prints at ``dpi``."""
     scene, shrink = page_scene(views)
     svg = to_svg(scene, style)
-    png = svg_to_png(svg, dpi=dpi * shrink, grey=True)
-    return png, scene.width_mm * shrink
+    if ASIDE is not None:
+        ASIDE.submit(svg, dpi * shrink)
+    return Picture(svg, dpi * shrink), scene.width_mm * shrink
 
 
 def page_scene(views) -> tuple[Scene, float]:

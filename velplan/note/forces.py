@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from velplan.analysis.numbering import position_index, position_number
-from velplan.note.figures import views_png
+from velplan.note.figures import views_figure
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import balancing, group_kind, p
@@ -64,9 +64,9 @@ def _group(note, sheet, k: int, group: str) -> None:
     views = [sheet.views[v] for v in (f"group-{k}-{slug(group)}", f"polygon-{k}-{slug(group)}")
              if v in sheet.views]
     if views:
-        png, width = views_png(views, sheet.style)
+        picture, width = views_figure(views, sheet.style)
         caption = p("crank_fig", lang) if group == "crank" else p("group_fig", lang, group)
-        note.figure(f"{caption} ({label('position', lang).lower()} {k})", png, width)
+        note.figure(f"{caption} ({label('position', lang).lower()} {k})", picture, width)
 
 
 def _lever(note, sheet, k: int) -> None:
@@ -90,8 +90,8 @@ def _lever(note, sheet, k: int) -> None:
         rf"{balancing('M', lang)} = {txt(_num(meta['mb_lever'], lang))}\ {nm}\ \text{{({label('method_lever', lang)})}},\quad "
         rf"{balancing('M', lang)} = {txt(_num(mb_kin, lang))}\ {nm}\ \text{{({label('method_kinetostatics', lang)})}},\quad "
         rf"\Delta = {txt(fixed(meta['percent'], lang, 2))}\,\%"))
-    png, width = views_png([sheet.views[name]], sheet.style)
-    note.figure(p("lever_fig", lang, k), png, width)
+    picture, width = views_figure([sheet.views[name]], sheet.style)
+    note.figure(p("lever_fig", lang, k), picture, width)
 
 
 def _crank_length(sheet, i: int) -> float:
@@ -118,8 +118,8 @@ def _moments(note, sheet) -> None:
             for j, phi in enumerate(fa.kinematics.phi)]
     note.table(f"{label('balancing_moment', lang)} {mb}, {newton_metre(lang)}", head, rows, key="moments")
     if "mb-diagram" in sheet.views:
-        png, width = views_png([sheet.views["mb-diagram"]], sheet.style)
-        note.figure(p("mb_fig", lang), png, width)
+        picture, width = views_figure([sheet.views["mb-diagram"]], sheet.style)
+        note.figure(p("mb_fig", lang), picture, width)
 
 
 __all__ = ["forces_section"]

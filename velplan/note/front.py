@@ -63,14 +63,14 @@ def _structure_figure(note, mech) -> None:
     """The initial mechanism and each group drawn apart, their outer pairs ringed."""
     from velplan.analysis.pose import pose
     from velplan.mechanism.drawn_write import drawn_tables
-    from velplan.note.figures import views_png
+    from velplan.note.figures import views_figure
     from velplan.render.i18n import label
     from velplan.render.style import SheetStyle
     from velplan.views.structure import structure_view
 
     scene = structure_view(mech, drawn_tables(mech, *pose(mech))["joint"], lang=note.lang, title=False)
-    png, width = views_png([scene], SheetStyle(language=note.lang))
-    note.figure(label("structural_analysis", note.lang), png, width)
+    picture, width = views_figure([scene], SheetStyle(language=note.lang))
+    note.figure(label("structural_analysis", note.lang), picture, width)
 
 
 def _structure_tex(st, crank: str) -> str:

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from velplan.analysis.numbering import position_number
-from velplan.note.figures import lettered_for_page, views_png
+from velplan.note.figures import lettered_for_page, views_figure
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Heading, Para
 from velplan.note.steps import rate_equation, step_equations
@@ -26,8 +26,8 @@ def positions_section(note, study, sheet) -> None:
     mu_l = sheet.scales["mu_l"]
     note.add(Para.of(p("scale_l" if _starts_at_extreme(study) else "scale_l_zero", lang, number(mu_l, lang), ratio_text(mu_l, lang), study.n,
                        study.mechanism.crank.link)))
-    png, width = views_png([sheet.views["mechanism"]], sheet.style)
-    k = note.figure(p("scheme_fig", lang), png, width)
+    picture, width = views_figure([sheet.views["mechanism"]], sheet.style)
+    k = note.figure(p("scheme_fig", lang), picture, width)
     head = [label("position", lang)] + [str(position_number(j)) for j in range(study.n)]
     angles = [fixed(math.degrees(a) % 360.0, lang, 1) for a in study.phi]
     if study.n > 12:
@@ -95,9 +95,9 @@ def plan_section(note, sheet, number_k: int, kind: str) -> None:
         tex = rate_equation(res, link, i, lang)
         if tex is not None:
             note.add(Equation(tex + (rf"\quad \text{{({direction(value, lang)})}}" if value != 0 else "")))
-    png, width = views_png([sheet.views[view]], sheet.style)
+    picture, width = views_figure([sheet.views[view]], sheet.style)
     fig = note.figure(p("plan_fig", lang, label("velocity_plan" if kind == "v" else "acceleration_plan", lang),
-                        number_k), png, width)
+                        number_k), picture, width)
     _results_table(note, res, i, kind, number_k, fig)
 
 
@@ -152,8 +152,8 @@ def diagrams_section(note, sheet, study=None) -> None:
         return
     note.add(Heading(p("sec_diagrams", lang), 2), Para.of(p("diagrams_text", lang)))
     view = _diagrams_for_page(sheet, study) if study is not None else sheet.views["diagrams"]
-    png, width = views_png([view], sheet.style)
-    note.figure(p("diagrams_fig", lang), png, width)
+    picture, width = views_figure([view], sheet.style)
+    note.figure(p("diagrams_fig", lang), picture, width)
 
 
 def _diagrams_for_page(sheet, study):

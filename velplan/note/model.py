@@ -39,13 +39,14 @@ class Note:
 
         return write_note(self, path)
 
-    def figure(self, caption: str, png: bytes, width_mm: float) -> int:
-        """Add a figure with the next number; returns the number."""
+    def figure(self, caption: str, picture, width_mm: float) -> int:
+        """Add a figure (a `velplan.note.figures.Picture`) with the next number; returns the
+        number."""
         from velplan.note.text import p
 
         self.figures += 1
-        self.add(Figure(f"{p('figure', self.lang)} {self.figures} — {caption}", png, width_mm,
-                        f"figure-{self.figures}.png"))
+        self.add(Figure(f"{p('figure', self.lang)} {self.figures} — {caption}", picture, width_mm,
+                        f"figure-{self.figures}"))
         return self.figures
 
     def table(self, caption: str, header, rows, key: str = "") -> int:

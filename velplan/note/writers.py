@@ -1,10 +1,13 @@
-"""Writing the note: .docx (pandoc, formulas as Word equations), .pdf (pandoc → Typst, typeset
-by the Typst compiler with the bundled font), .html (pandoc, MathML, one self-contained file)
-and .md (figures in a folder beside it). Every file is written whole or not at all."""
+"""Writing the note: .docx (pandoc, formulas as Word equations, figures as SVG with a PNG
+fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font), .html
+(pandoc, MathML, one self-contained file) and .md (figures in a folder beside it). Every file
+is written whole or not at all. Pandoc runs in the background while the figures are
+rasterised."""
 
 from __future__ import annotations
 
 import importlib
+import io
 import os
 import shutil
 import tempfile
@@ -12,9 +15,9 @@ from pathlib import Path
 
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
+from velplan.note.blocks import Figure
 from velplan.note.markdown import to_markdown
-
-INSTALL = "pip install 'velplan[note]' (in a checkout: pip install '.[note]')"
+from velplan.note.pandoc import INSTALL, Pandoc, installed
 FORMATS = {".docx": "docx", ".pdf": "pdf", ".html": "html", ".htm": "html", ".md": "md"}
 FONT_DIR = Path(__file__).resolve().parent.parent / "fonts"
 
@@ -44,16 +47,19 @@ def _module(name: str):
         raise VelplanError(f"the note needs {name.split('.')[0]} ({exc}); install it with `{INSTALL}`") from None
 
 
-NEEDS = {"docx": ("cairosvg", "pypandoc", "docx"), "pdf": ("cairosvg", "typst"),
+NEEDS = {"docx": ("cairosvg", "pypandoc", "docx"), "pdf": ("cairosvg", "pypandoc", "typst"),
          "html": ("cairosvg", "pypandoc"), "md": ("cairosvg",)}
-"""The modules each format needs (cairosvg draws the figures), checked before a note is built."""
+"""The modules each format needs (cairosvg draws the figures, pypandoc brings pandoc), checked
+before a note is built."""
 
 
 def require(kind: str) -> None:
     """A one-line error naming the note's extra when a module the format ``kind`` needs is
-    missing (checked before minutes of building, not after)."""
+    missing (checked before minutes of building, not after; found, not imported: each is
+    imported where it is used)."""
     for name in NEEDS.get(kind, ()):
-        _module(name)
+        if not installed(name):
+            raise VelplanError(f"the note needs {name} (no module named {name!r}); install it with `{INSTALL}`")
 
 
 def note_format(path: str | os.PathLike) -> str:
@@ -69,32 +75,45 @@ def write_note(note, path: str | os.PathLike) -> Path:
     kind = note_format(path)
     with tempfile.TemporaryDirectory(prefix="velplan-note-") as tmp:
         tmp = Path(tmp)
-        images = {}
-        for block in note.blocks:
-            if hasattr(block, "png"):
-                (tmp / block.name).write_bytes(block.png)
-                images[block.name] = block.name
-        data = {"docx": _docx, "pdf": _pdf, "html": _html, "md": _md}[kind](note, tmp, images, Path(path))
+        data = {"docx": _docx, "pdf": _pdf, "html": _html, "md": _md}[kind](note, tmp, Path(path))
         return write_atomic(path, data)
 
 
+def _figures(note) -> list:
+    return [b for b in note.blocks if isinstance(b, Figure)]
+
+
+def _png_files(note, tmp: Path) -> dict[str, str]:
+    """Each figure's PNG written into ``tmp``: figure name → file name."""
+    images = {}
+    for fig in _figures(note):
+        images[fig.name] = f"{fig.name}.png"
+        (tmp / images[fig.name]).write_bytes(fig.png)
+    return images
+
+
 def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
-    pypandoc = _module("pypandoc")
-    out = tmp / f"out.{to}"
+    return Pandoc(source, to, tmp, extra).result()
+
+
+def _docx(note, tmp: Path, path: Path) -> bytes:
+    """pandoc's .docx of the note (its figures SVG files, rasterised meanwhile for their PNG
+    fallbacks), laid out as a course note."""
+    from velplan.note.docx_figures import add_png_fallbacks
+
+    images, svgs = {}, {}
+    for fig in _figures(note):
+        images[fig.name] = f"{fig.name}.svg"
+        svgs[fig.name] = fig.svg.encode("utf-8")
+        (tmp / images[fig.name]).write_bytes(svgs[fig.name])
+    run = Pandoc(to_markdown(note, "docx", images), "docx", tmp, ["--number-sections"])
     try:
-        # markdown in, docx or html out, both pandoc's own: no listing of its formats to check them
-        pypandoc.convert_text(source, to, format="markdown", outputfile=str(out), verify_format=False,
-                              extra_args=["--resource-path", str(tmp), *extra], cworkdir=str(tmp))
-    except (RuntimeError, OSError) as exc:
-        raise VelplanError(f"pandoc could not write the note ({to}): {str(exc).splitlines()[0]}") from None
-    return out.read_bytes()
-
-
-def _docx(note, tmp: Path, images, path: Path) -> bytes:
-    docx = _module("docx")
-    raw = _pandoc(to_markdown(note, "docx", images), "docx", tmp, ["--number-sections"])
-    (tmp / "raw.docx").write_bytes(raw)
-    doc = docx.Document(str(tmp / "raw.docx"))
+        pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
+        docx = _module("docx")
+        raw = run.result()
+    finally:
+        run.cancel()
+    doc = docx.Document(io.BytesIO(raw))
     mm = docx.shared.Mm
     for section in doc.sections:  # A4 with the margins of a course note (GOST 2.105)
         section.page_width, section.page_height = mm(210), mm(297)
@@ -103,8 +122,10 @@ def _docx(note, tmp: Path, images, path: Path) -> bytes:
     doc.core_properties.title = note.title
     _layout(doc, note.lang)
     _update_fields_on_open(docx, doc.settings.element)
-    doc.save(str(tmp / "note.docx"))
-    return (tmp / "note.docx").read_bytes()
+    add_png_fallbacks(doc, pngs)
+    out = io.BytesIO()
+    doc.save(out)
+    return out.getvalue()
 
 
 def _layout(doc, lang: str) -> None:
@@ -138,8 +159,14 @@ def _update_fields_on_open(docx, settings) -> None:
     settings.append(update)
 
 
-def _pdf(note, tmp: Path, images, path: Path) -> bytes:
-    body = _pandoc(to_markdown(note, "typst", images), "typst", tmp).decode("utf-8")
+def _pdf(note, tmp: Path, path: Path) -> bytes:
+    images = {fig.name: f"{fig.name}.png" for fig in _figures(note)}
+    run = Pandoc(to_markdown(note, "typst", images), "typst", tmp)  # it names the figures' files only
+    try:
+        _png_files(note, tmp)
+        body = run.result().decode("utf-8")
+    finally:
+        run.cancel()
     from velplan.note.markdown import typ_text
 
     source = TYPST_PREAMBLE.format(title=typ_text(note.title), lang=note.lang) + body
@@ -153,14 +180,16 @@ def _pdf(note, tmp: Path, images, path: Path) -> bytes:
         raise VelplanError(f"typst could not typeset the note: {first}") from None
 
 
-def _html(note, tmp: Path, images, path: Path) -> bytes:
+def _html(note, tmp: Path, path: Path) -> bytes:
+    images = _png_files(note, tmp)
     return _pandoc(to_markdown(note, "html", images), "html5", tmp,
                    ["--standalone", "--embed-resources", "--mathml", "--number-sections",
                     "--metadata", f"title={note.title}", "--metadata", f"lang={note.lang}"])
 
 
-def _md(note, tmp: Path, images, path: Path) -> bytes:
+def _md(note, tmp: Path, path: Path) -> bytes:
     """The Markdown, its figures in ``NAME-figures/`` beside it (written first, then moved in)."""
+    images = _png_files(note, tmp)
     folder = path.with_name(path.stem + "-figures")
     rel = {k: f"{folder.name}/{v}" for k, v in images.items()}
     text = to_markdown(note, "md", rel)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import importlib
 import os
 import re
+import sys
 from pathlib import Path
 
 from velplan.errors import VelplanError
@@ -178,11 +179,30 @@ def save_drawing(svg_text: str, path: str | os.PathLike, *, scene=None, style=No
 
 def _cairosvg():
     try:
+        if "cairocffi" not in sys.modules and sys.platform.startswith("linux"):
+            _import_cairocffi_by_soname()
         return importlib.import_module("cairosvg")
     except (ImportError, OSError) as exc:  # OSError: cairosvg present, libcairo missing
         raise VelplanError(f"PNG/PDF export needs cairosvg and the cairo library "
                            f"({type(exc).__name__}: {exc}); install it with "
                            f"`{_INSTALL_HINT}`") from exc
+
+
+def _import_cairocffi_by_soname() -> None:
+    """Import cairocffi letting the dynamic loader find ``libcairo.so.2`` itself: cairocffi first
+    asks `ctypes.util.find_library` for three names, which on Linux runs ``ldconfig -p`` for
+    each and then gcc and ld for the two it does not find (about 0.1 s of seven processes);
+    the loader's answer is the one find_library would give. (Linux only: elsewhere
+    find_library also searches folders the loader does not.)"""
+    import ctypes.util
+
+    found = ctypes.util.find_library
+    ctypes.util.find_library = lambda name: None  # cairocffi then opens its file names
+    try:
+        module = importlib.import_module("cairocffi")
+    finally:
+        ctypes.util.find_library = found
+    module.find_library = found  # for its later look-ups (gdk-pixbuf)
 
 
 def _convert(function: str, svg_text: str, *, grey: bool = False, **options) -> bytes:
