@@ -48,13 +48,14 @@ def place_arrows(entries, length: float, obstacles=(), points=(), texts=(), *,
     """
     fixed_parts = [o for o in obstacles if o is not None]
     marks = [np.asarray(q, float) for q in points]
+    rings = [shapely.Point(q).buffer(2.5) for q in marks]  # each mark's keep-off ring, made once
     drawn: list[tuple] = []  # (point, direction, orientation, span, geometry)
     boxes = [label_box(t).buffer(0.5) for t in texts]
     out: dict[int, tuple] = {}
     for idx in _stacking_order(entries):
         p, u, text = entries[idx]
         p, u = np.asarray(p, float), np.asarray(u, float)
-        near = [shapely.Point(q).buffer(2.5) for q in marks if np.hypot(*(q - p)) > 1.0]
+        near = [ring for q, ring in zip(marks, rings) if np.hypot(*(q - p)) > 1.0]
         # a force with an opposite one at its point leaves the side it points away from to it
         facing = any(np.hypot(*(np.asarray(q, float) - p)) < 0.5
                      and float(np.asarray(w, float) @ u) < -0.995 for q, w, _ in entries)
