@@ -65,3 +65,39 @@ def test_clearance_near_the_gap_asks_the_buffer():
     assert not box.intersects(shapely.Point(0, 0).buffer(gap))  # the drawn buffer's chord misses it
     assert not c.meets(box)
     assert not _Clearance([], gap).meets(box)
+
+
+FORCE_MECHS = ("shaper", "slider-press", "press", "whitworth", "jaw-crusher")
+
+
+@pytest.mark.parametrize("name", FORCE_MECHS)
+def test_force_views_are_never_smaller_than_their_bodies(name):
+    from velplan.sheets.forces import FORCE_SIZES, solving_order
+    from velplan.views.forces import group_view, lever_view
+    from velplan.views.forces.group import group_body_size
+    from velplan.views.forces.lever import lever_body_size
+
+    fa = Study(name, n=12).forces()
+    order = solving_order(fa.kinetostatics.mechanism)
+    for fmt, sizes in FORCE_SIZES.items():
+        for k in (2, 7):
+            for mu in (0.002, 0.005):
+                for grp in order:
+                    view = group_view(fa, grp, k, mu_l=mu, lang="en", sizes=sizes)
+                    w, h = group_body_size(fa, grp, k, mu_l=mu, sizes=sizes)
+                    assert 0.0 < w <= view.width_mm + 1e-9 and 0.0 < h <= view.height_mm + 1e-9
+            for mu_v in (0.01, 0.03):
+                view = lever_view(fa, k, mu_v=mu_v, lang="ru", sizes=sizes)
+                w, h = lever_body_size(fa, k, mu_v=mu_v, lang="ru", sizes=sizes)
+                assert 0.0 < w <= view.width_mm + 1e-9 and 0.0 < h <= view.height_mm + 1e-9
+
+
+@pytest.mark.parametrize("name,fmt", [("shaper", "A1"), ("slider-press", "A3"), ("whitworth", "A2")])
+def test_force_sheet_is_the_same_without_the_bounds(name, fmt, monkeypatch):
+    """The rows shrink the same way whether a drawing's least height is known or not."""
+    from velplan.sheets import forces
+
+    study = Study(name, n=12)
+    with_bounds = forces.build_force_sheet(study, fmt=fmt, lang="en").svg()
+    monkeypatch.setattr(forces._Rows, "least_height", lambda self, ref: 0.0)
+    assert forces.build_force_sheet(Study(name, n=12), fmt=fmt, lang="en").svg() == with_bounds
