@@ -204,11 +204,14 @@ def hatch_segments(outline, spacing: float, angle_deg: float = 45.0) -> np.ndarr
     offsets = corners @ normal
     reach = float(np.max(np.abs(corners @ along))) + 1.0
     first, last = math.ceil(offsets.min() / spacing), math.floor(offsets.max() / spacing)
-    segments = []
+    ends = []
     for k in range(first, last + 1):
         centre = normal * k * spacing
-        line = shapely.LineString([centre - along * reach, centre + along * reach])
-        segments.extend(_line_parts(area.intersection(line)))
+        ends.append([centre - along * reach, centre + along * reach])
+    segments = []
+    if ends:  # every line clipped in one call (the same intersections, line by line)
+        for part in shapely.intersection(area, shapely.linestrings(np.array(ends))):
+            segments.extend(_line_parts(part))
     return np.array(segments).reshape(-1, 2, 2)
 
 
