@@ -33,10 +33,12 @@ def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
     step = 0.5 * text.size_mm
     out = [(x, y)]
     for r in range(1, rings + 1):
-        for k in range(12):
-            a = math.radians(30.0 * k)
-            out.append((x + r * step * math.cos(a), y + r * step * math.sin(a)))
+        out += [(x + r * step * c, y + r * step * s) for c, s in _TWELVE]
     return out
+
+
+#: The cosine and sine of the twelve directions 30° apart, computed once.
+_TWELVE = tuple((math.cos(math.radians(30.0 * k)), math.sin(math.radians(30.0 * k))) for k in range(12))
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
