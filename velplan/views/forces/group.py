@@ -173,8 +173,8 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
 def group_body_size(fa: ForceAnalysis, group: str, position: int, *, mu_l: float,
                     sizes: ForceSizes = ForceSizes()) -> tuple[float, float]:
     """Width and height (mm, the view's margins included) of the group's links as `group_view`
-    draws them at μl = ``mu_l`` (m/mm), under its two title lines: a lower bound of the
-    view's size, found without its forces and labels."""
+    draws them at position number ``position`` (1…n) and μl = ``mu_l`` (m/mm), under its two
+    title lines: a lower bound of the view's size, found without its forces and labels."""
     i = position_index(position, len(fa.kinematics))
     sk = Sketch()
     _draw_links(sk, fa, group_links(fa.kinetostatics.mechanism, group), i,

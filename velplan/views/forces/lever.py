@@ -98,7 +98,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
 def lever_body_size(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language = "ru",
                     sizes: ForceSizes = ForceSizes()) -> tuple[float, float]:
     """Width and height (mm, the view's margins included) of the lever's bars and pole as
-    `lever_view` draws them at μv = ``mu_v``, under its three title lines and over its two
+    `lever_view` draws them at position number ``position`` (1…n) and μv = ``mu_v``, under
+    its three title lines and over its two
     lines of notes at least: a lower bound of the view's size, found without its forces and
     letters."""
     number = position
