@@ -42,3 +42,10 @@ def test_free_spot_is_the_nearest_free_grid_corner(taken, wi, hi, gap, near, sna
         assert all(math.hypot(max(bx0 - (x + w), x - bx1, 0.0), max(by0 - (y + h), y - by1, 0.0)) > gap
                    for bx0, by0, bx1, by1 in taken)
         assert math.hypot(got[0] - near[0], got[1] + h - near[1]) == math.hypot(want[0] - near[0], want[1] + h - near[1])
+
+
+def test_a_box_of_no_known_place_leaves_no_spot():
+    # its distance is NaN at every corner, so no corner is farther than the gap from it
+    assert free_spot(50.0, 40.0, [(float("nan"), 10.0, 100.0, 100.0)], (0.0, 0.0, 400.0, 300.0), 5.0, (0.0, 300.0)) is None
+    assert free_spot(50.0, 40.0, [(-math.inf, 10.0, 100.0, math.inf)], (0.0, 0.0, 400.0, 300.0), 5.0,
+                     (0.0, 300.0)) == (110.0, 260.0)

@@ -3,6 +3,8 @@ files a sheet writes, and the check that views stay inside the frame without ove
 
 from __future__ import annotations
 
+import math
+
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -134,8 +136,11 @@ def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[floa
     for bx0, by0, bx1, by1 in taken:  # free: farther than `gap` from the box
         # only corners within `gap` of the box along both axes can be too near: that block
         # of the grid is examined (a cell more each way), the rest is free of this box
-        i0, i1 = _grid_span(gx, bx0 - w - gap, bx1 + gap)
-        j0, j1 = _grid_span(gy, by0 - h - gap, by1 + gap)
+        if math.isnan(bx0 + by0 + bx1 + by1):  # a box of no known place: every corner is asked
+            i0, i1, j0, j1 = 0, len(gx), 0, len(gy)
+        else:
+            i0, i1 = _grid_span(gx, bx0 - w - gap, bx1 + gap)
+            j0, j1 = _grid_span(gy, by0 - h - gap, by1 + gap)
         if i0 >= i1 or j0 >= j1:
             continue
         bx, by = gx[i0:i1], gy[j0:j1]
