@@ -11,12 +11,13 @@ from __future__ import annotations
 
 from typing import Callable
 
-from velplan.analysis import triad
 from velplan.analysis.groups import GroupResult, State, solve_prp, solve_rpp, solve_rpr, solve_rrp, solve_rrr
 from velplan.mechanism.model import PRP, RPP, RPR, RRP, RRR, Group, Triad, kind_entry
 
 
 def _solve_triad(g, st: State, length_scale: float, phi, track) -> GroupResult:
+    from velplan.analysis import triad  # imported by the mechanisms that have a triad only
+
     return triad.solve_triad(g, st, phi, track, length_scale)
 
 

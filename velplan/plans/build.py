@@ -29,7 +29,6 @@ from velplan.plans.steps import (
     Tangential,
     guide_text,
 )
-from velplan.plans.triad import build_triad
 
 POLE = {"v": "p", "a": "π"}
 
@@ -289,6 +288,13 @@ def construct(mech: Mechanism, *, tangential: bool | None = None) -> tuple[tuple
     images = {"v": dict(b.v.images), "a": dict(b.a.images)}
     figures = {"v": dict(b.v.rotor), "a": dict(b.a.rotor)}
     return tuple(b.steps["v"] + b.steps["a"]), images, figures
+
+
+def build_triad(b, g) -> None:
+    """The class III group's steps (`velplan.plans.triad`, imported by the mechanisms that have one)."""
+    from velplan.plans.triad import build_triad as build
+
+    build(b, g)
 
 
 #: The plans' one lookup by group kind: kind → its steps, builder(b, g).

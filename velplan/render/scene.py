@@ -54,19 +54,34 @@ def _points(value, owner: str, minimum: int) -> tuple[Point, ...]:
 
 
 def _point(value, owner: str) -> Point:
+    if type(value) is tuple and len(value) == 2 and type(value[0]) is float and type(value[1]) is float:
+        if math.isfinite(value[0]) and math.isfinite(value[1]):  # already a point: no array
+            return value
+    elif type(value) is np.ndarray and value.shape == (2,) and value.dtype == np.float64:
+        x, y = value.tolist()
+        if math.isfinite(x) and math.isfinite(y):
+            return (x, y)
     xy = np.asarray(value, dtype=float)
     if xy.shape != (2,) or not np.all(np.isfinite(xy)):
         raise VelplanError(f"{owner} needs finite (x, y) points in mm, got {value!r}")
     return (float(xy[0]), float(xy[1]))
 
 
+_GOOD_LAYERS: set[str] = set()
+"""Layer names already checked (a drawing has few, used by thousands of primitives)."""
+
+
 def _check_common(owner: str, layer: str, line: str | None = None) -> None:
+    if type(layer) is str and layer in _GOOD_LAYERS and (line is None or line in LINE_TYPES):
+        return
     if not isinstance(layer, str) or not _LAYER_NAME.match(layer):
         raise VelplanError(f"{owner} layer {layer!r} is not a valid layer name "
                            "(lower-case letters, digits and '-', starting with a letter)")
     if line is not None and line not in LINE_TYPES:
         raise VelplanError(f"{owner} line type {line!r} is unknown; known line types: "
                            f"{', '.join(LINE_TYPES)}")
+    if type(layer) is str and len(_GOOD_LAYERS) < 4096:
+        _GOOD_LAYERS.add(layer)
 
 
 def _check_choice(owner: str, name: str, value, allowed: tuple) -> None:
@@ -89,6 +104,7 @@ def _box(points) -> Bounds:
 
 
 _FILLS = (None,) + get_args(Fill)
+_ANCHORS, _BASELINES = get_args(Anchor), get_args(Baseline)
 
 
 @dataclass(frozen=True, slots=True)
@@ -265,8 +281,8 @@ class Text:
             raise VelplanError(f"Text must be a one-line string, got {self.text!r}")
         _check_common("Text", self.layer)
         _check_length("Text", "size_mm", self.size_mm)
-        _check_choice("Text", "anchor", self.anchor, get_args(Anchor))
-        _check_choice("Text", "baseline", self.baseline, get_args(Baseline))
+        _check_choice("Text", "anchor", self.anchor, _ANCHORS)
+        _check_choice("Text", "baseline", self.baseline, _BASELINES)
         if not math.isfinite(self.rotation_deg):
             raise VelplanError(f"Text rotation_deg must be finite, got {self.rotation_deg!r}")
         object.__setattr__(self, "rotation_deg", float(self.rotation_deg))

@@ -204,11 +204,14 @@ def hatch_segments(outline, spacing: float, angle_deg: float = 45.0) -> np.ndarr
     offsets = corners @ normal
     reach = float(np.max(np.abs(corners @ along))) + 1.0
     first, last = math.ceil(offsets.min() / spacing), math.floor(offsets.max() / spacing)
-    segments = []
+    ends = []
     for k in range(first, last + 1):
         centre = normal * k * spacing
-        line = shapely.LineString([centre - along * reach, centre + along * reach])
-        segments.extend(_line_parts(area.intersection(line)))
+        ends.append([centre - along * reach, centre + along * reach])
+    segments = []
+    if ends:  # every line clipped in one call (the same intersections, line by line)
+        for part in shapely.intersection(area, shapely.linestrings(np.array(ends))):
+            segments.extend(_line_parts(part))
     return np.array(segments).reshape(-1, 2, 2)
 
 
@@ -332,6 +335,12 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
         ("₅", "ⁿ") counted at its :func:`script_size`, as backends draw it;
         height from the descender line to the capital line, 1.25·h.
     """
+    return _extent(text, float(size_mm))
+
+
+@functools.lru_cache(maxsize=8192)
+def _extent(text: str, size_mm: float) -> tuple[float, float]:
+    """`text_extent`, remembered: a sheet measures the same labels in many trials."""
     units, index = 0.0, script_size(size_mm) / size_mm if size_mm > 0 else SCRIPT_SCALE
     for plain, script in _characters(text):
         width = WIDE_CHAR_WIDTH if is_wide_char(plain) else NARROW_CHAR_WIDTH
@@ -356,6 +365,12 @@ def text_box(text: Lettering) -> np.ndarray:
     width, _ = text_extent(text.text, text.size_mm)
     x0 = -width * {"start": 0.0, "middle": 0.5, "end": 1.0}[text.anchor]
     y0 = -DESCENDER_DEPTH * text.size_mm
+    if text.rotation_deg == 0.0:  # upright: the same numbers in plain arithmetic, without arrays
+        ox = float(text.position[0])
+        oy = float(text.position[1]) - {"baseline": 0.0, "middle": 0.5, "top": 1.0}[text.baseline] * text.size_mm
+        x1 = x0 + width
+        return np.array([[ox + x0, oy + y0], [ox + x1, oy + y0], [ox + x1, oy + text.size_mm],
+                         [ox + x0, oy + text.size_mm]])
     local = np.array([[x0, y0], [x0 + width, y0],
                       [x0 + width, text.size_mm], [x0, text.size_mm]])
     return text_origin(text) + rotate(local, text.rotation_deg)

@@ -117,7 +117,8 @@ class SvgCanvas:
             **self._stroke(stroke)}))
 
     def draw_circle(self, item: Circle) -> None:
-        self._hatch(circle_outline(item.centre, item.radius), item.fill, item.layer)
+        if item.fill == "hatch":  # the outline only for its hatching
+            self._hatch(circle_outline(item.centre, item.radius), item.fill, item.layer)
         stroke = stroke_for(item.line, item.layer, self.style)
         cx, cy = self._xy(item.centre)
         self._add(item.layer, element("circle", {

@@ -47,6 +47,8 @@ from velplan.views.base import PlacedView, View, eskd_scales, fixed, make_view, 
 from velplan.views.forces import (
     ForceSizes, group_extent_m, group_view, lever_extent, lever_view,
     moment_diagram_view, moments_table_view, polygon_extent, polygon_view, slug)
+from velplan.views.forces.group import group_body_size
+from velplan.views.forces.lever import lever_body_size
 
 #: Text heights and the conventional force-arrow length of the force views, per format.
 FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
@@ -242,6 +244,16 @@ class _ForceDrawings:
     def __init__(self, fa: ForceAnalysis, lang: Language, fsizes: ForceSizes):
         self.fa, self.lang, self.fsizes = fa, lang, fsizes
         self.view = Trials(self._draw)
+        self.least = Trials(self._least)
+
+    def _least(self, kind: str, k: int, grp: str | None, mu: float) -> tuple[float, float]:
+        """A lower bound of the size (mm) of the view `_draw` draws, found without drawing its
+        forces and labels: the group's links, the lever's bars; (0, 0) for a polygon."""
+        if kind == "group" and grp is not None:
+            return group_body_size(self.fa, grp, k, mu_l=mu, sizes=self.fsizes)
+        if kind == "poly":
+            return 0.0, 0.0
+        return lever_body_size(self.fa, k, mu_v=mu, lang=self.lang, sizes=self.fsizes)
 
     def _draw(self, kind: str, k: int, grp: str | None, mu: float) -> View:
         fa, lang, sizes = self.fa, self.lang, self.fsizes
@@ -320,6 +332,11 @@ class _Rows(ShrinkingRows):
 
     def view(self, ref) -> View:
         return self.draw.view(*ref, self.scale[self.entity(ref)])
+
+    def least_height(self, ref) -> float:
+        """A group's links alone, a lever's bars alone (`_ForceDrawings.least`); a polygon, quick
+        to draw: 0."""
+        return 0.0 if ref[0] == "poly" else self.draw.least(*ref, self.scale[self.entity(ref)])[1]
 
     def smaller(self, entity) -> float | None:
         """The next smaller drawing of `entity`, or None below the legible size."""

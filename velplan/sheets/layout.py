@@ -3,6 +3,8 @@ files a sheet writes, and the check that views stay inside the frame without ove
 
 from __future__ import annotations
 
+import math
+
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -116,6 +118,12 @@ def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) ->
                                  f"--format or fewer --plans")
 
 
+def _grid_span(grid: np.ndarray, lo: float, hi: float) -> tuple[int, int]:
+    """Index range [i0, i1) of the ascending `grid` values within [lo, hi], one more each way."""
+    return (max(int(np.searchsorted(grid, lo, side="left")) - 1, 0),
+            min(int(np.searchsorted(grid, hi, side="right")) + 1, len(grid)))
+
+
 def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[float, float] | None:
     """The lower left corner (sheet mm) of a free w × h mm box in ``region`` (x0, y0, x1, y1),
     at least ``gap`` mm from every box of ``taken``, on a 5 mm grid: the one whose upper left
@@ -123,15 +131,25 @@ def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[floa
     x0, y0, x1, y1 = region
     if w > x1 - x0 or h > y1 - y0:
         return None
-    xs, ys = np.meshgrid(np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0))
-    xs, ys = xs.ravel(), ys.ravel()
-    free = np.ones(xs.shape, bool)
+    gx, gy = np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0)
+    free = np.ones((len(gy), len(gx)), bool)
     for bx0, by0, bx1, by1 in taken:  # free: farther than `gap` from the box
-        dx = np.maximum(np.maximum(bx0 - (xs + w), xs - bx1), 0.0)
-        dy = np.maximum(np.maximum(by0 - (ys + h), ys - by1), 0.0)
-        free &= np.hypot(dx, dy) > gap
-    if not free.any():
-        return None
+        # only corners within `gap` of the box along both axes can be too near: that block
+        # of the grid is examined (a cell more each way), the rest is free of this box
+        if math.isnan(bx0 + by0 + bx1 + by1):  # a box of no known place: every corner is asked
+            i0, i1, j0, j1 = 0, len(gx), 0, len(gy)
+        else:
+            i0, i1 = _grid_span(gx, bx0 - w - gap, bx1 + gap)
+            j0, j1 = _grid_span(gy, by0 - h - gap, by1 + gap)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        bx, by = gx[i0:i1], gy[j0:j1]
+        dx = np.maximum(np.maximum(bx0 - (bx + w), bx - bx1), 0.0)
+        dy = np.maximum(np.maximum(by0 - (by + h), by - by1), 0.0)
+        free[j0:j1, i0:i1] &= np.hypot(dx[None, :], dy[:, None]) > gap
     k = np.flatnonzero(free)
-    best = k[np.argmin(np.hypot(xs[k] - near[0], ys[k] + h - near[1]))]
+    if not k.size:
+        return None
+    xs, ys = gx[k % len(gx)], gy[k // len(gx)]
+    best = int(np.argmin(np.hypot(xs - near[0], ys + h - near[1])))
     return float(xs[best]), float(ys[best])

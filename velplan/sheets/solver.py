@@ -117,6 +117,12 @@ class ShrinkingRows:
         """Whether the sheet records the scale of the drawing ``ref`` by its view's name."""
         return True
 
+    def least_height(self, ref) -> float:
+        """A lower bound of the height of the drawing ``ref`` at its entity's scale, mm, found
+        without drawing it (0: none known); a drawing that must be taller than a row is
+        shrunk undrawn where it is the tallest of its unit."""
+        return 0.0
+
     def unit_size(self, unit) -> tuple[float, float]:
         vs = [self.view(r) for r in unit]
         if self.mode == "stack" or len(vs) == 1:
@@ -144,16 +150,32 @@ class ShrinkingRows:
     def shrink_tall(self) -> bool:
         """The tallest drawing of the first unit taller than a row one scale smaller (one at
         its least: the next tallest); False when no unit is too tall."""
+        too_tall = self.row_h + 1e-6  # a unit is at least as tall as each of its drawings
         unit = next((u for units in self.layout for u in units
-                     if self.unit_size(u)[1] > self.row_h + 1e-6), None)
+                     if max(self.least_height(r) for r in u) > too_tall or self.unit_size(u)[1] > too_tall), None)
         if unit is None:
             return False
+        if self._shrink_undrawn(unit, too_tall):
+            return True
         by_height = sorted(unit, key=lambda r: -self.view(r).height_mm)
         shrink = [r for r in by_height if self.smaller(self.entity(r)) is not None]
         if not shrink:
             tall = self.view(by_height[0])
             raise self.fail(f"{tall.name} is {tall.height_mm:.0f} mm tall")
         self.scale[self.entity(shrink[0])] = self.smaller(self.entity(shrink[0]))
+        return True
+
+    def _shrink_undrawn(self, unit, too_tall: float) -> bool:
+        """`shrink_tall` for a unit whose drawing, by its `least_height` taller than a row and
+        than every other drawing of the unit, can shrink: the same step, that drawing undrawn."""
+        least = [self.least_height(r) for r in unit]
+        j = int(np.argmax(least))
+        ref = unit[j]
+        if least[j] <= too_tall or self.smaller(self.entity(ref)) is None:
+            return False
+        if any(least[j] <= self.view(r).height_mm for k, r in enumerate(unit) if k != j):
+            return False
+        self.scale[self.entity(ref)] = self.smaller(self.entity(ref))
         return True
 
     def shrink_wide(self) -> bool:

@@ -23,13 +23,15 @@ from velplan.render.scene import Arrow, Polyline, Scene, Text
 from velplan.sheets.layout import free_spot
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, make_view
-from velplan.views.structure import figure_scale, structure_view
+from velplan.views.structure import figure_scale, least_extent, structure_view
 
 #: (widest panel, letters, heading) of the figure, mm, the largest first; the letters never
 #: under 2.5 mm (ESKD's smallest legible height on a sheet).
 FIGURE_SIZES: tuple[tuple[float, float, float], ...] = (
     (90.0, 3.5, 5.0), (70.0, 3.5, 5.0), (55.0, 3.5, 5.0), (70.0, 2.5, 3.5), (55.0, 2.5, 3.5),
     (45.0, 3.5, 5.0), (45.0, 2.5, 3.5), (35.0, 2.5, 3.5))
+#: Margin of the figure's view around what it draws, mm.
+PAD_MM = 2.0
 #: Shortest crank the figure may show, mm (as on the scheme).
 MIN_CRANK_MM = 8.0
 
@@ -58,7 +60,7 @@ def structure_figure(study: Study, lang: str, panel_mm: float, text_mm: float, t
     crank = study.mechanism.crank.length * figure_scale(study.mechanism, joints, panel_mm)
     scene = structure_view(study.mechanism, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm,
                            title_mm=title_mm)
-    return make_view("structure", scene.primitives, meta={"text_mm": text_mm, "crank_mm": crank})
+    return make_view("structure", scene.primitives, pad_mm=PAD_MM, meta={"text_mm": text_mm, "crank_mm": crank})
 
 
 #: How far a thick line or a vector may run through a letter's box before it is crossed, mm.
@@ -87,10 +89,15 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
     taken = [v.bounds for v in views.values()] + [title_block]
     corner = (views["mechanism"].bounds[0], views["mechanism"].bounds[1])
     joints = _joints(study)
-    for sizes in FIGURE_SIZES:
-        view = structure_figure(study, lang, *sizes, joints=joints)
-        if view.meta["crank_mm"] < MIN_CRANK_MM - 1e-9:
+    mech = study.mechanism
+    for sizes in FIGURE_SIZES:  # a size whose crank or least extent rules it out is not drawn
+        panel_mm, text_mm, title_mm = sizes
+        if mech.crank.length * figure_scale(mech, joints, panel_mm) < MIN_CRANK_MM - 1e-9:
             continue
+        w, h = least_extent(mech, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm, title_mm=title_mm)
+        if free_spot(w + 2 * PAD_MM - 1e-6, h + 2 * PAD_MM - 1e-6, taken, area, gap, corner) is None:
+            continue
+        view = structure_figure(study, lang, *sizes, joints=joints)
         if overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.05) \
                 or _crossed(view):
             continue

@@ -20,7 +20,7 @@ from velplan.mechanism.structure import structure
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
-from velplan.render.shapes import text_extent
+from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
 from velplan.views.base import subscript
 
@@ -178,6 +178,33 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     items += [Circle(legend, ring, "labels", "hidden"),
               Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")]
     return Scene(tuple(items), width_mm=max(_bounds(items)[2] + MARGIN_MM, 120.0), height_mm=top + shift_up + MARGIN_MM)
+
+
+def least_extent(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True,
+                 panel_mm: float = PANEL_MM, text_mm: float = TEXT_MM,
+                 title_mm: float = TITLE_MM) -> tuple[float, float]:
+    """A lower bound of the width and height (mm) of the box of everything `structure_view`
+    draws with these arguments, found without drawing: the panels side by side at least their
+    points' spans and `GAP_MM` apart, their captions two letters apart, the heading and the
+    formula as wide as their text; the tallest panel's points, the caption lines under it and
+    the heading's lines above it. (A sheet skips a size whose bound fits no free space.)"""
+    panels = _panels(mech, joints, lang, text_mm)
+    spans = [np.ptp(p.points(), axis=0) for p in panels]
+    mu = _scale(spans, panel_mm)
+    gap, line = GAP_MM * panel_mm / PANEL_MM, text_mm * 1.6
+    drawings = sum(float(s[0]) * mu for s in spans) + gap * (len(panels) - 1)
+    captions = sum(max(text_extent(c, text_mm)[0] for c in p.caption) for p in panels)
+    width = max(drawings, captions + 2 * text_mm * (len(panels) - 1))
+    height = (max(float(s[1]) * mu for s in spans) + (2.2 + DESCENDER_DEPTH) * text_mm  # to the captions' foot
+              + max(len(p.caption) - 1 for p in panels) * line)
+    if title:
+        st = structure(mech)
+        formula = (f"{st.formula()};  {label('structure_formula', lang)}: "
+                   f"{st.structure_formula(mech.crank.link)}")
+        width = max(width, text_extent(formula, text_mm)[0],
+                    text_extent(label("structural_analysis", lang), title_mm)[0])
+        height += 1.7 * text_mm + 2.3 * title_mm  # to the heading's top
+    return width, height
 
 
 def _scale(spans, panel_mm: float) -> float:

@@ -48,13 +48,14 @@ def place_arrows(entries, length: float, obstacles=(), points=(), texts=(), *,
     """
     fixed_parts = [o for o in obstacles if o is not None]
     marks = [np.asarray(q, float) for q in points]
+    rings = [shapely.Point(q).buffer(2.5) for q in marks]  # each mark's keep-off ring, made once
     drawn: list[tuple] = []  # (point, direction, orientation, span, geometry)
     boxes = [label_box(t).buffer(0.5) for t in texts]
     out: dict[int, tuple] = {}
     for idx in _stacking_order(entries):
         p, u, text = entries[idx]
         p, u = np.asarray(p, float), np.asarray(u, float)
-        near = [shapely.Point(q).buffer(2.5) for q in marks if np.hypot(*(q - p)) > 1.0]
+        near = [ring for q, ring in zip(marks, rings) if np.hypot(*(q - p)) > 1.0]
         # a force with an opposite one at its point leaves the side it points away from to it
         facing = any(np.hypot(*(np.asarray(q, float) - p)) < 0.5
                      and float(np.asarray(w, float) @ u) < -0.995 for q, w, _ in entries)
@@ -84,7 +85,11 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
     side = np.array([-u[1], u[0]]) * BESIDE_MM
     fixed = np.array(lines, dtype=object)
     shapes: dict = {}  # a label's box about its point, by anchor
+    # every part of a cost is ≥ 0: a candidate whose cost without the parts not yet known
+    # cannot beat the best is passed over unmeasured (the same choice, sooner)
     for step, mult in enumerate(LENGTHS):
+        if best is not None and 3.0 * step >= best[0] - 1e-9:
+            break  # each longer arrow costs 3 more: none of the rest can win
         span = length * mult
         arrows = [geom for q, w, kk, sp, geom in drawn
                   if not (np.hypot(*(q - p)) < 0.5 and float(w @ u) > 0.995 and kk == 0
@@ -100,22 +105,29 @@ def _best_arrow(p, u, text: str, length: float, lines: list, drawn: list, boxes:
                 if shift and along <= 0.3 * span:
                     break  # on its point it runs along no link: not beside it
                 a, b = a0 + shift * side, b0 + shift * side
+                turn = (0.01 + (20.0 if facing else 0.0)) * k
+                if (best is not None and (shift or not beside)
+                        and 0.0 + 3.0 * step + 0.0 + 0.0 + turn + extra >= best[0] - 1e-9):
+                    continue  # (on its point beside the links, its run along them is still wanted)
                 shaft = shapely.LineString([a, b])
                 over = _run_along(shaft, fixed)
                 along = along if shift else over
                 if shift and over > 0.3 * span:
                     continue  # beside the point only where that clears it
+                if best is not None and over + 3.0 * step + 0.0 + 0.0 + turn + extra >= best[0] - 1e-9:
+                    continue
                 over += 3.0 * _run_along(shaft, moving)
                 free, out_dir = (b, u) if k == 0 else (a, -u)
                 near = a + (p - a0)  # the shaft's point level with the force's point
                 for spot, tag in enumerate(_label_spots(near, free, out_dir, text, layer, size)):
+                    if best is not None and over + 3.0 * step + 0.0 + 0.8 * spot + turn + extra >= best[0] - 1e-9:
+                        break  # the later spots cost more still
                     if tag.anchor not in shapes:
                         shapes[tag.anchor] = np.asarray(label_box(Text(
                             (0.0, 0.0), text, layer, size, tag.anchor, "middle")).exterior.coords)
                     box = shapely.Polygon(shapes[tag.anchor] + np.asarray(tag.position, float))
                     crowded = bool(crowd.size) and bool(shapely.intersects(box, crowd).any())
-                    cost = (over + 3.0 * step + (5.0 if crowded else 0.0) + 0.8 * spot
-                            + (0.01 + (20.0 if facing else 0.0)) * k + extra)
+                    cost = over + 3.0 * step + (5.0 if crowded else 0.0) + 0.8 * spot + turn + extra
                     if best is None or cost < best[0] - 1e-9:
                         best = (cost, a, b, k, span, tag)
     return best[1:]

@@ -19,7 +19,7 @@ from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, link, revolute_joint, rotation_arrow, slider_block)
-from velplan.views.base import View, free_direction, make_view, scale_mark, scale_text, subscript
+from velplan.views.base import View, bounds_of, free_direction, make_view, scale_mark, scale_text, subscript
 from velplan.views.forces.anchored import place_anchored
 from velplan.views.forces.arrows import arrow_obstacle, place_arrows
 from velplan.views.forces.common import (
@@ -27,6 +27,8 @@ from velplan.views.forces.common import (
     unit_vector, xy)
 from velplan.views.mechanism import BLOCK_MM, _Geometry, plate_corners
 
+#: Margin of the view around what it draws, mm.
+PAD_MM = 2.0
 #: Reaction components ("R12τ") drop these suffixes to find their pair.
 _SUFFIXES = "τn∥⊥"
 
@@ -160,12 +162,28 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
         (head, sizes.title_mm),
         (scale_text("μl", mu_l, "m/mm", lang) + f" ({scale_mark(mu_l, lang)})", sizes.label_mm)],
         text_layer)
-    return make_view(f"group-{number}-{slug(group)}", items, pad_mm=2.0, mu=mu_l,
+    return make_view(f"group-{number}-{slug(group)}", items, pad_mm=PAD_MM, mu=mu_l,
                      origin=(0.0, 0.0),
                      meta={"group": group, "number": number, "index": i,
                            "forces": tuple(forces), "arrows": len(forces),
                            "couples": tuple((t, tuple(c), v) for t, c, v in couples),
                            "arc_radius": radius})
+
+
+def group_body_size(fa: ForceAnalysis, group: str, position: int, *, mu_l: float,
+                    sizes: ForceSizes = ForceSizes()) -> tuple[float, float]:
+    """Width and height (mm, the view's margins included) of the group's links as `group_view`
+    draws them at position number ``position`` (1…n) and μl = ``mu_l`` (m/mm), under its two
+    title lines: a lower bound of the view's size, found without its forces and labels."""
+    i = position_index(position, len(fa.kinematics))
+    sk = Sketch()
+    _draw_links(sk, fa, group_links(fa.kinetostatics.mechanism, group), i,
+                lambda at: np.asarray(at, float) / mu_l, group_layers(position, group)[0])
+    if not sk.items:
+        return 0.0, 0.0
+    x0, y0, x1, y1 = bounds_of(sk.items)
+    titles = 3.0 + 1.6 * sizes.label_mm + sizes.title_mm  # `title_lines`: to the heading's top
+    return x1 - x0 + 2 * PAD_MM, y1 - y0 + titles + 2 * PAD_MM
 
 
 # -- the links ---------------------------------------------------------------------------

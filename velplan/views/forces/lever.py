@@ -16,7 +16,7 @@ from velplan.options import Language
 from velplan.plans.text import label_of
 from velplan.render.i18n import label
 from velplan.render.scene import Arrow, Circle, Polyline, Text
-from velplan.render.shapes import text_extent
+from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 from velplan.views.base import View, bounds_of, fixed, make_view, scale_text, subscript
 from velplan.views.forces.anchored import place_anchored
 from velplan.views.base import number as _num
@@ -26,6 +26,8 @@ from velplan.views.forces.common import (
     newton_metre, note_lines, title_lines, unit_vector, xy)
 from velplan.views.plan import plan_steps
 
+#: Margin of the view around what it draws, mm.
+PAD_MM = 2.0
 #: The turn by +90° of the lever: x + iy → i(x + iy).
 TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
 
@@ -86,11 +88,31 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
         (label("zhukovsky_lever", lang), sizes.title_mm),
         (scale_text("μv", res.scale, "(m/s)/mm", lang), sizes.label_mm),
         (f"({label('plan_turned', lang)})", sizes.label_mm)], text_layer)
-    return make_view(f"lever-{number}", items, pad_mm=2.0, mu=None, origin=(0.0, 0.0),
+    return make_view(f"lever-{number}", items, pad_mm=PAD_MM, mu=None, origin=(0.0, 0.0),
                      meta={"number": number, "index": i, "mu_v": res.scale,
                            "mb_lever": mb_lever, "mb_kinetostatics": mb_kin, "percent": pct,
                            "balancing_force": fb, "balance": notes[1],
                            "forces": tuple(forces)})
+
+
+def lever_body_size(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language = "ru",
+                    sizes: ForceSizes = ForceSizes()) -> tuple[float, float]:
+    """Width and height (mm, the view's margins included) of the lever's bars and pole as
+    `lever_view` draws them at position number ``position`` (1…n) and μv = ``mu_v``, under
+    its three title lines and over its two
+    lines of notes at least: a lower bound of the view's size, found without its forces and
+    letters."""
+    number = position
+    res, _ = lever_balance(fa, mu_v)
+    sk = Sketch()
+    body_layer = lever_layers(number)[0]
+    _draw_turned_plan(sk, plan_steps(res, number, lang=lang), f"plan-v-{number}", body_layer)
+    sk.items.append(Circle((0.0, 0.0), 0.8, body_layer, "thin", "solid"))
+    x0, y0, x1, y1 = bounds_of(sk.items)
+    label_mm = sizes.label_mm
+    titles = 3.0 + 3.2 * label_mm + sizes.title_mm  # `title_lines`: to the heading's top
+    notes = 2.0 + (2.6 + DESCENDER_DEPTH) * label_mm  # `note_lines`: to the second line's foot
+    return x1 - x0 + 2 * PAD_MM, y1 - y0 + titles + notes + 2 * PAD_MM
 
 
 def _lever_forces(lever, i: int) -> list[tuple[str, np.ndarray, complex]]:
