@@ -21,6 +21,7 @@ shapely"``, the ratio pair by pair (median, lowest, highest).
     python benchmarks/bench_small.py --triad-only --clock cpu   # the class III triad at 10⁵ only
     git archive OLD | tar -x -C /tmp/old && python benchmarks/bench_small.py --before /tmp/old --clock cpu
     python benchmarks/bench_small.py --cold-only --pairs 5   # the cold table alone, printed
+    python benchmarks/bench_small.py --cold-only --only html # one row of it
 
 Writes ``benchmarks/results/small.md``.
 """
@@ -290,11 +291,14 @@ def _cold(args, cwd: str) -> float:
     return time.perf_counter() - t0
 
 
-def cold_table(pairs: int) -> str:
+def cold_table(pairs: int, only: str | None = None) -> str:
+    """The cold commands (those whose label holds `only`, when given) against the floor."""
     floor = ("-c", "import numpy, shapely")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for label, args in COLD.items():
+            if only and only not in label:
+                continue
             cmd = ("-m", "velplan", *args)
             _cold(floor, tmp), _cold(cmd, tmp)  # untimed: bytecode and OS caches
             f, c = [], []
@@ -327,6 +331,7 @@ def main() -> None:
                     help="only the class III triad against the four-bar, put into small.md in place")
     ap.add_argument("--cold-only", action="store_true",
                     help="time the cold commands alone and print their table (nothing written)")
+    ap.add_argument("--only", metavar="TEXT", help="with --cold-only: only the commands whose label holds TEXT")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")
     a = ap.parse_args()
@@ -334,7 +339,7 @@ def main() -> None:
     _clock, _clock_name = CLOCK[a.clock], a.clock
     if a.cold_only:
         start = load_average()
-        cold = cold_table(a.pairs)
+        cold = cold_table(a.pairs, a.only)
         print(f"load {start} at the start, {load_average()} at the end\n\n{cold}")
         return
     count = 5 if a.quick else a.rounds
