@@ -3,7 +3,7 @@
 Nothing is solved or constructed here: the positions, the exact plans (at one scale for the
 whole turn, so that the slider moves them smoothly about a fixed pole) and the drafted plans
 all come from a `velplan.study.Study`; the views draw them (`mechanism_view`, `plan_steps`,
-`image_letters`) and `velplan.html.records` turns their primitives into compact records.
+`letters_to_place`) and `velplan.html.records` turns their primitives into compact records.
 
 Records the scheme shares between positions (guides, supports that do not move) are stored
 once in ``shared`` and referred to by their index.
@@ -27,11 +27,12 @@ from velplan.render.scene import Polyline
 from velplan.render.shapes import unicode_text
 from velplan.render.style import SheetStyle
 from velplan.study import Study
+from velplan.html.letters import capsules, place_letters
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
 from velplan.html.text import templates
 from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
 from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
-from velplan.views.plan import image_letters, plan_steps
+from velplan.views.plan import letters_to_place, plan_steps
 from velplan.views.steps import readable as _readable
 
 #: The scheme is drawn at the largest ESKD scale that keeps it within this size, mm.
@@ -204,6 +205,7 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
     items: list[list | None] = []
     sentences: list[list[str | None]] = [[] for _ in rows]
     values: list[list | None] = []
+    drawn = _plan_records([i for i in range(n) if kin.valid[i]], exact, lang, style)
     for i in range(n):
         if not kin.valid[i]:
             items.append(None)
@@ -211,7 +213,7 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
             for col in sentences:
                 col.append(None)
             continue
-        recs, said = _plan_records(exact, i, lang, style)
+        recs, said = drawn[i]
         items.append(recs)
         for col, sentence in zip(sentences, said):
             col.append(sentence)
@@ -243,21 +245,31 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
     }
 
 
-def _plan_records(res: PlanResult, i: int, lang: Language, style: SheetStyle) -> tuple[list, list[str]]:
-    """The plan at position index `i`: records ``[step, *record]`` (letters with the step that
-    fixes their first image) and the sentence of each step, written as by hand."""
-    drawings = plan_steps(res, position_number(i), lang=lang)
-    first: dict[str, int] = {}
-    recs: list[list] = []
-    for j, d in enumerate(drawings, 1):
-        for t in d.images:
-            first.setdefault(subscript(label_of(t)), j)
-        recs += [[j, *r] for p in d.items for r in encode(p, style)]
-    last = len(drawings)
-    for t in image_letters(res, position_number(i), drawings):
-        j = min((first.get(name, last) for name in t.text.split(", ")), default=last)
-        recs += [[j, *r] for r in encode(t, style)]
-    return recs, [readable(d.sentence) for d in drawings]
+def _plan_records(positions: list[int], res: PlanResult, lang: Language,
+                  style: SheetStyle) -> dict[int, tuple[list, list[str]]]:
+    """The plan at each of the position indices `positions`: records ``[step, *record]``
+    (letters with the step that fixes their first image) and the sentence of each step,
+    written as by hand. The letters of all positions are placed together (`place_letters`)."""
+    work = []
+    for i in positions:
+        drawings = plan_steps(res, position_number(i), lang=lang)
+        first: dict[str, int] = {}
+        recs: list[list] = []
+        for j, d in enumerate(drawings, 1):
+            for t in d.images:
+                first.setdefault(subscript(label_of(t)), j)
+            recs += [[j, *r] for p in d.items for r in encode(p, style)]
+        texts, _, lines, circles = letters_to_place(res, position_number(i), drawings)
+        work.append((drawings, first, recs, texts, capsules(lines, circles)))
+    letters = place_letters([(texts, caps) for *_, texts, caps in work])
+    out = {}
+    for i, (drawings, first, recs, _, _), placed in zip(positions, work, letters):
+        last = len(drawings)
+        for t in placed:
+            j = min((first.get(name, last) for name in t.text.split(", ")), default=last)
+            recs += [[j, *r] for r in encode(t, style)]
+        out[i] = (recs, [readable(d.sentence) for d in drawings])
+    return out
 
 
 def rates(study: Study) -> dict:

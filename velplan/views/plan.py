@@ -223,13 +223,11 @@ def plan_area(res, position: int) -> shapely.Polygon:
                        max(xs) + AREA_MARGIN_MM, max(ys) + AREA_MARGIN_MM)
 
 
-def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
-    """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
-    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
-    image is joined to it by a thin leader (the leaders follow the letters in the list).
-    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
+def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
+                     upto: int | None = None) -> tuple[list[Text], list, list, list[Circle]]:
+    """What `image_letters` places: the letters at their wanted spots (off the lines that meet
+    at each image), each letter's image (mm), the segments the letters keep off, ``(start, end)``
+    (mm; each vector twice), and the dots they keep off."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -259,11 +257,6 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
     lines += [(p.start, p.end) for d in drawings[:upto] for p in d.items
               if isinstance(p, Arrow) and p.length > 1e-9]
     circles = [p for d in drawings[:upto] for p in d.items if isinstance(p, Circle)]
-    obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
-                                     quad_segs=16))
-    obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
-                                     np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
-    obstacles += list(avoid)
     texts = []
     for g in groups:
         z = _image(res, g[0], i)
@@ -280,10 +273,26 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
+    anchors = [_xy(_image(res, g[0], i)) for g in groups]
+    return texts, anchors, lines, circles
+
+
+def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
+                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
+    """Letters of the images fixed by the first `upto` steps of the plan at position number
+    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
+    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
+    image is joined to it by a thin leader (the leaders follow the letters in the list).
+    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
+    texts, anchors, lines, circles = letters_to_place(res, position, drawings, size_mm=size_mm, upto=upto)
+    obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
+                                     quad_segs=16))
+    obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
+                                     np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
+    obstacles += list(avoid)
     placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
     if not leaders:
         return placed
-    anchors = [_xy(_image(res, g[0], i)) for g in groups if np.isfinite(_image(res, g[0], i))]
     return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
 
 
