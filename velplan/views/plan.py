@@ -258,14 +258,20 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
               if isinstance(p, Arrow) and p.length > 1e-9]
     circles = [p for d in drawings[:upto] for p in d.items if isinstance(p, Circle)]
     texts = []
+    # each segment's ends and the unit vectors out of them along it, in the order (a, b), (b, a)
+    ends = np.array([end for a, b in segments for end in (a, b)], float).reshape(-1, 2)
+    along = np.array([other - end for a, b in segments for end, other in ((a, b), (b, a))],
+                     float).reshape(-1, 2)
+    span = np.hypot(along[:, 0], along[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        unit_along = along / span[:, None]
     for g in groups:
         z = _image(res, g[0], i)
         here = np.array(_xy(z))
-        away = np.zeros(2)
-        for a, b in segments:
-            for end, other in ((a, b), (b, a)):
-                if np.hypot(*(end - here)) < COINCIDENT_MM and np.hypot(*(other - end)) > 1e-9:
-                    away -= (other - end) / np.hypot(*(other - end))
+        off = ends - here
+        at = (np.hypot(off[:, 0], off[:, 1]) < COINCIDENT_MM) & (span > 1e-9)
+        # the units summed one after the other (a running sum), as a loop over them would
+        away = -np.cumsum(unit_along[at], axis=0)[-1] if at.any() else np.zeros(2)
         if np.hypot(*away) < 0.3:
             away = here / np.hypot(*here) if np.hypot(*here) > 1 else np.array([-0.7, -0.7])
         away = away / np.hypot(*away)
