@@ -2,7 +2,7 @@
 
 Nothing is solved or constructed here: the positions, the exact plans (at one scale for the
 whole turn, so that the slider moves them smoothly about a fixed pole) and the drafted plans
-all come from a `velplan.study.Study`; the views draw them (`mechanism_view`, `plan_steps`,
+all come from a `velplan.study.Study`; the views draw them (`scheme_parts`, `plan_steps`,
 `letters_to_place`) and `velplan.html.records` turns their primitives into compact records.
 
 Records the scheme shares between positions (guides, supports that do not move) are stored
@@ -30,8 +30,8 @@ from velplan.study import Study
 from velplan.html.letters import capsules, place_letters
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
 from velplan.html.text import templates
-from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
-from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
+from velplan.views.base import eskd_scales, place_labels_together, scale_mark, scale_text, subscript, unit
+from velplan.views.mechanism import SCHEME_RINGS, extent_m, scheme_parts, scheme_view, trajectory_points
 from velplan.views.plan import letters_to_place, plan_steps
 from velplan.views.steps import readable as _readable
 
@@ -84,16 +84,19 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
     reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    per_position: list[list[list] | None] = []
-    for i in range(n):
-        if not kin.valid[i]:
-            per_position.append(None)
-            continue
+    # each position's drawing; then the labels of all positions placed together
+    valid = [i for i in range(n) if kin.valid[i]]
+    parts = []
+    for i in valid:
         idx = sorted(set(reference) | {i})
-        view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)), lang=lang,
-                              kin=kin.take(idx), fine=fine, single=True, title=False)
+        frame = dict(kin=kin.take(idx), mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)))
+        parts.append((frame, scheme_parts(mech, fine=fine, single=True, **frame)))
+    placed = place_labels_together([(labels, obstacles) for _, (_, labels, obstacles) in parts], rings=SCHEME_RINGS)
+    per_position: list[list[list] | None] = [None] * n
+    for i, (frame, (items, labels, _)), letters in zip(valid, parts, placed):
+        view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
         marks = _centre_marks(study, i, view, mu_l) if centres else []
-        per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
+        per_position[i] = [r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)]
     # a record drawn at two positions or more is stored once
     keys = [[json.dumps(r, ensure_ascii=False) for r in recs or ()] for recs in per_position]
     count: dict[str, int] = {}

@@ -53,7 +53,14 @@ def _points(value, owner: str, minimum: int) -> tuple[Point, ...]:
     return tuple(map(tuple, xy.tolist()))
 
 
+_REALS = (float, int, np.floating, np.integer)
+
+
 def _point(value, owner: str) -> Point:
+    if type(value) in (tuple, list, np.ndarray) and len(value) == 2:  # the common case, without an array
+        x, y = value[0], value[1]
+        if isinstance(x, _REALS) and isinstance(y, _REALS) and math.isfinite(x) and math.isfinite(y):
+            return (float(x), float(y))
     xy = np.asarray(value, dtype=float)
     if xy.shape != (2,) or not np.all(np.isfinite(xy)):
         raise VelplanError(f"{owner} needs finite (x, y) points in mm, got {value!r}")

@@ -510,3 +510,92 @@ def free_direction(busy: list[float], default: float = 45.0) -> float:
         if g > gap + 1e-9:
             best, gap = cand, g
     return best
+
+
+def place_labels_together(views: list, *, rings: int = 8) -> list[tuple]:
+    """`place_labels` (its default step) on each of several independent views, given as
+    ``(texts, obstacles)``: the same labels, with the k-th labels of all views surveyed in the
+    same shapely calls."""
+    import shapely
+
+    shapes = [[g for g in obstacles if not g.is_empty] for _, obstacles in views]
+    width = max([len(g) for g in shapes] + [1])
+    field = np.full((len(views), width), None, dtype=object)
+    field_bounds = np.full((len(views), width, 4), np.nan)
+    for v, g in enumerate(shapes):
+        if g:
+            field[v, :len(g)] = g
+            field_bounds[v, :len(g)] = shapely.bounds(field[v, :len(g)])
+    most = max([len(texts) for texts, _ in views] + [0])
+    placed = [_PlacedLabels() for _ in views]
+    out: list[list] = [[] for _ in views]
+    for k in range(most):
+        rows = np.array([v for v, (texts, _) in enumerate(views) if len(texts) > k])
+        texts = [views[v][0][k] for v in rows]
+        spots = np.stack([_spots(t.position, 0.5 * t.size_mm, rings) for t in texts])
+        boxed = [_spot_boxes(t, s) for t, s in zip(texts, spots)]
+        bounds = np.stack([b for _, b, _ in boxed])
+        clear, crossings, apart = _survey_together(rows, [b for b, _, _ in boxed], bounds, field, field_bounds,
+                                                   placed)
+        for a, v in enumerate(rows):
+            text, (boxes, _, offsets) = texts[a], boxed[a]
+            out[v].append(_choose_spot(text, spots[a], boxes, bounds[a], offsets, clear[a], crossings[a], apart[a],
+                                       0.5 * text.size_mm, rings, placed[v]))
+    return [tuple(labels) for labels in out]
+
+
+def _survey_together(rows, boxes, bounds, field, field_bounds, placed: list[_PlacedLabels]):
+    """`_survey` of one label in each of the views `rows` (its spots' boxes, None where upright,
+    and bounds (n, spots, 4)), stage by stage for the views with no free spot yet."""
+    import shapely
+
+    n, s = bounds.shape[:2]
+    clear, apart = np.ones((n, s), dtype=bool), np.ones((n, s), dtype=bool)
+    crossings = np.zeros((n, s), dtype=int)
+    upright = np.array([b is None for b in boxes])
+    todo, start = np.arange(n), 0
+    for stop in [x for x in _LABEL_STAGES if x < s] + [s]:
+        b = bounds[todo, start:stop]
+        some = np.empty(b.shape[:2], dtype=object)
+        up = upright[todo]
+        if up.any():
+            some[up] = shapely.box(*b[up].reshape(-1, 4).T).reshape(-1, stop - start)
+        for a in np.nonzero(~up)[0]:
+            some[a] = boxes[todo[a]][start:stop]
+        near = ((b[:, :, None, 0] <= field_bounds[rows[todo]][:, None, :, 2])
+                & (field_bounds[rows[todo]][:, None, :, 0] <= b[:, :, None, 2])
+                & (b[:, :, None, 1] <= field_bounds[rows[todo]][:, None, :, 3])
+                & (field_bounds[rows[todo]][:, None, :, 1] <= b[:, :, None, 3]))
+        i, j, m = np.nonzero(near)
+        hit = shapely.intersects(some[i, j], field[rows[todo[i]], m]) if len(i) else np.zeros(0, dtype=bool)
+        clear[todo[i[hit]], start + j[hit]] = False
+        np.add.at(crossings, (todo[i[hit]], start + j[hit]), 1)
+        for a, row in enumerate(todo):
+            apart[row, start:stop] = ~placed[rows[row]].meet(some[a], b[a], bool(up[a]))
+        free = (clear[todo, start:stop] & apart[todo, start:stop]).any(axis=1)
+        todo = todo[~free]
+        if not len(todo):
+            break
+        start = stop
+    return clear, crossings, apart
+
+
+def _choose_spot(text, spots, boxes, bounds, offsets, clear, crossings, apart, step: float, rings: int,
+                 placed: _PlacedLabels):
+    """`text` at the spot `place_labels` chooses from its survey; its box added to `placed`."""
+    import shapely
+
+    upright = boxes is None
+    free = clear & apart
+    j = int(np.argmax(free)) if free.any() else (
+        int(np.argmin(np.where(apart, crossings, np.iinfo(int).max))) if apart.any() else -1)
+    if j < 0 and not upright:
+        j = 0
+    if j < 0:  # crowded all round: off the other labels further out, else where it was
+        j, spot, box = _farther(text, *offsets, step, rings, placed.boxes)
+        if spot is not None:
+            spots, bounds = np.vstack([spots, spot]), np.vstack([bounds, shapely.bounds(box)])
+            j = len(spots) - 1
+    chosen = text if j == 0 else _moved(text, position=tuple(spots[j].tolist()))
+    placed.add(shapely.box(*bounds[j]) if upright else boxes[j], bounds[j], upright)
+    return chosen

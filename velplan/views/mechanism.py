@@ -415,6 +415,24 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
+    items, labels, obstacles = scheme_parts(mech, kin=kin, fine=fine, mu_l=mu_l, n=n, thick=thick, sizes=sizes,
+                                            single=single, extreme=extreme, special=special, bold=bold)
+    placed = place_labels(labels, obstacles, rings=SCHEME_RINGS)
+    return scheme_view(mech, items, labels, placed, kin=kin, mu_l=mu_l, n=n, thick=thick, lang=lang, sizes=sizes,
+                       title=title, single=single, plans=plans)
+
+
+#: Rings of spots a label of the scheme tries round its wanted spot (`place_labels`).
+SCHEME_RINGS = 8
+
+
+def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12, thick: int = 1,
+                 sizes: MechanismSizes = MechanismSizes(), single: bool = False,
+                 extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
+                 bold: Sequence[int] = ()) -> tuple[list[Primitive], list[Text], list]:
+    """What `mechanism_view` draws before its labels are placed (the same arguments): the
+    drawing's primitives (mm), the labels at their wanted spots and the shapes they keep off;
+    `place_labels` (rings `SCHEME_RINGS`) and `scheme_view` finish it."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -429,8 +447,16 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
     obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
-    placed = place_labels(labels, obstacles, rings=8)
-    items += placed
+    return items, labels, obstacles
+
+
+def scheme_view(mech: Mechanism, items: list[Primitive], labels: list[Text], placed, *, kin: Kinematics,
+                mu_l: float, n: int = 12, thick: int = 1, lang: Language = "ru",
+                sizes: MechanismSizes = MechanismSizes(), title: bool = True, single: bool = False,
+                plans: Sequence[int] = ()) -> View:
+    """The view of `scheme_parts`' drawing `items` with its `labels` placed (`placed`)."""
+    mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
+    items = items + list(placed)
     out = output_point(mech)
     if not single and out is not None:
         items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
