@@ -11,7 +11,6 @@ once in ``shared`` and referred to by their index.
 
 from __future__ import annotations
 
-import json
 import math
 import re
 
@@ -94,17 +93,20 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
     placed = place_labels_together([(labels, obstacles) for _, (_, labels, obstacles) in parts], rings=SCHEME_RINGS)
     per_position: list[list[list] | None] = [None] * n
     for i, (frame, (items, labels, _)), letters in zip(valid, parts, placed):
-        view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
-        marks = _centre_marks(study, i, view, mu_l) if centres else []
-        per_position[i] = [r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)]
-    # a record drawn at two positions or more is stored once
-    keys = [[json.dumps(r, ensure_ascii=False) for r in recs or ()] for recs in per_position]
-    count: dict[str, int] = {}
+        if centres:
+            view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
+            drawn, origin = view.primitives + tuple(_centre_marks(study, i, view, mu_l)), view.origin
+        else:  # the view of one untitled position is its drawing and labels: records in their own mm
+            drawn, origin = (*items, *letters), (0.0, 0.0)
+        per_position[i] = [r for p in drawn for r in encode(p, style, origin)]
+    # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
+    keys = [[tuple(r) for r in recs or ()] for recs in per_position]
+    count: dict[tuple, int] = {}
     for frame_keys in keys:
         for key in set(frame_keys):
             count[key] = count.get(key, 0) + 1
     shared: list[list] = []
-    where: dict[str, int] = {}
+    where: dict[tuple, int] = {}
     frames = []
     for recs, frame_keys in zip(per_position, keys):
         frame = []

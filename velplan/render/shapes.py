@@ -315,6 +315,7 @@ def text_runs(text: str) -> tuple[TextRun, ...]:
     return tuple(runs)
 
 
+@functools.lru_cache(maxsize=4096)  # a view measures the same few labels over and over
 def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     """Estimated width and height of a one-line text, mm.
 
