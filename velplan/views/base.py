@@ -503,12 +503,13 @@ def free_direction(busy: list[float], default: float = 45.0) -> float:
     ``default`` when nothing is busy."""
     if not busy:
         return default
+    # every candidate's gap at once (numpy's float remainder is Python's %), then the same scan
+    cand = 5.0 * np.arange(72)
+    gaps = np.abs((cand[:, None] - np.asarray(busy, float)[None, :] + 180.0) % 360.0 - 180.0).min(axis=1)
     best, gap = default, -1.0
-    for k in range(72):
-        cand = 5.0 * k
-        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
+    for c, g in zip(cand.tolist(), gaps.tolist()):
         if g > gap + 1e-9:
-            best, gap = cand, g
+            best, gap = c, g
     return best
 
 

@@ -80,15 +80,23 @@ _SEGMENTS: dict[tuple, tuple] = {}
 _ROWS_KEPT = 20000
 
 
+_STRUCTURE: dict[int, tuple] = {}
+"""id of a mechanism → (the mechanism, its point owners, revolute joints, fixed pivots)."""
+
+
 class _Geometry:
     """Where every link, block and guide is, at the positions of a `Kinematics`, m."""
 
     def __init__(self, mech: Mechanism, kin: Kinematics):
         self.mech, self.kin = mech, kin
-        self.owner = point_owners(mech)
-        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
-        self.ground_pivots = [p.point for p in pairs(mech)
-                              if p.kind == "R" and GROUND in p.links]
+        hit = _STRUCTURE.get(id(mech))
+        if hit is None or hit[0] is not mech:  # the mechanism's structure, worked out once
+            if len(_STRUCTURE) >= 64:
+                _STRUCTURE.clear()
+            hit = _STRUCTURE[id(mech)] = (mech, point_owners(mech), {p.point for p in pairs(mech) if p.kind == "R"},
+                                          [p.point for p in pairs(mech) if p.kind == "R" and GROUND in p.links])
+        _, owner, revolute, ground_pivots = hit
+        self.owner, self.revolute, self.ground_pivots = dict(owner), set(revolute), list(ground_pivots)
 
     def p(self, i: int, name: str) -> np.ndarray:
         return self.kin.positions[i, self.kin.point_index[name]]
@@ -446,7 +454,9 @@ def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
-    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
+    points = [p for p in points if np.all(np.isfinite(p))]
+    obstacles += list(shapely.buffer(shapely.points(np.array(points, float).reshape(-1, 2)), POINT_CLEAR_MM,
+                                     quad_segs=16))  # as Point(p).buffer(POINT_CLEAR_MM), all at once
     return items, labels, obstacles
 
 
