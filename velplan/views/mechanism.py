@@ -715,6 +715,10 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
+    # every segment's ends, and the unit vectors out of them along it, in the order (a, b), (b, a)
+    ends = np.array([mm(e) for s in segs for e in (s.a, s.b)], float).reshape(-1, 2)
+    along = (ends.reshape(-1, 2, 2)[:, ::-1] - ends.reshape(-1, 2, 2)).reshape(-1, 2)
+    unit_along = along / np.maximum(np.hypot(along[:, 0], along[:, 1]), 1e-9)[:, None]
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
@@ -722,12 +726,10 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
         if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
-        away = np.zeros(2)
-        for s in segs:
-            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
-                if np.hypot(*(here - p)) < 0.5:
-                    d = other - here
-                    away -= d / max(np.hypot(*d), 1e-9)
+        off = ends - p
+        at = np.hypot(off[:, 0], off[:, 1]) < 0.5
+        # the units summed one after the other (a running sum), as a loop over them would
+        away = -np.cumsum(unit_along[at], axis=0)[-1] if at.any() else np.zeros(2)
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
