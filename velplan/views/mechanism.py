@@ -521,6 +521,7 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                     mu_l: float, label_mm: float, specials: Sequence[int] = ()) -> _Thick:
     """Add the thick position `t` to `items`: guides, pivots, (special point), links, blocks,
     joints; their outlines to `obstacles`."""
+    outlines: list[tuple] = []  # (shape, clearance mm): buffered all at once at the end
     centre = mm(_centroid(geo.kin))
     tracks = geo.tracks(fine)
     thick_segments = geo.segments(t)
@@ -530,12 +531,12 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         guide_sides[tr.point] = side
         guide = _guide(tr, mu_l, side)
         items += guide
-        obstacles.append(shapely.box(*bounds_of(guide)).buffer(0.3))
+        outlines.append((shapely.box(*bounds_of(guide)), 0.3))
     for name in geo.ground_pivots:
         support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
                               layer="mechanism")
         items += support
-        obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+        outlines.append((shapely.box(*bounds_of(support[:-1])), 0.5))
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -545,23 +546,27 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
                       trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
-        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+        outlines.append((shapely.LineString([a, b]), 0.6))
     blocks = geo.blocks(t)
     for bl in blocks:
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
                             width_mm=BLOCK_MM[1], layer="mechanism")
         items += body
-        obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
+        outlines.append((shapely.Polygon(body[0].points), 0.8))
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
-    _mass_signs(items, obstacles, geo, t, mm)
+    _mass_signs(items, outlines, geo, t, mm)
+    if outlines:  # the same shapes as each one's .buffer(clearance)
+        shapes, clearances = zip(*outlines)
+        obstacles += list(shapely.buffer(np.array(shapes, dtype=object), np.array(clearances), quad_segs=16))
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
 
 
-def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
+def _mass_signs(items: list, outlines: list, geo: _Geometry, t: int, mm) -> None:
     """The centre-of-mass sign at every centre of mass of position t (the mass table's
-    centres, or the points named S2, S3…) that no joint already marks."""
+    centres, or the points named S2, S3…) that no joint already marks; to `outlines`, each
+    sign's centre and the clearance round it, mm."""
     centres = {m.centre for m in geo.mech.masses} | {
         p for p in geo.kin.point_index if p[:1] == "S" and p[1:].isdigit()}
     joints = [mm(geo.p(t, q)) for q in geo.revolute]
@@ -569,7 +574,7 @@ def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> Non
         p = mm(geo.p(t, name))
         if np.all(np.isfinite(p)) and all(np.hypot(*(p - q)) > JOINT_RADIUS_MM for q in joints):
             items += centre_of_mass_sign(p, layer="mechanism")
-            obstacles.append(shapely.Point(p).buffer(2.0))
+            outlines.append((shapely.Point(p), 2.0))
 
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:

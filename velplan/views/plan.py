@@ -18,6 +18,7 @@ Layers: ``plan-v-K`` (vectors), ``plan-v-K-lines`` (construction lines) and
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -211,7 +212,7 @@ def _figure_sides(res, figures, images, fixed: set, i: int, layer: str) -> list[
 def _finite(p: Primitive) -> bool:
     coords = {Arrow: lambda a: [a.start, a.end], Circle: lambda c: [c.centre]}.get(
         type(p), lambda q: list(q.points))(p)
-    return bool(np.all(np.isfinite(np.asarray(coords, float))))
+    return all(math.isfinite(x) and math.isfinite(y) for x, y in coords)  # pairs of floats
 
 
 def plan_area(res, position: int) -> shapely.Polygon:
