@@ -225,10 +225,10 @@ def plan_area(res, position: int) -> shapely.Polygon:
 
 
 def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                     upto: int | None = None) -> tuple[list[Text], list, list, list[Circle]]:
+                     upto: int | None = None) -> tuple[list[Text], list, np.ndarray, list[Circle]]:
     """What `image_letters` places: the letters at their wanted spots (off the lines that meet
-    at each image), each letter's image (mm), the segments the letters keep off, ``(start, end)``
-    (mm; each vector twice), and the dots they keep off."""
+    at each image), each letter's image (mm), the segments the letters keep off, shape (n, 2, 2):
+    start and end (mm; each vector twice), and the dots they keep off."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -244,25 +244,25 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
                 break
         else:
             groups.append([t])
-    segments = []
-    for d in drawings[:upto]:
-        for p in d.items:
-            if isinstance(p, Arrow):
-                segments.append((np.array(p.start), np.array(p.end)))
-            elif isinstance(p, Polyline):
-                pts = np.asarray(p.points, float)
-                segments += [(pts[j], pts[j + 1]) for j in range(len(pts) - 1)]
+    shown_items = [p for d in drawings[:upto] for p in d.items]
+    pairs: list = []  # every straight piece drawn: (start, end), mm
+    for p in shown_items:
+        if isinstance(p, Arrow):
+            pairs.append((p.start, p.end))
+        elif isinstance(p, Polyline):
+            pairs += zip(p.points[:-1], p.points[1:])
+    segments = np.array(pairs, float).reshape(-1, 2, 2)
     # where every spot is crossed, a thin line under a letter reads better than a vector: each
     # vector counts twice; the outlines are buffered all at once (the same as one by one)
-    lines = [(a, b) for a, b in segments if np.hypot(*(b - a)) > 1e-9]
-    lines += [(p.start, p.end) for d in drawings[:upto] for p in d.items
-              if isinstance(p, Arrow) and p.length > 1e-9]
-    circles = [p for d in drawings[:upto] for p in d.items if isinstance(p, Circle)]
+    step = segments[:, 1] - segments[:, 0]
+    arrows = [(p.start, p.end) for p in shown_items if isinstance(p, Arrow) and p.length > 1e-9]
+    lines = np.concatenate([segments[np.hypot(step[:, 0], step[:, 1]) > 1e-9],
+                            np.array(arrows, float).reshape(-1, 2, 2)])
+    circles = [p for p in shown_items if isinstance(p, Circle)]
     texts = []
     # each segment's ends and the unit vectors out of them along it, in the order (a, b), (b, a)
-    ends = np.array([end for a, b in segments for end in (a, b)], float).reshape(-1, 2)
-    along = np.array([other - end for a, b in segments for end, other in ((a, b), (b, a))],
-                     float).reshape(-1, 2)
+    ends = segments.reshape(-1, 2)
+    along = (segments[:, ::-1] - segments).reshape(-1, 2)
     span = np.hypot(along[:, 0], along[:, 1])
     with np.errstate(divide="ignore", invalid="ignore"):
         unit_along = along / span[:, None]
