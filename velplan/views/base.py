@@ -529,6 +529,9 @@ def place_labels_together(views: list, *, rings: int = 8) -> list[tuple]:
             field_bounds[v, :len(g)] = shapely.bounds(field[v, :len(g)])
     most = max([len(texts) for texts, _ in views] + [0])
     placed = [_PlacedLabels() for _ in views]
+    # the labels placed so far in every view, side by side: box, bounds (NaN meets nothing), upright
+    taken = (np.full((len(views), most), None, dtype=object), np.full((len(views), most, 4), np.nan),
+             np.zeros((len(views), most), dtype=bool))
     out: list[list] = [[] for _ in views]
     for k in range(most):
         rows = np.array([v for v, (texts, _) in enumerate(views) if len(texts) > k])
@@ -537,17 +540,20 @@ def place_labels_together(views: list, *, rings: int = 8) -> list[tuple]:
         boxed = [_spot_boxes(t, s) for t, s in zip(texts, spots)]
         bounds = np.stack([b for _, b, _ in boxed])
         clear, crossings, apart = _survey_together(rows, [b for b, _, _ in boxed], bounds, field, field_bounds,
-                                                   placed)
+                                                   tuple(x[:, :k] for x in taken))
         for a, v in enumerate(rows):
             text, (boxes, _, offsets) = texts[a], boxed[a]
             out[v].append(_choose_spot(text, spots[a], boxes, bounds[a], offsets, clear[a], crossings[a], apart[a],
                                        0.5 * text.size_mm, rings, placed[v]))
+            taken[0][v, k], taken[1][v, k], taken[2][v, k] = placed[v].boxes[-1], placed[v]._bounds[-1], \
+                placed[v]._upright[-1]
     return [tuple(labels) for labels in out]
 
 
-def _survey_together(rows, boxes, bounds, field, field_bounds, placed: list[_PlacedLabels]):
+def _survey_together(rows, boxes, bounds, field, field_bounds, taken):
     """`_survey` of one label in each of the views `rows` (its spots' boxes, None where upright,
-    and bounds (n, spots, 4)), stage by stage for the views with no free spot yet."""
+    and bounds (n, spots, 4)), stage by stage for the views with no free spot yet; `taken`: the
+    labels placed in every view (boxes, bounds, upright; one row per view)."""
     import shapely
 
     n, s = bounds.shape[:2]
@@ -571,8 +577,14 @@ def _survey_together(rows, boxes, bounds, field, field_bounds, placed: list[_Pla
         hit = shapely.intersects(some[i, j], field[rows[todo[i]], m]) if len(i) else np.zeros(0, dtype=bool)
         clear[todo[i[hit]], start + j[hit]] = False
         np.add.at(crossings, (todo[i[hit]], start + j[hit]), 1)
-        for a, row in enumerate(todo):
-            apart[row, start:stop] = ~placed[rows[row]].meet(some[a], b[a], bool(up[a]))
+        # as `_PlacedLabels.meet`: bounds first, shapely where a box is turned
+        boxes_taken, bounds_taken, up_taken = (x[rows[todo]] for x in taken)
+        meets = ((b[:, :, None, 0] <= bounds_taken[:, None, :, 2]) & (bounds_taken[:, None, :, 0] <= b[:, :, None, 2])
+                 & (b[:, :, None, 1] <= bounds_taken[:, None, :, 3]) & (bounds_taken[:, None, :, 1] <= b[:, :, None, 3]))
+        i, j, q = np.nonzero(meets & ~(up_taken[:, None, :] & up[:, None, None]))
+        if len(i):
+            meets[i, j, q] = shapely.intersects(some[i, j], boxes_taken[i, q])
+        apart[todo, start:stop] = ~meets.any(axis=2)
         free = (clear[todo, start:stop] & apart[todo, start:stop]).any(axis=1)
         todo = todo[~free]
         if not len(todo):
