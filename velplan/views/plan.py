@@ -233,13 +233,14 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
     shown = [t for d in drawings[:upto] for t in d.images]
+    image = {t: _image(res, t, i) for t in shown}
     groups: list[list[str]] = []
     for t in shown:
-        z = _image(res, t, i)
+        z = image[t]
         if not np.isfinite(z):
             continue
         for g in groups:
-            if abs(_image(res, g[0], i) - z) < COINCIDENT_MM:
+            if abs(image[g[0]] - z) < COINCIDENT_MM:
                 g.append(t)
                 break
         else:
@@ -266,13 +267,14 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
     span = np.hypot(along[:, 0], along[:, 1])
     with np.errstate(divide="ignore", invalid="ignore"):
         unit_along = along / span[:, None]
-    for g in groups:
-        z = _image(res, g[0], i)
-        here = np.array(_xy(z))
-        off = ends - here
-        at = (np.hypot(off[:, 0], off[:, 1]) < COINCIDENT_MM) & (span > 1e-9)
-        # the units summed one after the other (a running sum), as a loop over them would
-        away = -np.cumsum(unit_along[at], axis=0)[-1] if at.any() else np.zeros(2)
+    # per image, the units out of the ends at it summed one after the other (a running sum, the
+    # others adding 0), as a loop over them would
+    heres = np.array([_xy(image[g[0]]) for g in groups], float).reshape(-1, 2)
+    off = ends[None, :, :] - heres[:, None, :]
+    at = (np.hypot(off[..., 0], off[..., 1]) < COINCIDENT_MM) & (span > 1e-9)[None, :]
+    sums = np.cumsum(np.where(at[..., None], unit_along[None, :, :], 0.0), axis=1)
+    aways = -sums[:, -1] if len(ends) else np.zeros((len(groups), 2))
+    for g, here, away in zip(groups, heres, aways):
         if np.hypot(*away) < 0.3:
             away = here / np.hypot(*here) if np.hypot(*here) > 1 else np.array([-0.7, -0.7])
         away = away / np.hypot(*away)
@@ -280,7 +282,7 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
-    anchors = [_xy(_image(res, g[0], i)) for g in groups]
+    anchors = [_xy(image[g[0]]) for g in groups]
     return texts, anchors, lines, circles
 
 
