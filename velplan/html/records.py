@@ -44,10 +44,8 @@ def _u(value: float) -> int:
 
 def _xy(points, dx: float, dy: float) -> list[int]:
     """Flat [x0, y0, x1, y1, …] in 0.01 mm, shifted by (dx, dy) mm and with y turned down."""
-    out: list[int] = []
-    for x, y in points:
-        out += [_u(x - dx), _u(dy - y)]
-    return out
+    k = UNITS_PER_MM
+    return [u for x, y in points for u in (round((x - dx) * k), round((dy - y) * k))]  # as `_u` each
 
 
 def encode(item: Primitive, style: SheetStyle, origin=(0.0, 0.0)) -> list[list]:
