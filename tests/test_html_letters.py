@@ -12,10 +12,10 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from velplan.html.letters import capsules, meets, place_letters
+from velplan.html.letters import RINGS, _all_spots, _offsets, capsules, meets, offsets_of, place_letters
 from velplan.render.scene import Circle, Text
 from velplan.study import Study
-from velplan.views.base import place_labels, place_labels_together
+from velplan.views.base import _spots, place_labels, place_labels_together
 from velplan.views.plan import image_letters, letters_to_place, plan_steps
 
 
@@ -102,3 +102,15 @@ def test_a_crowded_letter_moves_farther_out_as_place_labels_moves_it():
     want = place_labels(texts, [shapely.LineString([(-40, 0), (40, 0)]).buffer(60.0, quad_segs=16)])
     assert np.allclose([t.position for t in got], [t.position for t in want], rtol=0, atol=1e-9)
     assert len({t.position for t in got}) > 1
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(_coord, _coord, st.sampled_from([2.5, 3.5, 5.0]), st.text("abcdπ₁₂₄, ", min_size=1, max_size=6),
+                          st.sampled_from(["start", "middle", "end"]), st.sampled_from(["baseline", "middle", "top"])),
+                min_size=1, max_size=12))
+def test_boxes_and_spots_of_all_letters_are_those_of_each_bit_for_bit(specs):
+    texts = [Text((x, y), s, "labels", size, anchor, baseline) for x, y, size, s, anchor, baseline in specs]
+    want = np.array([_offsets(t) for t in texts])
+    assert offsets_of(texts).view(np.int64).tolist() == want.view(np.int64).tolist()
+    spots = np.stack([_spots(t.position, 0.5 * t.size_mm, RINGS) for t in texts])
+    assert _all_spots(texts).view(np.int64).tolist() == spots.view(np.int64).tolist()
