@@ -105,7 +105,8 @@ def test_a_crowded_letter_moves_farther_out_as_place_labels_moves_it():
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.lists(st.tuples(_coord, _coord, st.sampled_from([2.5, 3.5, 5.0]), st.text("abcdπ₁₂₄, ", min_size=1, max_size=6),
+@given(st.lists(st.tuples(_coord, _coord, st.sampled_from([2.5, 3.5, 5.0]),
+                          st.text("abcdπ₁₂₄, ", min_size=1, max_size=6),
                           st.sampled_from(["start", "middle", "end"]), st.sampled_from(["baseline", "middle", "top"])),
                 min_size=1, max_size=12))
 def test_boxes_and_spots_of_all_letters_are_those_of_each_bit_for_bit(specs):

@@ -16,8 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from velplan.render.scene import Circle, Text
-from velplan.render.shapes import DESCENDER_DEPTH, text_extent
-from velplan.views.base import _LABEL_STAGES, _RINGS, _enlarged_box, _farther, _moved, _spots
+from velplan.views.base import _LABEL_STAGES, _enlarged_box, _farther, _moved, spots_of, upright_offsets
 
 #: Half-width of a line and clearance round a dot that a letter keeps off, mm (as
 #: `image_letters` buffers them).
@@ -107,36 +106,15 @@ def place_letters(frames: list[tuple[list[Text], np.ndarray]]) -> list[list[Text
 
 
 def _all_spots(texts: list[Text]) -> np.ndarray:
-    """`_spots` of every text (step half its size, `RINGS` rings), shape (n, spots, 2): the same
-    sums, all at once."""
-    _spots((0.0, 0.0), 1.0, RINGS)  # makes the rings' table
-    ring, directions = _RINGS[RINGS]
-    at = np.array([t.position for t in texts], float).reshape(-1, 2)
-    step = np.array([0.5 * t.size_mm for t in texts], float)
-    around = at[:, None, :] + (ring[None, :, :] * step[:, None, None]) * directions[None, :, :]
-    return np.concatenate([at[:, None, :], around], axis=1)
-
-
-_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
-_DROP = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
+    """`_spots` of every letter (`RINGS` rings), shape (n, spots, 2)."""
+    return spots_of(texts, RINGS)
 
 
 def offsets_of(texts: list[Text]) -> np.ndarray:
-    """`_offsets` of every upright text, shape (n, 4): the box of `text_box` enlarged as
-    `_enlarged_box` enlarges it, the same operations in the same order on all at once."""
+    """`_offsets` of every letter, shape (n, 4)."""
     if any(t.rotation_deg != 0.0 for t in texts):
         raise ValueError("a plan's letters are upright")
-    size = np.array([t.size_mm for t in texts], float)
-    width = np.array([text_extent(t.text, t.size_mm)[0] for t in texts], float)
-    x, y = np.array([t.position for t in texts], float).reshape(-1, 2).T
-    drop = np.array([_DROP[t.baseline] for t in texts], float) * size
-    lx0 = -width * np.array([_SHARE[t.anchor] for t in texts], float)
-    ly0 = -DESCENDER_DEPTH * size
-    # text_origin + rotate(corners, 0): x - drop·(−sin 0), y − drop·cos 0; (corner − 0) + 0
-    ox, oy = x - drop * -0.0, y - drop * 1.0
-    sx = [x + ((ox + ((c - 0.0) + 0.0)) - x) * 1.25 for c in (lx0, lx0 + width)]
-    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, size)]
-    return np.column_stack([np.minimum(*sx) - x, np.minimum(*sy) - y, np.maximum(*sx) - x, np.maximum(*sy) - y])
+    return upright_offsets(texts)
 
 
 def _offsets(text: Text) -> tuple[float, float, float, float]:
