@@ -438,9 +438,10 @@ def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
                  sizes: MechanismSizes = MechanismSizes(), single: bool = False,
                  extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
                  bold: Sequence[int] = ()) -> tuple[list[Primitive], list[Text], list]:
-    """What `mechanism_view` draws before its labels are placed (the same arguments): the
-    drawing's primitives (mm), the labels at their wanted spots and the shapes they keep off;
-    `place_labels` (rings `SCHEME_RINGS`) and `scheme_view` finish it."""
+    """What `mechanism_view` draws before its labels are placed (the same arguments; `thick`
+    and `bold` are position numbers, 1…n): the drawing's primitives (mm), the labels at their
+    wanted spots and the shapes they keep off; `place_labels` (rings `SCHEME_RINGS`) and
+    `scheme_view` finish it."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -464,7 +465,8 @@ def scheme_view(mech: Mechanism, items: list[Primitive], labels: list[Text], pla
                 mu_l: float, n: int = 12, thick: int = 1, lang: Language = "ru",
                 sizes: MechanismSizes = MechanismSizes(), title: bool = True, single: bool = False,
                 plans: Sequence[int] = ()) -> View:
-    """The view of `scheme_parts`' drawing `items` with its `labels` placed (`placed`)."""
+    """The view of `scheme_parts`' drawing `items` with its `labels` placed (`placed`); `thick`
+    and `plans` are position numbers (1…n), as for `mechanism_view`."""
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
     items = items + list(placed)
     out = output_point(mech)

@@ -226,9 +226,10 @@ def plan_area(res, position: int) -> shapely.Polygon:
 
 def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
                      upto: int | None = None) -> tuple[list[Text], list, np.ndarray, list[Circle]]:
-    """What `image_letters` places: the letters at their wanted spots (off the lines that meet
-    at each image), each letter's image (mm), the segments the letters keep off, shape (n, 2, 2):
-    start and end (mm; each vector twice), and the dots they keep off."""
+    """What `image_letters` places at position number `position` (1…n): the letters at their
+    wanted spots (off the lines that meet at each image), each letter's image (mm), the segments
+    the letters keep off, shape (n, 2, 2): start and end (mm; each vector twice), and the dots
+    they keep off."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
@@ -467,4 +468,4 @@ def _images(res, position: int) -> list[complex]:
 
 
 __all__ = ["StepDrawing", "PlanSizes", "MIN_VECTOR_MM", "labelled_vectors", "near_zero", "plan_steps", "plan_view", "plan_area", "image_letters",
-           "plan_title", "layer_names", "extent_mm", "label_box"]
+           "letters_to_place", "plan_title", "layer_names", "extent_mm", "label_box"]
