@@ -726,11 +726,13 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
     ends = np.array([mm(e) for s in segs for e in (s.a, s.b)], float).reshape(-1, 2)
     along = (ends.reshape(-1, 2, 2)[:, ::-1] - ends.reshape(-1, 2, 2)).reshape(-1, 2)
     unit_along = along / np.maximum(np.hypot(along[:, 0], along[:, 1]), 1e-9)[:, None]
+    centres = np.array([mm(b.centre) for b in blocks], float).reshape(-1, 2)
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
         p = mm(geo.p(t, name))
-        if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
+        near = p - np.array(placed).reshape(-1, 2)
+        if not np.all(np.isfinite(p)) or (np.hypot(near[:, 0], near[:, 1]) < 1.0).any():
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
         off = ends - p
@@ -748,7 +750,8 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
         # point labels sit diagonally off the joint, clear of the lines meeting there
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         reach = JOINT_RADIUS_MM + 1.5 + 0.5 * size
-        if any(np.hypot(*(mm(b.centre) - p)) < 0.5 for b in blocks):
+        on_block = centres - p
+        if (np.hypot(on_block[:, 0], on_block[:, 1]) < 0.5).any():
             reach = 0.5 * math.hypot(*BLOCK_MM) + 1.0  # clear of the slider's corners
         pos = p + away * reach
         out.append(Text(pos, subscript(name), "labels", size, anchor, "middle"))
