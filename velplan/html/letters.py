@@ -99,9 +99,17 @@ def place_letters(frames: list[tuple[list[Text], np.ndarray]]) -> list[list[Text
         bounds = np.concatenate([spots + offsets[:, None, :2] - PAD_MM, spots + offsets[:, None, 2:] + PAD_MM], -1)
         crossings, apart, examined = _survey(bounds, caps[rows], cap_box[rows], placed[rows, :k])
         free = (crossings == 0) & apart & examined
+        # the first free spot; else the one clear of the letters meeting the fewest lines; else -1
+        fewest = np.where(apart.any(axis=1), np.where(apart, crossings, np.iinfo(int).max).argmin(axis=1), -1)
+        spot = np.where(free.any(axis=1), free.argmax(axis=1), fewest)
         for a, f in enumerate(rows):
-            out[f].append(_choose(texts[a], spots[a], bounds[a], free[a], crossings[a], apart[a], offsets[a],
-                                  placed, f, k))
+            j = int(spot[a])
+            if j < 0:
+                out[f].append(_choose(texts[a], spots[a], bounds[a], free[a], crossings[a], apart[a], offsets[a],
+                                      placed, f, k))
+                continue
+            placed[f, k] = bounds[a, j]
+            out[f].append(texts[a] if j == 0 else _moved(texts[a], position=tuple(spots[a, j].tolist())))
     return out
 
 

@@ -67,10 +67,18 @@ def _point(value, owner: str) -> Point:
     return (float(xy[0]), float(xy[1]))
 
 
+_GOOD_LAYERS: set[str] = set()
+"""Layer names already found valid (a drawing uses a few over and over)."""
+
+
 def _check_common(owner: str, layer: str, line: str | None = None) -> None:
-    if not isinstance(layer, str) or not _LAYER_NAME.match(layer):
+    if type(layer) is str and layer in _GOOD_LAYERS:
+        pass
+    elif not isinstance(layer, str) or not _LAYER_NAME.match(layer):
         raise VelplanError(f"{owner} layer {layer!r} is not a valid layer name "
                            "(lower-case letters, digits and '-', starting with a letter)")
+    elif type(layer) is str and len(_GOOD_LAYERS) < 4096:
+        _GOOD_LAYERS.add(layer)
     if line is not None and line not in LINE_TYPES:
         raise VelplanError(f"{owner} line type {line!r} is unknown; known line types: "
                            f"{', '.join(LINE_TYPES)}")
@@ -96,6 +104,7 @@ def _box(points) -> Bounds:
 
 
 _FILLS = (None,) + get_args(Fill)
+_ANCHORS, _BASELINES = get_args(Anchor), get_args(Baseline)
 
 
 @dataclass(frozen=True, slots=True)
@@ -272,8 +281,8 @@ class Text:
             raise VelplanError(f"Text must be a one-line string, got {self.text!r}")
         _check_common("Text", self.layer)
         _check_length("Text", "size_mm", self.size_mm)
-        _check_choice("Text", "anchor", self.anchor, get_args(Anchor))
-        _check_choice("Text", "baseline", self.baseline, get_args(Baseline))
+        _check_choice("Text", "anchor", self.anchor, _ANCHORS)
+        _check_choice("Text", "baseline", self.baseline, _BASELINES)
         if not math.isfinite(self.rotation_deg):
             raise VelplanError(f"Text rotation_deg must be finite, got {self.rotation_deg!r}")
         object.__setattr__(self, "rotation_deg", float(self.rotation_deg))
