@@ -92,13 +92,16 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
         parts.append((frame, scheme_parts(mech, fine=fine, single=True, **frame)))
     placed = place_labels_together([(labels, obstacles) for _, (_, labels, obstacles) in parts], rings=SCHEME_RINGS)
     per_position: list[list[list] | None] = [None] * n
+    known: dict = {}  # primitive → its records: what every position draws alike is encoded once
     for i, (frame, (items, labels, _)), letters in zip(valid, parts, placed):
         if centres:
             view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
             drawn, origin = view.primitives + tuple(_centre_marks(study, i, view, mu_l)), view.origin
-        else:  # the view of one untitled position is its drawing and labels: records in their own mm
-            drawn, origin = (*items, *letters), (0.0, 0.0)
-        per_position[i] = [r for p in drawn for r in encode(p, style, origin)]
+            per_position[i] = [r for p in drawn for r in encode(p, style, origin)]
+            continue
+        # the view of one untitled position is its drawing and labels: records in their own mm
+        per_position[i] = [r for p in (*items, *letters)
+                           for r in (known.get(p) or known.setdefault(p, encode(p, style)))]
     # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
     keys = [[tuple(r) for r in recs or ()] for recs in per_position]
     count: dict[tuple, int] = {}
