@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from velplan.render.scene import Circle, Text
-from velplan.views.base import _LABEL_STAGES, _enlarged_box, _farther, _moved, spots_of, upright_offsets
+from velplan.views.base import _LABEL_STAGES, _farther, _moved, spots_of, upright_offsets
 
 #: Half-width of a line and clearance round a dot that a letter keeps off, mm (as
 #: `image_letters` buffers them).
@@ -119,20 +119,11 @@ def _all_spots(texts: list[Text]) -> np.ndarray:
 
 
 def offsets_of(texts: list[Text]) -> np.ndarray:
-    """`_offsets` of every letter, shape (n, 4)."""
+    """The enlarged box of every letter as offsets (x0, y0, x1, y1) from its spot, mm, shape
+    (n, 4), as `place_labels` makes it."""
     if any(t.rotation_deg != 0.0 for t in texts):
         raise ValueError("a plan's letters are upright")
     return upright_offsets(texts)
-
-
-def _offsets(text: Text) -> tuple[float, float, float, float]:
-    """The enlarged box of an upright `text` as offsets (x0, y0, x1, y1) from its spot, mm."""
-    if text.rotation_deg != 0.0:
-        raise ValueError(f"a plan's letter is upright, not turned {text.rotation_deg}°: {text.text!r}")
-    x, y = text.position
-    scaled = _enlarged_box(text)
-    (x0, y0), (x1, y1) = scaled.min(axis=0) - (x, y), scaled.max(axis=0) - (x, y)
-    return (x0, y0, x1, y1)
 
 
 def _survey(bounds, caps, cap_box, placed):
