@@ -49,7 +49,7 @@ def test_a_crowd_placed_together_moves_farther_out_as_alone():
     assert len({t.position for t in got[0]}) > 1
 
 
-_coord = st.floats(-20, 20, allow_nan=False, allow_infinity=False)
+_coord = st.floats(-20, 20, allow_nan=False, allow_infinity=False).map(lambda v: round(v, 6))  # mm, to 1 nm
 
 
 @settings(max_examples=300, deadline=None)

@@ -36,7 +36,7 @@ def capsules(lines, circles: list[Circle]) -> np.ndarray:
 
 def _slab(x0, y0, x1, y1, ax, ay, dx, dy) -> np.ndarray:
     """Whether each segment a + t·d, 0 ≤ t ≤ 1, meets each box [x0, x1] × [y0, y1] (closed)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a flat or tiny step: ±inf
         lo, hi = np.zeros(len(ax)), np.ones(len(ax))
         for a, d, b0, b1 in ((ax, dx, x0, x1), (ay, dy, y0, y1)):
             t0, t1 = (b0 - a) / d, (b1 - a) / d
@@ -57,7 +57,8 @@ def meets(boxes: np.ndarray, caps: np.ndarray) -> np.ndarray:
     dd = dx * dx + dy * dy
     safe = np.where(dd > 0, dd, 1.0)
     for cx, cy in ((x0, y0), (x1, y0), (x0, y1), (x1, y1)):
-        t = np.where(dd > 0, np.clip(((cx - ax) * dx + (cy - ay) * dy) / safe, 0.0, 1.0), 0.0)
+        with np.errstate(over="ignore"):  # a segment of a few ulp: its nearest point clipped to an end
+            t = np.where(dd > 0, np.clip(((cx - ax) * dx + (cy - ay) * dy) / safe, 0.0, 1.0), 0.0)
         ex, ey = ax + t * dx - cx, ay + t * dy - cy
         hit |= ex * ex + ey * ey <= r * r
     return hit
@@ -105,8 +106,7 @@ def place_letters(frames: list[tuple[list[Text], np.ndarray]]) -> list[list[Text
         for a, f in enumerate(rows):
             j = int(spot[a])
             if j < 0:
-                out[f].append(_choose(texts[a], spots[a], bounds[a], free[a], crossings[a], apart[a], offsets[a],
-                                      placed, f, k))
+                out[f].append(_crowded(texts[a], bounds[a], offsets[a], placed, f, k))
                 continue
             placed[f, k] = bounds[a, j]
             out[f].append(texts[a] if j == 0 else _moved(texts[a], position=tuple(spots[a, j].tolist())))
@@ -151,21 +151,15 @@ def _survey(bounds, caps, cap_box, placed):
     return crossings, apart, examined
 
 
-def _choose(text: Text, spots, bounds, free, crossings, apart, offsets, placed, f: int, k: int) -> Text:
-    """`text` at its chosen spot (as `place_labels` chooses); its box into ``placed[f, k]``."""
-    if free.any():
-        j = int(np.argmax(free))
-    elif apart.any():
-        j = int(np.argmin(np.where(apart, crossings, np.iinfo(int).max)))
-    else:  # crowded all round: off the other letters further out, else where it was
-        import shapely
+def _crowded(text: Text, bounds, offsets, placed, f: int, k: int) -> Text:
+    """`text` with no spot clear of the letters placed before it: the first spot farther out
+    clear of them, else where it was (as `place_labels`); its box into ``placed[f, k]``."""
+    import shapely
 
-        others = [shapely.box(*b) for b in placed[f, :k]]
-        _, spot, box = _farther(text, *offsets, 0.5 * text.size_mm, RINGS, others)
-        if spot is None:
-            placed[f, k] = bounds[0]
-            return text
-        placed[f, k] = shapely.bounds(box)
-        return _moved(text, position=(float(spot[0]), float(spot[1])))
-    placed[f, k] = bounds[j]
-    return text if j == 0 else _moved(text, position=tuple(spots[j].tolist()))
+    others = [shapely.box(*b) for b in placed[f, :k]]
+    _, spot, box = _farther(text, *offsets, 0.5 * text.size_mm, RINGS, others)
+    if spot is None:
+        placed[f, k] = bounds[0]
+        return text
+    placed[f, k] = shapely.bounds(box)
+    return _moved(text, position=(float(spot[0]), float(spot[1])))
