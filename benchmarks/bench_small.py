@@ -382,7 +382,7 @@ def main() -> None:
     ap.add_argument("--print", action="store_true", help="with --triad-only: print the table, write nothing")
     ap.add_argument("--triad-before", metavar="TREE",
                     help="the triad and the four-bar at 12 and 10⁵ positions, an older tree against this one (printed)")
-    ap.add_argument("--cold-match", metavar="TEXT", default="",
+    ap.add_argument("--cold-match", "--only", dest="cold_match", metavar="TEXT", default="",
                     help="with --cold-only: only the commands whose label contains TEXT")
     ap.add_argument("--before", metavar="TREE", help="an older tree: its numpy engine at 10⁴–10⁶ against this one")
     ap.add_argument("--before-label", metavar="TEXT", help="what the older tree is (default: its path)")

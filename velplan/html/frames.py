@@ -2,8 +2,8 @@
 
 Nothing is solved or constructed here: the positions, the exact plans (at one scale for the
 whole turn, so that the slider moves them smoothly about a fixed pole) and the drafted plans
-all come from a `velplan.study.Study`; the views draw them (`mechanism_view`, `plan_steps`,
-`image_letters`) and `velplan.html.records` turns their primitives into compact records.
+all come from a `velplan.study.Study`; the views draw them (`scheme_parts`, `plan_steps`,
+`letters_to_place`) and `velplan.html.records` turns their primitives into compact records.
 
 Records the scheme shares between positions (guides, supports that do not move) are stored
 once in ``shared`` and referred to by their index.
@@ -11,7 +11,6 @@ once in ``shared`` and referred to by their index.
 
 from __future__ import annotations
 
-import json
 import math
 import re
 
@@ -26,11 +25,12 @@ from velplan.plans.text import label_of
 from velplan.render.scene import Polyline
 from velplan.render.style import SheetStyle
 from velplan.study import Study
+from velplan.html.letters import capsules, place_letters
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
 from velplan.html.text import templates
-from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
-from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
-from velplan.views.plan import image_letters, plan_steps
+from velplan.views.base import eskd_scales, place_labels_together, scale_mark, scale_text, subscript, unit
+from velplan.views.mechanism import SCHEME_RINGS, extent_m, scheme_parts, scheme_view, trajectory_points
+from velplan.views.plan import letters_to_place, plan_steps
 from velplan.views.steps import readable as _readable
 
 #: The scheme is drawn at the largest ESKD scale that keeps it within this size, mm.
@@ -83,24 +83,33 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
     reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    per_position: list[list[list] | None] = []
-    for i in range(n):
-        if not kin.valid[i]:
-            per_position.append(None)
-            continue
+    # each position's drawing; then the labels of all positions placed together
+    valid = [i for i in range(n) if kin.valid[i]]
+    parts = []
+    for i in valid:
         idx = sorted(set(reference) | {i})
-        view = mechanism_view(mech, mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)), lang=lang,
-                              kin=kin.take(idx), fine=fine, single=True, title=False)
-        marks = _centre_marks(study, i, view, mu_l) if centres else []
-        per_position.append([r for p in view.primitives + tuple(marks) for r in encode(p, style, view.origin)])
-    # a record drawn at two positions or more is stored once
-    keys = [[json.dumps(r, ensure_ascii=False) for r in recs or ()] for recs in per_position]
-    count: dict[str, int] = {}
+        frame = dict(kin=kin.take(idx), mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)))
+        parts.append((frame, scheme_parts(mech, fine=fine, single=True, **frame)))
+    placed = place_labels_together([(labels, obstacles) for _, (_, labels, obstacles) in parts], rings=SCHEME_RINGS)
+    per_position: list[list[list] | None] = [None] * n
+    known: dict = {}  # primitive → its records: what every position draws alike is encoded once
+    for i, (frame, (items, labels, _)), letters in zip(valid, parts, placed):
+        if centres:
+            view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
+            drawn, origin = view.primitives + tuple(_centre_marks(study, i, view, mu_l)), view.origin
+            per_position[i] = [r for p in drawn for r in encode(p, style, origin)]
+            continue
+        # the view of one untitled position is its drawing and labels: records in their own mm
+        per_position[i] = [r for p in (*items, *letters)
+                           for r in (known.get(p) or known.setdefault(p, encode(p, style)))]
+    # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
+    keys = [[tuple(r) for r in recs or ()] for recs in per_position]
+    count: dict[tuple, int] = {}
     for frame_keys in keys:
         for key in set(frame_keys):
             count[key] = count.get(key, 0) + 1
     shared: list[list] = []
-    where: dict[str, int] = {}
+    where: dict[tuple, int] = {}
     frames = []
     for recs, frame_keys in zip(per_position, keys):
         frame = []
@@ -204,6 +213,7 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
     items: list[list | None] = []
     sentences: list[list[str | None]] = [[] for _ in rows]
     values: list[list | None] = []
+    drawn = _plan_records([i for i in range(n) if kin.valid[i]], exact, lang, style)
     for i in range(n):
         if not kin.valid[i]:
             items.append(None)
@@ -211,7 +221,7 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
             for col in sentences:
                 col.append(None)
             continue
-        recs, said = _plan_records(exact, i, lang, style)
+        recs, said = drawn[i]
         items.append(recs)
         for col, sentence in zip(sentences, said):
             col.append(sentence)
@@ -243,21 +253,31 @@ def plan_frames(study: Study, kind: str, lang: Language, style: SheetStyle, *, s
     }
 
 
-def _plan_records(res: PlanResult, i: int, lang: Language, style: SheetStyle) -> tuple[list, list[str]]:
-    """The plan at position index `i`: records ``[step, *record]`` (letters with the step that
-    fixes their first image) and the sentence of each step, written as by hand."""
-    drawings = plan_steps(res, position_number(i), lang=lang)
-    first: dict[str, int] = {}
-    recs: list[list] = []
-    for j, d in enumerate(drawings, 1):
-        for t in d.images:
-            first.setdefault(subscript(label_of(t)), j)
-        recs += [[j, *r] for p in d.items for r in encode(p, style)]
-    last = len(drawings)
-    for t in image_letters(res, position_number(i), drawings):
-        j = min((first.get(name, last) for name in t.text.split(", ")), default=last)
-        recs += [[j, *r] for r in encode(t, style)]
-    return recs, [readable(d.sentence) for d in drawings]
+def _plan_records(positions: list[int], res: PlanResult, lang: Language,
+                  style: SheetStyle) -> dict[int, tuple[list, list[str]]]:
+    """The plan at each of the position indices `positions`: records ``[step, *record]``
+    (letters with the step that fixes their first image) and the sentence of each step,
+    written as by hand. The letters of all positions are placed together (`place_letters`)."""
+    work = []
+    for i in positions:
+        drawings = plan_steps(res, position_number(i), lang=lang)
+        first: dict[str, int] = {}
+        recs: list[list] = []
+        for j, d in enumerate(drawings, 1):
+            for t in d.images:
+                first.setdefault(subscript(label_of(t)), j)
+            recs += [[j, *r] for p in d.items for r in encode(p, style)]
+        texts, _, lines, circles = letters_to_place(res, position_number(i), drawings)
+        work.append((drawings, first, recs, texts, capsules(lines, circles)))
+    letters = place_letters([(texts, caps) for *_, texts, caps in work])
+    out = {}
+    for i, (drawings, first, recs, _, _), placed in zip(positions, work, letters):
+        last = len(drawings)
+        for t in placed:
+            j = min((first.get(name, last) for name in t.text.split(", ")), default=last)
+            recs += [[j, *r] for r in encode(t, style)]
+        out[i] = (recs, [readable(d.sentence) for d in drawings])
+    return out
 
 
 def rates(study: Study) -> dict:

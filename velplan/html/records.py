@@ -35,6 +35,7 @@ POLYLINE, POLYGON, CIRCLE, ARROW, TEXT, SEGMENTS = range(6)
 UNITS_PER_MM = 100
 _FILL = {None: 0, "solid": 1, "white": 2, "hatch": 0}
 _ANCHOR = {"start": 0, "middle": 1, "end": 2}
+_LINE = {name: k for k, name in enumerate(LINE_TYPES)}
 
 
 def _u(value: float) -> int:
@@ -44,10 +45,8 @@ def _u(value: float) -> int:
 
 def _xy(points, dx: float, dy: float) -> list[int]:
     """Flat [x0, y0, x1, y1, …] in 0.01 mm, shifted by (dx, dy) mm and with y turned down."""
-    out: list[int] = []
-    for x, y in points:
-        out += [_u(x - dx), _u(dy - y)]
-    return out
+    k = UNITS_PER_MM
+    return [u for x, y in points for u in (round((x - dx) * k), round((dy - y) * k))]  # as `_u` each
 
 
 def encode(item: Primitive, style: SheetStyle, origin=(0.0, 0.0)) -> list[list]:
@@ -63,6 +62,11 @@ def encode(item: Primitive, style: SheetStyle, origin=(0.0, 0.0)) -> list[list]:
         The point of the view (mm) that becomes the record's (0, 0).
     """
     dx, dy = float(origin[0]), float(origin[1])
+    kind = type(item)
+    if kind is Arrow:  # the most common first, by exact type
+        return [[ARROW, _LINE[item.line], *_xy((item.start, item.end), dx, dy)]]
+    if kind is Polyline:
+        return [[POLYLINE, _LINE[item.line], *_xy(item.points, dx, dy)]]
     if isinstance(item, Text):
         x, y = text_origin(item)
         em = style.font_size_em(item.size_mm)

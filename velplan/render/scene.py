@@ -53,14 +53,14 @@ def _points(value, owner: str, minimum: int) -> tuple[Point, ...]:
     return tuple(map(tuple, xy.tolist()))
 
 
+_REALS = (float, int, np.floating, np.integer)
+
+
 def _point(value, owner: str) -> Point:
-    if type(value) is tuple and len(value) == 2 and type(value[0]) is float and type(value[1]) is float:
-        if math.isfinite(value[0]) and math.isfinite(value[1]):  # already a point: no array
-            return value
-    elif type(value) is np.ndarray and value.shape == (2,) and value.dtype == np.float64:
-        x, y = value.tolist()
-        if math.isfinite(x) and math.isfinite(y):
-            return (x, y)
+    if type(value) in (tuple, list, np.ndarray) and len(value) == 2:  # the common case, without an array
+        x, y = value[0], value[1]
+        if isinstance(x, _REALS) and isinstance(y, _REALS) and math.isfinite(x) and math.isfinite(y):
+            return (float(x), float(y))
     xy = np.asarray(value, dtype=float)
     if xy.shape != (2,) or not np.all(np.isfinite(xy)):
         raise VelplanError(f"{owner} needs finite (x, y) points in mm, got {value!r}")
@@ -68,15 +68,17 @@ def _point(value, owner: str) -> Point:
 
 
 _GOOD_LAYERS: set[str] = set()
-"""Layer names already checked (a drawing has few, used by thousands of primitives)."""
+"""Layer names already found valid (a drawing uses a few over and over)."""
 
 
 def _check_common(owner: str, layer: str, line: str | None = None) -> None:
-    if type(layer) is str and layer in _GOOD_LAYERS and (line is None or line in LINE_TYPES):
-        return
-    if not isinstance(layer, str) or not _LAYER_NAME.match(layer):
+    if type(layer) is str and layer in _GOOD_LAYERS:
+        pass
+    elif not isinstance(layer, str) or not _LAYER_NAME.match(layer):
         raise VelplanError(f"{owner} layer {layer!r} is not a valid layer name "
                            "(lower-case letters, digits and '-', starting with a letter)")
+    elif type(layer) is str and len(_GOOD_LAYERS) < 4096:
+        _GOOD_LAYERS.add(layer)
     if line is not None and line not in LINE_TYPES:
         raise VelplanError(f"{owner} line type {line!r} is unknown; known line types: "
                            f"{', '.join(LINE_TYPES)}")

@@ -318,6 +318,7 @@ def text_runs(text: str) -> tuple[TextRun, ...]:
     return tuple(runs)
 
 
+@functools.lru_cache(maxsize=4096)  # a view measures the same few labels over and over
 def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     """Estimated width and height of a one-line text, mm.
 
@@ -378,9 +379,11 @@ def text_box(text: Lettering) -> np.ndarray:
 
 def rotate(points, angle_deg: float, about=(0.0, 0.0)) -> np.ndarray:
     """Rotate points (..., 2) by `angle_deg` counter-clockwise about `about`, mm."""
+    about = np.asarray(about, float)
+    if angle_deg == 0.0:  # the turn by 0 (x·1 + y·0) leaves every coordinate as it is
+        return (np.asarray(points, float) - about) + about
     a = math.radians(angle_deg)
     turn = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-    about = np.asarray(about, float)
     return (np.asarray(points, float) - about) @ turn.T + about
 
 

@@ -57,10 +57,10 @@ def centre_of_mass_sign(centre, *, radius_mm: float = 1.8, layer: str = "mechani
     filled, mm."""
     c = np.asarray(centre, float)
     items: list[Primitive] = [Circle(tuple(c), radius_mm, layer, line, "white")]
+    cx, cy = float(c[0]), float(c[1])
     for start in (0.0, math.pi):
-        arc = [c + radius_mm * np.array([math.cos(a), math.sin(a)])
-               for a in np.linspace(start, start + math.pi / 2, 7)]
-        corners = [(float(c[0]), float(c[1]))] + [(float(q[0]), float(q[1])) for q in arc]
+        arc = np.linspace(start, start + math.pi / 2, 7).tolist()
+        corners = [(cx, cy)] + [(cx + radius_mm * math.cos(a), cy + radius_mm * math.sin(a)) for a in arc]
         items.append(Polygon(tuple(corners), layer, line, "solid"))
     return tuple(items)
 

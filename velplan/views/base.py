@@ -516,10 +516,159 @@ def free_direction(busy: list[float], default: float = 45.0) -> float:
     ``default`` when nothing is busy."""
     if not busy:
         return default
+    # every candidate's gap at once (numpy's float remainder is Python's %), then the same scan
+    cand = 5.0 * np.arange(72)
+    gaps = np.abs((cand[:, None] - np.asarray(busy, float)[None, :] + 180.0) % 360.0 - 180.0).min(axis=1)
     best, gap = default, -1.0
-    for k in range(72):
-        cand = 5.0 * k
-        g = min(abs((cand - b + 180.0) % 360.0 - 180.0) for b in busy)
+    for c, g in zip(cand.tolist(), gaps.tolist()):
         if g > gap + 1e-9:
-            best, gap = cand, g
+            best, gap = c, g
     return best
+
+
+def place_labels_together(views: list, *, rings: int = 8) -> list[tuple]:
+    """`place_labels` (its default step) on each of several independent views, given as
+    ``(texts, obstacles)``: the same labels, with the k-th labels of all views surveyed in the
+    same shapely calls."""
+    import shapely
+
+    shapes = [[g for g in obstacles if not g.is_empty] for _, obstacles in views]
+    width = max([len(g) for g in shapes] + [1])
+    field = np.full((len(views), width), None, dtype=object)
+    field_bounds = np.full((len(views), width, 4), np.nan)
+    for v, g in enumerate(shapes):
+        if g:
+            field[v, :len(g)] = g
+            field_bounds[v, :len(g)] = shapely.bounds(field[v, :len(g)])
+    most = max([len(texts) for texts, _ in views] + [0])
+    # the labels placed so far in every view, side by side: box, bounds (NaN meets nothing), upright
+    taken = (np.full((len(views), most), None, dtype=object), np.full((len(views), most, 4), np.nan),
+             np.zeros((len(views), most), dtype=bool))
+    out: list[list] = [[] for _ in views]
+    for k in range(most):
+        rows = np.array([v for v, (texts, _) in enumerate(views) if len(texts) > k])
+        texts = [views[v][0][k] for v in rows]
+        spots, boxes, bounds, offsets = _spot_boxes_of(texts, rings)
+        clear, crossings, apart = _survey_together(rows, boxes, bounds, field, field_bounds,
+                                                   tuple(x[:, :k] for x in taken))
+        for a, v in enumerate(rows):
+            text, others = texts[a], [b for b in taken[0][v, :k]]
+            chosen, box, bounds_j = _choose_spot(text, spots[a], boxes[a], bounds[a], offsets[a], clear[a],
+                                                 crossings[a], apart[a], 0.5 * text.size_mm, rings, others)
+            out[v].append(chosen)
+            taken[0][v, k], taken[1][v, k], taken[2][v, k] = box, bounds_j, boxes[a] is None
+    return [tuple(labels) for labels in out]
+
+
+def spots_of(texts: list, rings: int) -> np.ndarray:
+    """`_spots` of every text, a step of half its size, shape (n, 1 + 8·rings, 2): the same sums,
+    all at once."""
+    _spots((0.0, 0.0), 1.0, rings)  # makes the rings' table
+    ring, directions = _RINGS[rings]
+    at = np.array([t.position for t in texts], float).reshape(-1, 2)
+    step = np.array([0.5 * t.size_mm for t in texts], float)
+    around = at[:, None, :] + (ring[None, :, :] * step[:, None, None]) * directions[None, :, :]
+    return np.concatenate([at[:, None, :], around], axis=1)
+
+
+_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
+_DROP = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
+
+
+def upright_offsets(texts: list) -> np.ndarray:
+    """The offsets (x0, y0, x1, y1) of `_spot_boxes` for upright texts, shape (n, 4): the box of
+    `text_box` enlarged as `_enlarged_box` enlarges it, the same operations in the same order
+    on all at once (``text_origin`` and the turn by 0 of `rotate` written out)."""
+    from velplan.render.shapes import DESCENDER_DEPTH, text_extent
+
+    size = np.array([t.size_mm for t in texts], float)
+    width = np.array([text_extent(t.text, t.size_mm)[0] for t in texts], float)
+    x, y = np.array([t.position for t in texts], float).reshape(-1, 2).T
+    drop = np.array([_DROP[t.baseline] for t in texts], float) * size
+    lx0 = -width * np.array([_SHARE[t.anchor] for t in texts], float)
+    ly0 = -DESCENDER_DEPTH * size
+    ox, oy = x - drop * -0.0, y - drop * 1.0  # x − drop·(−sin 0), y − drop·cos 0
+    sx = [x + ((ox + ((c - 0.0) + 0.0)) - x) * 1.25 for c in (lx0, lx0 + width)]
+    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, size)]
+    return np.column_stack([np.minimum(*sx) - x, np.minimum(*sy) - y, np.maximum(*sx) - x, np.maximum(*sy) - y])
+
+
+def _spot_boxes_of(texts: list, rings: int):
+    """`_spots` and `_spot_boxes` of every text: spots (n, s, 2), boxes (None where upright),
+    bounds (n, s, 4), offsets (n, 4; NaN where turned)."""
+    spots = spots_of(texts, rings)
+    up = np.array([t.rotation_deg == 0.0 for t in texts], dtype=bool)
+    offsets = np.full((len(texts), 4), np.nan)
+    bounds = np.empty(spots.shape[:2] + (4,))
+    boxes: list = [None] * len(texts)
+    if up.any():
+        offsets[up] = upright_offsets([t for t, u in zip(texts, up) if u])
+        bounds[up] = np.concatenate([spots[up] + offsets[up][:, None, :2] - 0.4,
+                                     spots[up] + offsets[up][:, None, 2:] + 0.4], axis=-1)
+    for a in np.nonzero(~up)[0]:
+        boxes[a], bounds[a], _ = _spot_boxes(texts[a], spots[a])
+    return spots, boxes, bounds, offsets
+
+
+def _survey_together(rows, boxes, bounds, field, field_bounds, taken):
+    """`_survey` of one label in each of the views `rows` (its spots' boxes, None where upright,
+    and bounds (n, spots, 4)), stage by stage for the views with no free spot yet; `taken`: the
+    labels placed in every view (boxes, bounds, upright; one row per view)."""
+    import shapely
+
+    n, s = bounds.shape[:2]
+    clear, apart = np.ones((n, s), dtype=bool), np.ones((n, s), dtype=bool)
+    crossings = np.zeros((n, s), dtype=int)
+    upright = np.array([b is None for b in boxes])
+    todo, start = np.arange(n), 0
+    for stop in [x for x in _LABEL_STAGES if x < s] + [s]:
+        b = bounds[todo, start:stop]
+        some = np.empty(b.shape[:2], dtype=object)
+        up = upright[todo]
+        if up.any():
+            some[up] = shapely.box(*b[up].reshape(-1, 4).T).reshape(-1, stop - start)
+        for a in np.nonzero(~up)[0]:
+            some[a] = boxes[todo[a]][start:stop]
+        i, j, m = np.nonzero(_bounds_meet(b[:, :, None, :], field_bounds[rows[todo]][:, None, :, :]))
+        hit = shapely.intersects(some[i, j], field[rows[todo[i]], m]) if len(i) else np.zeros(0, dtype=bool)
+        clear[todo[i[hit]], start + j[hit]] = False
+        np.add.at(crossings, (todo[i[hit]], start + j[hit]), 1)
+        # as `_PlacedLabels.meet`: bounds first, shapely where a box is turned
+        boxes_taken, bounds_taken, up_taken = (x[rows[todo]] for x in taken)
+        meets = _bounds_meet(b[:, :, None, :], bounds_taken[:, None, :, :])
+        i, j, q = np.nonzero(meets & ~(up_taken[:, None, :] & up[:, None, None]))
+        if len(i):
+            meets[i, j, q] = shapely.intersects(some[i, j], boxes_taken[i, q])
+        apart[todo, start:stop] = ~meets.any(axis=2)
+        free = (clear[todo, start:stop] & apart[todo, start:stop]).any(axis=1)
+        todo = todo[~free]
+        if not len(todo):
+            break
+        start = stop
+    return clear, crossings, apart
+
+
+def _bounds_meet(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Whether bounds `a` and `b` (…, 4: xmin, ymin, xmax, ymax) meet, closed intervals, broadcast."""
+    return (a[..., 0] <= b[..., 2]) & (b[..., 0] <= a[..., 2]) & (a[..., 1] <= b[..., 3]) & (b[..., 1] <= a[..., 3])
+
+
+def _choose_spot(text, spots, boxes, bounds, offsets, clear, crossings, apart, step: float, rings: int,
+                 others: list):
+    """`text` at the spot `place_labels` chooses from its survey (`others`: the boxes placed
+    before it), its box and the box's bounds."""
+    import shapely
+
+    upright = boxes is None
+    free = clear & apart
+    j = int(np.argmax(free)) if free.any() else (
+        int(np.argmin(np.where(apart, crossings, np.iinfo(int).max))) if apart.any() else -1)
+    if j < 0 and not upright:
+        j = 0
+    if j < 0:  # crowded all round: off the other labels further out, else where it was
+        j, spot, box = _farther(text, *offsets, step, rings, others)
+        if spot is not None:
+            spots, bounds = np.vstack([spots, spot]), np.vstack([bounds, shapely.bounds(box)])
+            j = len(spots) - 1
+    chosen = text if j == 0 else _moved(text, position=tuple(spots[j].tolist()))
+    return chosen, (shapely.box(*bounds[j]) if upright else boxes[j]), bounds[j]

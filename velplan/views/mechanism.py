@@ -80,15 +80,23 @@ _SEGMENTS: dict[tuple, tuple] = {}
 _ROWS_KEPT = 20000
 
 
+_STRUCTURE: dict[int, tuple] = {}
+"""id of a mechanism → (the mechanism, its point owners, revolute joints, fixed pivots)."""
+
+
 class _Geometry:
     """Where every link, block and guide is, at the positions of a `Kinematics`, m."""
 
     def __init__(self, mech: Mechanism, kin: Kinematics):
         self.mech, self.kin = mech, kin
-        self.owner = point_owners(mech)
-        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
-        self.ground_pivots = [p.point for p in pairs(mech)
-                              if p.kind == "R" and GROUND in p.links]
+        hit = _STRUCTURE.get(id(mech))
+        if hit is None or hit[0] is not mech:  # the mechanism's structure, worked out once
+            if len(_STRUCTURE) >= 64:
+                _STRUCTURE.clear()
+            hit = _STRUCTURE[id(mech)] = (mech, point_owners(mech), {p.point for p in pairs(mech) if p.kind == "R"},
+                                          [p.point for p in pairs(mech) if p.kind == "R" and GROUND in p.links])
+        _, owner, revolute, ground_pivots = hit
+        self.owner, self.revolute, self.ground_pivots = dict(owner), set(revolute), list(ground_pivots)
 
     def p(self, i: int, name: str) -> np.ndarray:
         return self.kin.positions[i, self.kin.point_index[name]]
@@ -415,6 +423,25 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
+    items, labels, obstacles = scheme_parts(mech, kin=kin, fine=fine, mu_l=mu_l, n=n, thick=thick, sizes=sizes,
+                                            single=single, extreme=extreme, special=special, bold=bold)
+    placed = place_labels(labels, obstacles, rings=SCHEME_RINGS)
+    return scheme_view(mech, items, labels, placed, kin=kin, mu_l=mu_l, n=n, thick=thick, lang=lang, sizes=sizes,
+                       title=title, single=single, plans=plans)
+
+
+#: Rings of spots a label of the scheme tries round its wanted spot (`place_labels`).
+SCHEME_RINGS = 8
+
+
+def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12, thick: int = 1,
+                 sizes: MechanismSizes = MechanismSizes(), single: bool = False,
+                 extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
+                 bold: Sequence[int] = ()) -> tuple[list[Primitive], list[Text], list]:
+    """What `mechanism_view` draws before its labels are placed (the same arguments; `thick`
+    and `bold` are position numbers, 1…n): the drawing's primitives (mm), the labels at their
+    wanted spots and the shapes they keep off; `place_labels` (rings `SCHEME_RINGS`) and
+    `scheme_view` finish it."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -428,9 +455,20 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
-    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
-    placed = place_labels(labels, obstacles, rings=8)
-    items += placed
+    points = [p for p in points if np.all(np.isfinite(p))]
+    obstacles += list(shapely.buffer(shapely.points(np.array(points, float).reshape(-1, 2)), POINT_CLEAR_MM,
+                                     quad_segs=16))  # as Point(p).buffer(POINT_CLEAR_MM), all at once
+    return items, labels, obstacles
+
+
+def scheme_view(mech: Mechanism, items: list[Primitive], labels: list[Text], placed, *, kin: Kinematics,
+                mu_l: float, n: int = 12, thick: int = 1, lang: Language = "ru",
+                sizes: MechanismSizes = MechanismSizes(), title: bool = True, single: bool = False,
+                plans: Sequence[int] = ()) -> View:
+    """The view of `scheme_parts`' drawing `items` with its `labels` placed (`placed`); `thick`
+    and `plans` are position numbers (1…n), as for `mechanism_view`."""
+    mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
+    items = items + list(placed)
     out = output_point(mech)
     if not single and out is not None:
         items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
@@ -485,6 +523,7 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                     mu_l: float, label_mm: float, specials: Sequence[int] = ()) -> _Thick:
     """Add the thick position `t` to `items`: guides, pivots, (special point), links, blocks,
     joints; their outlines to `obstacles`."""
+    outlines: list[tuple] = []  # (shape, clearance mm): buffered all at once at the end
     centre = mm(_centroid(geo.kin))
     tracks = geo.tracks(fine)
     thick_segments = geo.segments(t)
@@ -494,12 +533,12 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         guide_sides[tr.point] = side
         guide = _guide(tr, mu_l, side)
         items += guide
-        obstacles.append(shapely.box(*bounds_of(guide)).buffer(0.3))
+        outlines.append((shapely.box(*bounds_of(guide)), 0.3))
     for name in geo.ground_pivots:
         support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
                               layer="mechanism")
         items += support
-        obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+        outlines.append((shapely.box(*bounds_of(support[:-1])), 0.5))
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -509,23 +548,27 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
                       trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
-        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+        outlines.append((shapely.LineString([a, b]), 0.6))
     blocks = geo.blocks(t)
     for bl in blocks:
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
                             width_mm=BLOCK_MM[1], layer="mechanism")
         items += body
-        obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
+        outlines.append((shapely.Polygon(body[0].points), 0.8))
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
-    _mass_signs(items, obstacles, geo, t, mm)
+    _mass_signs(items, outlines, geo, t, mm)
+    if outlines:  # the same shapes as each one's .buffer(clearance)
+        shapes, clearances = zip(*outlines)
+        obstacles += list(shapely.buffer(np.array(shapes, dtype=object), np.array(clearances), quad_segs=16))
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
 
 
-def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
+def _mass_signs(items: list, outlines: list, geo: _Geometry, t: int, mm) -> None:
     """The centre-of-mass sign at every centre of mass of position t (the mass table's
-    centres, or the points named S2, S3…) that no joint already marks."""
+    centres, or the points named S2, S3…) that no joint already marks; to `outlines`, each
+    sign's centre and the clearance round it, mm."""
     centres = {m.centre for m in geo.mech.masses} | {
         p for p in geo.kin.point_index if p[:1] == "S" and p[1:].isdigit()}
     joints = [mm(geo.p(t, q)) for q in geo.revolute]
@@ -533,7 +576,7 @@ def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> Non
         p = mm(geo.p(t, name))
         if np.all(np.isfinite(p)) and all(np.hypot(*(p - q)) > JOINT_RADIUS_MM for q in joints):
             items += centre_of_mass_sign(p, layer="mechanism")
-            obstacles.append(shapely.Point(p).buffer(2.0))
+            outlines.append((shapely.Point(p), 2.0))
 
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:
@@ -679,19 +722,23 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
+    # every segment's ends, and the unit vectors out of them along it, in the order (a, b), (b, a)
+    ends = np.array([mm(e) for s in segs for e in (s.a, s.b)], float).reshape(-1, 2)
+    along = (ends.reshape(-1, 2, 2)[:, ::-1] - ends.reshape(-1, 2, 2)).reshape(-1, 2)
+    unit_along = along / np.maximum(np.hypot(along[:, 0], along[:, 1]), 1e-9)[:, None]
+    centres = np.array([mm(b.centre) for b in blocks], float).reshape(-1, 2)
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
         p = mm(geo.p(t, name))
-        if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
+        near = p - np.array(placed).reshape(-1, 2)
+        if not np.all(np.isfinite(p)) or (np.hypot(near[:, 0], near[:, 1]) < 1.0).any():
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
-        away = np.zeros(2)
-        for s in segs:
-            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
-                if np.hypot(*(here - p)) < 0.5:
-                    d = other - here
-                    away -= d / max(np.hypot(*d), 1e-9)
+        off = ends - p
+        at = np.hypot(off[:, 0], off[:, 1]) < 0.5
+        # the units summed one after the other (a running sum), as a loop over them would
+        away = -np.cumsum(unit_along[at], axis=0)[-1] if at.any() else np.zeros(2)
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
@@ -703,7 +750,8 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
         # point labels sit diagonally off the joint, clear of the lines meeting there
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         reach = JOINT_RADIUS_MM + 1.5 + 0.5 * size
-        if any(np.hypot(*(mm(b.centre) - p)) < 0.5 for b in blocks):
+        on_block = centres - p
+        if (np.hypot(on_block[:, 0], on_block[:, 1]) < 0.5).any():
             reach = 0.5 * math.hypot(*BLOCK_MM) + 1.0  # clear of the slider's corners
         pos = p + away * reach
         out.append(Text(pos, subscript(name), "labels", size, anchor, "middle"))

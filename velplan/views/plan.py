@@ -212,7 +212,7 @@ def _figure_sides(res, figures, images, fixed: set, i: int, layer: str) -> list[
 def _finite(p: Primitive) -> bool:
     coords = {Arrow: lambda a: [a.start, a.end], Circle: lambda c: [c.centre]}.get(
         type(p), lambda q: list(q.points))(p)
-    return bool(np.all(np.isfinite(np.asarray(coords, float))))
+    return all(math.isfinite(x) and math.isfinite(y) for x, y in coords)  # pairs of floats
 
 
 def plan_area(res, position: int) -> shapely.Polygon:
@@ -224,56 +224,58 @@ def plan_area(res, position: int) -> shapely.Polygon:
                        max(xs) + AREA_MARGIN_MM, max(ys) + AREA_MARGIN_MM)
 
 
-def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
-    """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
-    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
-    image is joined to it by a thin leader (the leaders follow the letters in the list).
-    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
+def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
+                     upto: int | None = None) -> tuple[list[Text], list, np.ndarray, list[Circle]]:
+    """What `image_letters` places at position number `position` (1…n): the letters at their
+    wanted spots (off the lines that meet at each image), each letter's image (mm), the segments
+    the letters keep off, shape (n, 2, 2): start and end (mm; each vector twice), and the dots
+    they keep off."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
     upto = len(drawings) if upto is None else upto
     shown = [t for d in drawings[:upto] for t in d.images]
+    image = {t: _image(res, t, i) for t in shown}
     groups: list[list[str]] = []
     for t in shown:
-        z = _image(res, t, i)
+        z = image[t]
         if not np.isfinite(z):
             continue
         for g in groups:
-            if abs(_image(res, g[0], i) - z) < COINCIDENT_MM:
+            if abs(image[g[0]] - z) < COINCIDENT_MM:
                 g.append(t)
                 break
         else:
             groups.append([t])
-    segments = []
-    for d in drawings[:upto]:
-        for p in d.items:
-            if isinstance(p, Arrow):
-                segments.append((np.array(p.start), np.array(p.end)))
-            elif isinstance(p, Polyline):
-                pts = np.asarray(p.points, float)
-                segments += [(pts[j], pts[j + 1]) for j in range(len(pts) - 1)]
+    shown_items = [p for d in drawings[:upto] for p in d.items]
+    pairs: list = []  # every straight piece drawn: (start, end), mm
+    for p in shown_items:
+        if isinstance(p, Arrow):
+            pairs.append((p.start, p.end))
+        elif isinstance(p, Polyline):
+            pairs += zip(p.points[:-1], p.points[1:])
+    segments = np.array(pairs, float).reshape(-1, 2, 2)
     # where every spot is crossed, a thin line under a letter reads better than a vector: each
     # vector counts twice; the outlines are buffered all at once (the same as one by one)
-    lines = [(a, b) for a, b in segments if np.hypot(*(b - a)) > 1e-9]
-    lines += [(p.start, p.end) for d in drawings[:upto] for p in d.items
-              if isinstance(p, Arrow) and p.length > 1e-9]
-    circles = [p for d in drawings[:upto] for p in d.items if isinstance(p, Circle)]
-    obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
-                                     quad_segs=16))
-    obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
-                                     np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
-    obstacles += list(avoid)
+    step = segments[:, 1] - segments[:, 0]
+    arrows = [(p.start, p.end) for p in shown_items if isinstance(p, Arrow) and p.length > 1e-9]
+    lines = np.concatenate([segments[np.hypot(step[:, 0], step[:, 1]) > 1e-9],
+                            np.array(arrows, float).reshape(-1, 2, 2)])
+    circles = [p for p in shown_items if isinstance(p, Circle)]
     texts = []
-    for g in groups:
-        z = _image(res, g[0], i)
-        here = np.array(_xy(z))
-        away = np.zeros(2)
-        for a, b in segments:
-            for end, other in ((a, b), (b, a)):
-                if np.hypot(*(end - here)) < COINCIDENT_MM and np.hypot(*(other - end)) > 1e-9:
-                    away -= (other - end) / np.hypot(*(other - end))
+    # each segment's ends and the unit vectors out of them along it, in the order (a, b), (b, a)
+    ends = segments.reshape(-1, 2)
+    along = (segments[:, ::-1] - segments).reshape(-1, 2)
+    span = np.hypot(along[:, 0], along[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        unit_along = along / span[:, None]
+    # per image, the units out of the ends at it summed one after the other (a running sum, the
+    # others adding 0), as a loop over them would
+    heres = np.array([_xy(image[g[0]]) for g in groups], float).reshape(-1, 2)
+    off = ends[None, :, :] - heres[:, None, :]
+    at = (np.hypot(off[..., 0], off[..., 1]) < COINCIDENT_MM) & (span > 1e-9)[None, :]
+    sums = np.cumsum(np.where(at[..., None], unit_along[None, :, :], 0.0), axis=1)
+    aways = -sums[:, -1] if len(ends) else np.zeros((len(groups), 2))
+    for g, here, away in zip(groups, heres, aways):
         if np.hypot(*away) < 0.3:
             away = here / np.hypot(*here) if np.hypot(*here) > 1 else np.array([-0.7, -0.7])
         away = away / np.hypot(*away)
@@ -281,10 +283,26 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
+    anchors = [_xy(image[g[0]]) for g in groups]
+    return texts, anchors, lines, circles
+
+
+def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
+                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
+    """Letters of the images fixed by the first `upto` steps of the plan at position number
+    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
+    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
+    image is joined to it by a thin leader (the leaders follow the letters in the list).
+    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
+    texts, anchors, lines, circles = letters_to_place(res, position, drawings, size_mm=size_mm, upto=upto)
+    obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
+                                     quad_segs=16))
+    obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
+                                     np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
+    obstacles += list(avoid)
     placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
     if not leaders:
         return placed
-    anchors = [_xy(_image(res, g[0], i)) for g in groups if np.isfinite(_image(res, g[0], i))]
     return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
 
 
@@ -470,4 +488,4 @@ def _images(res, position: int) -> list[complex]:
 
 
 __all__ = ["StepDrawing", "PlanSizes", "MIN_VECTOR_MM", "labelled_vectors", "near_zero", "plan_steps", "plan_view", "plan_area", "image_letters",
-           "plan_title", "layer_names", "extent_mm", "label_box"]
+           "letters_to_place", "plan_title", "layer_names", "extent_mm", "label_box"]
