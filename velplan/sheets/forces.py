@@ -199,8 +199,8 @@ def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
     left; the band's top, mm."""
     tview = None
     if table:
-        tview = fit_table(lambda size: moments_table_view(fa, lang=req.lang, size_mm=size,
-                                                          title_mm=req.sizes.table_title),
+        tview = fit_table(lambda size, width: moments_table_view(fa, lang=req.lang, size_mm=size,
+                                                                 title_mm=req.sizes.table_title, width_factor=width),
                           req, what=f"table of balancing moments ({len(fa.kinematics)} positions)")
     band_top, dview = fill_bottom_band(
         views, req, table_view=tview,

@@ -40,7 +40,7 @@ from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import (
     GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM, free_spot, write_outputs)
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
+    NARROWER_TABLE, ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
@@ -293,8 +293,8 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
     tview = None
     if table:
         data = study.table
-        tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
-                                                  title_mm=req.sizes.table_title),
+        tview = fit_table(lambda size, width: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
+                                                         title_mm=req.sizes.table_title, width_factor=width),
                           req, what=f"table of transfer functions ({study.n} positions)")
     band_top, _ = fill_bottom_band(
         views, req, table_view=tview,
@@ -397,12 +397,14 @@ def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
 
     top_band = (req.area[0], band_top + req.gap, req.area[2], req.area[3])
     study, lang = req.study, req.lang
-    placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
-                        ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    placed = _free_spot(lambda s, t, w: data_view(study, lang=lang, size_mm=s, title_mm=t, width_factor=w),
+                        ((3.5, 5.0, 1.0), (2.5, 3.5, 1.0), (2.5, 3.5, 0.8), (2.5, 3.5, 0.6)),
+                        views, top_band, req.gap)
     if placed is not None:
         views["data"] = placed
-    placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
-                        ((2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    placed = _free_spot(lambda s, t, w: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t, width_factor=w),
+                        ((2.5, 3.5, 1.0),) + tuple((2.5, 3.5, w) for w in NARROWER_TABLE),
+                        views, top_band, req.gap)
     if placed is not None:
         views["readings"] = placed
 
@@ -430,13 +432,13 @@ def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> lis
 
 
 def _free_spot(build, sizes, views, region, gap):
-    """``build(text size, title size)`` placed where no view is in ``region``, at the largest
-    of ``sizes`` that fits: the free spot nearest the scheme's lower left corner; None when
-    there is no room."""
+    """``build(text size, title size, width factor)`` placed where no view is in ``region``,
+    at the first of ``sizes`` that fits: the free spot nearest the scheme's lower left corner;
+    None when there is no room."""
     taken = [v.bounds for v in views.values()]
     corner = (views["mechanism"].bounds[0], views["mechanism"].bounds[1])
-    for size, title in sizes:
-        view = build(size, title)
+    for size, title, width in sizes:
+        view = build(size, title, width)
         at = free_spot(view.width_mm, view.height_mm, taken, region, gap, corner)
         if at is not None:
             return view.at(*at)

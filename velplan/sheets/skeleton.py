@@ -143,19 +143,26 @@ def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
 
 #: The share of the drawing area's width a table of positions may take in the bottom band.
 TABLE_WIDTH = 0.62
+#: The widths a table's letters are narrowed to, in turn, where it is too wide at the format's
+#: least text size (type A lettering is about 0.6 of type B's width: `MIN_WIDTH_FACTOR`).
+NARROWER_TABLE = (0.9, 0.8, 0.7, 0.6)
 
 
-def fit_table(build: Callable[[float], View], req: Request, *, what: str, max_width: float | None = None,
+def fit_table(build: Callable[[float, float], View], req: Request, *, what: str, max_width: float | None = None,
               advice: str = "fewer --positions or ") -> View:
-    """The table ``build(text size)`` at the largest of the format's text sizes that leaves
-    it at most `max_width` mm wide (`TABLE_WIDTH` of the area by default: a table of
-    positions); `what` names it in the error, `advice` precedes "a larger --format" there."""
+    """The table ``build(text size, width factor)`` at the largest of the format's text sizes
+    that leaves it at most `max_width` mm wide (`TABLE_WIDTH` of the area by default: a table
+    of positions), its letters at the format's width (`Sizes.table_width`), else at the least
+    size with its letters narrowed further (`NARROWER_TABLE`);
+    `what` names it in the error, `advice` precedes "a larger --format" there."""
     max_width = TABLE_WIDTH * req.width if max_width is None else max_width
-    size, view = widest_first(build, req.sizes.table, max_width)
+    least, first = req.sizes.table[-1], req.sizes.table_width
+    tries = [(size, first) for size in req.sizes.table] + [(least, f) for f in NARROWER_TABLE if f < first]
+    size, view = widest_first(lambda sw: build(*sw), tries, max_width)
     if size is None:
-        raise ScaleError(f"the {what} does not fit {req.fmt} even with {req.sizes.table[-1]:g} mm "
-                         f"text ({view.width_mm:.0f} mm wide, {max_width:.0f} mm free); use "
-                         f"{advice}a larger --format")
+        raise ScaleError(f"the {what} does not fit {req.fmt} even with {least:g} mm text narrowed "
+                         f"to {NARROWER_TABLE[-1]:g} ({view.width_mm:.0f} mm wide, {max_width:.0f} mm "
+                         f"free); use {advice}a larger --format")
     return view
 
 

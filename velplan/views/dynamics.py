@@ -108,7 +108,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), LAYER, "thin", 3.0, 1.0))
     items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), LAYER, "thin", 3.0, 1.0))
     items.append(Text((L + 9.0, -1.0), "φ", LABELS, size, "start", "top"))
-    items.append(Text((-1.5, top + 6.0), f"{ordinate}, {unit_text}", LABELS, size, "end", "top"))
+    # the ordinate's name right of its arrow's tip, above the curves: no margin left of the axis
+    items.append(Text((2.0, top + 6.0), f"{ordinate}, {unit_text}", LABELS, size, "start", "top"))
     # positions on the φ axis
     count = int(round(positions * cycle / (2 * math.pi)))
     every = max(1, int(math.ceil(positions / 12)))
@@ -421,12 +422,14 @@ def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str
 
 
 def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_mm: float = 2.5,
-                 title_mm: float = 3.5) -> View:
-    """The results as a ruled table of three columns under its title."""
+                 title_mm: float = 3.5, width_factor: float = 1.0) -> View:
+    """The results as a ruled table of three columns under its title, the cells' letters
+    narrowed to `width_factor`."""
     grid = [[label("quantity", lang), label("value", lang), label("unit", lang)]] + [list(r) for r in rows]
-    items, total_w, total_h = grid_table(grid, size_mm)
+    items, total_w, total_h = grid_table(grid, size_mm, width_factor=width_factor)
     items.append(Text((0.0, total_h + 2.5), label("dynamics_results", lang), "table", title_mm))
-    return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm})
+    return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm,
+                                                           "width_factor": width_factor})
 
 
 __all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "nice_step",
