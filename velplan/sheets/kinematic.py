@@ -227,8 +227,17 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
     kinds = ("velocity", "acceleration") if kind == "both" else (kind,)
-    mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
-                                                           fallback=plans is None)
+    try:
+        mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
+                                                               fallback=plans is None)
+    except ScaleError:
+        if "diagrams" in views or "table" not in views:
+            raise
+        # no diagrams beside the table: the table left of the title block, the band lower
+        views.clear()
+        band_top = _bottom_band(req, draw, views, table=table, diagrams=False, table_left=True)
+        mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
+                                                               fallback=plans is None)
     plan_views, results, cells = fitted
     mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
@@ -286,9 +295,10 @@ def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centre
     return chosen
 
 
-def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, diagrams: bool) -> float:
-    """The table above the title block, the diagrams to their left where they fit; the
-    band's top, mm."""
+def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, diagrams: bool,
+                 table_left: bool = False) -> float:
+    """The table above the title block, the diagrams to their left where they fit (or, with
+    `table_left` and no diagrams, the table left of the title block); the band's top, mm."""
     study = req.study
     tview = None
     if table:
@@ -299,7 +309,7 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
     band_top, _ = fill_bottom_band(
         views, req, table_view=tview,
         fit_diagram=(lambda region: _fit_diagrams(req, draw, region)) if diagrams else None,
-        diagram_share=0.3, required=False, diagram_name="diagrams")
+        diagram_share=0.3, required=False, diagram_name="diagrams", table_left=table_left)
     return band_top
 
 

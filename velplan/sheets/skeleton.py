@@ -167,15 +167,20 @@ def fit_table(build: Callable[[float, float], View], req: Request, *, what: str,
 
 
 def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_diagram,
-                     diagram_share: float, required: bool, diagram_name: str):
+                     diagram_share: float, required: bool, diagram_name: str, table_left: bool = False):
     """The bottom band: ``table_view`` right-aligned above the title block, the diagram that
     ``fit_diagram(region)`` draws to their left (at least ``diagram_share`` of the height
     tall). Places them in ``views``; returns (the band's top, the diagram's view or None —
-    when it does not fit and is not ``required``)."""
+    when it does not fit and is not ``required``). With ``table_left`` and no diagram, the
+    table stands left of the title block instead, where it fits there: the band is as low
+    as they are."""
     fx0, fy0, fx1, fy1 = req.area
     tx0, _, tx1, ty1 = req.title_block
     gap = req.gap
     right_w, band_top = tx1 - tx0, ty1 + gap
+    if table_left and fit_diagram is None and table_view is not None and table_view.width_mm <= tx0 - gap - fx0:
+        views["table"] = table_view.at(fx0, fy0)
+        return max(band_top, fy0 + table_view.height_mm), None
     if table_view is not None:
         right_w = max(right_w, table_view.width_mm)
         band_top = ty1 + gap + table_view.height_mm

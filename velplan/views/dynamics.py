@@ -25,7 +25,7 @@ from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
 
@@ -427,7 +427,7 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_m
     narrowed to `width_factor`."""
     grid = [[label("quantity", lang), label("value", lang), label("unit", lang)]] + [list(r) for r in rows]
     items, total_w, total_h = grid_table(grid, size_mm, width_factor=width_factor)
-    items.append(Text((0.0, total_h + 2.5), label("dynamics_results", lang), "table", title_mm))
+    items.append(table_title(label("dynamics_results", lang), title_mm, total_w, total_h, width_factor))
     return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm,
                                                            "width_factor": width_factor})
 

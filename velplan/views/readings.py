@@ -14,10 +14,9 @@ import numpy as np
 from velplan.options import Language
 from velplan.plans.table import natural_key
 from velplan.render.i18n import label
-from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, number, subscript, unit
 from velplan.views.mechanism import special_points
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 PRECISION_MM = 0.1
 """Resolution the lengths are read to on the drawing, mm."""
@@ -76,8 +75,8 @@ def readings_view(plans: dict, *, lang: Language = "ru", size_mm: float = 2.5, t
             row[2 * k:2 * k + 2] = [fixed(read, lang, decimals), fixed(err, lang, 1) if np.isfinite(err) else "—"]
     grid = [head, units] + [[subscript(q)] + rows[q] for q in sorted(rows, key=natural_key)]
     items, total_w, total_h = grid_table(grid, size_mm, width_factor=width_factor)
-    items.append(Text((0.0, total_h + 2.5), f"{label('plan_readings', lang)} "
-                      f"{number(PRECISION_MM, lang)} {unit('mm', lang)}", "table", title_mm))
+    items.append(table_title(f"{label('plan_readings', lang)} {number(PRECISION_MM, lang)} {unit('mm', lang)}",
+                             title_mm, total_w, total_h, width_factor))
     return make_view("readings", items, pad_mm=1.0, meta={"rows": tuple(sorted(rows, key=natural_key)),
                                                           "size_mm": size_mm, "width_factor": width_factor})
 

@@ -24,10 +24,10 @@ from velplan.render.shapes import text_extent
 from velplan.views.base import View, digits_down, fixed, make_view, row_decimals, subscript, unit
 
 _ROW_PITCH = 2.0  # row height over text height
-# A table narrowed to save room saves height too: rows of 1.6·h, the text raised 0.1·h off
-# the row's middle, leave 0.15·h between an index (dropped 0.25·h) or a descender and the rule
-# below, 0.2·h above the capitals.
-_NARROW_ROW_PITCH = 1.6
+# A table narrowed to save room saves height too: rows of 1.7·h, the text raised 0.1·h off
+# the row's middle, leave 0.2·h between an index (dropped 0.25·h) or a descender and the rule
+# below, 0.25·h above the capitals.
+_NARROW_ROW_PITCH = 1.7
 _NARROW_LIFT = 0.1
 _PAD = 1.0  # cell padding each side, mm
 # Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
@@ -108,6 +108,15 @@ def grid_table(grid: list[list[str | None]], size_mm: float, *,
     return items, total_w, total_h
 
 
+def table_title(text: str, size_mm: float, table_w: float, table_h: float, width_factor: float = 1.0) -> Text:
+    """The title over a table `table_w` × `table_h` mm: its letters narrowed, down to the
+    table's `width_factor`, where it would run wider than the table."""
+    natural = text_extent(text, size_mm)[0]
+    fit = math.floor(100.0 * table_w / natural) / 100.0 if natural > table_w else 1.0
+    return Text((0.0, table_h + 2.5), text, "table", size_mm, "start", "baseline", 0.0,
+                max(width_factor, min(1.0, fit)))
+
+
 def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
                size_mm: float = 2.5, title_mm: float = 3.5, digits: int = 3,
                width_factor: float = 1.0) -> View:
@@ -139,8 +148,8 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
     items, total_w, total_h = grid_table([head] + rows, size_mm, numbers=NUMBER_MARGIN,
                                          width_factor=width_factor)
     w1 = f"ω_{{{crank}}}"
-    items.append(Text((0.0, total_h + 2.5), f"{label('table_transfer', lang)} "
-                      f"(v/{w1}, {unit('m', lang)}; ω/{w1})", "table", title_mm))
+    items.append(table_title(f"{label('table_transfer', lang)} (v/{w1}, {unit('m', lang)}; ω/{w1})",
+                             title_mm, total_w, total_h, width_factor))
     return make_view("table", items, pad_mm=1.0,
                      meta={"rows": tuple(table.rows), "n": n, "size_mm": size_mm,
                            "width_factor": width_factor})

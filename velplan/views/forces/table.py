@@ -11,10 +11,9 @@ from velplan.analysis.numbering import position_number
 from velplan.forces.agreement import ForceAnalysis
 from velplan.options import Language
 from velplan.render.i18n import label
-from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, unit
 from velplan.views.forces.common import newton_metre
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 
 def moment_decimals(values) -> int:
@@ -42,7 +41,7 @@ def moments_table_view(fa: ForceAnalysis, *, lang: Language = "ru", size_mm: flo
         rows.append([f"{mb} ({label('method_' + key, lang)})"] +
                     [fixed(float(v), lang, decimals) for v in moments[key]])
     items, total_w, total_h = grid_table([head] + rows, size_mm, width_factor=width_factor)
-    items.append(Text((0.0, total_h + 2.5), f"{label('balancing_moment', lang)} {mb}, "
-                      f"{newton_metre(lang)}", "table", title_mm))
+    items.append(table_title(f"{label('balancing_moment', lang)} {mb}, {newton_metre(lang)}",
+                             title_mm, total_w, total_h, width_factor))
     return make_view("table", items, pad_mm=1.0, meta={"n": n, "size_mm": size_mm,
                                                       "decimals": decimals, "width_factor": width_factor})
