@@ -227,17 +227,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
     kinds = ("velocity", "acceleration") if kind == "both" else (kind,)
-    try:
-        mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
-                                                               fallback=plans is None)
-    except ScaleError:
-        if "diagrams" in views or "table" not in views:
-            raise
-        # no diagrams beside the table: the table left of the title block, the band lower
-        views.clear()
-        band_top = _bottom_band(req, draw, views, table=table, diagrams=False, table_left=True)
-        mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
-                                                               fallback=plans is None)
+    mview, fitted, chosen, scheme_zone = _roomiest(req, draw, views, chosen, kinds, band_top, table=table,
+                                                   fallback=plans is None)
     plan_views, results, cells = fitted
     mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
@@ -311,6 +302,36 @@ def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, dia
         fit_diagram=(lambda region: _fit_diagrams(req, draw, region)) if diagrams else None,
         diagram_share=0.3, required=False, diagram_name="diagrams", table_left=table_left)
     return band_top
+
+
+def _roomiest(req: Request, draw: _Drawings, views: dict, chosen, kinds, band_top: float, *, table: bool,
+              fallback: bool):
+    """`_scheme_and_plans` above the bottom band; where the band has no diagrams, also above
+    the table moved left of the title block (a lower band): that one where the first fails, or
+    where it draws the same plans with a larger scheme."""
+    found = failure = None
+    try:
+        found = _scheme_and_plans(req, draw, views, chosen, kinds, band_top, fallback=fallback)
+    except ScaleError as exc:
+        failure = exc
+    low: dict = {}
+    if "diagrams" not in views and "table" in views:
+        low_top = _bottom_band(req, draw, low, table=table, diagrams=False, table_left=True)
+    if low.get("table") is None or low["table"].bounds == views["table"].bounds:
+        if found is None:
+            raise failure
+        return found
+    try:
+        other = _scheme_and_plans(req, draw, low, chosen, kinds, low_top, fallback=fallback)
+    except ScaleError:
+        if found is None:
+            raise failure from None
+        return found
+    if found is None or (tuple(other[2]) == tuple(found[2]) and other[0].mu < found[0].mu * (1 - 1e-9)):
+        views.clear()
+        views.update(low)
+        return other
+    return found
 
 
 #: The scheme's share of the width of the top band.

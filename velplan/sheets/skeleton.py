@@ -178,24 +178,25 @@ def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_
     tx0, _, tx1, ty1 = req.title_block
     gap = req.gap
     right_w, band_top = tx1 - tx0, ty1 + gap
-    if table_left and fit_diagram is None and table_view is not None and table_view.width_mm <= tx0 - gap - fx0:
-        views["table"] = table_view.at(fx0, fy0)
-        return max(band_top, fy0 + table_view.height_mm), None
     if table_view is not None:
         right_w = max(right_w, table_view.width_mm)
         band_top = ty1 + gap + table_view.height_mm
         views["table"] = table_view.at(fx1 - table_view.width_mm, ty1 + gap)
-    if fit_diagram is None:
-        return band_top, None
-    region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
-    try:
-        dview = fit_diagram(region)
-    except ScaleError:
-        if required:
-            raise
-        return band_top, None
-    views[diagram_name] = dview.at(fx0, fy0)
-    return max(band_top, fy0 + dview.height_mm), dview
+    dview = None
+    if fit_diagram is not None:
+        region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
+        try:
+            dview = fit_diagram(region)
+        except ScaleError:
+            if required:
+                raise
+    if dview is not None:
+        views[diagram_name] = dview.at(fx0, fy0)
+        return max(band_top, fy0 + dview.height_mm), dview
+    if table_left and table_view is not None and table_view.width_mm <= tx0 - gap - fx0:
+        views["table"] = table_view.at(fx0, fy0)
+        return max(ty1 + gap, fy0 + table_view.height_mm), None
+    return band_top, None
 
 
 def course_title(mech: Mechanism, lang: Language, what: str, number: int, scale: str) -> TitleInfo:

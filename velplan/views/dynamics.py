@@ -108,8 +108,9 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), LAYER, "thin", 3.0, 1.0))
     items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), LAYER, "thin", 3.0, 1.0))
     items.append(Text((L + 9.0, -1.0), "φ", LABELS, size, "start", "top"))
-    # the ordinate's name right of its arrow's tip, above the curves: no margin left of the axis
-    items.append(Text((2.0, top + 6.0), f"{ordinate}, {unit_text}", LABELS, size, "start", "top"))
+    # the ordinate's name centred over its arrow's tip, clear of the curves and their names:
+    # the axis needs no margin for it beyond its ticks' numbers
+    items.append(Text((0.0, top + 7.0), f"{ordinate}, {unit_text}", LABELS, size, "middle", "baseline"))
     # positions on the φ axis
     count = int(round(positions * cycle / (2 * math.pi)))
     every = max(1, int(math.ceil(positions / 12)))
@@ -220,7 +221,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         Arrow((0.0, 0.0), (right, 0.0), LAYER, "thin", 3.0, 1.0),
         Arrow((0.0, bottom), (0.0, top), LAYER, "thin", 3.0, 1.0),
         Text((right + 1.0, -1.0), f"J, {unit('kg·m²', lang)}", LABELS, size, "start", "top"),
-        Text((-1.5, top), f"ΔT, {unit('J', lang)}", LABELS, size, "end", "top"),
+        Text((0.0, top + 1.0), f"ΔT, {unit('J', lang)}", LABELS, size, "middle", "baseline"),
         Polyline(np.column_stack([x, y]), LAYER, "thick"),
     ]
     names = []
