@@ -309,7 +309,7 @@ def _roomiest(req: Request, draw: _Drawings, views: dict, chosen, kinds, band_to
     """`_scheme_and_plans` above the bottom band; where the band has no diagrams, also above
     the table moved left of the title block (a lower band): that one where the first fails, or
     where it draws the same plans with a larger scheme."""
-    found = failure = None
+    found, failure = None, ScaleError(f"the plans do not fit {req.fmt} beside the scheme")
     try:
         found = _scheme_and_plans(req, draw, views, chosen, kinds, band_top, fallback=fallback)
     except ScaleError as exc:

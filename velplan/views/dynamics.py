@@ -237,12 +237,13 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
         # beside the ΔT axis, never on it: k above its extension line, between the axis and the
         # dimension kl (the tangent leaves k up and to the right); l to the right of its point,
-        # under its tangent and off the axis's tail (an upright l beside a parallel line reads
-        # as a tick), moved clear of the lines where the tangent runs flat
+        # hung below its level, so under its rising tangent however flat (the curve lies above
+        # that tangent), and off the axis's tail (an upright l beside a parallel line reads as
+        # a tick)
         if mark == "k":
             items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
         else:
-            names.append(Text((4.0, ay + 0.3), mark, LABELS, sizes.title_mm, "start", "baseline"))
+            names.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
         sym = indexed("ψ", "max" if mark == "k" else "min")
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
