@@ -52,10 +52,14 @@ def test_fit_text_keeps_size_when_it_fits():
     assert lines[0].anchor == "middle" and lines[0].baseline == "middle"
 
 
-def test_fit_text_shrinks_then_wraps():
-    # 8 characters: 14 mm wide at 2.5 mm, too wide for 12 - 2 mm; 10.08 mm at 1.8 mm
+def test_fit_text_narrows_below_the_least_height_then_wraps():
+    # 8 characters: 14 mm wide at 2.5 mm, too wide for 12 - 2 mm (less the 15 % margin: 8.7 mm):
+    # kept 2.5 mm high (the ESKD least), its letters narrowed to 8.7 / 14 = 0.62, floored
     date = fit_text("12.05.24", (0, 0, 12, 5), layer="title", size_mm=2.5)
-    assert [t.size_mm for t in date] == [1.8]
+    assert [(t.size_mm, t.width_factor) for t in date] == [(2.5, 0.62)]
+    assert label_box(date[0]).bounds[2] - label_box(date[0]).bounds[0] <= 10.0 / 1.15
+    # never narrower than type A lettering, even where the cell is too small
+    assert fit_text("12.05.2024 12:00", (0, 0, 12, 5), layer="title", size_mm=2.5)[0].width_factor == 0.6
     title = "Kinematic analysis of a crank slider mechanism"
     lines = fit_text(title, (0, 0, 70, 25), layer="title", size_mm=5.0)
     assert len(lines) > 1

@@ -14,7 +14,7 @@ from velplan.errors import VelplanError
 from velplan.mechanism.loader import catalogue_names
 from velplan.render.layout import label_box, overlapping_labels
 from velplan.render.scene import Arrow, Circle, Polyline, Text
-from velplan.render.shapes import script_size, text_runs
+from velplan.render.shapes import MIN_WIDTH_FACTOR, script_size, text_runs
 from velplan.sheets.dynamics import build_dynamics_sheet
 from velplan.sheets.forces import build_force_sheet, has_forces
 from velplan.plans.text import label_of
@@ -93,10 +93,13 @@ def printed_height(t: Text) -> float:
 
 
 def small_texts(scene, *, title: bool) -> list[str]:
-    """The texts printed below :data:`MIN_TEXT_MM` (indices included), of the title block
-    (`title`) or of the rest of the sheet."""
+    """The texts printed below :data:`MIN_TEXT_MM` (indices included), or narrowed below type A
+    lettering (`MIN_WIDTH_FACTOR` of their normal width: the height is then no excuse), of the
+    title block (`title`) or of the rest of the sheet. Boxes elsewhere (`label_box`) are the
+    narrowed ones, as printed."""
     return [t.text for t in scene.of_kind(Text)
-            if (t.layer == "title") == title and printed_height(t) < MIN_TEXT_MM - 1e-9]
+            if (t.layer == "title") == title and (printed_height(t) < MIN_TEXT_MM - 1e-9
+                                                  or t.width_factor < MIN_WIDTH_FACTOR - 1e-9)]
 
 
 def short_unlisted_vectors(sheet) -> list[str]:

@@ -18,9 +18,9 @@ KOMPAS-3D and other CAD programs import cleanly:
   widths still shows every outline. A ``"white"`` fill (a joint or slider hiding what lies
   beneath) has no counterpart without WIPEOUT and is drawn as its outline.
 * **Text** is TEXT in UTF-8 (DXF R2007 and later store Unicode as is), height = the scene's
-  capital height, rotation as in the scene, and the DXF alignment that matches the scene's
-  anchor (left/centre/right × baseline/middle/top), so the anchor point stays put when a CAD
-  program substitutes its own font. Font: Arial (Chinese: SimHei), slanted 15° when the
+  capital height, rotation as in the scene, narrowed letters as TEXT's width factor, and the
+  DXF alignment that matches the scene's anchor (left/centre/right × baseline/middle/top), so
+  the anchor point stays put when a CAD program substitutes its own font. Font: Arial (Chinese: SimHei), slanted 15° when the
   style is italic.
 
 The scene is already y up with its origin at the sheet's bottom-left corner, exactly like
@@ -248,6 +248,8 @@ class DxfCanvas:
         attributes["style"] = TEXT_STYLE
         if self.style.italic:
             attributes["oblique"] = ITALIC_OBLIQUE_DEG
+        if item.width_factor != 1.0:
+            attributes["width"] = item.width_factor  # TEXT's relative x scale (group 41)
         entity = self._msp.add_text(content, height=item.size_mm, rotation=item.rotation_deg,
                                     dxfattribs=attributes)
         from ezdxf.enums import TextEntityAlignment

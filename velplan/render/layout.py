@@ -6,8 +6,8 @@ Everything works on estimated boxes in sheet millimetres (see
 
 from __future__ import annotations
 
+import math
 import re
-
 from typing import Literal, Sequence
 
 import numpy as np
@@ -16,8 +16,8 @@ from shapely.geometry.base import BaseGeometry
 
 from velplan.errors import ScaleError
 from velplan.render.scene import Bounds, Scene, Text
-from velplan.render.shapes import DESCENDER_DEPTH, text_box, text_extent
-from velplan.render.style import ESKD_TEXT_HEIGHTS, MIN_TEXT_HEIGHT_MM
+from velplan.render.shapes import DESCENDER_DEPTH, MIN_INDEX_MM, MIN_WIDTH_FACTOR, text_box, text_extent
+from velplan.render.style import ESKD_TEXT_HEIGHTS
 
 __all__ = ["text_extent", "label_box", "overlapping_labels", "place_views",
            "fit_text", "LINE_PITCH"]
@@ -122,12 +122,15 @@ def _clear(a: Bounds, b: Bounds, gap: float) -> bool:
 
 def fit_text(text: str, cell: Bounds, *, layer: str, size_mm: float = 3.5,
              anchor: Literal["start", "middle"] = "middle",
-             padding_mm: float = 1.0) -> tuple[Text, ...]:
-    """Write `text` inside a rectangular cell, shrinking or wrapping it to fit.
+             padding_mm: float = 1.0, least_mm: float = MIN_INDEX_MM) -> tuple[Text, ...]:
+    """Write `text` inside a rectangular cell, shrinking, narrowing or wrapping it to fit.
 
-    The largest standard height not above `size_mm` is used at which the text fits the
-    cell on one line, else wrapped on word boundaries onto as many lines as the cell
-    height allows; if nothing fits, the smallest ESKD height (1.8 mm) on one line.
+    The largest standard height from `least_mm` (the ESKD 2.5 mm) to `size_mm` is used at
+    which the text fits the cell on one line, else wrapped on word boundaries onto as many
+    lines as the cell height allows; if nothing fits, the least height with its letters
+    narrowed (the widest of 0.95, 0.9 … :data:`MIN_WIDTH_FACTOR` that fits); in a cell too
+    low for that, the least height on one line, narrowed as its width needs (at least to
+    :data:`MIN_WIDTH_FACTOR`).
 
     Parameters
     ----------
@@ -143,6 +146,8 @@ def fit_text(text: str, cell: Bounds, *, layer: str, size_mm: float = 3.5,
         Left-aligned after `padding_mm`, or centred.
     padding_mm : float
         Clearance to the cell's sides, mm.
+    least_mm : float
+        The least text height, mm: the text is narrowed rather than set smaller.
 
     Returns
     -------
@@ -153,16 +158,35 @@ def fit_text(text: str, cell: Bounds, *, layer: str, size_mm: float = 3.5,
         return ()
     room_w = cell[2] - cell[0] - 2 * padding_mm
     room_h = cell[3] - cell[1] - 2 * padding_mm
-    sizes = [h for h in sorted(ESKD_TEXT_HEIGHTS, reverse=True) if h <= size_mm + _EPS]
-    for size in sizes or [MIN_TEXT_HEIGHT_MM]:
-        first = (1.0 + DESCENDER_DEPTH) * size  # one line, capitals plus descenders
-        if first > room_h + _EPS:
-            continue
-        most = int((room_h - first + _EPS) // (LINE_PITCH * size)) + 1
-        lines = _wrap(text, room_w, size, most)
+    sizes = [h for h in sorted(ESKD_TEXT_HEIGHTS, reverse=True) if least_mm - _EPS <= h <= size_mm + _EPS]
+    sizes = sizes or [least_mm]
+    for size in sizes:
+        lines = _lines_in(text, room_w, room_h, size)
         if lines is not None:
             return _cell_lines(lines, cell, layer, size, anchor, padding_mm)
-    return _cell_lines([text], cell, layer, MIN_TEXT_HEIGHT_MM, anchor, padding_mm)
+    size = sizes[-1]
+    for factor in _NARROWER:
+        lines = _lines_in(text, room_w / factor, room_h, size)
+        if lines is not None:
+            return _cell_lines(lines, cell, layer, size, anchor, padding_mm, factor)
+    # too long or the cell too low for any wrapping: one line, as narrow as its width needs
+    need = _CELL_MARGIN * text_extent(text, size)[0] / max(room_w, _EPS)
+    factor = min(1.0, max(MIN_WIDTH_FACTOR, math.floor(100.0 / need) / 100.0 if need > 1.0 else 1.0))
+    return _cell_lines([text], cell, layer, size, anchor, padding_mm, factor)
+
+
+#: The widths `fit_text` tries, narrowest last.
+_NARROWER = tuple(np.round(np.arange(0.95, MIN_WIDTH_FACTOR - _EPS, -0.05), 2))
+
+
+def _lines_in(text: str, room_w: float, room_h: float, size: float) -> list[str] | None:
+    """`text` wrapped to `room_w` mm at `size` mm onto the lines that `room_h` mm holds; None
+    when it does not fit."""
+    first = (1.0 + DESCENDER_DEPTH) * size  # one line, capitals plus descenders
+    if first > room_h + _EPS:
+        return None
+    most = int((room_h - first + _EPS) // (LINE_PITCH * size)) + 1
+    return _wrap(text, room_w, size, most)
 
 
 #: Rendered Latin and Cyrillic run up to ~10 % wider than `text_extent`'s estimate: a cell
@@ -202,9 +226,9 @@ def glued_words(text: str) -> list[str]:
     return words
 
 
-def _cell_lines(lines, cell, layer, size, anchor, padding) -> tuple[Text, ...]:
+def _cell_lines(lines, cell, layer, size, anchor, padding, width_factor=1.0) -> tuple[Text, ...]:
     x = cell[0] + padding if anchor == "start" else (cell[0] + cell[2]) / 2
     centre = (cell[1] + cell[3]) / 2
     offsets = (np.arange(len(lines)) - (len(lines) - 1) / 2) * LINE_PITCH * size
-    return tuple(Text((x, centre - dy), line, layer, size, anchor, "middle")
+    return tuple(Text((x, centre - dy), line, layer, size, anchor, "middle", 0.0, float(width_factor))
                  for line, dy in zip(lines, offsets))

@@ -144,6 +144,9 @@ class MplCanvas:
 
     def draw_text(self, item: Text) -> None:
         x, y = text_origin(item)
+        if item.width_factor != 1.0:
+            self._narrow_text(item, x, y)
+            return
         size_pt = self.style.font_size_em(item.size_mm) * self._pt_per_mm
         self.ax.text(x, y, plain_text(item.text), fontsize=size_pt,
                      family=_installed_families(self.style.font_families),
@@ -152,6 +155,26 @@ class MplCanvas:
                      ha={"start": "left", "middle": "center", "end": "right"}[item.anchor],
                      va="baseline", rotation=item.rotation_deg, rotation_mode="anchor",
                      zorder=self._zorder())
+
+    def _narrow_text(self, item: Text, x: float, y: float) -> None:
+        """Narrowed letters as the text's outline (matplotlib text has no width scale): the
+        glyphs at the em size in mm, scaled along the baseline about the anchor."""
+        from matplotlib.font_manager import FontProperties
+        from matplotlib.patches import PathPatch
+        from matplotlib.textpath import TextPath
+        from matplotlib.transforms import Affine2D
+
+        prop = FontProperties(family=_installed_families(self.style.font_families),
+                              style="italic" if self.style.italic else "normal")
+        path = TextPath((0.0, 0.0), plain_text(item.text),
+                        size=self.style.font_size_em(item.size_mm), prop=prop)
+        width = path.get_extents().x1 if len(path.vertices) else 0.0
+        shift = {"start": 0.0, "middle": 0.5, "end": 1.0}[item.anchor] * width
+        place = (Affine2D().translate(-shift, 0.0).scale(item.width_factor, 1.0)
+                 .rotate_deg(item.rotation_deg).translate(x, y))
+        colour = self.style.stroke_colour(item.layer)
+        self.ax.add_patch(PathPatch(path, transform=place + self.ax.transData, facecolor=colour,
+                                    edgecolor="none", zorder=self._zorder()))
 
     def finish(self) -> Axes:
         """Return the Axes drawn on."""

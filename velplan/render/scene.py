@@ -25,7 +25,7 @@ from typing import Iterable, Iterator, Literal, Union, get_args
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.render.shapes import DESCENDER_DEPTH, text_box, text_extent
+from velplan.render.shapes import DESCENDER_DEPTH, MIN_WIDTH_FACTOR, text_box, text_extent
 from velplan.render.style import LINE_TYPES, LineType
 
 Point = tuple[float, float]
@@ -267,6 +267,10 @@ class Text:
         their top.
     rotation_deg : float
         Direction of the baseline, degrees counter-clockwise from the x axis.
+    width_factor : float
+        Width of the letters over their normal width at `size_mm`, from
+        :data:`~velplan.render.shapes.MIN_WIDTH_FACTOR` to 1: a text that must fit a fixed
+        cell keeps its height and is narrowed (as ESKD's narrow type A lettering is).
     """
 
     position: Point
@@ -276,6 +280,7 @@ class Text:
     anchor: Anchor = "start"
     baseline: Baseline = "baseline"
     rotation_deg: float = 0.0
+    width_factor: float = 1.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "position", _point(self.position, "Text"))
@@ -288,13 +293,18 @@ class Text:
         if not math.isfinite(self.rotation_deg):
             raise VelplanError(f"Text rotation_deg must be finite, got {self.rotation_deg!r}")
         object.__setattr__(self, "rotation_deg", float(self.rotation_deg))
+        if not (isinstance(self.width_factor, (int, float))
+                and MIN_WIDTH_FACTOR - 1e-9 <= self.width_factor <= 1.0):
+            raise VelplanError(f"Text width_factor must be from {MIN_WIDTH_FACTOR} to 1 "
+                               f"(narrower letters are illegible), got {self.width_factor!r}")
+        object.__setattr__(self, "width_factor", float(self.width_factor))
 
     @property
     def bounds(self) -> Bounds:
         """(xmin, ymin, xmax, ymax) of the estimated text box, mm."""
         if self.rotation_deg == 0.0:
             # the upright box in plain arithmetic: the same numbers as text_box, without arrays
-            width, _ = text_extent(self.text, self.size_mm)
+            width = text_extent(self.text, self.size_mm)[0] * self.width_factor
             lx = -width * _ANCHOR[self.anchor]
             y = self.position[1] - _DROP[self.baseline] * self.size_mm
             return (self.position[0] + lx, y + -DESCENDER_DEPTH * self.size_mm,

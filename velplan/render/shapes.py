@@ -30,6 +30,10 @@ SCRIPT_SCALE = 0.7
 #: The smallest index drawn, mm: the ESKD minimum text height (letters of 3.5 mm take indices of
 #: 2.5 mm); an index of a letter smaller than this is drawn at the letter's own size.
 MIN_INDEX_MM = 2.5
+#: The narrowest lettering printed, as a fraction of the normal width at the same height:
+#: ESKD type A letters (GOST 2.304, 5/14·h wide) are about 0.6 of type B's (6/10·h). A text
+#: that must fit a fixed cell keeps its height and is narrowed, down to this.
+MIN_WIDTH_FACTOR = 0.6
 
 
 def script_size(size_mm: float) -> float:
@@ -58,6 +62,7 @@ class Lettering(Protocol):
     anchor: str  # "start", "middle" or "end"
     baseline: str  # "baseline", "middle" or "top"
     rotation_deg: float  # direction of the baseline, degrees counter-clockwise
+    width_factor: float  # letters' width over their normal width at this height
 
 
 class ArrowShape(NamedTuple):
@@ -363,7 +368,7 @@ def text_origin(text: Lettering) -> np.ndarray:
 
 def text_box(text: Lettering) -> np.ndarray:
     """Corners of the estimated box of `text`, shape (4, 2), mm, counter-clockwise."""
-    width, _ = text_extent(text.text, text.size_mm)
+    width = text_extent(text.text, text.size_mm)[0] * text.width_factor
     x0 = -width * {"start": 0.0, "middle": 0.5, "end": 1.0}[text.anchor]
     y0 = -DESCENDER_DEPTH * text.size_mm
     if text.rotation_deg == 0.0:  # upright: the same numbers in plain arithmetic, without arrays

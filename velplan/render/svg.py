@@ -149,8 +149,16 @@ class SvgCanvas:
         }
         if self.style.italic:
             attributes["font-style"] = "italic"
+        transforms = []
         if item.rotation_deg:
-            attributes["transform"] = f"rotate({self._num(-item.rotation_deg)} {x} {y})"
+            transforms.append(f"rotate({self._num(-item.rotation_deg)} {x} {y})")
+        if item.width_factor != 1.0:
+            # narrowed letters: scaled along the baseline about the anchor (cairosvg and
+            # browsers both follow a transform; a condensed font may not be installed)
+            transforms.append(f"translate({x} 0) scale({self._num(item.width_factor)} 1) "
+                              f"translate({self._num(-text_origin(item)[0])} 0)")
+        if transforms:
+            attributes["transform"] = " ".join(transforms)
         runs = text_runs(item.text)
         first = runs[0].text if runs and not runs[0].script else ""
         content = escape_text(first)

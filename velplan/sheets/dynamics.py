@@ -158,8 +158,9 @@ def _left_column(req: Request, curves, views: dict) -> dict[str, float]:
     d = req.study.dynamics
     fx0, _, fx1, fy1 = req.area
     share = 0.56 if d.flywheel is not None else 0.75
+    tx0, _, _, ty1 = req.title_block
     left = _fit_panels(d, curves, req.lang, _sizes(req), req.study.n, share * (fx1 - fx0),
-                       fy1 - req.area[1], req.gap, req.fmt)
+                       fy1 - req.area[1], req.gap, req.fmt, beside=(tx0 - fx0, ty1 + req.gap - req.area[1]))
     scales: dict[str, float] = {}
     y = fy1
     for name in PANELS:
@@ -183,8 +184,9 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
     fx0, fy0, fx1, fy1 = req.area
     tx0, _, _, ty1 = req.title_block
     wit = d.wittenbauer() if d.flywheel is not None else None
-    table = fit_table(lambda size: results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=size,
-                                                title_mm=req.sizes.table_title),
+    table = fit_table(lambda size, width: results_view(results_rows(d, wit, lang, marked=True), lang=lang,
+                                                       size_mm=size, title_mm=req.sizes.table_title,
+                                                       width_factor=width),
                       req, what="table of results", max_width=fx1 - right_x0, advice="")
     views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     band_top = ty1 + g + table.height_mm
@@ -197,7 +199,7 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
         scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
         # the table reads the segment off this drawing
         table = results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=table.meta["size_mm"],
-                             title_mm=req.sizes.table_title)
+                             title_mm=req.sizes.table_title, width_factor=table.meta["width_factor"])
         views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     return wit
 
@@ -221,8 +223,10 @@ def _place_flywheel(req: Request, views: dict, scales: dict, region) -> float:
     return max(band_top, region[1] + fw.height_mm)
 
 
-def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt) -> dict[str, View]:
-    """The four panels at the longest φ axis, then the tallest ordinates, that fit."""
+def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0.0)) -> dict[str, View]:
+    """The four panels at the longest φ axis, then the tallest ordinates, that fit `width` ×
+    `height` mm; ``beside`` = (width, height) mm of the column's bottom part that the title
+    block leaves: a column wider than that ends above it."""
     lengths = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
     heights = (120.0, 100.0, 80.0, 70.0, 60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0)
     for length in lengths:
@@ -233,11 +237,22 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt) -> dict[str, View
             continue
         for h in heights:
             views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n)
-            total = sum(v.height_mm for v in views.values()) + gap * (len(views) - 1)
-            if total <= height and max(v.width_mm for v in views.values()) <= width:
+            if _column_fits(list(views.values()), width, height, gap, beside):
                 return views
     raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+
+
+def _column_fits(views: list[View], width: float, height: float, gap: float, beside) -> bool:
+    """Whether `views` stacked from the top fit `width` × `height` mm, each one that reaches
+    down to the title block (the bottom ``beside[1]`` mm) no wider than ``beside[0]``."""
+    top = height
+    for v in views:
+        top -= v.height_mm
+        if top < -1e-9 or v.width_mm > (width if top >= beside[1] else min(width, beside[0])):
+            return False
+        top -= gap
+    return True
 
 
 def _fit_flywheel(dims, lang, sizes, region) -> View | None:

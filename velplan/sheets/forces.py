@@ -161,19 +161,17 @@ def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plan
     fa = study.forces()
     chosen = check_plan_positions(default_force_positions(fa) if plans is None else plans, study.n)
     _check_regular(fa, chosen)
-    views: dict[str, PlacedView] = {}
-    scales: dict[str, float] = {}
-    band_top = _bottom_band(req, fa, views, scales, table=table, diagrams=diagrams)
-    fx0, _, fx1, fy1 = req.area
     draw = _ForceDrawings(fa, lang, FORCE_SIZES[fmt])
-    top = (fx0, band_top + req.gap, fx1, fy1)
-    try:
-        placed, top_scales = _fit_top(draw, chosen, top, req)
-    except ScaleError:
-        if plans is not None or len(chosen) == 1:
-            raise
-        chosen = (chosen[-1],)  # the default pair does not fit: the largest |M_b| alone
-        placed, top_scales = _fit_top(draw, chosen, top, req)
+    for share in DIAGRAM_SHARES:  # a lower diagram where the drawings above need the room
+        views: dict[str, PlacedView] = {}
+        scales: dict[str, float] = {}
+        band_top = _bottom_band(req, fa, views, scales, table=table, diagrams=diagrams, share=share)
+        try:
+            chosen, placed, top_scales = _top_views(draw, chosen, band_top, req, plans)
+            break
+        except ScaleError:
+            if share == DIAGRAM_SHARES[-1] or "mb-diagram" not in views:
+                raise
     views.update(placed)
     scales.update(top_scales)
     info = title_with_scale(info, lambda s: default_force_title(mech, lang, s),
@@ -183,6 +181,25 @@ def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plan
     return ForceSheet(mech, compose(req, views, order, info), MappingProxyType(dict(views)),
                       MappingProxyType(scales), fmt, lang, req.frame_style, req.style, info, fa,
                       chosen, study.n)
+
+
+#: The least share of the drawing area's height the diagram M_b(φ) is given, in turn: the
+#: drawings above take the room of a lower one where they need it.
+DIAGRAM_SHARES = (0.26, 0.2)
+
+
+def _top_views(draw, chosen, band_top: float, req: Request, plans):
+    """(positions, placed views, scales) of the groups, polygons and lever above the band:
+    the default pair of positions, or the largest |M_b| alone where the pair does not fit."""
+    fx0, _, fx1, fy1 = req.area
+    top = (fx0, band_top + req.gap, fx1, fy1)
+    try:
+        return (chosen, *_fit_top(draw, chosen, top, req))
+    except ScaleError:
+        if plans is not None or len(chosen) == 1:
+            raise
+        chosen = (chosen[-1],)  # the default pair does not fit: the largest |M_b| alone
+        return (chosen, *_fit_top(draw, chosen, top, req))
 
 
 def _check_regular(fa: ForceAnalysis, chosen) -> None:
@@ -196,18 +213,18 @@ def _check_regular(fa: ForceAnalysis, chosen) -> None:
 
 
 def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
-                 diagrams: bool | None) -> float:
+                 diagrams: bool | None, share: float = DIAGRAM_SHARES[0]) -> float:
     """The table of the balancing moments above the title block, the diagram M_b(φ) to their
-    left; the band's top, mm."""
+    left (`share` of the height, at least); the band's top, mm."""
     tview = None
     if table:
-        tview = fit_table(lambda size: moments_table_view(fa, lang=req.lang, size_mm=size,
-                                                          title_mm=req.sizes.table_title),
+        tview = fit_table(lambda size, width: moments_table_view(fa, lang=req.lang, size_mm=size,
+                                                                 title_mm=req.sizes.table_title, width_factor=width),
                           req, what=f"table of balancing moments ({len(fa.kinematics)} positions)")
     band_top, dview = fill_bottom_band(
         views, req, table_view=tview,
         fit_diagram=None if diagrams is False else (lambda region: _fit_diagram(req, region)),
-        diagram_share=0.26, required=bool(diagrams), diagram_name="mb-diagram")
+        diagram_share=share, required=bool(diagrams), diagram_name="mb-diagram")
     if dview is not None:
         scales["mu_m"] = dview.meta["mu_m"]
     return band_top

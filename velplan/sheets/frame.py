@@ -259,7 +259,7 @@ _ISO_CELLS: tuple[tuple[str, Bounds, float, str], ...] = (
     ("designation", (80, 0, 150, 12), 5.0, "designation"),
     ("sheet", (150, 0, 180, 12), 3.5, ""),
 )
-_ISO_CAPTION_MM = 1.8
+_ISO_CAPTION_MM = 2.5  # the ESKD least height
 
 
 def _iso_block(info: TitleInfo, origin: tuple[float, float], lang: Language):

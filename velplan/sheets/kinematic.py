@@ -40,7 +40,7 @@ from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import (
     GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM, free_spot, write_outputs)
 from velplan.sheets.skeleton import (
-    ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
+    NARROWER_TABLE, ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
@@ -227,8 +227,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     with_diagrams = diagrams is not False and mech.output is not None
     band_top = _bottom_band(req, draw, views, table=table, diagrams=with_diagrams)
     kinds = ("velocity", "acceleration") if kind == "both" else (kind,)
-    mview, fitted, chosen, scheme_zone = _scheme_and_plans(req, draw, views, chosen, kinds, band_top,
-                                                           fallback=plans is None)
+    mview, fitted, chosen, scheme_zone = _roomiest(req, draw, views, chosen, kinds, band_top, table=table,
+                                                   fallback=plans is None)
     plan_views, results, cells = fitted
     mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
@@ -286,21 +286,52 @@ def _check_options(study: Study, plans, kind: str, diagrams: bool | None, centre
     return chosen
 
 
-def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, diagrams: bool) -> float:
-    """The table above the title block, the diagrams to their left where they fit; the
-    band's top, mm."""
+def _bottom_band(req: Request, draw: _Drawings, views: dict, *, table: bool, diagrams: bool,
+                 table_left: bool = False) -> float:
+    """The table above the title block, the diagrams to their left where they fit (or, with
+    `table_left` and no diagrams, the table left of the title block); the band's top, mm."""
     study = req.study
     tview = None
     if table:
         data = study.table
-        tview = fit_table(lambda size: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
-                                                  title_mm=req.sizes.table_title),
+        tview = fit_table(lambda size, width: table_view(data, study.mechanism, lang=req.lang, size_mm=size,
+                                                         title_mm=req.sizes.table_title, width_factor=width),
                           req, what=f"table of transfer functions ({study.n} positions)")
     band_top, _ = fill_bottom_band(
         views, req, table_view=tview,
         fit_diagram=(lambda region: _fit_diagrams(req, draw, region)) if diagrams else None,
-        diagram_share=0.3, required=False, diagram_name="diagrams")
+        diagram_share=0.3, required=False, diagram_name="diagrams", table_left=table_left)
     return band_top
+
+
+def _roomiest(req: Request, draw: _Drawings, views: dict, chosen, kinds, band_top: float, *, table: bool,
+              fallback: bool):
+    """`_scheme_and_plans` above the bottom band; where the band has no diagrams, also above
+    the table moved left of the title block (a lower band): that one where the first fails, or
+    where it draws the same plans with a larger scheme."""
+    found, failure = None, ScaleError(f"the plans do not fit {req.fmt} beside the scheme")
+    try:
+        found = _scheme_and_plans(req, draw, views, chosen, kinds, band_top, fallback=fallback)
+    except ScaleError as exc:
+        failure = exc
+    low: dict = {}
+    if "diagrams" not in views and "table" in views:
+        low_top = _bottom_band(req, draw, low, table=table, diagrams=False, table_left=True)
+    if low.get("table") is None or low["table"].bounds == views["table"].bounds:
+        if found is None:
+            raise failure
+        return found
+    try:
+        other = _scheme_and_plans(req, draw, low, chosen, kinds, low_top, fallback=fallback)
+    except ScaleError:
+        if found is None:
+            raise failure from None
+        return found
+    if found is None or (tuple(other[2]) == tuple(found[2]) and other[0].mu < found[0].mu * (1 - 1e-9)):
+        views.clear()
+        views.update(low)
+        return other
+    return found
 
 
 #: The scheme's share of the width of the top band.
@@ -397,12 +428,14 @@ def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
 
     top_band = (req.area[0], band_top + req.gap, req.area[2], req.area[3])
     study, lang = req.study, req.lang
-    placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
-                        ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    placed = _free_spot(lambda s, t, w: data_view(study, lang=lang, size_mm=s, title_mm=t, width_factor=w),
+                        ((3.5, 5.0, 1.0), (2.5, 3.5, 1.0), (2.5, 3.5, 0.8), (2.5, 3.5, 0.6)),
+                        views, top_band, req.gap)
     if placed is not None:
         views["data"] = placed
-    placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
-                        ((2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+    placed = _free_spot(lambda s, t, w: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t, width_factor=w),
+                        ((2.5, 3.5, 1.0),) + tuple((2.5, 3.5, w) for w in NARROWER_TABLE),
+                        views, top_band, req.gap)
     if placed is not None:
         views["readings"] = placed
 
@@ -430,13 +463,13 @@ def _centre_marks(study: Study, centres, scheme: PlacedView, mu_l: float) -> lis
 
 
 def _free_spot(build, sizes, views, region, gap):
-    """``build(text size, title size)`` placed where no view is in ``region``, at the largest
-    of ``sizes`` that fits: the free spot nearest the scheme's lower left corner; None when
-    there is no room."""
+    """``build(text size, title size, width factor)`` placed where no view is in ``region``,
+    at the first of ``sizes`` that fits: the free spot nearest the scheme's lower left corner;
+    None when there is no room."""
     taken = [v.bounds for v in views.values()]
     corner = (views["mechanism"].bounds[0], views["mechanism"].bounds[1])
-    for size, title in sizes:
-        view = build(size, title)
+    for size, title, width in sizes:
+        view = build(size, title, width)
         at = free_spot(view.width_mm, view.height_mm, taken, region, gap, corner)
         if at is not None:
             return view.at(*at)

@@ -54,15 +54,18 @@ class Sizes:
     table: tuple[float, ...]
     table_title: float
     diagram: DiagramSizes
+    #: The width factor of the tables' letters to try first (`velplan.render.scene.Text`): A3
+    #: tables start narrowed, as ESKD's type A lettering, and keep the least height, 2.5 mm.
+    table_width: float = 1.0
 
 
 SIZES: Mapping[str, Sizes] = MappingProxyType({
-    "A1": Sizes(10.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(5.0, 3.5), (3.5, 2.5, 1.8), 5.0,
+    "A1": Sizes(10.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(5.0, 3.5), (3.5, 2.5), 5.0,
                  DiagramSizes(3.5, 2.5)),
-    "A2": Sizes(8.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(3.5, 3.5), (2.5, 1.8), 3.5,
+    "A2": Sizes(8.0, MechanismSizes(5.0, 3.5, 2.5), PlanSizes(3.5, 3.5), (2.5,), 3.5,
                  DiagramSizes(3.5, 2.5)),
-    "A3": Sizes(6.0, MechanismSizes(3.5, 2.5, 2.5), PlanSizes(3.5, 2.5), (1.8,), 2.5,
-                 DiagramSizes(2.5, 1.8)),
+    "A3": Sizes(6.0, MechanismSizes(3.5, 2.5, 2.5), PlanSizes(3.5, 2.5), (2.5,), 2.5,
+                 DiagramSizes(2.5, 2.5), table_width=0.75),
 })
 
 

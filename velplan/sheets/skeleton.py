@@ -143,28 +143,37 @@ def check_plan_positions(chosen: Sequence[int], n: int) -> tuple[int, ...]:
 
 #: The share of the drawing area's width a table of positions may take in the bottom band.
 TABLE_WIDTH = 0.62
+#: The widths a table's letters are narrowed to, in turn, where it is too wide at the format's
+#: least text size (type A lettering is about 0.6 of type B's width: `MIN_WIDTH_FACTOR`).
+NARROWER_TABLE = (0.9, 0.8, 0.7, 0.6)
 
 
-def fit_table(build: Callable[[float], View], req: Request, *, what: str, max_width: float | None = None,
+def fit_table(build: Callable[[float, float], View], req: Request, *, what: str, max_width: float | None = None,
               advice: str = "fewer --positions or ") -> View:
-    """The table ``build(text size)`` at the largest of the format's text sizes that leaves
-    it at most `max_width` mm wide (`TABLE_WIDTH` of the area by default: a table of
-    positions); `what` names it in the error, `advice` precedes "a larger --format" there."""
+    """The table ``build(text size, width factor)`` at the largest of the format's text sizes
+    that leaves it at most `max_width` mm wide (`TABLE_WIDTH` of the area by default: a table
+    of positions), its letters at the format's width (`Sizes.table_width`), else at the least
+    size with its letters narrowed further (`NARROWER_TABLE`);
+    `what` names it in the error, `advice` precedes "a larger --format" there."""
     max_width = TABLE_WIDTH * req.width if max_width is None else max_width
-    size, view = widest_first(build, req.sizes.table, max_width)
+    least, first = req.sizes.table[-1], req.sizes.table_width
+    tries = [(size, first) for size in req.sizes.table] + [(least, f) for f in NARROWER_TABLE if f < first]
+    size, view = widest_first(lambda sw: build(*sw), tries, max_width)
     if size is None:
-        raise ScaleError(f"the {what} does not fit {req.fmt} even with {req.sizes.table[-1]:g} mm "
-                         f"text ({view.width_mm:.0f} mm wide, {max_width:.0f} mm free); use "
-                         f"{advice}a larger --format")
+        raise ScaleError(f"the {what} does not fit {req.fmt} even with {least:g} mm text narrowed "
+                         f"to {NARROWER_TABLE[-1]:g} ({view.width_mm:.0f} mm wide, {max_width:.0f} mm "
+                         f"free); use {advice}a larger --format")
     return view
 
 
 def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_diagram,
-                     diagram_share: float, required: bool, diagram_name: str):
+                     diagram_share: float, required: bool, diagram_name: str, table_left: bool = False):
     """The bottom band: ``table_view`` right-aligned above the title block, the diagram that
     ``fit_diagram(region)`` draws to their left (at least ``diagram_share`` of the height
     tall). Places them in ``views``; returns (the band's top, the diagram's view or None —
-    when it does not fit and is not ``required``)."""
+    when it does not fit and is not ``required``). With ``table_left`` and no diagram, the
+    table stands left of the title block instead, where it fits there: the band is as low
+    as they are."""
     fx0, fy0, fx1, fy1 = req.area
     tx0, _, tx1, ty1 = req.title_block
     gap = req.gap
@@ -173,17 +182,21 @@ def fill_bottom_band(views: dict, req: Request, *, table_view: View | None, fit_
         right_w = max(right_w, table_view.width_mm)
         band_top = ty1 + gap + table_view.height_mm
         views["table"] = table_view.at(fx1 - table_view.width_mm, ty1 + gap)
-    if fit_diagram is None:
-        return band_top, None
-    region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
-    try:
-        dview = fit_diagram(region)
-    except ScaleError:
-        if required:
-            raise
-        return band_top, None
-    views[diagram_name] = dview.at(fx0, fy0)
-    return max(band_top, fy0 + dview.height_mm), dview
+    dview = None
+    if fit_diagram is not None:
+        region = (fx0, fy0, fx1 - right_w - gap, max(band_top, fy0 + diagram_share * (fy1 - fy0)))
+        try:
+            dview = fit_diagram(region)
+        except ScaleError:
+            if required:
+                raise
+    if dview is not None:
+        views[diagram_name] = dview.at(fx0, fy0)
+        return max(band_top, fy0 + dview.height_mm), dview
+    if table_left and table_view is not None and table_view.width_mm <= tx0 - gap - fx0:
+        views["table"] = table_view.at(fx0, fy0)
+        return max(ty1 + gap, fy0 + table_view.height_mm), None
+    return band_top, None
 
 
 def course_title(mech: Mechanism, lang: Language, what: str, number: int, scale: str) -> TitleInfo:

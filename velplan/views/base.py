@@ -326,12 +326,15 @@ def scale_mark(mu_l: float, lang: Language) -> str:
 def axis_numbers_clear(items: list, curves) -> list:
     """Position numbers hung under a φ axis (``baseline="top"``) kept clear: the one under the
     origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
-    mirrored about it; ``curves`` are polylines' points in the same mm. Other primitives pass
-    unchanged."""
+    mirrored about it, or, crossed there too, is narrowed (below, else above:
+    `MIN_WIDTH_FACTOR`), then a text height farther from the axis, where that clears it;
+    ``curves`` are polylines' points in the same mm.
+    Other primitives pass unchanged."""
     import shapely
 
     from velplan.render.layout import label_box
     from velplan.render.scene import Text
+    from velplan.render.shapes import MIN_WIDTH_FACTOR
 
     lines = [shapely.LineString(c) for c in curves if len(c) >= 2]
     if not lines:
@@ -344,8 +347,10 @@ def axis_numbers_clear(items: list, curves) -> list:
                 p = _moved(p, position=(0.8, p.position[1]), anchor="start")
             if len(field.query(label_box(p), predicate="intersects")):
                 up = _moved(p, position=(p.position[0], -p.position[1]), baseline="baseline")
-                if not len(field.query(label_box(up), predicate="intersects")):
-                    p = up
+                spots = [up] + [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
+                spots += [_moved(q, position=(q.position[0], q.position[1] + s * q.size_mm))  # a line farther
+                          for q, s in zip(spots[1:], (-1.0, 1.0))]
+                p = next((q for q in spots if not len(field.query(label_box(q), predicate="intersects"))), p)
         out.append(p)
     return out
 

@@ -63,15 +63,18 @@ def data_lines(study, lang: Language) -> list[str]:
     return lines
 
 
-def data_view(study, *, lang: Language, size_mm: float = 2.5, title_mm: float = 3.5) -> View:
-    """The block: its title, then one text line per `data_lines` entry."""
+def data_view(study, *, lang: Language, size_mm: float = 2.5, title_mm: float = 3.5,
+              width_factor: float = 1.0) -> View:
+    """The block: its title, then one text line per `data_lines` entry, its letters narrowed
+    to `width_factor`."""
     lines = data_lines(study, lang)
     items: list[Primitive] = [Text((0.0, 0.0), label("input_data", lang), "data", title_mm)]
     y = -0.8 * title_mm
     for line in lines:
         y -= 1.6 * size_mm
-        items.append(Text((0.0, y), line, "data", size_mm))
-    return make_view("data", items, pad_mm=1.0, meta={"lines": tuple(lines), "size_mm": size_mm})
+        items.append(Text((0.0, y), line, "data", size_mm, "start", "baseline", 0.0, width_factor))
+    return make_view("data", items, pad_mm=1.0, meta={"lines": tuple(lines), "size_mm": size_mm,
+                                                     "width_factor": width_factor})
 
 
 __all__ = ["data_lines", "data_view"]

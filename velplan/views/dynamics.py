@@ -25,7 +25,7 @@ from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
 
@@ -108,7 +108,9 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items.append(Arrow((0.0, 0.0), (L + 8.0, 0.0), LAYER, "thin", 3.0, 1.0))
     items.append(Arrow((0.0, bottom - 3.0), (0.0, top + 6.0), LAYER, "thin", 3.0, 1.0))
     items.append(Text((L + 9.0, -1.0), "φ", LABELS, size, "start", "top"))
-    items.append(Text((-1.5, top + 6.0), f"{ordinate}, {unit_text}", LABELS, size, "end", "top"))
+    # the ordinate's name centred over its arrow's tip, clear of the curves and their names:
+    # the axis needs no margin for it beyond its ticks' numbers
+    items.append(Text((0.0, top + 7.0), f"{ordinate}, {unit_text}", LABELS, size, "middle", "baseline"))
     # positions on the φ axis
     count = int(round(positions * cycle / (2 * math.pi)))
     every = max(1, int(math.ceil(positions / 12)))
@@ -219,7 +221,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         Arrow((0.0, 0.0), (right, 0.0), LAYER, "thin", 3.0, 1.0),
         Arrow((0.0, bottom), (0.0, top), LAYER, "thin", 3.0, 1.0),
         Text((right + 1.0, -1.0), f"J, {unit('kg·m²', lang)}", LABELS, size, "start", "top"),
-        Text((-1.5, top), f"ΔT, {unit('J', lang)}", LABELS, size, "end", "top"),
+        Text((0.0, top + 1.0), f"ΔT, {unit('J', lang)}", LABELS, size, "middle", "baseline"),
         Polyline(np.column_stack([x, y]), LAYER, "thick"),
     ]
     names = []
@@ -235,12 +237,13 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         items.append(Circle((tx, ty), 0.7, LAYER, "thin", "solid"))
         # beside the ΔT axis, never on it: k above its extension line, between the axis and the
         # dimension kl (the tangent leaves k up and to the right); l to the right of its point,
-        # under its tangent and off the axis's tail (an upright l beside a parallel line reads
-        # as a tick), moved clear of the lines where the tangent runs flat
+        # hung below its level, so under its rising tangent however flat (the curve lies above
+        # that tangent), and off the axis's tail (an upright l beside a parallel line reads as
+        # a tick)
         if mark == "k":
             items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
         else:
-            names.append(Text((4.0, ay + 0.3), mark, LABELS, sizes.title_mm, "start", "baseline"))
+            names.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
         sym = indexed("ψ", "max" if mark == "k" else "min")
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
@@ -429,12 +432,14 @@ def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str
 
 
 def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_mm: float = 2.5,
-                 title_mm: float = 3.5) -> View:
-    """The results as a ruled table of three columns under its title."""
+                 title_mm: float = 3.5, width_factor: float = 1.0) -> View:
+    """The results as a ruled table of three columns under its title, the cells' letters
+    narrowed to `width_factor`."""
     grid = [[label("quantity", lang), label("value", lang), label("unit", lang)]] + [list(r) for r in rows]
-    items, total_w, total_h = grid_table(grid, size_mm)
-    items.append(Text((0.0, total_h + 2.5), label("dynamics_results", lang), "table", title_mm))
-    return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm})
+    items, total_w, total_h = grid_table(grid, size_mm, width_factor=width_factor)
+    items.append(table_title(label("dynamics_results", lang), title_mm, total_w, total_h, width_factor))
+    return make_view("results", items, pad_mm=1.0, meta={"rows": len(rows), "size_mm": size_mm,
+                                                           "width_factor": width_factor})
 
 
 __all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "moment_scale", "nice_step",

@@ -14,10 +14,9 @@ import numpy as np
 from velplan.options import Language
 from velplan.plans.table import natural_key
 from velplan.render.i18n import label
-from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, number, subscript, unit
 from velplan.views.mechanism import special_points
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 PRECISION_MM = 0.1
 """Resolution the lengths are read to on the drawing, mm."""
@@ -53,10 +52,12 @@ def readings(res, position: int, precision: float = PRECISION_MM) -> list[tuple[
     return out
 
 
-def readings_view(plans: dict, *, lang: Language = "ru", size_mm: float = 2.5, title_mm: float = 3.5) -> View:
+def readings_view(plans: dict, *, lang: Language = "ru", size_mm: float = 2.5, title_mm: float = 3.5,
+                  width_factor: float = 1.0) -> View:
     """The table for ``plans`` (view name → (PlanResult, position number 1…n)): a row per point, for each
     plan (velocity plans first) the value read off it and its difference from the analytic
-    value in per cent ("—" where the vector is shorter than `SHORTEST_MM`)."""
+    value in per cent ("—" where the vector is shorter than `SHORTEST_MM`); the cells' letters
+    narrowed to `width_factor`."""
     order = sorted(plans.items(), key=lambda kv: (kv[1][0].kind != "velocity", kv[1][1]))
     head = [label("position_short", lang)]
     units = [label("quantity", lang)]
@@ -73,10 +74,11 @@ def readings_view(plans: dict, *, lang: Language = "ru", size_mm: float = 2.5, t
             err = 100.0 * (read - exact) / exact if exact / res.scale >= SHORTEST_MM else float("nan")
             row[2 * k:2 * k + 2] = [fixed(read, lang, decimals), fixed(err, lang, 1) if np.isfinite(err) else "—"]
     grid = [head, units] + [[subscript(q)] + rows[q] for q in sorted(rows, key=natural_key)]
-    items, total_w, total_h = grid_table(grid, size_mm)
-    items.append(Text((0.0, total_h + 2.5), f"{label('plan_readings', lang)} "
-                      f"{number(PRECISION_MM, lang)} {unit('mm', lang)}", "table", title_mm))
-    return make_view("readings", items, pad_mm=1.0, meta={"rows": tuple(sorted(rows, key=natural_key)), "size_mm": size_mm})
+    items, total_w, total_h = grid_table(grid, size_mm, width_factor=width_factor)
+    items.append(table_title(f"{label('plan_readings', lang)} {number(PRECISION_MM, lang)} {unit('mm', lang)}",
+                             title_mm, total_w, total_h, width_factor))
+    return make_view("readings", items, pad_mm=1.0, meta={"rows": tuple(sorted(rows, key=natural_key)),
+                                                          "size_mm": size_mm, "width_factor": width_factor})
 
 
 __all__ = ["readings", "readings_view", "read_decimals", "PRECISION_MM", "SHORTEST_MM"]

@@ -24,6 +24,11 @@ from velplan.render.shapes import text_extent
 from velplan.views.base import View, digits_down, fixed, make_view, row_decimals, subscript, unit
 
 _ROW_PITCH = 2.0  # row height over text height
+# A table narrowed to save room saves height too: rows of 1.7·h, the text raised 0.1·h off
+# the row's middle, leave 0.2·h between an index (dropped 0.25·h) or a descender and the rule
+# below, 0.25·h above the capitals.
+_NARROW_ROW_PITCH = 1.7
+_NARROW_LIFT = 0.1
 _PAD = 1.0  # cell padding each side, mm
 # Rendered Cyrillic runs wider than the layout's 0.7·h estimate; columns take the margin.
 _WIDE = 1.3
@@ -33,13 +38,13 @@ NUMBER_MARGIN = 1.1
 _NUMBER = set("0123456789,.−-+")
 
 
-def _cell_width(text: str | None, size_mm: float, numbers: float) -> float:
+def _cell_width(text: str | None, size_mm: float, numbers: float, width_factor: float = 1.0) -> float:
     """Estimated width a cell's text needs, mm: a number's estimate times `numbers`, any other
-    text's times the Cyrillic margin."""
+    text's times the Cyrillic margin; letters narrowed to `width_factor`."""
     if text is None:
         return 0.0
     margin = numbers if text and set(text) <= _NUMBER else _WIDE
-    return margin * text_extent(text, size_mm)[0]
+    return margin * text_extent(text, size_mm)[0] * width_factor
 
 
 def _row_label(name: str, crank: str, lang: Language) -> str:
@@ -61,17 +66,19 @@ def _spans(row: list) -> list[tuple[int, int]]:
 
 
 def grid_table(grid: list[list[str | None]], size_mm: float, *,
-               numbers: float = _WIDE) -> tuple[list[Primitive], float, float]:
+               numbers: float = _WIDE, width_factor: float = 1.0) -> tuple[list[Primitive], float, float]:
     """A ruled table of text cells with its lower-left corner at (0, 0): the first column left-
     aligned, the value columns of equal width and centred; the outline and the header rule
     thick, the body lines thin. A None cell merges with the cell before it in its row (a header
     over two columns): no rule between them, the text centred over both. ``numbers`` is the
     margin of a number's estimated width (`NUMBER_MARGIN` where the columns hold numbers of the
-    bundled font). Returns (primitives, width mm, height mm)."""
+    bundled font); ``width_factor`` narrows the letters (`velplan.render.scene.Text`), the
+    height kept, and then lowers the rows. Returns (primitives, width mm, height mm)."""
     n = len(grid[0]) - 1
-    widths = [max(_cell_width(r[c], size_mm, numbers) for r in grid) + 2 * _PAD for c in range(n + 1)]
+    widths = [max(_cell_width(r[c], size_mm, numbers, width_factor) for r in grid) + 2 * _PAD
+              for c in range(n + 1)]
     widths[1:] = [max(widths[1:])] * n  # equal value columns
-    row_h = _ROW_PITCH * size_mm
+    row_h = (_ROW_PITCH if width_factor == 1.0 else _NARROW_ROW_PITCH) * size_mm
     total_w, total_h = sum(widths), row_h * len(grid)
     items: list[Primitive] = []
     xs = np.concatenate([[0.0], np.cumsum(widths)])
@@ -87,20 +94,32 @@ def grid_table(grid: list[list[str | None]], size_mm: float, *,
                                       "table", "thin"))
     items.append(Polygon([(0.0, 0.0), (total_w, 0.0), (total_w, total_h), (0.0, total_h)],
                          "table", "thick"))
+    lift = 0.0 if width_factor == 1.0 else _NARROW_LIFT * size_mm
     for r, row in enumerate(grid):
-        y = total_h - (r + 0.5) * row_h
+        y = total_h - (r + 0.5) * row_h + lift
         for first, last in _spans(row):
             text = row[first]
             if first == 0:
-                items.append(Text((xs[0] + _PAD, y), text, "table", size_mm, "start", "middle"))
+                items.append(Text((xs[0] + _PAD, y), text, "table", size_mm, "start", "middle",
+                                  0.0, width_factor))
             else:
                 items.append(Text(((xs[first] + xs[last + 1]) / 2, y), text, "table", size_mm,
-                                  "middle", "middle"))
+                                  "middle", "middle", 0.0, width_factor))
     return items, total_w, total_h
 
 
+def table_title(text: str, size_mm: float, table_w: float, table_h: float, width_factor: float = 1.0) -> Text:
+    """The title over a table `table_w` × `table_h` mm: its letters narrowed, down to the
+    table's `width_factor`, where it would run wider than the table."""
+    natural = text_extent(text, size_mm)[0]
+    fit = math.floor(100.0 * table_w / natural) / 100.0 if natural > table_w else 1.0
+    return Text((0.0, table_h + 2.5), text, "table", size_mm, "start", "baseline", 0.0,
+                max(width_factor, min(1.0, fit)))
+
+
 def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
-               size_mm: float = 2.5, title_mm: float = 3.5, digits: int = 3) -> View:
+               size_mm: float = 2.5, title_mm: float = 3.5, digits: int = 3,
+               width_factor: float = 1.0) -> View:
     """The table as a view, its title above it.
 
     Parameters
@@ -111,6 +130,8 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
         For the crank's name (the ω every row is divided by).
     size_mm, title_mm : float
         Text heights of the cells and of the title, mm.
+    width_factor : float
+        The cells' letters narrowed to this share of their width (the height kept).
     digits : int
         Significant figures of each row's largest value; the row's other values to the same
         decimals (`velplan.views.base.row_decimals`).
@@ -124,9 +145,11 @@ def table_view(table: TransferTable, mech: Mechanism, *, lang: Language = "ru",
         values = np.asarray(values, float)
         decimals = row_decimals(values, digits)
         rows.append([quantity_label(name, crank)] + [fixed(float(v), lang, decimals) for v in values])
-    items, total_w, total_h = grid_table([head] + rows, size_mm, numbers=NUMBER_MARGIN)
+    items, total_w, total_h = grid_table([head] + rows, size_mm, numbers=NUMBER_MARGIN,
+                                         width_factor=width_factor)
     w1 = f"ω_{{{crank}}}"
-    items.append(Text((0.0, total_h + 2.5), f"{label('table_transfer', lang)} "
-                      f"(v/{w1}, {unit('m', lang)}; ω/{w1})", "table", title_mm))
+    items.append(table_title(f"{label('table_transfer', lang)} (v/{w1}, {unit('m', lang)}; ω/{w1})",
+                             title_mm, total_w, total_h, width_factor))
     return make_view("table", items, pad_mm=1.0,
-                     meta={"rows": tuple(table.rows), "n": n, "size_mm": size_mm})
+                     meta={"rows": tuple(table.rows), "n": n, "size_mm": size_mm,
+                           "width_factor": width_factor})

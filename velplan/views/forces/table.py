@@ -11,10 +11,9 @@ from velplan.analysis.numbering import position_number
 from velplan.forces.agreement import ForceAnalysis
 from velplan.options import Language
 from velplan.render.i18n import label
-from velplan.render.scene import Text
 from velplan.views.base import View, fixed, make_view, unit
 from velplan.views.forces.common import newton_metre
-from velplan.views.table import grid_table
+from velplan.views.table import grid_table, table_title
 
 
 def moment_decimals(values) -> int:
@@ -28,8 +27,9 @@ def moment_decimals(values) -> int:
 
 
 def moments_table_view(fa: ForceAnalysis, *, lang: Language = "ru", size_mm: float = 2.5,
-                       title_mm: float = 3.5) -> View:
-    """The three balancing moments (kinetostatics, lever, power) at every position, N·m."""
+                       title_mm: float = 3.5, width_factor: float = 1.0) -> View:
+    """The three balancing moments (kinetostatics, lever, power) at every position, N·m; the
+    cells' letters narrowed to `width_factor`."""
     n = len(fa.kinematics)
     moments = fa.balancing_moments
     decimals = moment_decimals(moments["kinetostatics"])
@@ -40,8 +40,8 @@ def moments_table_view(fa: ForceAnalysis, *, lang: Language = "ru", size_mm: flo
     for key in ("kinetostatics", "lever", "power"):
         rows.append([f"{mb} ({label('method_' + key, lang)})"] +
                     [fixed(float(v), lang, decimals) for v in moments[key]])
-    items, total_w, total_h = grid_table([head] + rows, size_mm)
-    items.append(Text((0.0, total_h + 2.5), f"{label('balancing_moment', lang)} {mb}, "
-                      f"{newton_metre(lang)}", "table", title_mm))
+    items, total_w, total_h = grid_table([head] + rows, size_mm, width_factor=width_factor)
+    items.append(table_title(f"{label('balancing_moment', lang)} {mb}, {newton_metre(lang)}",
+                             title_mm, total_w, total_h, width_factor))
     return make_view("table", items, pad_mm=1.0, meta={"n": n, "size_mm": size_mm,
-                                                      "decimals": decimals})
+                                                      "decimals": decimals, "width_factor": width_factor})
