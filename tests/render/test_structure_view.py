@@ -68,10 +68,11 @@ def test_the_notes_structural_section_shows_the_figure():
     class Note:
         lang, figures = "ru", []
 
-        def figure(self, caption, png, width_mm):
-            self.figures.append((caption, png, width_mm))
+        def figure(self, caption, picture, width_mm):
+            self.figures.append((caption, picture, width_mm))
 
     note = Note()
     _structure_figure(note, velplan.load("whitworth"))
-    ((caption, png, width),) = note.figures
-    assert caption == "Структурный анализ механизма" and png.startswith(b"\x89PNG") and 0 < width <= 170.0
+    ((caption, picture, width),) = note.figures
+    assert caption == "Структурный анализ механизма" and 0 < width <= 170.0
+    assert picture.svg.startswith("<?xml") and picture.png().startswith(b"\x89PNG")
