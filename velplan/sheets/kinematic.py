@@ -45,7 +45,8 @@ from velplan.sheets.skeleton import (
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import Arrangement, diagram_view
+from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view
+from velplan.views.diagram_compact import compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import MIN_VECTOR_MM, extent_mm, labelled_vectors, plan_view
 from velplan.views.table import table_view
@@ -142,6 +143,7 @@ class _Drawings:
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.diagrams = Trials(self._diagrams)
+        self.compact = Trials(self._compact)
 
     def _scheme(self, mu: float) -> View:
         study, req = self.req.study, self.req
@@ -158,6 +160,15 @@ class _Drawings:
         return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
                             omega=study.mechanism.crank.omega, arrangement=arrangement,
                             sizes=self.req.sizes.diagram)
+
+
+    def _compact(self, form: str, length: float) -> View:
+        study, sizes = self.req.study, self.req.sizes.diagram
+        # the compact block is drawn where the sheet is small: its text at the ESKD minimum at least
+        sizes = DiagramSizes(max(sizes.title_mm, MIN_TEXT_MM), max(sizes.label_mm, MIN_TEXT_MM))
+        return compact_diagram_view(study.diagrams, length_mm=length, min_range_mm=MIN_ORDINATE_MM,
+                                    lang=self.req.lang, omega=study.mechanism.crank.omega, form=form,
+                                    sizes=sizes)
 
 
 def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
@@ -238,7 +249,14 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
     views.update(plan_views)
     if "diagrams" not in views and with_diagrams:
-        _diagrams_if_room(req, draw, views, required=bool(diagrams))
+        single = plans is None and len(chosen) > 1  # the first position's plans alone may leave room
+        _diagrams_if_room(req, draw, views, required=bool(diagrams) and not single)
+        if "diagrams" not in views and single:
+            alone = build_sheet(study, plans=chosen[:1], kind=kind, fmt=fmt, lang=lang, frame_style=frame_style,
+                                info=info, diagrams=diagrams, table=table, style=style, data=data,
+                                centres=centres, scale_per_plan=scale_per_plan, structure=structure)
+            if "diagrams" in alone.views:
+                return alone
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
@@ -554,6 +572,8 @@ def _diagrams_if_room(req: Request, draw: _Drawings, views: dict, *, required: b
     """The kinematic diagrams in a free corner where they fit; ScaleError where they do not
     and are ``required``."""
     placed = _diagrams_in_free_corner(req, draw, views)
+    if placed is None:
+        placed = _compact_diagrams(req, draw, views)
     if placed is None and required:
         raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table nor in a "
                          f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
@@ -585,6 +605,29 @@ def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
             if best is None or score > best[0]:
                 best = (score, view.at(fx0, fy0))
     return None if best is None else best[1]
+
+
+#: φ axes of the compact diagrams (`velplan.views.diagram_compact`), mm, the longest first.
+COMPACT_LENGTHS = (90.0, 72.0, 60.0)
+#: The ESKD minimum height of printed text, mm (ГОСТ 2.304): the compact diagrams' text at least.
+MIN_TEXT_MM = 2.5
+
+
+def _compact_diagrams(req: Request, draw: _Drawings, views):
+    """The kinematic diagrams in their compact block (s and v side by side over a, or the three
+    in a column), each curve at least `MIN_ORDINATE_MM` high, in a free spot of the sheet
+    nearest its lower left corner: the longest φ axis that finds one; None where none does."""
+    fx0, fy0, _, _ = req.area
+    taken = [v.bounds for v in views.values()] + [req.title_block]
+    for length in COMPACT_LENGTHS:
+        for form in ("grid", "column"):
+            view = draw.compact(form, length)
+            if min(view.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6:
+                continue
+            at = free_spot(view.width_mm, view.height_mm, taken, req.area, req.gap, (fx0, fy0))
+            if at is not None:
+                return view.at(*at)
+    return None
 
 
 def _mechanism_candidates(req: Request, draw: _Drawings, zone, count: int = 3):

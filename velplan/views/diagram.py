@@ -166,10 +166,11 @@ def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *,
 
 
 def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: DiagramSizes,
-          text_top: float | None = None, omega: float = 0.0) -> list[Primitive]:
+          text_top: float | None = None, omega: float = 0.0, titled: bool = True) -> list[Primitive]:
     """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
     ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
-    μt = μφ/ω — else as the analogues."""
+    μt = μφ/ω — else as the analogues. Without ``titled``, no title, scales nor error above
+    it (the compact form writes them elsewhere)."""
     c = _curve(kind, d, sc, lang, abs(omega) > 0)
     top, bottom = _span(c.analytic[1], c.graphical[1], c.mu)
     items = phi_axes(sc.length_mm, top, bottom, d.n, f"{c.symbol}, {c.unit}" if c.unit else c.symbol,
@@ -186,6 +187,8 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: D
     for x, y in zip(*c.marks):
         items.append(Circle((float(x / sc.mu_phi), float(y / c.mu)), 0.5, "diagram", "thin",
                             "solid"))
+    if not titled:
+        return items
     # title, scales and error, above the plot
     lines = _scale_lines(kind, d, sc, c, lang, abs(omega))
     y = (top if text_top is None else text_top) + 8.0 + 1.6 * sizes.label_mm * len(lines)
