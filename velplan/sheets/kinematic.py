@@ -250,13 +250,22 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     views.update(plan_views)
     if "diagrams" not in views and with_diagrams:
         single = plans is None and len(chosen) > 1  # the first position's plans alone may leave room
-        _diagrams_if_room(req, draw, views, required=bool(diagrams) and not single)
+        _diagrams_if_room(req, draw, views, required=False)
+        refit = None if "diagrams" in views else _diagrams_beside_plans(req, draw, views, cells, chosen, kinds)
+        if refit is not None:
+            plan_views, results, cells = refit
+            if not scale_per_plan:
+                plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
+            views.update(plan_views)
+            index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
         if "diagrams" not in views and single:
             alone = build_sheet(study, plans=chosen[:1], kind=kind, fmt=fmt, lang=lang, frame_style=frame_style,
                                 info=info, diagrams=diagrams, table=table, style=style, data=data,
                                 centres=centres, scale_per_plan=scale_per_plan, structure=structure)
             if "diagrams" in alone.views:
                 return alone
+        if "diagrams" not in views and diagrams:
+            _diagrams_if_room(req, draw, views, required=True)
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
@@ -605,6 +614,40 @@ def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
             if best is None or score > best[0]:
                 best = (score, view.at(fx0, fy0))
     return None if best is None else best[1]
+
+
+def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
+    """(plan views, results, cells) of the plans fitted again into their region less the
+    compact diagrams' block (placed in `views`) at one of its edges, the placing that leaves
+    the plans the longest shortest vector (each plan legible as `_fit_plans` asks); None
+    where the plans are legible beside the block nowhere."""
+    if not cells:
+        return None
+    x0, y0 = min(b[0] for b in cells.values()), min(b[1] for b in cells.values())
+    x1, y1 = max(b[2] for b in cells.values()), max(b[3] for b in cells.values())
+    g = req.gap
+    best = None
+    for form in ("grid", "column"):
+        block = draw.compact(form, COMPACT_LENGTHS[-1])
+        w, h = block.width_mm, block.height_mm
+        if min(block.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6 or w > x1 - x0 or h > y1 - y0:
+            continue
+        for at, region in (((x0, y0), (x0, y0 + h + g, x1, y1)), ((x1 - w, y0), (x0, y0 + h + g, x1, y1)),
+                           ((x1 - w, y0), (x0, y0, x1 - w - g, y1)), ((x0, y0), (x0 + w + g, y0, x1, y1))):
+            if region[2] - region[0] < 40 or region[3] - region[1] < 40:
+                continue
+            try:
+                score, fitted = _fit_plans(req, draw, chosen, kinds, region)
+            except ScaleError:
+                continue
+            if best is None or score > best[0]:
+                best = (score, block.at(*at), fitted)
+    if best is None:
+        return None
+    for name in [k for k in views if k.startswith("plan-")]:
+        del views[name]
+    views["diagrams"] = best[1]
+    return best[2]
 
 
 #: φ axes of the compact diagrams (`velplan.views.diagram_compact`), mm, the longest first.
