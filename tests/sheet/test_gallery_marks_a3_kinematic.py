@@ -13,11 +13,11 @@ FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
     "crossed": 3,  # drag-link-shaper (O₁, ω₁), sieve-shaker (11, 1), stephenson-six-bar (O₁, S₂, 8, 9, 10)
-    "small": 3317,  # every A3 readings table at 1.8 mm (sheets/layout.py SIZES["A3"].table = (1.8,)) and the
-    # diagrams' position numbers (DiagramSizes(2.5, 1.8)): the A3 sizes are below the ESKD 2.5 mm
+    "small": 3094,  # every A3 table of transfer functions at 1.8 mm (sheets/layout.py SIZES["A3"].table = (1.8,)):
+    # the A3 sizes are below the ESKD 2.5 mm (the compact diagrams and the notes print at 2.5 mm at least)
     "title_small": 165,  # the title block's captions (ESKD "Изм.", "Т.контр."…: 3 a sheet; ISO "Organisation",
     # "Designed"…: 8) shrunk to 1.8 mm by fit_text to fit their 7-17 mm cells (sheets/frame.py)
-    "ambiguous": 15,  # plan letters nearer another image than their own in the A3 plans' tighter cells
+    "ambiguous": 13,  # plan letters nearer another image than their own in the A3 plans' tighter cells
     # (four-bar s₂, press c, shaper s₅, beam-pump s₁, jaw-crusher π, sieve-shaker a₃, slotter a₃, triad-press s₄,
     # triad-rocker s₅) and scheme letters nearer another point (shaking-conveyor C, shaper-lever-rod O₂ and S₃,
     # triad-eight-link K₅, triad-rocker K₃ and G)

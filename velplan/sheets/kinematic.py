@@ -418,18 +418,20 @@ def _zone_share(view: View, zone) -> float:
 
 
 def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
-    """The input data and the readings off the plans, each in a free spot of the top band."""
+    """The input data and the readings off the plans, each in a free spot of the top band; on
+    A3 at the ESKD minimum of 2.5 mm at least (where no spot is left, the note is left out)."""
     from velplan.views.data import data_view
     from velplan.views.readings import readings_view
 
     top_band = (req.area[0], band_top + req.gap, req.area[2], req.area[3])
     study, lang = req.study, req.lang
+    least = MIN_TEXT_MM if req.fmt == "A3" else 0.0
     placed = _free_spot(lambda s, t: data_view(study, lang=lang, size_mm=s, title_mm=t),
-                        ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+                        [st for st in ((3.5, 5.0), (2.5, 3.5), (1.8, 2.5)) if st[0] >= least], views, top_band, req.gap)
     if placed is not None:
         views["data"] = placed
     placed = _free_spot(lambda s, t: readings_view(on_sheet, lang=lang, size_mm=s, title_mm=t),
-                        ((2.5, 3.5), (1.8, 2.5)), views, top_band, req.gap)
+                        [st for st in ((2.5, 3.5), (1.8, 2.5)) if st[0] >= least], views, top_band, req.gap)
     if placed is not None:
         views["readings"] = placed
 
