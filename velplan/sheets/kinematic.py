@@ -21,6 +21,7 @@ Examples
 from __future__ import annotations
 
 import math
+from functools import partial
 from itertools import islice
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -188,8 +189,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     plans : sequence of int, optional
         Positions (1-based) whose plans are drawn; two by default
         (:func:`default_plan_positions`), or the first of them alone where the two do not
-        fit beside the scheme (a large scheme on A3). The first one is drawn thick in the
-        scheme.
+        fit beside the scheme (a large scheme on A3) or leave the diagrams no room. The first
+        one is drawn thick in the scheme.
     kind : {"velocity", "acceleration", "both"}
         Which plans.
     fmt : {"A1", "A2", "A3"}
@@ -203,7 +204,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     diagrams : bool or None
         Draw the kinematic diagrams where they fit and the mechanism names an output (None,
         the default): beside the table, or else in the largest free corner left by the
-        scheme and the plans, in a row, a grid or a column; the same but raise ScaleError
+        scheme and the plans, in a row, a grid or a column, or else as a compact block
+        (`velplan.views.diagram_compact`: a small sheet) in a free spot or beside the plans
+        drawn smaller where they stay legible; the same but raise ScaleError
         where they fit nowhere (True); leave them out (False).
     table : bool
         Draw the table of transfer functions.
@@ -244,45 +247,41 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
         plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
-    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
-    fx0, _, _, fy1 = req.area
-    views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
+    views["mechanism"] = mview.at(req.area[0], req.area[3] - mview.height_mm)
     views.update(plan_views)
     if "diagrams" not in views and with_diagrams:
-        single = plans is None and len(chosen) > 1  # the first position's plans alone may leave room
-        _diagrams_if_room(req, draw, views, required=False)
-        refit = None if "diagrams" in views else _diagrams_beside_plans(req, draw, views, cells, chosen, kinds)
-        if refit is not None:
-            plan_views, results, cells = refit
-            if not scale_per_plan:
-                plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
-            views.update(plan_views)
-            index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}
-        if "diagrams" not in views and single:
-            alone = build_sheet(study, plans=chosen[:1], kind=kind, fmt=fmt, lang=lang, frame_style=frame_style,
-                                info=info, diagrams=diagrams, table=table, style=style, data=data,
-                                centres=centres, scale_per_plan=scale_per_plan, structure=structure)
-            if "diagrams" in alone.views:
-                return alone
-        if "diagrams" not in views and diagrams:
-            _diagrams_if_room(req, draw, views, required=True)
+        alone = None if plans is not None or len(chosen) < 2 else partial(
+            build_sheet, study, plans=chosen[:1], kind=kind, fmt=fmt, lang=lang, frame_style=frame_style, info=info,
+            diagrams=diagrams, table=table, style=style, data=data, centres=centres, scale_per_plan=scale_per_plan,
+            structure=structure)
+        found = _diagrams_anywhere(req, draw, views, (cells, chosen, kinds), scale_per_plan, alone, bool(diagrams))
+        if isinstance(found, Sheet):
+            return found
+        plan_views, results, cells = found or (plan_views, results, cells)
+    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
         _place_structure(req, views, required=bool(structure))
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
+    return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
+                  centres)
+
+
+def _sheet(req: Request, views: dict, info: TitleInfo, mu_l: float, plans, zones: dict, centres) -> Sheet:
+    """The composed sheet of the placed `views`: ``plans`` are (results, their position indices,
+    the positions drawn); the instant centres of `centres` marked on the scheme."""
+    results, index, chosen = plans
     order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
         k for k in ("data", "readings", "diagrams", "table", "structure") if k in views]
     scene = compose(req, views, order, info)
     if centres:
-        scene = scene.extend(_centre_marks(study, centres, views["mechanism"], mview.mu))
-    zones = dict(cells)
-    zones["mechanism"] = scheme_zone
-    return Sheet(mech, scene, MappingProxyType(dict(views)),
-                 MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
-                 fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
-                 MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
+        scene = scene.extend(_centre_marks(req.study, centres, views["mechanism"], mu_l))
+    return Sheet(req.mechanism, scene, MappingProxyType(dict(views)),
+                 MappingProxyType({"mu_l": mu_l} | {k: r.scale for k, r in results.items()}),
+                 req.fmt, req.lang, req.frame_style, req.style, info, MappingProxyType(results),
+                 MappingProxyType(index), chosen, req.study.n, MappingProxyType(zones))
 
 
 def _without_dropped(draw: _Drawings, mview, chosen):
@@ -616,6 +615,29 @@ def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
             if best is None or score > best[0]:
                 best = (score, view.at(fx0, fy0))
     return None if best is None else best[1]
+
+
+def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_per_plan: bool, alone,
+                       required: bool):
+    """Room for the kinematic diagrams, tried in turn: a free corner or spot (`_diagrams_if_room`);
+    beside the plans fitted again smaller (`plans`: their cells, positions and kinds;
+    `_diagrams_beside_plans`), which returns (plan views, results, cells); the sheet ``alone()``
+    draws with the first position's plans alone, returned where it has them. None where none
+    has room (ScaleError then if ``required``)."""
+    _diagrams_if_room(req, draw, views, required=False)
+    if "diagrams" in views:
+        return None
+    refit = _diagrams_beside_plans(req, draw, views, *plans)
+    if refit is not None:
+        plan_views, results, cells = refit
+        if not scale_per_plan:
+            plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
+        views.update(plan_views)
+        return plan_views, results, cells
+    if alone is not None and "diagrams" in (sheet := alone()).views:
+        return sheet
+    _diagrams_if_room(req, draw, views, required=required)
+    return None
 
 
 def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):

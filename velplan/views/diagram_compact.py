@@ -14,7 +14,7 @@ Examples
 >>> d = velplan.Study("crank-slider").diagrams
 >>> view = compact_diagram_view(d, length_mm=72.0, min_range_mm=30.0, lang="en")
 >>> all(r >= 30.0 for r in view.meta["drawn_ranges"]), view.meta["arrangement"]
-(True, 'compact')
+(True, 'grid')
 """
 
 from __future__ import annotations
@@ -51,8 +51,8 @@ COMPACT_POLES_MM: tuple[float, ...] = tuple(float(h) for h in range(5, 20)) + tu
 def round_down(raw: float) -> float:
     """The largest value m·10ⁿ (m of :data:`RANGE_SERIES`) not above `raw`.
 
-    >>> round_down(0.0179), round_down(0.0031), round_down(7.0), round_down(0.13)
-    (0.015, 0.003, 6.0, 0.12)
+    >>> round_down(0.0179), round_down(0.0031), round_down(7.4), round_down(0.13)
+    (0.016, 0.003, 7.0, 0.12)
     """
     if not (math.isfinite(raw) and raw > 0):
         raise ScaleError(f"cannot choose a diagram scale for a value per mm of {raw!r}")
