@@ -20,15 +20,18 @@ Examples
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Literal
 
 import numpy as np
+import shapely
 
 from velplan.analysis.chord import Diagrams
 from velplan.errors import ScaleError
 from velplan.options import Language
 from velplan.render.i18n import label
-from velplan.render.scene import Primitive, Text
+from velplan.render.layout import label_box
+from velplan.render.scene import Polyline, Primitive, Text
 from velplan.render.shapes import text_extent
 from velplan.views.base import View, bounds_of, make_view, number, scale_text, shift, unit
 from velplan.views.diagram import (
@@ -144,10 +147,33 @@ def _wrapped(lines: list[list[str]], size: float, width: float) -> list[str]:
     return out
 
 
+def _numbers_off_the_curves(items: list[Primitive]) -> list[Primitive]:
+    """The position numbers of the φ axis that a curve still crosses (under the axis and above
+    it) moved along the axis by up to half a character either way, or else to the other side,
+    where that clears them (the number stays nearest its tick)."""
+    curves = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline)
+              and p.line in ("thick", "hidden") and len(p.points) > 5]
+    tree = shapely.STRtree(curves)
+
+    def clear(t: Text) -> bool:
+        return not len(tree.query(label_box(t), predicate="intersects"))
+
+    out = []
+    for p in items:
+        if isinstance(p, Text) and p.text.isdigit() and abs(p.position[1]) < 3.0 and not clear(p):
+            x, y = p.position
+            flip = {"top": "baseline", "baseline": "top"}.get(p.baseline, p.baseline)
+            tries = [replace(p, position=(x + dx, y)) for dx in (0.6, -0.6, 1.2, -1.2)]
+            tries += [replace(p, position=(x + dx, -y), baseline=flip) for dx in (0.0, 0.6, -0.6, 1.2, -1.2)]
+            p = next((t for t in tries if clear(t)), p)
+        out.append(p)
+    return out
+
+
 def _titled(kind: str, d: Diagrams, sc: DiagramScales, lang: Language, sizes: DiagramSizes,
             omega: float) -> list[Primitive]:
     """One diagram without its text block, its title beside the tip of its ordinate axis."""
-    items = _plot(kind, d, sc, lang=lang, sizes=sizes, omega=omega, titled=False)
+    items = _numbers_off_the_curves(_plot(kind, d, sc, lang=lang, sizes=sizes, omega=omega, titled=False))
     tip = max(p.position[1] for p in items if isinstance(p, Text))  # the ordinate's name, at top + 6
     key = {"s": "displacement_diagram", "v": "velocity_diagram", "a": "acceleration_diagram"}[kind]
     if kind != "s" and not abs(omega) > 0:
