@@ -259,6 +259,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
             return found
         plan_views, results, cells = found or (plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
+    _place_details(req, views, results)
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
@@ -273,7 +274,7 @@ def _sheet(req: Request, views: dict, info: TitleInfo, mu_l: float, plans, zones
     """The composed sheet of the placed `views`: ``plans`` are (results, their position indices,
     the positions drawn); the instant centres of `centres` marked on the scheme."""
     results, index, chosen = plans
-    order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
+    order = ["mechanism"] + sorted(k for k in views if k.startswith(("plan-", "detail-"))) + [
         k for k in ("data", "readings", "diagrams", "table", "structure") if k in views]
     scene = compose(req, views, order, info)
     if centres:
@@ -414,6 +415,39 @@ def _zone_share(view: View, zone) -> float:
     """The share of its `zone` a scheme spans along the fuller direction."""
     x0, y0, x1, y1 = zone
     return max(view.width_mm / (x1 - x0), view.height_mm / (y1 - y0))
+
+
+def _place_details(req: Request, views: dict, results) -> None:
+    """An enlarged detail of each plan whose images crowd round its pole
+    (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
+    region marked on the plan; none where no spot is free or the mark leaves the plan's room."""
+    from velplan.views.plan_detail import DETAIL_MM, FACTORS, crowd_near_pole, detail_view, marked
+
+    for name, res in results.items():
+        placed, number = views[name], int(name.rsplit("-", 1)[1])
+        radius = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
+        if radius is None:
+            continue
+        view, (dx, dy) = marked(placed.view, radius, req.sizes.plan.label_mm)
+        plan = view.at(placed.x - dx, placed.y - dy)
+        others = {k: v for k, v in views.items() if k != name}
+        if not _free_of(plan.bounds, others, req):
+            continue
+        taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
+        for factor in (f for f in FACTORS if radius * f <= DETAIL_MM):
+            detail = detail_view(res, number, radius, factor, lang=req.lang, sizes=req.sizes.plan)
+            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
+            if at is not None:
+                views[name], views[detail.name] = plan, detail.at(*at)
+                break
+
+
+def _free_of(box, views: dict, req: Request) -> bool:
+    """Whether `box` (sheet mm) lies in the drawing area clear of the title block and `views`."""
+    x0, y0, x1, y1 = req.area
+    inside = box[0] >= x0 - 1e-6 and box[1] >= y0 - 1e-6 and box[2] <= x1 + 1e-6 and box[3] <= y1 + 1e-6
+    return inside and not any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3]
+                              for b in [v.bounds for v in views.values()] + [req.title_block])
 
 
 def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
