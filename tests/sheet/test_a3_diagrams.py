@@ -108,3 +108,31 @@ def test_each_curve_of_the_compact_block_reaches_its_least_range_and_at_most_a_t
     assert 30.0 - 1e-9 <= s < 30.0 * 1.25 + 1e-9
     for r, H in ((v, sc.H_v), (a, sc.H_a)):
         assert r >= 30.0 - 1e-9 and (r < 30.0 * 4 / 3 + 1e-9 or H == 5.0), (r, H)
+
+
+def test_a_plan_crowded_round_its_pole_gets_an_enlarged_detail_at_a_stated_scale(gallery):
+    """The triad press's acceleration plan of position 4 on A3: its images crowd round π; the
+    detail draws the region again k times larger (μa/k written under "I (k:1)"), every image
+    of the region at k times its distance from π, and the plan marks the region with a circle."""
+    from velplan.views.plan_detail import crowd_near_pole
+
+    sheet = gallery["triad-press", "kinematic"]
+    plan, detail = sheet.views["plan-a-4"], sheet.views["detail-a-4"]
+    res = sheet.plans["plan-a-4"]
+    k, radius = detail.view.meta["factor"], detail.view.meta["radius_mm"]
+    assert detail.view.meta["scale"] == pytest.approx(res.scale / k) and k >= 2.0
+    texts = [t.text for t in detail.primitives if isinstance(t, Text)]
+    assert any(t.startswith("I (") and t.endswith(":1)") for t in texts)
+    assert any(t.startswith("μa = ") for t in texts)
+    # the region: images within its radius of π at the plan's scale; each drawn k times farther out
+    images = plan.view.meta["images"]
+    assert crowd_near_pole(images, 100.0) == pytest.approx(radius)
+    pole = np.asarray(detail.to_sheet((0.0, 0.0)))
+    dots = [np.asarray(c.centre) for c in detail.primitives if isinstance(c, gm.Circle) and c.fill == "solid"]
+    inside = [(t, z) for t, z in images.items() if 0.5 < abs(z) < radius - 3.0]
+    assert len(inside) >= 3
+    for target, z in inside:
+        want = pole + k * np.array([z.real, z.imag])
+        assert min(np.hypot(*(d - want)) for d in dots) < 1e-6, target
+    marks = [c for c in plan.primitives if isinstance(c, gm.Circle) and c.radius == pytest.approx(radius)]
+    assert len(marks) == 1 and np.allclose(marks[0].centre, plan.to_sheet((0.0, 0.0)))

@@ -92,7 +92,7 @@ def detail_view(res, number: int, radius_mm: float, factor: float, *, lang: Lang
     items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{NUMERAL} ({number_text(factor, lang)}:1)",
                       text_layer, sizes.title_mm))
     items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
-    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0,
+    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(centre),
                      meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
                            "factor": factor, "radius_mm": radius_mm})
 
