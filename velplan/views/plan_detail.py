@@ -30,7 +30,7 @@ CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
 #: Radius of the enlarged region as drawn, at most, mm.
-DETAIL_MM = 45.0
+DETAIL_MM = 36.0
 #: The numeral of the detail (one detail a plan).
 NUMERAL = "I"
 
