@@ -119,20 +119,20 @@ def test_a_plan_crowded_round_its_pole_gets_an_enlarged_detail_at_a_stated_scale
     sheet = gallery["triad-press", "kinematic"]
     plan, detail = sheet.views["plan-a-4"], sheet.views["detail-a-4"]
     res = sheet.plans["plan-a-4"]
-    k, radius = detail.view.meta["factor"], detail.view.meta["radius_mm"]
+    k, (centre, radius) = detail.view.meta["factor"], detail.view.meta["region"]
     assert detail.view.meta["scale"] == pytest.approx(res.scale / k) and k >= 2.0
     texts = [t.text for t in detail.primitives if isinstance(t, Text)]
     assert any(t.startswith("I (") and t.endswith(":1)") for t in texts)
     assert any(t.startswith("μa = ") for t in texts)
-    # the region: images within its radius of π at the plan's scale; each drawn k times farther out
+    # the region: the images in it at the plan's scale; each drawn k times farther from π
     images = plan.view.meta["images"]
-    assert crowd_near_pole(images, 100.0) == pytest.approx(radius)
+    assert crowd_near_pole(images, 100.0) == (centre, radius)
     pole = np.asarray(detail.to_sheet((0.0, 0.0)))
     dots = [np.asarray(c.centre) for c in detail.primitives if isinstance(c, gm.Circle) and c.fill == "solid"]
-    inside = [(t, z) for t, z in images.items() if 0.5 < abs(z) < radius - 3.0]
+    inside = [(t, z) for t, z in images.items() if 0.5 < abs(z) and abs(z - centre) < radius - 3.0]
     assert len(inside) >= 3
     for target, z in inside:
         want = pole + k * np.array([z.real, z.imag])
         assert min(np.hypot(*(d - want)) for d in dots) < 1e-6, target
     marks = [c for c in plan.primitives if isinstance(c, gm.Circle) and c.radius == pytest.approx(radius)]
-    assert len(marks) == 1 and np.allclose(marks[0].centre, plan.to_sheet((0.0, 0.0)))
+    assert len(marks) == 1 and np.allclose(marks[0].centre, plan.to_sheet((centre.real, centre.imag)))

@@ -417,28 +417,37 @@ def _zone_share(view: View, zone) -> float:
     return max(view.width_mm / (x1 - x0), view.height_mm / (y1 - y0))
 
 
+#: Radius of an enlarged detail of a plan as drawn, at most, mm, per format.
+DETAIL_MM: Mapping[str, float] = MappingProxyType({"A1": 60.0, "A2": 48.0, "A3": 36.0})
+
+
 def _place_details(req: Request, views: dict, results) -> None:
     """An enlarged detail of each plan whose images crowd round its pole
     (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
     region marked on the plan; none where no spot is free or the mark leaves the plan's room."""
-    from velplan.views.plan_detail import DETAIL_MM, FACTORS, crowd_near_pole, detail_view, marked
+    from velplan.views.plan_detail import FACTORS, NUMERALS, crowd_near_pole, detail_view, marked
 
-    for name, res in results.items():
+    numerals = iter(NUMERALS)
+    numeral = next(numerals)
+    for name, res in sorted(results.items()):
         placed, number = views[name], int(name.rsplit("-", 1)[1])
-        radius = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
-        if radius is None:
+        region = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
+        mark = None if region is None else marked(placed.view, region, req.sizes.plan.label_mm, numeral)
+        if mark is None:
             continue
-        view, (dx, dy) = marked(placed.view, radius, req.sizes.plan.label_mm)
+        view, (dx, dy) = mark
         plan = view.at(placed.x - dx, placed.y - dy)
         others = {k: v for k, v in views.items() if k != name}
         if not _free_of(plan.bounds, others, req):
             continue
         taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
-        for factor in (f for f in FACTORS if radius * f <= DETAIL_MM):
-            detail = detail_view(res, number, radius, factor, lang=req.lang, sizes=req.sizes.plan)
+        for factor in (f for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt]):
+            detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan,
+                                 numeral=numeral)
             at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
             if at is not None:
                 views[name], views[detail.name] = plan, detail.at(*at)
+                numeral = next(numerals, numeral)
                 break
 
 

@@ -3,9 +3,10 @@ while one of its vectors runs far out: the region round the pole drawn again at 
 its own scale stated, and the region marked on the plan by a thin circle and its numeral.
 
 A plan is crowded round its pole (:func:`crowd_near_pole`) where at least
-:data:`CROWD_COUNT` images lie within :data:`CROWD_MM` of the pole at the plan's scale while
-the plan spans at least three times the region's radius: one scale cannot serve it (the jaw
-crusher's acceleration plans: pa about 166 mm on A1, every other point within 15 mm of π).
+:data:`CROWD_COUNT` images lie within :data:`CROWD_MM` of the pole (or a quarter of the plan's
+reach) at the plan's scale while the plan spans at least three times the region's radius: one
+scale cannot serve it (the jaw crusher's acceleration plans: pa about 166 mm on A1, every other
+point within 15 mm of π).
 """
 
 from __future__ import annotations
@@ -29,26 +30,30 @@ CROWD_MM = 15.0
 CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
-#: Radius of the enlarged region as drawn, at most, mm.
-DETAIL_MM = 36.0
-#: The numeral of the detail (one detail a plan).
-NUMERAL = "I"
+#: The numerals of a sheet's details, in turn.
+NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
+NUMERAL = NUMERALS[0]
 
 
-def crowd_near_pole(images, extent_mm: float) -> float | None:
-    """The radius (mm at the plan's scale) of the region round the pole that holds the crowd
-    of a plan with `images` (target → plan mm, complex) `extent_mm` across, or None where no
-    crowd calls for a detail: the farthest crowded image plus 3 mm for its letter (images on
-    the pole itself, or within a millimetre of one another, count once)."""
+def crowd_near_pole(images, extent_mm: float) -> tuple[complex, float] | None:
+    """(centre, radius) of the region (plan mm at the plan's scale, the pole at 0) that holds the
+    crowd round the pole of a plan with `images` (target → plan mm, complex) `extent_mm` across,
+    or None where no crowd calls for a detail. The crowd: the images within
+    :data:`CROWD_MM` of the pole, or a quarter of the farthest image's distance where that is
+    more (images on the pole itself, or within a millimetre of one another, count once); the
+    region: the circle round the box of the crowd and the pole, 3 mm wider for the letters."""
     z = np.array([complex(v) for v in images.values()], dtype=complex)
     z = z[np.isfinite(z)]
-    z = z[(np.abs(z) > 0.5) & (np.abs(z) <= CROWD_MM)]  # off the pole itself, in the crowd
-    distinct = np.unique(np.round(z / 1.0))  # images a millimetre apart count once
-    if len(distinct) < CROWD_COUNT:
+    if not len(z):
         return None
-    near = np.abs(z)
-    radius = float(np.max(near)) + 3.0
-    return radius if extent_mm >= 3.0 * radius else None
+    reach = max(CROWD_MM, float(np.max(np.abs(z))) / 4.0)
+    z = z[(np.abs(z) > 0.5) & (np.abs(z) <= reach)]
+    if len(np.unique(np.round(z))) < CROWD_COUNT:
+        return None
+    x0, x1 = min(0.0, float(np.min(z.real))), max(0.0, float(np.max(z.real)))
+    y0, y1 = min(0.0, float(np.min(z.imag))), max(0.0, float(np.max(z.imag)))
+    radius = 0.5 * math.hypot(x1 - x0, y1 - y0) + 3.0
+    return (complex(0.5 * (x0 + x1), 0.5 * (y0 + y1)), radius) if extent_mm >= 3.0 * radius else None
 
 
 def _clipped(p: Primitive, window: shapely.Polygon) -> list[Primitive]:
@@ -75,48 +80,58 @@ def _clipped(p: Primitive, window: shapely.Polygon) -> list[Primitive]:
     return []
 
 
-def detail_view(res, number: int, radius_mm: float, factor: float, *, lang: Language = "ru",
-                sizes: PlanSizes = PlanSizes()) -> View:
-    """The region of `radius_mm` (at the plan's scale) round the pole of the plan of `res` at
-    position number `number`, drawn `factor` times larger (its scale μ/factor written under the
-    numeral and the enlargement, ``"I (4:1)"``), cut at a thin circle."""
+def detail_view(res, number: int, region: tuple[complex, float], factor: float, *,
+                lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL) -> View:
+    """The `region` (centre, radius: plan mm at the plan's scale, `crowd_near_pole`) of the
+    plan of `res` at position number `number`, drawn `factor` times larger (its scale μ/factor
+    written under the numeral and the enlargement, ``"I (4:1)"``), cut at a thin circle; the
+    view's origin is the pole."""
     big = res.at_scale(res.scale / factor)
     full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
-    centre = np.asarray(full.origin)
-    r = radius_mm * factor
+    pole = np.asarray(full.origin)
+    centre = pole + factor * np.array([region[0].real, region[0].imag])
+    r = region[1] * factor
     window = shapely.Point(centre).buffer(r, quad_segs=32)
     items = [q for p in full.primitives for q in _clipped(p, window)]
     _, line_layer, text_layer = layer_names(full.meta["kind"], number)
     items.append(Circle(tuple(centre), r, line_layer, "thin"))
     x, top = centre[0] - r, centre[1] + r
-    items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{NUMERAL} ({number_text(factor, lang)}:1)",
+    items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
                       text_layer, sizes.title_mm))
     items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
-    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(centre),
+    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(pole),
                      meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
-                           "factor": factor, "radius_mm": radius_mm})
+                           "factor": factor, "region": region})
 
 
-def marked(view: View, radius_mm: float, size_mm: float) -> tuple[View, tuple[float, float]]:
-    """(the plan `view` with its detail's region marked — a thin circle of `radius_mm` round
-    the pole and the numeral outside it where no letter nor vector is —, the shift of its drawing in
-    the new box, mm): place it that much lower and to the left to keep the drawing where it was."""
+def marked(view: View, region: tuple[complex, float], size_mm: float,
+           numeral: str = NUMERAL) -> tuple[View, tuple[float, float]] | None:
+    """(the plan `view` with its detail's `region` (`crowd_near_pole`) marked — a thin circle
+    and the numeral outside it where no letter nor vector is —, the shift of its drawing in
+    the new box, mm): place it that much lower and to the left to keep the drawing where it was;
+    None where the circle would cross a text of the plan outside the region."""
     kind, number = view.meta["kind"], view.meta["number"]
     _, line_layer, text_layer = layer_names(kind, number)
-    cx, cy = view.origin
+    radius_mm = region[1]
+    cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
     taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
                               + [shapely.LineString([p.start, p.end]) for p in view.primitives
                                  if isinstance(p, Arrow)]).buffer(0.5)
-    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), NUMERAL,
+    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
                      text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
                      "baseline" if math.sin(a) > 0 else "top")
                 for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
-    numeral = next((t for t in numerals if not label_box(t).intersects(taken)), numerals[0])
-    items = view.primitives + (Circle((cx, cy), radius_mm, line_layer, "thin"), numeral)
+    mark = next((t for t in numerals if not label_box(t).intersects(taken)), numerals[0])
+    disk = shapely.Point(cx, cy).buffer(radius_mm)
+    if any(label_box(t).intersects(disk) for t in view.primitives
+           if isinstance(t, Text) and ("(" in t.text or "=" in t.text or "≈" in t.text)):
+        return None  # the circle would cross a text outside the region (a title, a scale, the ≈ 0 list)
+    items = view.primitives + (Circle((cx, cy), radius_mm, line_layer, "thin"), mark)
     x0, y0, x1, y1 = bounds_of(items)
     dx, dy = max(-x0, 0.0), max(-y0, 0.0)  # the box grows where the circle or the numeral leave it
-    return replace(view, primitives=tuple(shift(p, dx, dy) for p in items), origin=(cx + dx, cy + dy),
+    return replace(view, primitives=tuple(shift(p, dx, dy) for p in items),
+                   origin=(view.origin[0] + dx, view.origin[1] + dy),
                    width_mm=max(view.width_mm, x1) + dx, height_mm=max(view.height_mm, y1) + dy), (dx, dy)
 
 
-__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "crowd_near_pole", "detail_view", "marked"]
+__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "marked"]
