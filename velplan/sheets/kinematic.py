@@ -47,7 +47,7 @@ from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view
-from velplan.views.diagram_compact import compact_diagram_view
+from velplan.views.diagram_compact import Form, compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import MIN_VECTOR_MM, extent_mm, labelled_vectors, plan_view
 from velplan.views.table import table_view
@@ -163,7 +163,7 @@ class _Drawings:
                             sizes=self.req.sizes.diagram)
 
 
-    def _compact(self, form: str, length: float) -> View:
+    def _compact(self, form: Form, length: float) -> View:
         study, sizes = self.req.study, self.req.sizes.diagram
         # the compact block is drawn where the sheet is small: its text at the ESKD minimum at least
         sizes = DiagramSizes(max(sizes.title_mm, MIN_TEXT_MM), max(sizes.label_mm, MIN_TEXT_MM))
@@ -432,8 +432,7 @@ def _place_details(req: Request, views: dict, results) -> None:
     for name, res in sorted(results.items()):
         placed, number = views[name], int(name.rsplit("-", 1)[1])
         region = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
-        mark = None if region is None else marked(placed.view, region, req.sizes.plan.label_mm, numeral)
-        if mark is None:
+        if region is None or (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
             continue
         view, (dx, dy) = mark
         plan = view.at(placed.x - dx, placed.y - dy)
@@ -694,7 +693,7 @@ def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, ch
     x1, y1 = max(b[2] for b in cells.values()), max(b[3] for b in cells.values())
     g = req.gap
     best = None
-    for form in ("grid", "column"):
+    for form in FORMS:
         block = draw.compact(form, COMPACT_LENGTHS[-1])
         w, h = block.width_mm, block.height_mm
         if min(block.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6 or w > x1 - x0 or h > y1 - y0:
@@ -719,6 +718,8 @@ def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, ch
 
 #: φ axes of the compact diagrams (`velplan.views.diagram_compact`), mm, the longest first.
 COMPACT_LENGTHS = (90.0, 72.0, 60.0)
+#: Forms of the compact diagrams, in the order tried.
+FORMS: tuple[Form, ...] = ("grid", "column")
 #: The ESKD minimum height of printed text, mm (ГОСТ 2.304): the compact diagrams' text at least.
 MIN_TEXT_MM = 2.5
 
@@ -730,7 +731,7 @@ def _compact_diagrams(req: Request, draw: _Drawings, views):
     fx0, fy0, _, _ = req.area
     taken = [v.bounds for v in views.values()] + [req.title_block]
     for length in COMPACT_LENGTHS:
-        for form in ("grid", "column"):
+        for form in FORMS:
             view = draw.compact(form, length)
             if min(view.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6:
                 continue

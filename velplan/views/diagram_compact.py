@@ -103,7 +103,7 @@ def drawn_ranges(d: Diagrams, sc: DiagramScales) -> tuple[float, float, float]:
     return s / sc.mu_s, v / sc.mu_v, a / sc.mu_a
 
 
-def compact_lines(d: Diagrams, sc: DiagramScales, lang: Language, omega: float) -> list[str]:
+def compact_lines(d: Diagrams, sc: DiagramScales, lang: Language, omega: float) -> list[list[str]]:
     """The pieces of the text block: the scales of s and φ (and of time, read in time at the
     crank speed `omega` rad/s ≠ 0), then per derived diagram its pole distance, its scale and
     its error; a list of lines, each a list of pieces joined with ";  " where they fit."""
@@ -162,7 +162,7 @@ def _numbers_off_the_curves(items: list[Primitive]) -> list[Primitive]:
     for p in items:
         if isinstance(p, Text) and p.text.isdigit() and abs(p.position[1]) < 3.0 and not clear(p):
             x, y = p.position
-            flip = {"top": "baseline", "baseline": "top"}.get(p.baseline, p.baseline)
+            flip: Literal["baseline", "top"] = "top" if p.baseline == "baseline" else "baseline"
             tries = [replace(p, position=(x + dx, y)) for dx in (0.6, -0.6, 1.2, -1.2)]
             tries += [replace(p, position=(x + dx, -y), baseline=flip) for dx in (0.0, 0.6, -0.6, 1.2, -1.2)]
             p = next((t for t in tries if clear(t)), p)

@@ -71,11 +71,11 @@ def _clipped(p: Primitive, window: shapely.Polygon) -> list[Primitive]:
         if window.contains(shapely.Point(p.end)):
             start = a if np.hypot(*(a - p.end)) > np.hypot(*(b - p.end)) else b
             return [replace(p, start=tuple(start))]
-        return [Polyline([tuple(a), tuple(b)], p.layer, p.line)]
+        return [Polyline(((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))), p.layer, p.line)]
     if isinstance(p, Polyline):
         inside = window.intersection(shapely.LineString(p.points))
         parts = getattr(inside, "geoms", [inside])
-        return [Polyline([tuple(c) for c in g.coords], p.layer, p.line) for g in parts
+        return [Polyline(tuple((float(x), float(y)) for x, y in g.coords), p.layer, p.line) for g in parts
                 if not g.is_empty and g.geom_type == "LineString" and g.length > 1e-6]
     return []
 
