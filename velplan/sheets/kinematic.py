@@ -259,11 +259,11 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
             return found
         plan_views, results, cells = found or (plan_views, results, cells)
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
-    _place_details(req, views, results)
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
         _place_structure(req, views, required=bool(structure))
+    _place_details(req, views, results)  # in the room left: a sheet loses nothing to them
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
     return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
