@@ -621,16 +621,16 @@ def _one_scale_where_legible(fmt: str, draw: _Drawings, plan_views, results, cel
 
 
 def _diagrams_if_room(req: Request, draw: _Drawings, views: dict, *, required: bool) -> None:
-    """The kinematic diagrams in a free corner where they fit; ScaleError where they do not
-    and are ``required``."""
+    """The kinematic diagrams in a free corner, or as their compact block in a free spot, where
+    they fit; ScaleError where they do not and are ``required``."""
     placed = _diagrams_in_free_corner(req, draw, views)
     if placed is None:
         placed = _compact_diagrams(req, draw, views)
     if placed is None and required:
-        raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table nor in a "
-                         f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
-                         f"least {MIN_ORDINATE_MM:.0f} mm; "
-                         f"use a larger --format")
+        raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table, in a free "
+                         f"corner nor beside the plans with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and "
+                         f"ordinates of at least {MIN_ORDINATE_MM:.0f} mm; "
+                         f"use a larger --format or fewer --plans")
     if placed is not None:
         views["diagrams"] = placed
 
