@@ -11,6 +11,12 @@ its right and the diagrams in a free corner if one is left. Each view takes the 
 series) that fits its region; a view that cannot be drawn legibly at any standard scale
 raises :class:`~velplan.errors.ScaleError` with a one-line message.
 
+Where the diagrams find no room at their full size (A3), their compact block
+(`velplan.views.diagram_compact`, every curve 30 mm high at least) goes to a free spot, or
+beside the plans fitted again smaller where they stay legible, or beside the first position's
+plans alone. A plan crowded round its pole gets an enlarged detail at a stated scale
+(`velplan.views.plan_detail`) in the room left.
+
 Examples
 --------
 >>> sheet = build_sheet("crank-slider", fmt="A3", lang="en")
@@ -64,7 +70,8 @@ class Sheet(ComposedSheet):
     ----------
     views : Mapping[str, PlacedView]
         ``"mechanism"``, ``"plan-v-K"``, ``"plan-a-K"``, ``"table"``, ``"diagrams"``,
-        ``"data"``, ``"readings"``.
+        ``"data"``, ``"readings"``, ``"structure"``, and ``"detail-a-K"`` (an enlarged detail
+        of a plan crowded round its pole, `velplan.views.plan_detail`) where there is room.
     scales : Mapping[str, float]
         ``"mu_l"`` (m/mm) of the scheme, and μ of each plan by view name (``"plan-v-4"``:
         (m/s)/mm, ``"plan-a-4"``: (m/s²)/mm), as drawn.
@@ -161,7 +168,6 @@ class _Drawings:
         return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
                             omega=study.mechanism.crank.omega, arrangement=arrangement,
                             sizes=self.req.sizes.diagram)
-
 
     def _compact(self, form: Form, length: float) -> View:
         study, sizes = self.req.study, self.req.sizes.diagram
