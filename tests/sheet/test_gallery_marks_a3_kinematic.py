@@ -18,9 +18,9 @@ BOUNDS: dict[str, int] = {
     "title_small": 165,  # the title block's captions (ESKD "Изм.", "Т.контр."…: 3 a sheet; ISO "Organisation",
     # "Designed"…: 8) shrunk to 1.8 mm by fit_text to fit their 7-17 mm cells (sheets/frame.py)
     "ambiguous": 13,  # plan letters nearer another image than their own in the A3 plans' tighter cells
-    # (four-bar s₂, press c, shaper s₅, beam-pump s₁, jaw-crusher π, sieve-shaker a₃, slotter a₃, triad-press s₄,
-    # triad-rocker s₅) and scheme letters nearer another point (shaking-conveyor C, shaper-lever-rod O₂ and S₃,
-    # triad-eight-link K₅, triad-rocker K₃ and G)
+    # (four-bar s₂, press c, beam-pump s₁, shaper-lever-ram a₃, sieve-shaker a₃, triad-press s₄, triad-rocker s₅)
+    # and scheme letters nearer another point (shaking-conveyor C, shaper-lever-rod O₂ and S₃, triad-eight-link K₅,
+    # triad-rocker K₃ and G)
     "far_label": 74,  # mostly the scheme's letters of sliders and ground pivots, 6-9 mm off (beyond the block
     # or the hatching); nothing nearer names another point
     "class_iii": 1,  # K₅ (4) on triad-eight-link: its letter more than 6 mm off
