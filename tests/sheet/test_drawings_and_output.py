@@ -65,12 +65,14 @@ def test_diagrams_demanded_go_where_they_fit_else_raise_scale_error():
     assert "diagrams" in sheet.views and sheet.frame_style == "iso"
     demanded = build_sheet("crank-slider", fmt="A1", lang="en", diagrams=True)
     assert demanded.svg() == sheet.svg()  # demanding them draws what "auto" draws
-    # on A3 the free corner holds diagrams only 10-20 mm high: left out rather than squashed
-    assert "diagrams" not in build_sheet("crank-slider", fmt="A3", lang="en").views
-    with pytest.raises(ScaleError, match=r"^the kinematic diagrams do not fit A3 beside the table "
-                                         r"nor in a free corner .* ordinates of at least 30 mm; "
-                                         r"use a larger --format$"):
-        build_sheet("slider-press", fmt="A3", diagrams=True)
+    # on A3 the compact block holds them, 30 mm high at least (tests/sheet/test_a3_diagrams.py)
+    assert "diagrams" in build_sheet("crank-slider", fmt="A3", lang="en").views
+    # the jaw crusher's two positions' plans leave them no room (the first position's alone do,
+    # but --plans names both): ScaleError rather than squashed diagrams
+    with pytest.raises(ScaleError, match=r"^the kinematic diagrams do not fit A3 beside the table, "
+                                         r"in a free corner nor beside the plans .* ordinates of at least "
+                                         r"30 mm; use a larger --format or fewer --plans$"):
+        build_sheet("jaw-crusher", fmt="A3", plans=(4, 10), diagrams=True)
 
 
 @pytest.mark.parametrize("options, message", [

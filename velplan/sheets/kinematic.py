@@ -11,6 +11,12 @@ its right and the diagrams in a free corner if one is left. Each view takes the 
 series) that fits its region; a view that cannot be drawn legibly at any standard scale
 raises :class:`~velplan.errors.ScaleError` with a one-line message.
 
+Where the diagrams find no room at their full size (A3), their compact block
+(`velplan.views.diagram_compact`, every curve 30 mm high at least) goes to a free spot, or
+beside the plans fitted again smaller where they stay legible, or beside the first position's
+plans alone. A plan crowded round its pole gets an enlarged detail at a stated scale
+(`velplan.views.plan_detail`) in the room left.
+
 Examples
 --------
 >>> sheet = build_sheet("crank-slider", fmt="A3", lang="en")
@@ -21,6 +27,7 @@ Examples
 from __future__ import annotations
 
 import math
+from functools import partial
 from itertools import islice
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,7 +52,8 @@ from velplan.sheets.skeleton import (
 from velplan.sheets.solver import Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import Arrangement, diagram_view
+from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view
+from velplan.views.diagram_compact import Form, compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import MIN_VECTOR_MM, extent_mm, labelled_vectors, plan_view
 from velplan.views.table import table_view
@@ -62,7 +70,8 @@ class Sheet(ComposedSheet):
     ----------
     views : Mapping[str, PlacedView]
         ``"mechanism"``, ``"plan-v-K"``, ``"plan-a-K"``, ``"table"``, ``"diagrams"``,
-        ``"data"``, ``"readings"``.
+        ``"data"``, ``"readings"``, ``"structure"``, and ``"detail-a-K"`` (an enlarged detail
+        of a plan crowded round its pole, `velplan.views.plan_detail`) where there is room.
     scales : Mapping[str, float]
         ``"mu_l"`` (m/mm) of the scheme, and μ of each plan by view name (``"plan-v-4"``:
         (m/s)/mm, ``"plan-a-4"``: (m/s²)/mm), as drawn.
@@ -142,6 +151,7 @@ class _Drawings:
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.diagrams = Trials(self._diagrams)
+        self.compact = Trials(self._compact)
 
     def _scheme(self, mu: float) -> View:
         study, req = self.req.study, self.req
@@ -158,6 +168,14 @@ class _Drawings:
         return diagram_view(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
                             omega=study.mechanism.crank.omega, arrangement=arrangement,
                             sizes=self.req.sizes.diagram)
+
+    def _compact(self, form: Form, length: float) -> View:
+        study, sizes = self.req.study, self.req.sizes.diagram
+        # the compact block is drawn where the sheet is small: its text at the ESKD minimum at least
+        sizes = DiagramSizes(max(sizes.title_mm, MIN_TEXT_MM), max(sizes.label_mm, MIN_TEXT_MM))
+        return compact_diagram_view(study.diagrams, length_mm=length, min_range_mm=MIN_ORDINATE_MM,
+                                    lang=self.req.lang, omega=study.mechanism.crank.omega, form=form,
+                                    sizes=sizes)
 
 
 def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Sequence[int] | None = None,
@@ -177,8 +195,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     plans : sequence of int, optional
         Positions (1-based) whose plans are drawn; two by default
         (:func:`default_plan_positions`), or the first of them alone where the two do not
-        fit beside the scheme (a large scheme on A3). The first one is drawn thick in the
-        scheme.
+        fit beside the scheme (a large scheme on A3) or leave the diagrams no room. The first
+        one is drawn thick in the scheme.
     kind : {"velocity", "acceleration", "both"}
         Which plans.
     fmt : {"A1", "A2", "A3"}
@@ -192,7 +210,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     diagrams : bool or None
         Draw the kinematic diagrams where they fit and the mechanism names an output (None,
         the default): beside the table, or else in the largest free corner left by the
-        scheme and the plans, in a row, a grid or a column; the same but raise ScaleError
+        scheme and the plans, in a row, a grid or a column, or else as a compact block
+        (`velplan.views.diagram_compact`: a small sheet) in a free spot or beside the plans
+        drawn smaller where they stay legible; the same but raise ScaleError
         where they fit nowhere (True); leave them out (False).
     table : bool
         Draw the table of transfer functions.
@@ -233,29 +253,42 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     mview = _without_dropped(draw, mview, chosen)
     if not scale_per_plan:
         plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
-    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
-    fx0, _, _, fy1 = req.area
-    views["mechanism"] = mview.at(fx0, fy1 - mview.height_mm)
+    views["mechanism"] = mview.at(req.area[0], req.area[3] - mview.height_mm)
     views.update(plan_views)
     if "diagrams" not in views and with_diagrams:
-        _diagrams_if_room(req, draw, views, required=bool(diagrams))
+        alone = None if plans is not None or len(chosen) < 2 else partial(
+            build_sheet, study, plans=chosen[:1], kind=kind, fmt=fmt, lang=lang, frame_style=frame_style, info=info,
+            diagrams=diagrams, table=table, style=style, data=data, centres=centres, scale_per_plan=scale_per_plan,
+            structure=structure)
+        found = _diagrams_anywhere(req, draw, views, (cells, chosen, kinds), scale_per_plan, alone, bool(diagrams))
+        if isinstance(found, Sheet):
+            return found
+        plan_views, results, cells = found or (plan_views, results, cells)
+    index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
         _place_structure(req, views, required=bool(structure))
+    _place_details(req, views, results)  # in the room left: a sheet loses nothing to them
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
-    order = ["mechanism"] + sorted(k for k in views if k.startswith("plan-")) + [
+    return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
+                  centres)
+
+
+def _sheet(req: Request, views: dict, info: TitleInfo, mu_l: float, plans, zones: dict, centres) -> Sheet:
+    """The composed sheet of the placed `views`: ``plans`` are (results, their position indices,
+    the positions drawn); the instant centres of `centres` marked on the scheme."""
+    results, index, chosen = plans
+    order = ["mechanism"] + sorted(k for k in views if k.startswith(("plan-", "detail-"))) + [
         k for k in ("data", "readings", "diagrams", "table", "structure") if k in views]
     scene = compose(req, views, order, info)
     if centres:
-        scene = scene.extend(_centre_marks(study, centres, views["mechanism"], mview.mu))
-    zones = dict(cells)
-    zones["mechanism"] = scheme_zone
-    return Sheet(mech, scene, MappingProxyType(dict(views)),
-                 MappingProxyType({"mu_l": mview.mu} | {k: r.scale for k, r in results.items()}),
-                 fmt, lang, req.frame_style, req.style, info, MappingProxyType(results),
-                 MappingProxyType(index), chosen, study.n, MappingProxyType(zones))
+        scene = scene.extend(_centre_marks(req.study, centres, views["mechanism"], mu_l))
+    return Sheet(req.mechanism, scene, MappingProxyType(dict(views)),
+                 MappingProxyType({"mu_l": mu_l} | {k: r.scale for k, r in results.items()}),
+                 req.fmt, req.lang, req.frame_style, req.style, info, MappingProxyType(results),
+                 MappingProxyType(index), chosen, req.study.n, MappingProxyType(zones))
 
 
 def _without_dropped(draw: _Drawings, mview, chosen):
@@ -421,8 +454,50 @@ def _zone_share(view: View, zone) -> float:
     return max(view.width_mm / (x1 - x0), view.height_mm / (y1 - y0))
 
 
+#: Radius of an enlarged detail of a plan as drawn, at most, mm, per format.
+DETAIL_MM: Mapping[str, float] = MappingProxyType({"A1": 60.0, "A2": 48.0, "A3": 36.0})
+
+
+def _place_details(req: Request, views: dict, results) -> None:
+    """An enlarged detail of each plan whose images crowd round its pole
+    (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
+    region marked on the plan; none where no spot is free or the mark leaves the plan's room."""
+    from velplan.views.plan_detail import FACTORS, NUMERALS, crowd_near_pole, detail_view, marked
+
+    numerals = iter(NUMERALS)
+    numeral = next(numerals)
+    for name, res in sorted(results.items()):
+        placed, number = views[name], int(name.rsplit("-", 1)[1])
+        region = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
+        if region is None or (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
+            continue
+        view, (dx, dy) = mark
+        plan = view.at(placed.x - dx, placed.y - dy)
+        others = {k: v for k, v in views.items() if k != name}
+        if not _free_of(plan.bounds, others, req):
+            continue
+        taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
+        for factor in (f for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt]):
+            detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan,
+                                 numeral=numeral)
+            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
+            if at is not None:
+                views[name], views[detail.name] = plan, detail.at(*at)
+                numeral = next(numerals, numeral)
+                break
+
+
+def _free_of(box, views: dict, req: Request) -> bool:
+    """Whether `box` (sheet mm) lies in the drawing area clear of the title block and `views`."""
+    x0, y0, x1, y1 = req.area
+    inside = box[0] >= x0 - 1e-6 and box[1] >= y0 - 1e-6 and box[2] <= x1 + 1e-6 and box[3] <= y1 + 1e-6
+    return inside and not any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3]
+                              for b in [v.bounds for v in views.values()] + [req.title_block])
+
+
 def _place_notes(req: Request, views: dict, on_sheet, band_top: float) -> None:
-    """The input data and the readings off the plans, each in a free spot of the top band."""
+    """The input data and the readings off the plans, each in a free spot of the top band; on
+    A3 at the ESKD minimum of 2.5 mm at least (where no spot is left, the note is left out)."""
     from velplan.views.data import data_view
     from velplan.views.readings import readings_view
 
@@ -584,14 +659,16 @@ def _one_scale_where_legible(fmt: str, draw: _Drawings, plan_views, results, cel
 
 
 def _diagrams_if_room(req: Request, draw: _Drawings, views: dict, *, required: bool) -> None:
-    """The kinematic diagrams in a free corner where they fit; ScaleError where they do not
-    and are ``required``."""
+    """The kinematic diagrams in a free corner, or as their compact block in a free spot, where
+    they fit; ScaleError where they do not and are ``required``."""
     placed = _diagrams_in_free_corner(req, draw, views)
+    if placed is None:
+        placed = _compact_diagrams(req, draw, views)
     if placed is None and required:
-        raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table nor in a "
-                         f"free corner with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and ordinates of at "
-                         f"least {MIN_ORDINATE_MM:.0f} mm; "
-                         f"use a larger --format")
+        raise ScaleError(f"the kinematic diagrams do not fit {req.fmt} beside the table, in a free "
+                         f"corner nor beside the plans with a φ axis of at least {MIN_DIAGRAM_MM:.0f} mm and "
+                         f"ordinates of at least {MIN_ORDINATE_MM:.0f} mm; "
+                         f"use a larger --format or fewer --plans")
     if placed is not None:
         views["diagrams"] = placed
 
@@ -618,6 +695,88 @@ def _diagrams_in_free_corner(req: Request, draw: _Drawings, views):
             if best is None or score > best[0]:
                 best = (score, view.at(fx0, fy0))
     return None if best is None else best[1]
+
+
+def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_per_plan: bool, alone,
+                       required: bool):
+    """Room for the kinematic diagrams, tried in turn: a free corner or spot (`_diagrams_if_room`);
+    beside the plans fitted again smaller (`plans`: their cells, positions and kinds;
+    `_diagrams_beside_plans`), which returns (plan views, results, cells); the sheet ``alone()``
+    draws with the first position's plans alone, returned where it has them. None where none
+    has room (ScaleError then if ``required``)."""
+    _diagrams_if_room(req, draw, views, required=False)
+    if "diagrams" in views:
+        return None
+    refit = _diagrams_beside_plans(req, draw, views, *plans)
+    if refit is not None:
+        plan_views, results, cells = refit
+        if not scale_per_plan:
+            plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
+        views.update(plan_views)
+        return plan_views, results, cells
+    if alone is not None and "diagrams" in (sheet := alone()).views:
+        return sheet
+    _diagrams_if_room(req, draw, views, required=required)
+    return None
+
+
+def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
+    """(plan views, results, cells) of the plans fitted again into their region less the
+    compact diagrams' block (placed in `views`) at one of its edges, the placing that leaves
+    the plans the longest shortest vector (each plan legible as `_fit_plans` asks); None
+    where the plans are legible beside the block nowhere."""
+    if not cells:
+        return None
+    x0, y0 = min(b[0] for b in cells.values()), min(b[1] for b in cells.values())
+    x1, y1 = max(b[2] for b in cells.values()), max(b[3] for b in cells.values())
+    g = req.gap
+    best = None
+    for form in FORMS:
+        block = draw.compact(form, COMPACT_LENGTHS[-1])
+        w, h = block.width_mm, block.height_mm
+        if min(block.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6 or w > x1 - x0 or h > y1 - y0:
+            continue
+        for at, region in (((x0, y0), (x0, y0 + h + g, x1, y1)), ((x1 - w, y0), (x0, y0 + h + g, x1, y1)),
+                           ((x1 - w, y0), (x0, y0, x1 - w - g, y1)), ((x0, y0), (x0 + w + g, y0, x1, y1))):
+            if region[2] - region[0] < 40 or region[3] - region[1] < 40:
+                continue
+            try:
+                score, fitted = _fit_plans(req, draw, chosen, kinds, region)
+            except ScaleError:
+                continue
+            if best is None or score > best[0]:
+                best = (score, block.at(*at), fitted)
+    if best is None:
+        return None
+    for name in [k for k in views if k.startswith("plan-")]:
+        del views[name]
+    views["diagrams"] = best[1]
+    return best[2]
+
+
+#: φ axes of the compact diagrams (`velplan.views.diagram_compact`), mm, the longest first.
+COMPACT_LENGTHS = (90.0, 72.0, 60.0)
+#: Forms of the compact diagrams, in the order tried.
+FORMS: tuple[Form, ...] = ("grid", "column")
+#: The ESKD minimum height of printed text, mm (ГОСТ 2.304): the compact diagrams' text at least.
+MIN_TEXT_MM = 2.5
+
+
+def _compact_diagrams(req: Request, draw: _Drawings, views):
+    """The kinematic diagrams in their compact block (s and v side by side over a, or the three
+    in a column), each curve at least `MIN_ORDINATE_MM` high, in a free spot of the sheet
+    nearest its lower left corner: the longest φ axis that finds one; None where none does."""
+    fx0, fy0, _, _ = req.area
+    taken = [v.bounds for v in views.values()] + [req.title_block]
+    for length in COMPACT_LENGTHS:
+        for form in FORMS:
+            view = draw.compact(form, length)
+            if min(view.meta["drawn_ranges"]) < MIN_ORDINATE_MM - 1e-6:
+                continue
+            at = free_spot(view.width_mm, view.height_mm, taken, req.area, req.gap, (fx0, fy0))
+            if at is not None:
+                return view.at(*at)
+    return None
 
 
 def _mechanism_candidates(req: Request, draw: _Drawings, zone, count: int = 3):

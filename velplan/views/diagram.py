@@ -167,10 +167,12 @@ def phi_axes(length: float, top: float, bottom: float, n: int, ordinate: str, *,
 
 
 def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: DiagramSizes,
-          text_top: float | None = None, omega: float = 0.0, wrap_mm: float | None = None) -> list[Primitive]:
+          text_top: float | None = None, omega: float = 0.0, wrap_mm: float | None = None,
+          titled: bool = True) -> list[Primitive]:
     """One diagram with its origin at (0, 0), mm. With the crank's speed ``omega`` (rad/s,
     ≠ 0) the velocity and acceleration diagrams are read in time — V = ω·dS/dφ, a = ω²·d²S/dφ²,
-    μt = μφ/ω — else as the analogues."""
+    μt = μφ/ω — else as the analogues. Without ``titled``, no title, scales nor error above
+    it (the compact form writes them elsewhere)."""
     c = _curve(kind, d, sc, lang, abs(omega) > 0)
     top, bottom = _span(c.analytic[1], c.graphical[1], c.mu)
     items = phi_axes(sc.length_mm, top, bottom, d.n, f"{c.symbol}, {c.unit}" if c.unit else c.symbol,
@@ -187,6 +189,8 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: D
     for x, y in zip(*c.marks):
         items.append(Circle((float(x / sc.mu_phi), float(y / c.mu)), 0.5, "diagram", "thin",
                             "solid"))
+    if not titled:
+        return items
     # title, scales and error, above the plot
     lines = _scale_lines(kind, d, sc, c, lang, abs(omega))
     if wrap_mm is not None:  # one statement a line where a line runs wider than wrap_mm

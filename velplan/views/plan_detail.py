@@ -1,0 +1,137 @@
+"""An enlarged detail (выносной элемент, ГОСТ 2.305) of a plan whose images crowd round its pole
+while one of its vectors runs far out: the region round the pole drawn again at a larger scale,
+its own scale stated, and the region marked on the plan by a thin circle and its numeral.
+
+A plan is crowded round its pole (:func:`crowd_near_pole`) where at least
+:data:`CROWD_COUNT` images lie within :data:`CROWD_MM` of the pole (or a quarter of the plan's
+reach) at the plan's scale while the plan spans at least three times the region's radius: one
+scale cannot serve it (the jaw crusher's acceleration plans: pa about 166 mm on A1, every other
+point within 15 mm of π).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import shapely
+
+from velplan.options import Language
+from velplan.render.layout import label_box
+from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.views.base import View, bounds_of, make_view, shift
+from velplan.views.base import number as number_text
+from velplan.views.plan import PlanSizes, layer_names, plan_title, plan_view
+
+#: Images within this distance of the pole, mm at the plan's scale, make up its crowd.
+CROWD_MM = 15.0
+#: Images in the crowd that make a detail worth drawing.
+CROWD_COUNT = 3
+#: Enlargements of a detail (ГОСТ 2.302), the largest first.
+FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
+#: The numerals of a sheet's details, in turn.
+NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
+NUMERAL = NUMERALS[0]
+
+
+def crowd_near_pole(images, extent_mm: float) -> tuple[complex, float] | None:
+    """(centre, radius) of the region (plan mm at the plan's scale, the pole at 0) that holds the
+    crowd round the pole of a plan with `images` (target → plan mm, complex) `extent_mm` across,
+    or None where no crowd calls for a detail. The crowd: the images within
+    :data:`CROWD_MM` of the pole, or a quarter of the farthest image's distance where that is
+    more (images on the pole itself, or within a millimetre of one another, count once); the
+    region: the circle round the box of the crowd and the pole, 3 mm wider for the letters."""
+    z = np.array([complex(v) for v in images.values()], dtype=complex)
+    z = z[np.isfinite(z)]
+    if not len(z):
+        return None
+    reach = max(CROWD_MM, float(np.max(np.abs(z))) / 4.0)
+    z = z[(np.abs(z) > 0.5) & (np.abs(z) <= reach)]
+    if len(np.unique(np.round(z))) < CROWD_COUNT:
+        return None
+    x0, x1 = min(0.0, float(np.min(z.real))), max(0.0, float(np.max(z.real)))
+    y0, y1 = min(0.0, float(np.min(z.imag))), max(0.0, float(np.max(z.imag)))
+    radius = 0.5 * math.hypot(x1 - x0, y1 - y0) + 3.0
+    return (complex(0.5 * (x0 + x1), 0.5 * (y0 + y1)), radius) if extent_mm >= 3.0 * radius else None
+
+
+def _clipped(p: Primitive, window: shapely.Polygon) -> list[Primitive]:
+    """The part of `p` inside `window`: a text or a dot whole or not at all, a line cut at the
+    window's edge, an arrow kept with its head where its head is inside (else its shaft)."""
+    if isinstance(p, Text):
+        return [p] if window.contains(label_box(p)) else []
+    if isinstance(p, Circle):
+        return [p] if window.contains(shapely.Point(p.centre)) else []
+    if isinstance(p, Arrow):
+        inside = window.intersection(shapely.LineString([p.start, p.end]))
+        if inside.is_empty or inside.length < 1e-6:
+            return []
+        a, b = np.asarray(inside.coords[0]), np.asarray(inside.coords[-1])
+        if window.contains(shapely.Point(p.end)):
+            start = a if np.hypot(*(a - p.end)) > np.hypot(*(b - p.end)) else b
+            return [replace(p, start=tuple(start))]
+        return [Polyline(((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))), p.layer, p.line)]
+    if isinstance(p, Polyline):
+        inside = window.intersection(shapely.LineString(p.points))
+        parts = getattr(inside, "geoms", [inside])
+        return [Polyline(tuple((float(x), float(y)) for x, y in g.coords), p.layer, p.line) for g in parts
+                if not g.is_empty and g.geom_type == "LineString" and g.length > 1e-6]
+    return []
+
+
+def detail_view(res, number: int, region: tuple[complex, float], factor: float, *,
+                lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL) -> View:
+    """The `region` (centre, radius: plan mm at the plan's scale, `crowd_near_pole`) of the
+    plan of `res` at position number `number`, drawn `factor` times larger (its scale μ/factor
+    written under the numeral and the enlargement, ``"I (4:1)"``), cut at a thin circle; the
+    view's origin is the pole."""
+    big = res.at_scale(res.scale / factor)
+    full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
+    pole = np.asarray(full.origin)
+    centre = pole + factor * np.array([region[0].real, region[0].imag])
+    r = region[1] * factor
+    window = shapely.Point(centre).buffer(r, quad_segs=32)
+    items = [q for p in full.primitives for q in _clipped(p, window)]
+    _, line_layer, text_layer = layer_names(full.meta["kind"], number)
+    items.append(Circle(tuple(centre), r, line_layer, "thin"))
+    x, top = centre[0] - r, centre[1] + r
+    items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
+                      text_layer, sizes.title_mm))
+    items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
+    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(pole),
+                     meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
+                           "factor": factor, "region": region})
+
+
+def marked(view: View, region: tuple[complex, float], size_mm: float,
+           numeral: str = NUMERAL) -> tuple[View, tuple[float, float]] | None:
+    """(the plan `view` with its detail's `region` (`crowd_near_pole`) marked — a thin circle
+    and the numeral outside it where no letter nor vector is —, the shift of its drawing in
+    the new box, mm): place it that much lower and to the left to keep the drawing where it was;
+    None where the circle would cross a text of the plan outside the region."""
+    kind, number = view.meta["kind"], view.meta["number"]
+    _, line_layer, text_layer = layer_names(kind, number)
+    radius_mm = region[1]
+    cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
+    taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
+                              + [shapely.LineString([p.start, p.end]) for p in view.primitives
+                                 if isinstance(p, Arrow)]).buffer(0.5)
+    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
+                     text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
+                     "baseline" if math.sin(a) > 0 else "top")
+                for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
+    mark = next((t for t in numerals if not label_box(t).intersects(taken)), numerals[0])
+    disk = shapely.Point(cx, cy).buffer(radius_mm)
+    if any(label_box(t).intersects(disk) for t in view.primitives
+           if isinstance(t, Text) and ("(" in t.text or "=" in t.text or "≈" in t.text)):
+        return None  # the circle would cross a text outside the region (a title, a scale, the ≈ 0 list)
+    items = view.primitives + (Circle((cx, cy), radius_mm, line_layer, "thin"), mark)
+    x0, y0, x1, y1 = bounds_of(items)
+    dx, dy = max(-x0, 0.0), max(-y0, 0.0)  # the box grows where the circle or the numeral leave it
+    return replace(view, primitives=tuple(shift(p, dx, dy) for p in items),
+                   origin=(view.origin[0] + dx, view.origin[1] + dy),
+                   width_mm=max(view.width_mm, x1) + dx, height_mm=max(view.height_mm, y1) + dy), (dx, dy)
+
+
+__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "marked"]
