@@ -12,16 +12,11 @@ from tests.sheet import gallery_marks as gm
 FMT, KINDS = "A1", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed": 1,  # stephenson-six-bar: O₁ and two position numbers 10 (three crossed texts; the bar is one)
+    "crossed": 1,  # stephenson-six-bar: two position numbers 10 (two crossed texts; the bar is one)
     "small": 131,  # triad-eight-link: its readings table drawn at 1.8 mm, the A1 table's last size
     # (sheets/layout.py SIZES["A1"].table), so that the table of its 13 points fits its zone
     "title_small": 165,  # the title block's captions (ESKD "Изм.", "Т.контр."…: 3 a sheet; ISO "Organisation",
     # "Designed"…: 8) shrunk to 1.8 mm by fit_text to fit their 7-17 mm cells (sheets/frame.py)
-    "ambiguous": 3,  # shaper's plan-v-4 s₅; the scheme's K₃ (nearer S₄) and S₅ (nearer G) on triad-rocker
-    "far_label": 79,  # mostly the scheme's letters of sliders and ground pivots, 6-9 mm off (beyond the block
-    # or the hatching); nothing nearer names another point
-    "class_iii": 3,  # K₃ (5), K₃ (9) on triad-rocker and K₅ (11) on triad-eight-link: their letters 7-9 mm off,
-    # the special points of the two drawn positions lying 1 mm apart
 }
 
 

@@ -459,14 +459,15 @@ def _survey(boxes, bounds, field, placed: _PlacedLabels):
 
 
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
-                 rings: int = 8) -> tuple:
+                 rings: int = 8, taken: Iterable = ()) -> tuple:
     """Move labels, in order, clear of `obstacles` and of the labels placed before them.
 
     Each label that collides is tried in rings of eight directions around its wanted spot,
     with a tree of the obstacles and the spots examined
     ring by ring, so a view with many lines places its letters quickly. A label with no free
     spot takes the spot clear of the other labels that meets the fewest obstacles (the first of
-    those), looking twice as far out if it must, or keeps its place.
+    those), looking twice as far out if it must, or keeps its place. `taken`: labels placed
+    already (upright), which the labels keep off as they keep off each other.
     """
     import shapely
 
@@ -474,6 +475,9 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
     shapes = [g for g in obstacles if not g.is_empty]
     field = shapely.STRtree(shapes) if shapes else None
     placed = _PlacedLabels()
+    for text in taken:
+        _, bounds, _ = _spot_boxes(text, np.array([text.position], float))
+        placed.add(shapely.box(*bounds[0]), bounds[0], True)
     out = []
     for text in texts:
         step = step_mm or 0.5 * text.size_mm

@@ -32,6 +32,7 @@ from velplan.render.symbols import (
     slider_block, straight_guide)
 from velplan.views.base import (
     View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
+from velplan.views.letters import place_letters
 
 #: Slider block length and width, mm.
 BLOCK_MM = (12.0, 7.0)
@@ -425,12 +426,14 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     specials = ([t] if special is True else
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
-    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
+    letters, labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
     obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
-    placed = place_labels(labels, obstacles, rings=8)
-    items += placed
+    named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
+    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles)
+    placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
+    items += placed_letters + leaders + list(placed)
     out = output_point(mech)
     if not single and out is not None:
         items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
@@ -494,12 +497,14 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         guide_sides[tr.point] = side
         guide = _guide(tr, mu_l, side)
         items += guide
-        obstacles.append(shapely.box(*bounds_of(guide)).buffer(0.3))
+        # the guide's outline (an inclined guide's bounding box would cover half the scheme)
+        obstacles.append(shapely.MultiPoint([q for g in guide for q in g.points]).convex_hull.buffer(0.3))
     for name in geo.ground_pivots:
         support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
                               layer="mechanism")
         items += support
-        obstacles.append(shapely.box(*bounds_of(support[:-1])).buffer(0.5))
+        # the triangle and the hatching: a letter may stand beside the pivot's circle
+        obstacles += [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -515,7 +520,7 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
                             width_mm=BLOCK_MM[1], layer="mechanism")
         items += body
-        obstacles.append(shapely.Polygon(body[0].points).buffer(0.8))
+        obstacles.append(shapely.Polygon(body[0].points).buffer(0.5))
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
@@ -542,13 +547,15 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> list[Text]:
-    """The labels to place: points of the thick position, position numbers, ω1 (its arrow
-    added to `items`, and to `obstacles`: no letter is written over it), links."""
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> tuple[list, list[Text]]:
+    """The labels to place: the letters of the points of the thick position (and of the special
+    points), each with its point (mm); and the position numbers, ω1 (its arrow added to
+    `items`, and to `obstacles`: no letter is written over it), links."""
     mech, kin = geo.mech, geo.kin
-    labels: list[Text] = list(drawn.special_letters)
-    labels += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
-                            {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
+    letters = list(drawn.special_letters)
+    letters += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+                             {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
+    labels: list[Text] = []
     if not single:
         labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
     out = output_point(mech)
@@ -568,7 +575,7 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
     labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
-    return labels
+    return letters, labels
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
@@ -673,9 +680,10 @@ def _lead_blocks(mech: Mechanism) -> set[str]:
 
 
 def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
-                  guide_sides=None) -> list[Text]:
-    """Letters of the points at position t, off the lines that meet at each (and off the
-    hatched side of the guide, for the points in `guide_sides`: point → its hatch normal)."""
+                  guide_sides=None) -> list[tuple[Text, np.ndarray]]:
+    """Letters of the points at position t, each with its point (mm), off the lines that meet
+    at each (and off the hatched side of the guide, for the points in `guide_sides`: point →
+    its hatch normal)."""
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
@@ -706,7 +714,7 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
         if any(np.hypot(*(mm(b.centre) - p)) < 0.5 for b in blocks):
             reach = 0.5 * math.hypot(*BLOCK_MM) + 1.0  # clear of the slider's corners
         pos = p + away * reach
-        out.append(Text(pos, subscript(name), "labels", size, anchor, "middle"))
+        out.append((Text(pos, subscript(name), "labels", size, anchor, "middle"), p))
     return out
 
 
@@ -917,12 +925,14 @@ def _plate_number_at(corners, size: float, points=()):
 def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size: float,
                  suffix: str = "") -> list[Text]:
     """Append the special points' construction to `items` (under the links and joints that
-    come after) and its lines to `obstacles`; returns the letters, to be placed."""
-    letters = []
+    come after) and its lines to `obstacles`; returns the letters, to be placed, each with
+    its point (mm)."""
+    letters, at = [], None
     for p in _special_construction(geo, t, mm, size, suffix):
         if isinstance(p, Text):
-            letters.append(p)
+            letters.append((p, at))
         else:
+            at = p.centre if isinstance(p, Circle) else at
             items.append(p)
             obstacles.append(shapely.box(*p.bounds).buffer(0.5) if isinstance(p, Circle)
                              else shapely.LineString(p.points).buffer(0.5))

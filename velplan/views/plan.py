@@ -31,6 +31,7 @@ from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, make_view, number, place_labels, scale_text, subscript, unit
+from velplan.views.letters import place_letters
 
 #: Construction lines run this far past the images they join, mm.
 LINE_OVERRUN_MM = 10.0
@@ -226,9 +227,10 @@ def plan_area(res, position: int) -> shapely.Polygon:
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
                   upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
-    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
-    image is joined to it by a thin leader (the leaders follow the letters in the list).
+    `position`, clear of the vectors. With `leaders`, each letter goes to the nearest free
+    spot where its own image is the nearest image to it, within `LEADER_MM` (never where a
+    line crosses it), else farther out, joined to its image by a thin leader (the leaders
+    follow the letters in the list).
     `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
     i = res.index_of(position)
     _, _, text_layer = layer_names(_kind(res), position)
@@ -280,27 +282,21 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         pos = here + away * (1.2 + 0.45 * size_mm)
         texts.append(Text(pos, text, text_layer, size_mm, anchor, "middle"))
-    placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
     if not leaders:
-        return placed
-    anchors = [_xy(_image(res, g[0], i)) for g in groups if np.isfinite(_image(res, g[0], i))]
-    return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
+        return list(place_labels(texts, obstacles, rings=8))
+    # each letter by its own image, nearer it than any other image; beyond the crowd, a leader
+    anchors = [_xy(_image(res, g[0], i)) for g in groups]
+    named = anchors + [_xy(z) for z in _images(res, position) if np.isfinite(z)]
+    placed, lines = place_letters(texts, anchors, named, obstacles, leader_layer=layer_names(_kind(res), position)[1],
+                                  gaps=LETTER_GAPS_MM, leader_gaps=LEADER_GAPS_MM)
+    return placed + lines
 
 
 #: A letter farther than this from its image gets a leader, mm.
 LEADER_MM = 3.0
-
-
-def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
-    """Thin leaders from each image to its letter's box where the letter stands more than
-    `LEADER_MM` off, mm."""
-    out = []
-    for t, xy in zip(texts, anchors):
-        box, point = label_box(t), shapely.Point(xy)
-        if box.distance(point) > LEADER_MM:
-            near = shapely.shortest_line(box.buffer(0.5), point).coords[0]
-            out.append(Polyline((tuple(xy), (near[0], near[1])), layer, "thin"))
-    return out
+#: The gaps between an image and its letter's box tried without a leader, then with one, mm.
+LETTER_GAPS_MM = (1.0, 1.6, 2.3, LEADER_MM)
+LEADER_GAPS_MM = (4.5, 6.0, 7.5, 9.0, 11.0, 13.0)
 
 
 def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:
