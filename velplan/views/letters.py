@@ -34,6 +34,8 @@ LEADER_GAPS_MM = (6.5, 8.0, 9.5, 11.0, 12.5)
 _DIRECTIONS = np.radians(np.arange(0.0, 360.0, 15.0))
 #: Millimetres of gap one radian off the wanted direction is worth.
 _TURN_MM = 1.2
+#: Millimetres of gap a thin line across a letter is worth.
+SOFT_MM = 1.5
 #: Two points nearer than this are one point for the letters (a coincident joint), mm.
 SAME_POINT_MM = 0.3
 #: A letter's own point must be nearer than any other by this, mm.
@@ -49,15 +51,14 @@ def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
 
 
 def _candidates(point, wanted, half, gaps) -> tuple[np.ndarray, np.ndarray]:
-    """Box centres round `point` (mm) at each of `gaps` in every direction, ordered by gap
-    plus the turn from the `wanted` direction; and their gaps."""
+    """Box centres round `point` (mm) at each of `gaps` in every direction, and the cost of
+    each: its gap plus the turn from the `wanted` direction, mm."""
     u = np.column_stack([np.cos(_DIRECTIONS), np.sin(_DIRECTIONS)])
     reach = np.abs(u[:, 0]) * half[0] + np.abs(u[:, 1]) * half[1]
     turn = np.arccos(np.clip(u @ wanted, -1.0, 1.0))
     g = np.repeat(np.asarray(gaps, float), len(u))
     centres = point + np.tile(u, (len(gaps), 1)) * (g + np.tile(reach, len(gaps)))[:, None]
-    order = np.argsort(g + _TURN_MM * np.tile(turn, len(gaps)), kind="stable")
-    return centres[order], g[order]
+    return centres, g + _TURN_MM * np.tile(turn, len(gaps))
 
 
 def _boxes(centres, half, pad: float):
@@ -74,10 +75,11 @@ def _own_nearest(boxes, point, others) -> np.ndarray:
     return far > own + _MARGIN_MM
 
 
-def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool):
-    """The first candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
-    (and, if `need_nearest`, nearer its own point than any other): its centre and box, or None."""
-    centres, _ = _candidates(point, wanted, half, gaps)
+def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None):
+    """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
+    (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
+    tree of thin lines) across it costing :data:`SOFT_MM`: its centre and box, or None."""
+    centres, cost = _candidates(point, wanted, half, gaps)
     padded = _boxes(centres, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
     ok = np.ones(len(centres), dtype=bool)
     if tree is not None:
@@ -86,11 +88,16 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool):
         ok &= ~shapely.intersects(padded[:, None], np.array(taken)[None, :]).any(axis=1)
     if need_nearest:
         ok &= _own_nearest(_boxes(centres, half, 0.0), point, others)
-    hits = np.flatnonzero(ok)
-    return None if not len(hits) else (centres[hits[0]], padded[hits[0]])
+    if soft is not None and ok.any():
+        crossed = soft.query(_boxes(centres, half, 0.2), predicate="intersects")[0]
+        cost = cost + SOFT_MM * np.bincount(crossed, minlength=len(centres))
+    if not ok.any():
+        return None
+    j = int(np.argmin(np.where(ok, cost, np.inf)))
+    return centres[j], padded[j]
 
 
-def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(),
+def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
                   leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
                   leader_gaps: Sequence[float] = LEADER_GAPS_MM) -> tuple[list[Text], list[Polyline]]:
     """Place point letters, in order, each by its own point.
@@ -107,6 +114,8 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         What the letters keep off (lines, symbols).
     taken : iterable of shapely geometry
         Boxes of labels already placed.
+    thin : iterable of shapely geometry
+        Thin lines a letter may cross where it must, the fewer the better.
     gaps, leader_gaps : sequence of float
         The gaps (mm) between a letter's box and its point tried without a leader, nearest
         first, and those of a letter with a leader.
@@ -120,6 +129,8 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
     shapes = [g for g in obstacles if g is not None and not g.is_empty]
     tree = shapely.STRtree(shapes) if shapes else None
     taken = list(taken)
+    thin = [g for g in thin if not g.is_empty]
+    soft = shapely.STRtree(thin) if thin else None
     allp = np.asarray(points, float).reshape(-1, 2)
     allp = allp[np.all(np.isfinite(allp), axis=1)]
     out, leaders = [], []
@@ -129,10 +140,10 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         wanted = np.asarray(text.position, float) - p
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
-        found = _choose(p, wanted, half, others, tree, taken, gaps, True)
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft)
         led = found is None
         if led:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False)
+            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
         if found is None:  # crowded all round: by its point, off the other letters at least
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False)
             led = found is not None

@@ -26,6 +26,7 @@ from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, 
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.options import Language
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
@@ -426,12 +427,25 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     specials = ([t] if special is True else
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
-    letters, labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
+    letters, labels, links = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
     obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
     named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
-    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles)
+    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles,
+                                            thin=thin)
+    if not single:  # the crank's numbers, each nearer its own position of the tip than any other
+        tips = mm(kin.position(mech.crank.tip))
+        numbers, number_leaders = place_letters(
+            _crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles, thin=thin,
+            taken=[label_box(x).buffer(0.4) for x in placed_letters])
+        placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
+    # the links' numbers, each nearer its own link's point than another link's
+    numbers, number_leaders = place_letters(
+        [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
+        taken=[label_box(x).buffer(0.4) for x in placed_letters])
+    placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     items += placed_letters + leaders + list(placed)
     out = output_point(mech)
@@ -547,17 +561,16 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> tuple[list, list[Text]]:
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> tuple[list, list[Text], list]:
     """The labels to place: the letters of the points of the thick position (and of the special
-    points), each with its point (mm); and the position numbers, ω1 (its arrow added to
-    `items`, and to `obstacles`: no letter is written over it), links."""
+    points), each with its point (mm); the position numbers of the output, ω1 (its arrow added
+    to `items`, and to `obstacles`: no letter is written over it), the numbers inside plates;
+    the other links' numbers, each with its point on the link (mm)."""
     mech, kin = geo.mech, geo.kin
     letters = list(drawn.special_letters)
     letters += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                              {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
     labels: list[Text] = []
-    if not single:
-        labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
     out = output_point(mech)
     if out is not None and out != mech.crank.tip and not single:
         labels += _output_numbers(kin, out, mm, sizes.number_mm,
@@ -573,9 +586,10 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
         obstacles += [shapely.LineString(p.points if isinstance(p, Polyline) else [p.start, p.end]).buffer(0.6)
                       for p in omega[:-1] if isinstance(p, (Polyline, Arrow))]
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
-    labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+    numbers = _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
-    return letters, labels
+    labels += [x for x, at in numbers if at is None]
+    return letters, labels, [(x, at) for x, at in numbers if at is not None]
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
@@ -830,9 +844,10 @@ def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> li
 
 
 def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs, blocks,
-                  centre, away_from_guides=()) -> list[Text]:
+                  centre, away_from_guides=()) -> list[tuple[Text, np.ndarray | None]]:
     """Link numbers beside the middle of each link, or beside its block, on the side of the
-    mechanism's centre (away from guides and the numbers of positions)."""
+    mechanism's centre (away from guides and the numbers of positions), each with its point
+    on the link (mm), or None for a number inside its plate."""
     out = []
     done = set()
     for link_name, corners in geo.plates(t):
@@ -840,7 +855,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         inside = _plate_number_at(mm(corners), size, lettered)
         if inside is not None:
             done.add(link_name)
-            out.append(Text(inside, link_name, "labels", size, "middle", "middle"))
+            out.append((Text(inside, link_name, "labels", size, "middle", "middle"), None))
     for s in segs:
         if s.link in done:
             continue
@@ -854,7 +869,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         if float((centre - (a + 0.42 * d)) @ normal) < 0:
             normal = -normal
         where = a + 0.42 * d + normal * (0.9 * size)
-        out.append(Text(where, s.link, "labels", size, "middle", "middle"))
+        out.append((Text(where, s.link, "labels", size, "middle", "middle"), a + 0.42 * d))
     for bl in blocks:
         if bl.link in done:
             continue
@@ -868,7 +883,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         elif float((centre - mm(bl.centre)) @ normal) < 0:
             normal = -normal
         where = mm(bl.centre) + normal * (BLOCK_MM[1] / 2 + 0.9 * size) - u * (BLOCK_MM[0] / 2)
-        out.append(Text(where, bl.link, "labels", size, "middle", "middle"))
+        out.append((Text(where, bl.link, "labels", size, "middle", "middle"), mm(bl.centre)))
     return out
 
 

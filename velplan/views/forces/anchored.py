@@ -41,7 +41,9 @@ def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
                    reach: float = REACH_MM) -> list[Text]:
     """Move labels, in order, clear of `obstacles` and of each other, each kept nearer to its
-    own anchor than to any other anchor of its kind and within `reach` mm of it.
+    own anchor than to any other anchor of its kind and within `reach` mm of it. Where no place
+    is clear, the label takes the one nearest its anchor that overlaps no other label and has
+    the fewest lines through its letters.
 
     Parameters
     ----------
@@ -69,8 +71,11 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
             own = float(shapely.distance(box, anchors[i]))
             others = shapely.distance(box, anchors[mates]) if mates.size else np.array([np.inf])
             hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
-            cost = (0.05 * rank + 100.0 * hits
+            # a line through the letters is worse than one grazing the box's edge
+            core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
+            cost = (0.05 * rank + 30.0 * hits + 100.0 * core
                     + 1000.0 * sum(box.intersects(b) for b in placed)
+                    + 4000.0 * sum(box.intersects(b.buffer(-0.6)) for b in placed)
                     + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
             if best is None or cost < best[0]:
                 best = (cost, cand, box)
