@@ -3,7 +3,7 @@ thing it names (a point, a force arrow, a couple's arc) stays the nearest of its
 and within reach — never to a free spot that reads as another arrow's label.
 
 >>> import shapely
->>> from velplan.render.scene import Text
+>>> from velplan.render.scene import Polyline, Text
 >>> arrows = [shapely.LineString([(0, 0), (20, 0)]), shapely.LineString([(0, 6), (20, 6)])]
 >>> texts = [Text((10.0, 3.0), "F₁", "t", 3.5), Text((10.0, 3.0), "F₂", "t", 3.5)]
 >>> placed = place_anchored(texts, arrows, ["force", "force"], [a.buffer(0.5) for a in arrows])
@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 
 from velplan.render.layout import label_box
-from velplan.render.scene import Text
+from velplan.render.scene import Polyline, Text
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
@@ -39,7 +39,7 @@ def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
-                   reach: float = REACH_MM) -> list[Text]:
+                   reach: float = REACH_MM, leader_layer: str | None = None) -> list:
     """Move labels, in order, clear of `obstacles` and of each other, each kept nearer to its
     own anchor than to any other anchor of its kind and within `reach` mm of it. Where no place
     is clear, the label takes the one nearest its anchor that overlaps no other label and has
@@ -55,13 +55,18 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
         The kind of each anchor; a label is compared with the anchors of its own kind.
     obstacles : iterable of shapely geometry
         What the labels keep off (lines, arrows, marks).
+    leader_layer : str, optional
+        Where a line would run through a label's letters at every place within reach, look
+        farther out for a clear place and join the label to its anchor by a thin leader on
+        this layer (the leaders follow the labels in the list).
     """
     shapes = [g for g in obstacles if g is not None and not g.is_empty]
     tree = shapely.STRtree(shapes) if shapes else None
     anchors = np.asarray(list(anchors), dtype=object)
     kinds = np.asarray(list(kinds))
     placed: list = []
-    out = []
+    out: list = []
+    leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
         best = None
@@ -81,6 +86,27 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
                 best = (cost, cand, box)
             if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
                 break
+        if leader_layer is not None and best[0] >= 100.0:
+            best = _led(text, anchors[i], rings, tree, placed, leaders, leader_layer) or best
         out.append(best[1])
         placed.append(best[2].buffer(0.5))
-    return out
+    return out + leaders
+
+
+def _led(text: Text, anchor, rings: int, tree, placed: list, leaders: list, layer: str):
+    """The first clear place for `text` beyond `rings` rings, its leader from `anchor` (which
+    crosses no placed label) appended to `leaders` and kept off by the later labels:
+    (0, label, box), or None."""
+    for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
+        cand = dataclasses.replace(text, position=spot)
+        box = label_box(cand)
+        if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
+            continue
+        line = shapely.shortest_line(anchor, box.buffer(0.4))
+        if any(line.intersects(b.buffer(-0.6)) for b in placed):
+            continue
+        (x0, y0), (x1, y1) = line.coords
+        leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
+        placed.append(line.buffer(0.6))
+        return 0.0, cand, box
+    return None
