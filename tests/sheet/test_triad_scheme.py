@@ -76,8 +76,9 @@ def test_the_output_of_a_triad_is_numbered_at_its_lead_joint(rocker):
     assert output_point(rocker.mechanism) == "D"  # output link 5 = the lead F–D
     view = _view(rocker)
     path = rocker.kinematics.position("D") / MU + np.asarray(view.origin)
+    # by D's path (within 25 mm: the numbers of the crowded end stepped out), not by the crank's (80 mm off)
     near = [t.text for t in view.primitives if isinstance(t, Text) and t.size_mm == 2.5
-            and np.min(np.hypot(*(path - t.position).T)) < 20.0 and t.text[0].isdigit()]
+            and np.min(np.hypot(*(path - t.position).T)) < 25.0 and t.text[0].isdigit()]
     assert sorted(int(k) for t in near for k in t.split(",")) == list(range(1, 13))
 
 

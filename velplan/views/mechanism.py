@@ -433,21 +433,22 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
     named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
     thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    # the letters keep off the places the output's position numbers want, where they can
+    wanted = [label_box(x) for x in labels if x.text.isdigit()]
     placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles,
-                                            thin=thin)
+                                            thin=thin + wanted)
     if not single:  # the crank's numbers, each nearer its own position of the tip than any other
         tips = mm(kin.position(mech.crank.tip))
         numbers, number_leaders = place_letters(
             _crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles, thin=thin,
             taken=[label_box(x).buffer(0.4) for x in placed_letters])
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
+    placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = place_letters(
         [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
-        taken=[label_box(x).buffer(0.4) for x in placed_letters])
-    placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
-    placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
-    items += placed_letters + leaders + list(placed)
+        taken=[label_box(x).buffer(0.4) for x in (*placed_letters, *placed)])
+    items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
         items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
