@@ -313,8 +313,8 @@ def scale_mark(mu_l: float, lang: Language) -> str:
 def axis_numbers_clear(items: list, curves) -> list:
     """Position numbers hung under a φ axis (``baseline="top"``) kept clear: the one under the
     origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
-    mirrored about it; ``curves`` are polylines' points in the same mm. Other primitives pass
-    unchanged."""
+    mirrored about it, or else a little farther below or above, under its tick, clear of the
+    curves; ``curves`` are polylines' points in the same mm. Other primitives pass unchanged."""
     import shapely
 
     from velplan.render.layout import label_box
@@ -330,9 +330,13 @@ def axis_numbers_clear(items: list, curves) -> list:
             if abs(p.position[0]) < 1e-9:  # under the origin: beside the ordinate axis instead
                 p = _moved(p, position=(0.8, p.position[1]), anchor="start")
             if len(field.query(label_box(p), predicate="intersects")):
-                up = _moved(p, position=(p.position[0], -p.position[1]), baseline="baseline")
-                if not len(field.query(label_box(up), predicate="intersects")):
-                    p = up
+                # above the axis, mirrored; else a little farther below or above, under its tick
+                x, y = p.position
+                steps = [0.5 * p.size_mm * k for k in (1, 2, 3)]
+                tries = ([_moved(p, position=(x, -y), baseline="baseline")]
+                         + [_moved(p, position=(x, y - d)) for d in steps]
+                         + [_moved(p, position=(x, -y + d), baseline="baseline") for d in steps])
+                p = next((q for q in tries if not len(field.query(label_box(q), predicate="intersects"))), p)
         out.append(p)
     return out
 
