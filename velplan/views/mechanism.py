@@ -447,7 +447,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = place_letters(
         [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
-        taken=[label_box(x).buffer(0.4) for x in (*placed_letters, *placed)])
+        taken=[label_box(x).buffer(1.5) for x in (*placed_letters, *placed)])  # not read as one with a letter
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
