@@ -75,10 +75,11 @@ def _own_nearest(boxes, point, others) -> np.ndarray:
     return far > own + _MARGIN_MM
 
 
-def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None):
+def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
+            weight: float = SOFT_MM):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
     (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
-    tree of thin lines) across it costing :data:`SOFT_MM`: its centre and box, or None."""
+    tree of thin lines) across it costing `weight` mm: its centre and box, or None."""
     centres, cost = _candidates(point, wanted, half, gaps)
     padded = _boxes(centres, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
     ok = np.ones(len(centres), dtype=bool)
@@ -90,7 +91,7 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         ok &= _own_nearest(_boxes(centres, half, 0.0), point, others)
     if soft is not None and ok.any():
         crossed = soft.query(_boxes(centres, half, 0.2), predicate="intersects")[0]
-        cost = cost + SOFT_MM * np.bincount(crossed, minlength=len(centres))
+        cost = cost + weight * np.bincount(crossed, minlength=len(centres))
     if not ok.any():
         return None
     j = int(np.argmin(np.where(ok, cost, np.inf)))
@@ -144,8 +145,8 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         led = found is None
         if led:
             found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
-        if found is None:  # crowded all round: by its point, off the other letters at least
-            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False)
+        if found is None:  # crowded all round: off the other letters, over the fewest lines
+            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0)
             led = found is not None
         if found is None:
             out.append(text)
