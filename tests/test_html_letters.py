@@ -1,8 +1,6 @@
-"""The page's labels placed for all positions at once: the same spots as one position at a time.
-
-`velplan.views.base.place_labels_together` (the scheme's frames) against `place_labels` view by
-view; `velplan.html.letters.place_letters` (the plans' frames) against `image_letters`, and its
-capsule test against shapely's distance from a segment to a box."""
+"""The page's plan letters placed for all positions at once: the same spots as one position at a
+time (`velplan.html.letters.place_letters` against `image_letters`), and its capsule test against
+shapely's distance from a segment to a box."""
 
 from __future__ import annotations
 
@@ -15,38 +13,8 @@ from hypothesis import strategies as st
 from velplan.html.letters import RINGS, _all_spots, capsules, meets, offsets_of, place_letters
 from velplan.render.scene import Circle, Text
 from velplan.study import Study
-from velplan.views.base import _spot_boxes, _spots, place_labels, place_labels_together
+from velplan.views.base import _spot_boxes, _spots, place_labels
 from velplan.views.plan import image_letters, letters_to_place, plan_steps
-
-
-def _random_view(rng):
-    texts = [Text(tuple(rng.uniform(0, 30, 2)), f"B{i}", "labels", size_mm=float(rng.choice([2.5, 3.5])),
-                  anchor=str(rng.choice(["start", "middle", "end"])),
-                  rotation_deg=float(rng.choice([0.0, 0.0, 0.0, 35.0])))
-             for i in range(int(rng.integers(0, 25)))]
-    obstacles = [shapely.LineString(rng.uniform(0, 30, (3, 2))).buffer(0.6)
-                 for _ in range(int(rng.integers(0, 9)))]
-    return texts, obstacles
-
-
-@pytest.mark.parametrize("seed", range(6))
-@pytest.mark.parametrize("rings", [2, 8])
-def test_views_placed_together_take_the_spots_they_take_alone(seed, rings):
-    rng = np.random.default_rng(seed)
-    views = [_random_view(rng) for _ in range(int(rng.integers(1, 9)))]
-    got = place_labels_together(views, rings=rings)
-    assert len(got) == len(views)
-    for (texts, obstacles), placed in zip(views, got):
-        assert placed == place_labels(texts, obstacles, rings=rings)
-
-
-def test_a_crowd_placed_together_moves_farther_out_as_alone():
-    crowd = ([Text((1.0, 1.0), "ABCDEF", "labels") for _ in range(12)], [shapely.box(-40, -40, 40, 40)])
-    free = ([Text((100.0, 1.0), "A", "labels")], [])
-    got = place_labels_together([crowd, free, crowd], rings=2)
-    assert got[0] == got[2] == place_labels(*crowd, rings=2)
-    assert got[1] == place_labels(*free, rings=2) and got[1][0].position == (100.0, 1.0)
-    assert len({t.position for t in got[0]}) > 1
 
 
 _coord = st.floats(-20, 20, allow_nan=False, allow_infinity=False).map(lambda v: round(v, 6))  # mm, to 1 nm

@@ -169,7 +169,7 @@ def test_coriolis_step_is_drawn_along_v_rel_turned(shaper_acc):
 def test_side_by_side(press):
     a, b = draw_plan(press[2]), draw_mechanism(press[0], press[1], position=3, single=True)
     row = side_by_side(a, b, gap_mm=5.0)
-    assert row.size_mm == (a.size_mm[0] + 5.0 + b.size_mm[0], max(a.size_mm[1], b.size_mm[1]))
+    assert row.size_mm == pytest.approx((a.size_mm[0] + 5.0 + b.size_mm[0], max(a.size_mm[1], b.size_mm[1])))
     assert len(row.scene) == len(a.scene) + len(b.scene)
     with pytest.raises(VelplanError, match="needs drawings made by velplan.notebook"):
         side_by_side(a, SvgDrawing("<svg/>"))

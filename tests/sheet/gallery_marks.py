@@ -155,9 +155,19 @@ def ambiguous_plan_letters(sheet) -> list[str]:
     return out
 
 
+def led(placed, label: Text, own) -> bool:
+    """Whether a thin leader of the view `placed` runs from a point of `own` to the box of
+    `label`: the leader names its point, wherever the letter stands."""
+    box = label_box(label).buffer(0.6)
+    return any(isinstance(p, Polyline) and p.line == "thin" and len(p.points) == 2
+               and min(np.hypot(*(np.asarray(p.points[0]) - o)) for o in own) < 1e-6
+               and box.contains(shapely.Point(p.points[1])) for p in placed.primitives)
+
+
 def ambiguous_scheme_letters(sheet, kin) -> list[str]:
     """The point letters of the scheme's thick position whose own point is not the point
-    nearest to them ("nearer: …"), or lies farther than :data:`ANCHOR_MM` from their box ("far: …")."""
+    nearest to them ("nearer: …"), or lies farther than :data:`ANCHOR_MM` from their box
+    ("far: …"); a letter joined to its point by a leader excepted: the leader names its point."""
     scheme = sheet.views["mechanism"]
     t = int(scheme.view.meta["thick"]) - 1  # a position number, 1-based
     points = {subscript(n): scheme.to_sheet(kin.position(n)[t]) for n in kin.point_index}
@@ -165,6 +175,8 @@ def ambiguous_scheme_letters(sheet, kin) -> list[str]:
     out = []
     for label in (p for p in scheme.primitives if isinstance(p, Text) and p.text in points):
         own, box = points[label.text], label_box(label)
+        if led(scheme, label, [own]):
+            continue
         d_own = box.distance(shapely.Point(own))
         others = [box.distance(shapely.Point(xy)) for k, xy in points.items() if np.hypot(*(xy - own)) > 1.0]
         if others and min(others) < d_own:
@@ -176,7 +188,8 @@ def ambiguous_scheme_letters(sheet, kin) -> list[str]:
 
 def class_iii_marks(sheet, kin) -> list[str]:
     """What a class III sheet misses: each triad's special point K (a dot with its letter
-    within :data:`ANCHOR_MM` and two lead lines through it) on the scheme in every drawn position, and its
+    within :data:`ANCHOR_MM`, or joined to it by a leader, and two lead lines through it) on
+    the scheme in every drawn position, and its
     base link's image as a closed triangle with a dot at each corner on every plan."""
     from velplan.views.mechanism import special_points
 
@@ -189,7 +202,7 @@ def class_iii_marks(sheet, kin) -> list[str]:
         for k in sheet.positions:
             at = scheme.to_sheet(kin.position(k_name)[k - 1])
             letters = [t for t in prims if isinstance(t, Text) and t.text.startswith(subscript(k_name))
-                       and label_box(t).distance(shapely.Point(at)) <= ANCHOR_MM]
+                       and (label_box(t).distance(shapely.Point(at)) <= ANCHOR_MM or led(scheme, t, [at]))]
             dot = any(isinstance(p, Circle) and p.fill == "solid" and np.allclose(p.centre, at, atol=1e-6) for p in prims)
             through = sum(a.distance(shapely.Point(at)) < 1e-6 for a in axes)
             if not letters or not dot or through < 2:

@@ -12,8 +12,6 @@ from tests.sheet import gallery_marks as gm
 FMT, KINDS = "A1", ("forces", "dynamics")
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "overlap": 1,  # stephenson-six-bar/forces: G₄ over Φ₄ (since the force views' own label placement,
-    # views/forces/anchored.py, which keeps each label by what it names)
 }
 
 

@@ -12,12 +12,6 @@ from tests.sheet import gallery_marks as gm
 FMT, KINDS = "A1", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed": 1,  # stephenson-six-bar: O₁ and two position numbers 10 (three crossed texts; the bar is one)
-    "ambiguous": 3,  # shaper's plan-v-4 s₅; the scheme's K₃ (nearer S₄) and S₅ (nearer G) on triad-rocker
-    "far_label": 79,  # mostly the scheme's letters of sliders and ground pivots, 6-9 mm off (beyond the block
-    # or the hatching); nothing nearer names another point
-    "class_iii": 3,  # K₃ (5), K₃ (9) on triad-rocker and K₅ (11) on triad-eight-link: their letters 7-9 mm off,
-    # the special points of the two drawn positions lying 1 mm apart
 }
 
 

@@ -12,8 +12,6 @@ from tests.sheet import gallery_marks as gm
 FMT, KINDS = "A3", ("forces", "dynamics")
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed": 5,  # since the force views' label placement by anchor (views/forces/anchored.py):
-    # shaking-conveyor, shaper-lever-rod, shaper-linkage, triad-press (7 texts), v-compressor force sheets
 }
 
 

@@ -12,13 +12,6 @@ from tests.sheet import gallery_marks as gm
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed": 3,  # drag-link-shaper (O₁, ω₁), sieve-shaker (11, 1), stephenson-six-bar (O₁, S₂, 8, 9, 10)
-    "ambiguous": 11,  # plan letters nearer another image than their own in the A3 plans' tighter cells
-    # (four-bar s₂, beam-pump s₁, jaw-crusher π, sieve-shaker a₃, slotter a₃, triad-rocker s₅) and scheme
-    # letters nearer another point (shaking-conveyor C, triad-eight-link K₅ and O₁, triad-rocker K₃ and G)
-    "far_label": 73,  # mostly the scheme's letters of sliders and ground pivots, 6-9 mm off (beyond the block
-    # or the hatching); nothing nearer names another point
-    "class_iii": 1,  # K₅ (4) on triad-eight-link: its letter more than 6 mm off
 }
 
 

@@ -9,6 +9,7 @@ import pytest
 import shapely
 
 import velplan
+from velplan.render.layout import label_box
 from velplan.render.scene import Circle, Polygon, Polyline, Text
 from velplan.views.mechanism import mechanism_view, output_point, trajectory_points
 
@@ -60,7 +61,7 @@ def test_the_special_point_only_where_the_construction_is_shown(rocker):
     shown = _view(rocker, single=True, special=True)
     (letter,) = [t for t in shown.primitives if isinstance(t, Text) and t.text == "K₃"]
     k = _at(shown, rocker, "K3")
-    assert np.hypot(*(np.asarray(letter.position) - k)) < 5.0
+    assert label_box(letter).distance(shapely.Point(k)) < 5.0
     assert any(isinstance(p, Circle) and p.fill == "solid" and np.allclose(p.centre, k) for p in shown.primitives)
     # two dash-dotted lead lines pass through it, each along a lead (E–C and F–D here)
     axes = [np.asarray(p.points) for p in shown.primitives if isinstance(p, Polyline) and p.line == "axis"]
@@ -75,8 +76,9 @@ def test_the_output_of_a_triad_is_numbered_at_its_lead_joint(rocker):
     assert output_point(rocker.mechanism) == "D"  # output link 5 = the lead F–D
     view = _view(rocker)
     path = rocker.kinematics.position("D") / MU + np.asarray(view.origin)
+    # by D's path (within 25 mm: the numbers of the crowded end stepped out), not by the crank's (80 mm off)
     near = [t.text for t in view.primitives if isinstance(t, Text) and t.size_mm == 2.5
-            and np.min(np.hypot(*(path - t.position).T)) < 20.0 and t.text[0].isdigit()]
+            and np.min(np.hypot(*(path - t.position).T)) < 25.0 and t.text[0].isdigit()]
     assert sorted(int(k) for t in near for k in t.split(",")) == list(range(1, 13))
 
 

@@ -2,7 +2,7 @@
 
 Nothing is solved or constructed here: the positions, the exact plans (at one scale for the
 whole turn, so that the slider moves them smoothly about a fixed pole) and the drafted plans
-all come from a `velplan.study.Study`; the views draw them (`scheme_parts`, `plan_steps`,
+all come from a `velplan.study.Study`; the views draw them (`mechanism_view`, `plan_steps`,
 `letters_to_place`) and `velplan.html.records` turns their primitives into compact records.
 
 Records the scheme shares between positions (guides, supports that do not move) are stored
@@ -28,8 +28,8 @@ from velplan.study import Study
 from velplan.html.letters import capsules, place_letters
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
 from velplan.html.text import templates
-from velplan.views.base import eskd_scales, place_labels_together, scale_mark, scale_text, subscript, unit
-from velplan.views.mechanism import SCHEME_RINGS, extent_m, scheme_parts, scheme_view, trajectory_points
+from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
+from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
 from velplan.views.plan import letters_to_place, plan_steps
 from velplan.views.steps import readable as _readable
 
@@ -83,25 +83,17 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
     reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    # each position's drawing; then the labels of all positions placed together
-    valid = [i for i in range(n) if kin.valid[i]]
-    parts = []
-    for i in valid:
-        idx = sorted(set(reference) | {i})
-        frame = dict(kin=kin.take(idx), mu_l=mu_l, n=len(idx), thick=position_number(idx.index(i)))
-        parts.append((frame, scheme_parts(mech, fine=fine, single=True, **frame)))
-    placed = place_labels_together([(labels, obstacles) for _, (_, labels, obstacles) in parts], rings=SCHEME_RINGS)
+    # each position's drawing, its letters placed by the scheme's own placer (`mechanism_view`)
     per_position: list[list[list] | None] = [None] * n
-    known: dict = {}  # primitive → its records: what every position draws alike is encoded once
-    for i, (frame, (items, labels, _)), letters in zip(valid, parts, placed):
-        if centres:
-            view = scheme_view(mech, items, labels, letters, lang=lang, single=True, title=False, **frame)
-            drawn, origin = view.primitives + tuple(_centre_marks(study, i, view, mu_l)), view.origin
-            per_position[i] = [r for p in drawn for r in encode(p, style, origin)]
-            continue
-        # the view of one untitled position is its drawing and labels: records in their own mm
-        per_position[i] = [r for p in (*items, *letters)
-                           for r in (known.get(p) or known.setdefault(p, encode(p, style)))]
+    known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
+    for i in (i for i in range(n) if kin.valid[i]):
+        idx = sorted(set(reference) | {i})
+        view = mechanism_view(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
+                              thick=position_number(idx.index(i)), lang=lang, single=True, title=False)
+        drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
+        per_position[i] = [r for p in drawn
+                           for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),
+                                                                                   encode(p, style, view.origin)))]
     # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
     keys = [[tuple(r) for r in recs or ()] for recs in per_position]
     count: dict[tuple, int] = {}

@@ -326,9 +326,9 @@ def scale_mark(mu_l: float, lang: Language) -> str:
 def axis_numbers_clear(items: list, curves) -> list:
     """Position numbers hung under a φ axis (``baseline="top"``) kept clear: the one under the
     origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
-    mirrored about it, or, crossed there too, is narrowed (below, else above:
-    `MIN_WIDTH_FACTOR`), then a text height farther from the axis, where that clears it;
-    ``curves`` are polylines' points in the same mm.
+    mirrored about it, or else a little farther below or above, under its tick, or, crossed
+    there too, narrowed (`MIN_WIDTH_FACTOR`), below, else above, then a text height farther
+    from the axis, where that clears it; ``curves`` are polylines' points in the same mm.
     Other primitives pass unchanged."""
     import shapely
 
@@ -346,11 +346,17 @@ def axis_numbers_clear(items: list, curves) -> list:
             if abs(p.position[0]) < 1e-9:  # under the origin: beside the ordinate axis instead
                 p = _moved(p, position=(0.8, p.position[1]), anchor="start")
             if len(field.query(label_box(p), predicate="intersects")):
-                up = _moved(p, position=(p.position[0], -p.position[1]), baseline="baseline")
-                spots = [up] + [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
-                spots += [_moved(q, position=(q.position[0], q.position[1] + s * q.size_mm))  # a line farther
-                          for q, s in zip(spots[1:], (-1.0, 1.0))]
-                p = next((q for q in spots if not len(field.query(label_box(q), predicate="intersects"))), p)
+                # above the axis, mirrored; else a little farther below or above, under its tick;
+                # else narrowed, below or above, then a text height farther from the axis
+                x, y = p.position
+                up = _moved(p, position=(x, -y), baseline="baseline")
+                steps = [0.5 * p.size_mm * k for k in (1, 2, 3)]
+                narrow = [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
+                tries = ([up] + [_moved(p, position=(x, y - d)) for d in steps]
+                         + [_moved(up, position=(x, -y + d)) for d in steps] + narrow
+                         + [_moved(q, position=(q.position[0], q.position[1] + s * q.size_mm))
+                            for q, s in zip(narrow, (-1.0, 1.0))])
+                p = next((q for q in tries if not len(field.query(label_box(q), predicate="intersects"))), p)
         out.append(p)
     return out
 
@@ -477,14 +483,15 @@ def _survey(boxes, bounds, field, placed: _PlacedLabels):
 
 
 def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | None = None,
-                 rings: int = 8) -> tuple:
+                 rings: int = 8, taken: Iterable = ()) -> tuple:
     """Move labels, in order, clear of `obstacles` and of the labels placed before them.
 
     Each label that collides is tried in rings of eight directions around its wanted spot,
     with a tree of the obstacles and the spots examined
     ring by ring, so a view with many lines places its letters quickly. A label with no free
     spot takes the spot clear of the other labels that meets the fewest obstacles (the first of
-    those), looking twice as far out if it must, or keeps its place.
+    those), looking twice as far out if it must, or keeps its place. `taken`: labels placed
+    already (upright), which the labels keep off as they keep off each other.
     """
     import shapely
 
@@ -492,6 +499,9 @@ def place_labels(texts: Iterable, obstacles: Iterable = (), *, step_mm: float | 
     shapes = [g for g in obstacles if not g.is_empty]
     field = shapely.STRtree(shapes) if shapes else None
     placed = _PlacedLabels()
+    for text in taken:
+        _, bounds, _ = _spot_boxes(text, np.array([text.position], float))
+        placed.add(shapely.box(*bounds[0]), bounds[0], True)
     out = []
     for text in texts:
         step = step_mm or 0.5 * text.size_mm
@@ -529,40 +539,6 @@ def free_direction(busy: list[float], default: float = 45.0) -> float:
         if g > gap + 1e-9:
             best, gap = c, g
     return best
-
-
-def place_labels_together(views: list, *, rings: int = 8) -> list[tuple]:
-    """`place_labels` (its default step) on each of several independent views, given as
-    ``(texts, obstacles)``: the same labels, with the k-th labels of all views surveyed in the
-    same shapely calls."""
-    import shapely
-
-    shapes = [[g for g in obstacles if not g.is_empty] for _, obstacles in views]
-    width = max([len(g) for g in shapes] + [1])
-    field = np.full((len(views), width), None, dtype=object)
-    field_bounds = np.full((len(views), width, 4), np.nan)
-    for v, g in enumerate(shapes):
-        if g:
-            field[v, :len(g)] = g
-            field_bounds[v, :len(g)] = shapely.bounds(field[v, :len(g)])
-    most = max([len(texts) for texts, _ in views] + [0])
-    # the labels placed so far in every view, side by side: box, bounds (NaN meets nothing), upright
-    taken = (np.full((len(views), most), None, dtype=object), np.full((len(views), most, 4), np.nan),
-             np.zeros((len(views), most), dtype=bool))
-    out: list[list] = [[] for _ in views]
-    for k in range(most):
-        rows = np.array([v for v, (texts, _) in enumerate(views) if len(texts) > k])
-        texts = [views[v][0][k] for v in rows]
-        spots, boxes, bounds, offsets = _spot_boxes_of(texts, rings)
-        clear, crossings, apart = _survey_together(rows, boxes, bounds, field, field_bounds,
-                                                   tuple(x[:, :k] for x in taken))
-        for a, v in enumerate(rows):
-            text, others = texts[a], [b for b in taken[0][v, :k]]
-            chosen, box, bounds_j = _choose_spot(text, spots[a], boxes[a], bounds[a], offsets[a], clear[a],
-                                                 crossings[a], apart[a], 0.5 * text.size_mm, rings, others)
-            out[v].append(chosen)
-            taken[0][v, k], taken[1][v, k], taken[2][v, k] = box, bounds_j, boxes[a] is None
-    return [tuple(labels) for labels in out]
 
 
 def spots_of(texts: list, rings: int) -> np.ndarray:

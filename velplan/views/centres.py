@@ -19,6 +19,7 @@ from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
+from velplan.views.letters import place_letters
 from velplan.views.mechanism import MechanismSizes, mechanism_view
 from velplan.views.base import number as _number  # `number` is also the position argument
 
@@ -239,10 +240,19 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     for j, names in joints.items():  # a joint without a letter of its own
         at = to_mm(complex(*kin.position(j)[con.index]))
         texts.append(Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", sizes.number_mm + 0.5))
+    # the scheme's letters placed anew by their points (their old leaders dropped), then the rest
+    points = {subscript(q): np.asarray(to_mm(complex(*kin.position(q)[con.index]))) for q in kin.point_index}
+    points = {k: xy for k, xy in points.items() if np.all(np.isfinite(xy))}
+    items = [p for p in items if not (isinstance(p, Polyline) and p.layer == "labels" and p.line == "thin"
+                                      and len(p.points) == 2
+                                      and any(np.allclose(p.points[0], q) for q in points.values()))]
     obstacles = [shapely.LineString(p.points).buffer(0.4) for p in items if isinstance(p, Polyline)]
     obstacles += [shapely.LineString([p.start, p.end]).buffer(0.4) for p in items if isinstance(p, Arrow)]
     obstacles += [shapely.box(*p.bounds).buffer(0.3) for p in items if isinstance(p, Circle)]
-    items += place_labels(texts + labels, obstacles, rings=8)
+    own = [t for t in texts if t.text.split(" (")[0] in points]
+    placed, leaders = place_letters(own, [points[t.text.split(" (")[0]] for t in own], list(points.values()), obstacles)
+    items += placed + leaders
+    items += place_labels([t for t in texts if t not in own] + labels, obstacles, rings=8, taken=placed)
     x0, y0, x1, y1 = bounds_of(items)
     diagram = circle_diagram(con, lang=lang)
     cx, cy = x1 + CIRCLE_MM + 20.0, (y0 + y1) / 2

@@ -26,12 +26,14 @@ from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Mechanism, 
 from velplan.mechanism.structure import pairs, point_owners
 from velplan.options import Language
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
     slider_block, straight_guide)
 from velplan.views.base import (
     View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
+from velplan.views.letters import place_letters
 
 #: Slider block length and width, mm.
 BLOCK_MM = (12.0, 7.0)
@@ -80,23 +82,15 @@ _SEGMENTS: dict[tuple, tuple] = {}
 _ROWS_KEPT = 20000
 
 
-_STRUCTURE: dict[int, tuple] = {}
-"""id of a mechanism → (the mechanism, its point owners, revolute joints, fixed pivots)."""
-
-
 class _Geometry:
     """Where every link, block and guide is, at the positions of a `Kinematics`, m."""
 
     def __init__(self, mech: Mechanism, kin: Kinematics):
         self.mech, self.kin = mech, kin
-        hit = _STRUCTURE.get(id(mech))
-        if hit is None or hit[0] is not mech:  # the mechanism's structure, worked out once
-            if len(_STRUCTURE) >= 64:
-                _STRUCTURE.clear()
-            hit = _STRUCTURE[id(mech)] = (mech, point_owners(mech), {p.point for p in pairs(mech) if p.kind == "R"},
-                                          [p.point for p in pairs(mech) if p.kind == "R" and GROUND in p.links])
-        _, owner, revolute, ground_pivots = hit
-        self.owner, self.revolute, self.ground_pivots = dict(owner), set(revolute), list(ground_pivots)
+        self.owner = point_owners(mech)
+        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
+        self.ground_pivots = [p.point for p in pairs(mech)
+                              if p.kind == "R" and GROUND in p.links]
 
     def p(self, i: int, name: str) -> np.ndarray:
         return self.kin.positions[i, self.kin.point_index[name]]
@@ -423,25 +417,6 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
-    items, labels, obstacles = scheme_parts(mech, kin=kin, fine=fine, mu_l=mu_l, n=n, thick=thick, sizes=sizes,
-                                            single=single, extreme=extreme, special=special, bold=bold)
-    placed = place_labels(labels, obstacles, rings=SCHEME_RINGS)
-    return scheme_view(mech, items, labels, placed, kin=kin, mu_l=mu_l, n=n, thick=thick, lang=lang, sizes=sizes,
-                       title=title, single=single, plans=plans)
-
-
-#: Rings of spots a label of the scheme tries round its wanted spot (`place_labels`).
-SCHEME_RINGS = 8
-
-
-def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12, thick: int = 1,
-                 sizes: MechanismSizes = MechanismSizes(), single: bool = False,
-                 extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
-                 bold: Sequence[int] = ()) -> tuple[list[Primitive], list[Text], list]:
-    """What `mechanism_view` draws before its labels are placed (the same arguments; `thick`
-    and `bold` are position numbers, 1…n): the drawing's primitives (mm), the labels at their
-    wanted spots and the shapes they keep off; `place_labels` (rings `SCHEME_RINGS`) and
-    `scheme_view` finish it."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -452,23 +427,28 @@ def scheme_parts(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     specials = ([t] if special is True else
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
-    labels = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
+    letters, labels, links = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
-    points = [p for p in points if np.all(np.isfinite(p))]
-    obstacles += list(shapely.buffer(shapely.points(np.array(points, float).reshape(-1, 2)), POINT_CLEAR_MM,
-                                     quad_segs=16))  # as Point(p).buffer(POINT_CLEAR_MM), all at once
-    return items, labels, obstacles
-
-
-def scheme_view(mech: Mechanism, items: list[Primitive], labels: list[Text], placed, *, kin: Kinematics,
-                mu_l: float, n: int = 12, thick: int = 1, lang: Language = "ru",
-                sizes: MechanismSizes = MechanismSizes(), title: bool = True, single: bool = False,
-                plans: Sequence[int] = ()) -> View:
-    """The view of `scheme_parts`' drawing `items` with its `labels` placed (`placed`); `thick`
-    and `plans` are position numbers (1…n), as for `mechanism_view`."""
-    mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
-    items = items + list(placed)
+    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
+    named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
+    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    # the letters keep off the places the output's position numbers want, where they can
+    wanted = [label_box(x) for x in labels if x.text.isdigit()]
+    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles,
+                                            thin=thin + wanted)
+    if not single:  # the crank's numbers, each nearer its own position of the tip than any other
+        tips = mm(kin.position(mech.crank.tip))
+        numbers, number_leaders = place_letters(
+            _crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles, thin=thin,
+            taken=[label_box(x).buffer(0.4) for x in placed_letters])
+        placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
+    placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
+    # the links' numbers, each nearer its own link's point than another link's
+    numbers, number_leaders = place_letters(
+        [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
+        taken=[label_box(x).buffer(1.5) for x in (*placed_letters, *placed)])  # not read as one with a letter
+    items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
         items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
@@ -523,7 +503,6 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                     mu_l: float, label_mm: float, specials: Sequence[int] = ()) -> _Thick:
     """Add the thick position `t` to `items`: guides, pivots, (special point), links, blocks,
     joints; their outlines to `obstacles`."""
-    outlines: list[tuple] = []  # (shape, clearance mm): buffered all at once at the end
     centre = mm(_centroid(geo.kin))
     tracks = geo.tracks(fine)
     thick_segments = geo.segments(t)
@@ -533,12 +512,14 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         guide_sides[tr.point] = side
         guide = _guide(tr, mu_l, side)
         items += guide
-        outlines.append((shapely.box(*bounds_of(guide)), 0.3))
+        # the guide's outline (an inclined guide's bounding box would cover half the scheme)
+        obstacles.append(shapely.MultiPoint([q for g in guide for q in g.points]).convex_hull.buffer(0.3))
     for name in geo.ground_pivots:
         support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
                               layer="mechanism")
         items += support
-        outlines.append((shapely.box(*bounds_of(support[:-1])), 0.5))
+        # the triangle and the hatching: a letter may stand beside the pivot's circle
+        obstacles += [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -548,27 +529,23 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
                       trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
-        outlines.append((shapely.LineString([a, b]), 0.6))
+        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
     blocks = geo.blocks(t)
     for bl in blocks:
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
                             width_mm=BLOCK_MM[1], layer="mechanism")
         items += body
-        outlines.append((shapely.Polygon(body[0].points), 0.8))
+        obstacles.append(shapely.Polygon(body[0].points).buffer(0.5))
     joints = [p for p in geo.revolute if p not in geo.ground_pivots]
     for name in sorted(joints, key=lambda p: list(geo.kin.point_index).index(p)):
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
-    _mass_signs(items, outlines, geo, t, mm)
-    if outlines:  # the same shapes as each one's .buffer(clearance)
-        shapes, clearances = zip(*outlines)
-        obstacles += list(shapely.buffer(np.array(shapes, dtype=object), np.array(clearances), quad_segs=16))
+    _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
 
 
-def _mass_signs(items: list, outlines: list, geo: _Geometry, t: int, mm) -> None:
+def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
     """The centre-of-mass sign at every centre of mass of position t (the mass table's
-    centres, or the points named S2, S3…) that no joint already marks; to `outlines`, each
-    sign's centre and the clearance round it, mm."""
+    centres, or the points named S2, S3…) that no joint already marks."""
     centres = {m.centre for m in geo.mech.masses} | {
         p for p in geo.kin.point_index if p[:1] == "S" and p[1:].isdigit()}
     joints = [mm(geo.p(t, q)) for q in geo.revolute]
@@ -576,7 +553,7 @@ def _mass_signs(items: list, outlines: list, geo: _Geometry, t: int, mm) -> None
         p = mm(geo.p(t, name))
         if np.all(np.isfinite(p)) and all(np.hypot(*(p - q)) > JOINT_RADIUS_MM for q in joints):
             items += centre_of_mass_sign(p, layer="mechanism")
-            outlines.append((shapely.Point(p), 2.0))
+            obstacles.append(shapely.Point(p).buffer(2.0))
 
 
 def _output_on_track(mech: Mechanism, out: str) -> bool:
@@ -585,15 +562,16 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> list[Text]:
-    """The labels to place: points of the thick position, position numbers, ω1 (its arrow
-    added to `items`, and to `obstacles`: no letter is written over it), links."""
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> tuple[list, list[Text], list]:
+    """The labels to place: the letters of the points of the thick position (and of the special
+    points), each with its point (mm); the position numbers of the output, ω1 (its arrow added
+    to `items`, and to `obstacles`: no letter is written over it), the numbers inside plates;
+    the other links' numbers, each with its point on the link (mm)."""
     mech, kin = geo.mech, geo.kin
-    labels: list[Text] = list(drawn.special_letters)
-    labels += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
-                            {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
-    if not single:
-        labels += _crank_numbers(mech, kin, mm, sizes.number_mm)
+    letters = list(drawn.special_letters)
+    letters += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+                             {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
+    labels: list[Text] = []
     out = output_point(mech)
     if out is not None and out != mech.crank.tip and not single:
         labels += _output_numbers(kin, out, mm, sizes.number_mm,
@@ -609,9 +587,10 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
         obstacles += [shapely.LineString(p.points if isinstance(p, Polyline) else [p.start, p.end]).buffer(0.6)
                       for p in omega[:-1] if isinstance(p, (Polyline, Arrow))]
     away_from_guides = [(mm(geo.p(t, pt)), -side) for pt, side in drawn.guide_sides.items()]
-    labels += _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
+    numbers = _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
-    return labels
+    labels += [x for x, at in numbers if at is None]
+    return letters, labels, [(x, at) for x, at in numbers if at is not None]
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
@@ -716,29 +695,26 @@ def _lead_blocks(mech: Mechanism) -> set[str]:
 
 
 def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
-                  guide_sides=None) -> list[Text]:
-    """Letters of the points at position t, off the lines that meet at each (and off the
-    hatched side of the guide, for the points in `guide_sides`: point → its hatch normal)."""
+                  guide_sides=None) -> list[tuple[Text, np.ndarray]]:
+    """Letters of the points at position t, each with its point (mm), off the lines that meet
+    at each (and off the hatched side of the guide, for the points in `guide_sides`: point →
+    its hatch normal)."""
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
-    # every segment's ends, and the unit vectors out of them along it, in the order (a, b), (b, a)
-    ends = np.array([mm(e) for s in segs for e in (s.a, s.b)], float).reshape(-1, 2)
-    along = (ends.reshape(-1, 2, 2)[:, ::-1] - ends.reshape(-1, 2, 2)).reshape(-1, 2)
-    unit_along = along / np.maximum(np.hypot(along[:, 0], along[:, 1]), 1e-9)[:, None]
-    centres = np.array([mm(b.centre) for b in blocks], float).reshape(-1, 2)
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
         p = mm(geo.p(t, name))
-        near = p - np.array(placed).reshape(-1, 2)
-        if not np.all(np.isfinite(p)) or (np.hypot(near[:, 0], near[:, 1]) < 1.0).any():
+        if not np.all(np.isfinite(p)) or any(np.hypot(*(p - q)) < 1.0 for q in placed):
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
-        off = ends - p
-        at = np.hypot(off[:, 0], off[:, 1]) < 0.5
-        # the units summed one after the other (a running sum), as a loop over them would
-        away = -np.cumsum(unit_along[at], axis=0)[-1] if at.any() else np.zeros(2)
+        away = np.zeros(2)
+        for s in segs:
+            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
+                if np.hypot(*(here - p)) < 0.5:
+                    d = other - here
+                    away -= d / max(np.hypot(*d), 1e-9)
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
@@ -750,11 +726,10 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
         # point labels sit diagonally off the joint, clear of the lines meeting there
         anchor = "start" if away[0] > 0.35 else ("end" if away[0] < -0.35 else "middle")
         reach = JOINT_RADIUS_MM + 1.5 + 0.5 * size
-        on_block = centres - p
-        if (np.hypot(on_block[:, 0], on_block[:, 1]) < 0.5).any():
+        if any(np.hypot(*(mm(b.centre) - p)) < 0.5 for b in blocks):
             reach = 0.5 * math.hypot(*BLOCK_MM) + 1.0  # clear of the slider's corners
         pos = p + away * reach
-        out.append(Text(pos, subscript(name), "labels", size, anchor, "middle"))
+        out.append((Text(pos, subscript(name), "labels", size, anchor, "middle"), p))
     return out
 
 
@@ -870,9 +845,10 @@ def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> li
 
 
 def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs, blocks,
-                  centre, away_from_guides=()) -> list[Text]:
+                  centre, away_from_guides=()) -> list[tuple[Text, np.ndarray | None]]:
     """Link numbers beside the middle of each link, or beside its block, on the side of the
-    mechanism's centre (away from guides and the numbers of positions)."""
+    mechanism's centre (away from guides and the numbers of positions), each with its point
+    on the link (mm), or None for a number inside its plate."""
     out = []
     done = set()
     for link_name, corners in geo.plates(t):
@@ -880,7 +856,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         inside = _plate_number_at(mm(corners), size, lettered)
         if inside is not None:
             done.add(link_name)
-            out.append(Text(inside, link_name, "labels", size, "middle", "middle"))
+            out.append((Text(inside, link_name, "labels", size, "middle", "middle"), None))
     for s in segs:
         if s.link in done:
             continue
@@ -894,7 +870,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         if float((centre - (a + 0.42 * d)) @ normal) < 0:
             normal = -normal
         where = a + 0.42 * d + normal * (0.9 * size)
-        out.append(Text(where, s.link, "labels", size, "middle", "middle"))
+        out.append((Text(where, s.link, "labels", size, "middle", "middle"), a + 0.42 * d))
     for bl in blocks:
         if bl.link in done:
             continue
@@ -908,7 +884,7 @@ def _link_numbers(mech: Mechanism, geo: _Geometry, t: int, mm, size: float, segs
         elif float((centre - mm(bl.centre)) @ normal) < 0:
             normal = -normal
         where = mm(bl.centre) + normal * (BLOCK_MM[1] / 2 + 0.9 * size) - u * (BLOCK_MM[0] / 2)
-        out.append(Text(where, bl.link, "labels", size, "middle", "middle"))
+        out.append((Text(where, bl.link, "labels", size, "middle", "middle"), mm(bl.centre)))
     return out
 
 
@@ -965,12 +941,14 @@ def _plate_number_at(corners, size: float, points=()):
 def _add_special(items: list, obstacles: list, geo: _Geometry, t: int, mm, size: float,
                  suffix: str = "") -> list[Text]:
     """Append the special points' construction to `items` (under the links and joints that
-    come after) and its lines to `obstacles`; returns the letters, to be placed."""
-    letters = []
+    come after) and its lines to `obstacles`; returns the letters, to be placed, each with
+    its point (mm)."""
+    letters, at = [], None
     for p in _special_construction(geo, t, mm, size, suffix):
         if isinstance(p, Text):
-            letters.append(p)
+            letters.append((p, at))
         else:
+            at = p.centre if isinstance(p, Circle) else at
             items.append(p)
             obstacles.append(shapely.box(*p.bounds).buffer(0.5) if isinstance(p, Circle)
                              else shapely.LineString(p.points).buffer(0.5))

@@ -32,6 +32,7 @@ from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, make_view, number, place_labels, scale_text, subscript, unit
+from velplan.views.letters import place_letters
 
 #: Construction lines run this far past the images they join, mm.
 LINE_OVERRUN_MM = 10.0
@@ -290,9 +291,10 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
                   upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
-    `position`, clear of the vectors. With `leaders`, a letter is looked for farther out
-    (never where a line crosses it), and one that ends up more than `LEADER_MM` from its
-    image is joined to it by a thin leader (the leaders follow the letters in the list).
+    `position`, clear of the vectors. With `leaders`, each letter goes to the nearest free
+    spot where its own image is the nearest image to it, within `LEADER_MM` (never where a
+    line crosses it), else farther out, joined to its image by a thin leader (the leaders
+    follow the letters in the list).
     `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
     texts, anchors, lines, circles = letters_to_place(res, position, drawings, size_mm=size_mm, upto=upto)
     obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
@@ -300,26 +302,21 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
     obstacles += list(shapely.buffer(shapely.points(np.array([p.centre for p in circles], float).reshape(-1, 2)),
                                      np.array([p.radius + 0.3 for p in circles], float), quad_segs=16))
     obstacles += list(avoid)
-    placed = list(place_labels(texts, obstacles, rings=12 if leaders else 8))
     if not leaders:
-        return placed
-    return placed + _leaders(placed, anchors, layer_names(_kind(res), position)[1])
+        return list(place_labels(texts, obstacles, rings=8))
+    # each letter by its own image, nearer it than any other image; beyond the crowd, a leader
+    named = anchors + [_xy(z) for z in _images(res, position) if np.isfinite(z)]
+    placed, leader_lines = place_letters(texts, anchors, named, obstacles,
+                                         leader_layer=layer_names(_kind(res), position)[1],
+                                         gaps=LETTER_GAPS_MM, leader_gaps=LEADER_GAPS_MM)
+    return placed + leader_lines
 
 
 #: A letter farther than this from its image gets a leader, mm.
 LEADER_MM = 3.0
-
-
-def _leaders(texts: list[Text], anchors, layer: str) -> list[Polyline]:
-    """Thin leaders from each image to its letter's box where the letter stands more than
-    `LEADER_MM` off, mm."""
-    out = []
-    for t, xy in zip(texts, anchors):
-        box, point = label_box(t), shapely.Point(xy)
-        if box.distance(point) > LEADER_MM:
-            near = shapely.shortest_line(box.buffer(0.5), point).coords[0]
-            out.append(Polyline((tuple(xy), (near[0], near[1])), layer, "thin"))
-    return out
+#: The gaps between an image and its letter's box tried without a leader, then with one, mm.
+LETTER_GAPS_MM = (1.0, 1.6, 2.3, LEADER_MM)
+LEADER_GAPS_MM = (4.5, 6.0, 7.5, 9.0, 11.0, 13.0)
 
 
 def labelled_vectors(res, position: int) -> dict[str, tuple[str, float]]:

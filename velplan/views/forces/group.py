@@ -155,7 +155,7 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
     anchors = [shapely.Point(p) for p in at] + ends + arcs
     kinds = ["point"] * len(at) + ["force"] * len(ends) + ["couple"] * len(arcs)
     items = sk.items + place_anchored(letters + force_labels + couple_labels, anchors, kinds,
-                                      sk.clear_of() + axes)
+                                      sk.clear_of() + axes, leader_layer=text_layer)
     head = (label("initial_link", lang).format(name=mech.crank.link) if group == "crank"
             else label("assur_group", lang).format(name=group))
     items += title_lines(items, [

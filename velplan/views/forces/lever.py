@@ -77,7 +77,7 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     # each label kept by its own image point or arrow end (the nearest of its kind to it)
     anchors = [shapely.Point(p) for p, _ in images] + ends
     kinds = ["point"] * len(images) + ["force"] * len(ends)
-    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of())
+    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of(), leader_layer=text_layer)
     mb_lever = float(lever.balancing_moment[i])
     mb_kin = float(fa.kinetostatics.balancing_moment[i])
     pct = float(fa.lever_difference_percent[i])

@@ -174,13 +174,16 @@ def _beside(a, b, drawn, centre) -> tuple[np.ndarray, np.ndarray]:
 def _vector_labels(drawn, sk: Sketch, layer: str, size: float) -> list[Text]:
     """A label for each drawn vector beside its middle on the free side (else nearer an
     end, farther out, or on the other side), nearer its own vector than any other; the
-    shortest vectors, with the fewest places, labelled first."""
+    shortest vectors, with the fewest places, labelled first. Where every place near a
+    vector is crossed, its label stands farther out with a thin leader (the leaders follow
+    the labels in the list)."""
     segments = [shapely.LineString([a, b]) for _, a, b, _ in drawn]
     pts = [p for _, a, b, _ in drawn for p in (a, b)]
     centre = np.mean(pts, axis=0) if pts else np.zeros(2)
     tree = shapely.STRtree(sk.clear_of())
     boxes: list = []
     texts: dict[int, Text] = {}
+    leaders: list[Polyline] = []
     for idx in sorted(range(len(drawn)), key=lambda j: segments[j].length):
         name, a, b, _ = drawn[idx]
         best = None
@@ -190,22 +193,49 @@ def _vector_labels(drawn, sk: Sketch, layer: str, size: float) -> list[Text]:
                 best = (cost, text, box)
             if cost < rank + 1:  # clean: no later place (of a higher rank) can be better
                 break
+        if best[0] >= 100.0:  # crossed or crowded everywhere near: beyond the crowd, with a leader
+            best = _led_label(name, a, b, centre, layer, size, tree, boxes, leaders) or best
         texts[idx] = best[1]
         boxes.append(best[2].buffer(1.5))
-    return [texts[j] for j in range(len(drawn))]
+    return [texts[j] for j in range(len(drawn))] + leaders
 
 
-def _label_spots(name: str, a, b, centre, layer: str, size: float):
+#: The gaps (mm) tried for a vector's label with a leader, where no place near it is clear.
+LEADER_GAPS_MM = (6.5, 8.0, 10.0, 12.0, 14.0, 17.0, 20.0)
+
+
+def _led_label(name: str, a, b, centre, layer: str, size: float, tree, boxes, leaders: list):
+    """The first place farther out, clear of the lines and the labels, for the label of
+    vector a → b: (0, label, box), its leader from the vector appended to `leaders`; None
+    where none is clear."""
+    for _, text, box in _label_spots(name, a, b, centre, layer, size, LEADER_GAPS_MM):
+        if len(tree.query(box, predicate="intersects")) or any(box.intersects(o) for o in boxes):
+            continue
+        t = float(np.clip(shapely.LineString([a, b]).project(box.centroid, normalized=True), 0.3, 0.7))
+        at = a + t * (b - a)
+        near = shapely.shortest_line(box.buffer(0.4), shapely.Point(at)).coords[0]
+        line = shapely.LineString([at, near])
+        if any(line.intersects(o.buffer(-1.2)) for o in boxes):
+            continue  # a leader through another label
+        leaders.append(Polyline((tuple(at.tolist()), (near[0], near[1])), layer, "thin"))
+        boxes.append(line.buffer(0.8))  # the later labels keep off it
+        return 0.0, text, box
+    return None
+
+
+def _label_spots(name: str, a, b, centre, layer: str, size: float, gaps=(0.8, 2.0, 3.5, 5.0),
+                 along=(0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85)):
     """(rank, label, its box) of the places tried for the label of vector a → b, the best
-    first: the box's edge nearest the vector a gap (0.8 to 5 mm) from it."""
+    first: the box's edge nearest the vector one of `gaps` (mm) from it, at the fractions
+    `along` of its length."""
     u = unit_vector(b - a)
     n = np.array([-u[1], u[0]])
     out = 1.0 if float(((a + b) / 2 - centre) @ n) >= 0 else -1.0
     text = force_text(name)
     shapes = {}  # anchor → the box's corners about the text's point
     rank = 0
-    for gap in (0.8, 2.0, 3.5, 5.0):
-        for t in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
+    for gap in gaps:
+        for t in along:
             for side in (out, -out):
                 m = side * n
                 anchor = anchor_of(m)
@@ -220,12 +250,14 @@ def _label_spots(name: str, a, b, centre, layer: str, size: float):
 
 
 def _spot_cost(rank: int, box, idx: int, segments, tree, boxes) -> float:
-    """How bad a label's place is: over lines and arrows, over labels placed before it,
-    nearer another vector than its own or farther than 6 mm from it; then its rank."""
+    """How bad a label's place is: over labels placed before it (worst: text over text),
+    nearer another vector than its own or farther than 6 mm from it, over lines and arrows,
+    crowding the labels placed before it; then its rank."""
     own = box.distance(segments[idx])
     other = min((g.distance(box) for j, g in enumerate(segments) if j != idx), default=np.inf)
     return (rank + 100.0 * len(tree.query(box, predicate="intersects"))
             + 1000.0 * sum(box.intersects(o) for o in boxes)
+            + 5000.0 * sum(box.intersects(o.buffer(-1.2)) for o in boxes)
             + (1000.0 if own > 6.0 or other <= own else 0.0))
 
 

@@ -1,0 +1,161 @@
+"""Point letters kept by their points: each letter goes to the nearest free spot round its own
+point where that point stays the nearest of all the drawing's points to it — never to a free
+spot farther out that reads as another point's letter. Where no such spot is free, the letter
+stands a little farther out, clear, and a thin leader joins it to its point.
+
+>>> from velplan.render.scene import Text
+>>> points = [(0.0, 0.0), (6.0, 0.0)]
+>>> texts = [Text((3.0, 0.0), "A", "t", 3.5), Text((3.0, 0.0), "B", "t", 3.5)]
+>>> placed, leaders = place_letters(texts, points, points)
+>>> [round(label_box(t).distance(shapely.Point(p)), 1) for t, p in zip(placed, points)]
+[1.0, 1.0]
+>>> [label_box(t).distance(shapely.Point(p)) < label_box(t).distance(shapely.Point(q))
+...  for t, p, q in zip(placed, points, points[::-1])]
+[True, True]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Sequence
+
+import numpy as np
+import shapely
+
+from velplan.render.layout import label_box
+from velplan.render.scene import Polyline, Text
+
+#: Gaps tried between a letter's box and its point, nearest first, mm.
+GAPS_MM = (1.0, 1.6, 2.3, 3.0, 3.8, 4.6, 5.3)
+#: Gaps of a letter with a leader, mm: beyond the crowd round its point.
+LEADER_GAPS_MM = (6.5, 8.0, 9.5, 11.0, 12.5)
+#: Directions tried round a point (every 15°).
+_DIRECTIONS = np.radians(np.arange(0.0, 360.0, 15.0))
+#: Millimetres of gap one radian off the wanted direction is worth.
+_TURN_MM = 1.2
+#: Millimetres of gap a thin line across a letter is worth.
+SOFT_MM = 1.5
+#: Two points nearer than this are one point for the letters (a coincident joint), mm.
+SAME_POINT_MM = 0.3
+#: A letter's own point must be nearer than any other by this, mm.
+_MARGIN_MM = 0.3
+
+
+def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
+    """`text` anchored at its middle, with its box's centre offset from its position and its
+    half sizes, mm."""
+    t = dataclasses.replace(text, anchor="middle", baseline="middle", position=(0.0, 0.0))
+    x0, y0, x1, y1 = label_box(t).bounds
+    return t, np.array([0.5 * (x0 + x1), 0.5 * (y0 + y1)]), np.array([0.5 * (x1 - x0), 0.5 * (y1 - y0)])
+
+
+def _candidates(point, wanted, half, gaps) -> tuple[np.ndarray, np.ndarray]:
+    """Box centres round `point` (mm) at each of `gaps` in every direction, and the cost of
+    each: its gap plus the turn from the `wanted` direction, mm."""
+    u = np.column_stack([np.cos(_DIRECTIONS), np.sin(_DIRECTIONS)])
+    reach = np.abs(u[:, 0]) * half[0] + np.abs(u[:, 1]) * half[1]
+    turn = np.arccos(np.clip(u @ wanted, -1.0, 1.0))
+    g = np.repeat(np.asarray(gaps, float), len(u))
+    centres = point + np.tile(u, (len(gaps), 1)) * (g + np.tile(reach, len(gaps)))[:, None]
+    return centres, g + _TURN_MM * np.tile(turn, len(gaps))
+
+
+def _boxes(centres, half, pad: float):
+    return shapely.box(centres[:, 0] - half[0] - pad, centres[:, 1] - half[1] - pad,
+                       centres[:, 0] + half[0] + pad, centres[:, 1] + half[1] + pad)
+
+
+def _own_nearest(boxes, point, others) -> np.ndarray:
+    """Whether `point` is nearer each of `boxes` than every one of `others` (by a margin)."""
+    own = shapely.distance(boxes, shapely.Point(point))
+    if not len(others):
+        return np.ones(len(boxes), dtype=bool)
+    far = shapely.distance(boxes[:, None], shapely.points(np.asarray(others))[None, :]).min(axis=1)
+    return far > own + _MARGIN_MM
+
+
+def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
+            weight: float = SOFT_MM):
+    """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
+    (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
+    tree of thin lines) across it costing `weight` mm: its centre and box, or None."""
+    centres, cost = _candidates(point, wanted, half, gaps)
+    padded = _boxes(centres, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
+    ok = np.ones(len(centres), dtype=bool)
+    if tree is not None:
+        ok[tree.query(padded, predicate="intersects")[0]] = False
+    if taken:
+        ok &= ~shapely.intersects(padded[:, None], np.array(taken)[None, :]).any(axis=1)
+    if need_nearest:
+        ok &= _own_nearest(_boxes(centres, half, 0.0), point, others)
+    if soft is not None and ok.any():
+        crossed = soft.query(_boxes(centres, half, 0.2), predicate="intersects")[0]
+        cost = cost + weight * np.bincount(crossed, minlength=len(centres))
+    if not ok.any():
+        return None
+    j = int(np.argmin(np.where(ok, cost, np.inf)))
+    return centres[j], padded[j]
+
+
+def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
+                  leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
+                  leader_gaps: Sequence[float] = LEADER_GAPS_MM) -> tuple[list[Text], list[Polyline]]:
+    """Place point letters, in order, each by its own point.
+
+    Parameters
+    ----------
+    texts : sequence of Text
+        The letters at their wanted places (the direction from the point to it is preferred).
+    anchors : sequence of (x, y)
+        Each letter's own point, mm.
+    points : sequence of (x, y)
+        Every point of the drawing a letter could be taken to name, mm.
+    obstacles : iterable of shapely geometry
+        What the letters keep off (lines, symbols).
+    taken : iterable of shapely geometry
+        Boxes of labels already placed.
+    thin : iterable of shapely geometry
+        Thin lines a letter may cross where it must, the fewer the better.
+    gaps, leader_gaps : sequence of float
+        The gaps (mm) between a letter's box and its point tried without a leader, nearest
+        first, and those of a letter with a leader.
+
+    Returns
+    -------
+    (letters, leaders)
+        The letters, and a thin leader for each letter that had to stand beyond the crowd
+        round its point.
+    """
+    shapes = [g for g in obstacles if g is not None and not g.is_empty]
+    tree = shapely.STRtree(shapes) if shapes else None
+    taken = list(taken)
+    thin = [g for g in thin if not g.is_empty]
+    soft = shapely.STRtree(thin) if thin else None
+    allp = np.asarray(points, float).reshape(-1, 2)
+    allp = allp[np.all(np.isfinite(allp), axis=1)]
+    out, leaders = [], []
+    for text, anchor in zip(texts, anchors):
+        p = np.asarray(anchor, float)
+        centred, offset, half = _centred(text)
+        wanted = np.asarray(text.position, float) - p
+        wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
+        others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft)
+        led = found is None
+        if led:
+            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
+        if found is None:  # crowded all round: off the other letters, over the fewest lines
+            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0)
+            led = found is not None
+        if found is None:
+            out.append(text)
+            continue
+        centre, padded = found
+        placed = dataclasses.replace(centred, position=tuple((centre - offset).tolist()))
+        taken.append(padded)
+        out.append(placed)
+        if led:
+            near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
+            leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
+    return out, leaders
