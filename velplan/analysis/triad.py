@@ -281,16 +281,17 @@ def _minors(rows):
     return bc, ac, ab, a1 * bc - b1 * ac + c1 * ab
 
 
-def _cramer3(rows, rhs, minors=None):
+def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
     """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns (each
-    2×2 minor computed once; ``minors``: `_minors` of ``rows``, shared by systems with one matrix)."""
+    2×2 minor computed once; ``minors``: `_minors` of ``rows``, shared by systems with one matrix;
+    ``out``: arrays to write the unknowns into, None each where new)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
     bc, ac, ab, det = _minors(rows) if minors is None else minors
     rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
-    x = (r1 * bc - b1 * rc - c1 * br) / det
-    y = (a1 * rc - r1 * ac + c1 * ar) / det
-    z = (a1 * br - b1 * ar + r1 * ab) / det
+    x = np.divide(r1 * bc - b1 * rc - c1 * br, det, out=out[0])
+    y = np.divide(a1 * rc - r1 * ac + c1 * ar, det, out=out[1])
+    z = np.divide(a1 * br - b1 * ar + r1 * ab, det, out=out[2])
     return x, y, z
 
 
@@ -569,12 +570,15 @@ def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     return _settled(cl, xr, thr)[:3]
 
 
-def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray):
-    """`_correct`, and cos θ + i·sin θ at the result."""
+def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray, out=(None, None)):
+    """`_correct`, and cos θ + i·sin θ at the result (J_r, θ written into ``out`` where given)."""
     y0 = xr - cl.origin
-    yx, yy, th = y0.real.copy(), y0.imag.copy(), np.array(thr, dtype=float)
+    yx, yy = y0.real.copy(), y0.imag.copy()
+    th = np.array(thr, dtype=float) if out[1] is None else out[1]
+    if out[1] is not None:
+        np.copyto(th, thr)
     c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE)
-    x = np.empty(th.shape, complex)
+    x = np.empty(th.shape, complex) if out[0] is None else out[0]
     np.add(yx, cl.origin.real, out=x.real)
     np.add(yy, cl.origin.imag, out=x.imag)
     e = np.empty(th.shape, complex)
@@ -756,19 +760,34 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     and the same rows for a_X, ε3 with the known normal, Coriolis terms on the right."""
     leads = inputs_from_state(g, st)
     cl = _Closure(g, leads)
-    x, theta, closed, e = _branch(cl, trk, phi)
+    slots = _Slots(g, st)
+    x, theta, closed, e = _branch(cl, trk, phi, (slots.p[cl.ref], slots.base[0]))
     offsets = [None if z == 0 else z * e for z in cl.local]
-    joints = [x if r is None else x + r for r in offsets]
-    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets)
+    joints = [x if r is None else np.add(x, r, out=p) for r, p in zip(offsets, slots.p)]
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets, slots)
 
 
-def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
+class _Slots:
+    """The outputs a triad's results are computed into (`velplan.analysis.groups.State.out_point`,
+    `out_link`): the joints' p, v, a, the base link's θ, ω, ε, the leads' links and the special
+    point; None each where the state has none (what is not computed in place is copied)."""
+
+    def __init__(self, g: Triad, st):
+        pts = [st.out_point(name) if hasattr(st, "out_point") else None for name in g.joints]
+        self.p, self.v, self.a = ([None if m is None else getattr(m, k) for m in pts] for k in "pva")
+        base = st.out_link(g.base) if hasattr(st, "out_link") else None
+        self.base = (None, None, None) if base is None else (base.theta, base.omega, base.epsilon)
+        self.links = {spec.link: st.out_link(spec.link) if base is not None else None for spec in g.leads}
+        self.special = st.out_point(g.special_name) if base is not None else None
+
+
+def _branch(cl: _Closure, trk: Track, phi: np.ndarray, out=(None, None)):
     """The tracked branch's assembly at each crank angle: Newton from the tracked configuration
     where that is unambiguous (well conditioned, a small correction), else every assembly
     found and the nearest to the branch taken. Returns J_r, θ, the mask of closed positions and
-    cos θ + i·sin θ."""
+    cos θ + i·sin θ (J_r and θ in the arrays ``out`` where given, unless masked)."""
     xr, thr, inside = trk.reference(phi)
-    x, th, quick, e = _settled(cl, xr, thr)
+    x, th, quick, e = _settled(cl, xr, thr, out)
     good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
@@ -788,10 +807,10 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
-def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
+def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots=None):
     """The velocities and accelerations of the assemblies (J_r ``x``, θ, the joints ``joints``,
     their ``offsets`` from J_r: None where J_r itself): one matrix, its minors found once, for
-    both right sides."""
+    both right sides; computed into ``slots`` (`_Slots`) where given."""
     if offsets is None:
         offsets = [j - x for j in joints]
     rows, rhs_v, normals, guides = [], [], [], []
@@ -807,13 +826,15 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
         rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
                      0.0 if r is None else cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
-    w2, vj = _joints_at(rows, rhs_v, minors, offsets)
+    w2, vj = _joints_at(rows, rhs_v, minors, offsets, None, None if slots is None else (slots.v, slots.base[1]))
     w = w2[1]
     rhs_a, slides, spins = [], [], []
-    for lead, j, v, d, r, gm in zip(leads, joints, vj, normals, offsets, guides):
+    for lead, spec, j, v, d, r, gm in zip(leads, g.leads, joints, vj, normals, offsets, guides):
         turn = 0.0 if r is None else w2[0] * dot(d, r)
         if lead.rod:
-            wl = cross(d, v - lead.v) * (1.0 / lead.length ** 2)  # the rod's ω: |d| = its length
+            out = slots and slots.links[spec.link]
+            # the rod's ω: |d| = its length
+            wl = np.multiply(cross(d, v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
             spins.append(wl)
             # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
             rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
@@ -824,17 +845,23 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
             cor = 2j * lead.omega * sd * u
             rhs_a.append(dot(d, ga + cor) + turn)
             slides.append((dot(j - base, u), sd, u, gv, ga, cor))
-    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0])
+    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0], None if slots is None else (slots.a, slots.base[2]))
     return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
-                   (slides, spins), (minors[3], closed), scale, pair)
+                   (slides, spins), (minors[3], closed), scale, pair, slots)
 
 
-def _joints_at(rows, rhs, minors, offsets, w2=None):
+def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
     """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω) or (ε's
-    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r)."""
-    ux, uy, rate = _cramer3(rows, rhs, minors)
-    X = np.empty(rate.shape, complex)
-    X.real, X.imag = ux, uy
+    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r); ``out``: the
+    joints' arrays and the rate's to write them into (None each where new)."""
+    joints_out, rate_out = (None,) * len(offsets), None
+    if out is not None:
+        joints_out, rate_out = out
+    ref = next(i for i, r in enumerate(offsets) if r is None)
+    X = joints_out[ref]
+    if X is None:
+        X = np.empty(rows[0][0].shape, complex)
+    ux, uy, rate = _cramer3(rows, rhs, minors, (X.real, X.imag, rate_out))
     k = np.empty(rate.shape, complex)
     k.imag = rate
     if w2 is None:
@@ -843,13 +870,13 @@ def _joints_at(rows, rhs, minors, offsets, w2=None):
     else:
         np.negative(w2, out=k.real)
         first = k
-    return (first, rate), [X if r is None else X + k * r for r in offsets]
+    return (first, rate), [X if r is None else np.add(X, k * r, out=o) for r, o in zip(offsets, joints_out)]
 
 
-def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair):
+def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair, slots=None):
     """The group's points (joints, special point, coincident points), links and slides; the
     base link's unit vector and the rods' (their reference directions: the link points on them
-    need no sine)."""
+    need no sine); the rods' motions and the special point's computed into ``slots`` where given."""
     w, e = rates
     det, closed = det_closed
     normals, moments = normals
@@ -867,8 +894,10 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
         if lead.rod:
             k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
             wl = next(wi)
-            el = cross(d, a - lead.a) * k  # d × (a_J − a_P + ω²·d): the last term is d × d = 0
-            links[spec.link] = LinkMotion(spec.joint, np.angle(d), wl, el)
+            out = (slots and slots.links[spec.link]) or LinkMotion(spec.joint, None, None, None)
+            # d × (a_J − a_P + ω²·d): the last term is d × d = 0
+            el = np.multiply(cross(d, a - lead.a), k, out=out.epsilon)
+            links[spec.link] = LinkMotion(spec.joint, np.arctan2(d.imag, d.real, out=out.theta), wl, el)
             norms *= moment + lead.length ** 2
         else:
             s, sd, u, gv, ga, cor = next(si)
@@ -879,10 +908,16 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
                 points[spec.coincident] = Motion(j, gv, ga)
             norms *= moment + 1.0
             units[spec.link] = u  # cis(θ_guide + angle), as the link's angle
-    K = _special_point(leads, joints, pair, normals)
+    out = (slots and slots.special) or Motion(None, None, None)
+    K = _special_point(leads, joints, pair, normals, out.p)
     rK = K - B
-    kv = vj[0] + 1j * w * rK
-    ka = aj[0] + (1j * e - w * w) * rK
+    t = 1j * w
+    t *= rK
+    kv = np.add(vj[0], t, out=out.v)
+    t = 1j * e
+    t -= w * w
+    t *= rK
+    ka = np.add(aj[0], t, out=out.a)
     points[g.special_name] = Motion(K, kv, ka)
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
     cond = np.abs(det) / scale / np.sqrt(norms)
@@ -892,10 +927,10 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
                        condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units)
 
 
-def _special_point(leads, joints, pair, normals=None):
+def _special_point(leads, joints, pair, normals=None, out=None):
     """Assur's special point: where the lines of the two leads ``pair`` cross (a pair, or one
     per position, (n, 2)); ``normals``: the leads' velocity-system normals, a rod's its line's
-    direction."""
+    direction; ``out``: the array to write it into, or None."""
     if np.ndim(pair) == 2:
         K = np.full(joints[0].shape, np.nan + 0j)
         for p in {tuple(int(i) for i in row) for row in pair}:
@@ -903,7 +938,7 @@ def _special_point(leads, joints, pair, normals=None):
         return K
     a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
-        return a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
+        return np.add(a_[0], a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1]), out=out)
 
 
 def _condition(rows, scale):
