@@ -325,12 +325,13 @@ class Track:
         """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
         return np.unwrap(self.theta)
 
-    def reference(self, phi: np.ndarray, cubic: bool = True):
+    def reference(self, phi: np.ndarray, cubic: bool = True, unit: bool = False):
         """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes; with
-        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap)."""
+        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap);
+        with ``unit``, and (cos θ, sin θ) where the cubic gives them (`_unit`), else None."""
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
-            return nan + 0j, nan, np.zeros(phi.shape, bool)
+            return (nan + 0j, nan, np.zeros(phi.shape, bool)) + ((None,) if unit else ())
         t = np.mod(phi - self.phi0, 2 * np.pi)
         if self.full:  # t in [0, 2π] = [t[0], t[-1]]: every angle on the branch
             inside, tc = np.ones(t.shape, bool), t
@@ -339,10 +340,11 @@ class Track:
             inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
             tc = np.clip(t, self.t[0], self.t[-1])
         if self.pieces is not None and cubic:
-            return (*self._cubic(tc), inside)
+            x, th, cs = self._cubic(tc)
+            return (x, th, inside, cs) if unit else (x, th, inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
         th = np.interp(tc, self.t, self.unwrapped)
-        return x, th, inside
+        return (x, th, inside, None) if unit else (x, th, inside)
 
     @cached_property
     def _spacing(self) -> float:
@@ -351,7 +353,8 @@ class Track:
         return float(h[0]) if h.size and np.ptp(h) <= 1e-9 * h[0] else 0.0
 
     def _cubic(self, tc: np.ndarray):
-        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]])."""
+        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]]), and cos θ, sin θ
+        (`_unit`)."""
         last = self.pieces.shape[1] - 1
         if self._spacing:
             k = ((tc - self.t[0]) * (1.0 / self._spacing)).astype(np.intp)
@@ -367,16 +370,60 @@ class Track:
             v *= u
             v += c1.take(k)
             v *= u
+            out.append(v)  # the turn from the interval's first node
+        turn = out[2].copy()
+        for v, (c0, _, _, _) in zip(out, self._columns):
             v += c0.take(k)
-            out.append(v)
         x = np.empty(tc.shape, complex)
         x.real, x.imag = out[0], out[1]
-        return x, out[2]
+        return x, out[2], _unit(self._node_units, k, turn, out[2])
+
+    @cached_property
+    def _node_units(self) -> tuple:
+        """cos, sin of θ at each interval's first node (the cubic's constant term)."""
+        th0 = self._columns[2][0]
+        return np.cos(th0), np.sin(th0)
 
     @cached_property
     def _columns(self) -> list:
         """`pieces` as contiguous columns: per quantity, its four coefficients over the intervals."""
         return [[np.ascontiguousarray(self.pieces[j, :, q]) for j in range(4)] for q in range(3)]
+
+
+UNIT_TURN = 0.1
+"""Largest turn (rad) from an interval's node for which `_unit` sums the series."""
+_SIN = tuple((-1) ** j / math.factorial(2 * j + 1) for j in range(7))
+_COS = tuple((-1) ** j / math.factorial(2 * j) for j in range(7))
+
+
+def _unit(node, k, turn, theta):
+    """cos θ, sin θ of θ = θ_k + ``turn`` (interval ``k``; ``node``: cos θ_k, sin θ_k) by the sum
+    of the angles, the turn's cosine and sine from their Taylor series to the 13th power (the
+    next term below 1e-25 for a turn up to `UNIT_TURN`: round-off); where a turn is larger, from
+    ``theta`` by numpy's cosine and sine."""
+    t2 = turn * turn
+    sn = _horner(_SIN, t2)
+    sn *= turn
+    cn = _horner(_COS, t2)
+    c0, s0 = node[0].take(k), node[1].take(k)
+    c = c0 * cn
+    c -= s0 * sn
+    s = s0 * cn
+    s += c0 * sn
+    far = np.flatnonzero(~(np.abs(turn) <= UNIT_TURN))
+    if far.size:
+        c[far], s[far] = np.cos(theta[far]), np.sin(theta[far])
+    return c, s
+
+
+def _horner(coeffs, x):
+    """Σ coeffs[j]·x^j by Horner's rule (x an array)."""
+    v = x * coeffs[-1]
+    for a in coeffs[-2:0:-1]:
+        v += a
+        v *= x
+    v += coeffs[0]
+    return v
 
 
 def _distance(x, th, x0, th0, size):
@@ -570,14 +617,15 @@ def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     return _settled(cl, xr, thr)[:3]
 
 
-def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray, out=(None, None)):
-    """`_correct`, and cos θ + i·sin θ at the result (J_r, θ written into ``out`` where given)."""
+def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray, out=(None, None), cs=None):
+    """`_correct`, and cos θ + i·sin θ at the result (J_r, θ written into ``out`` where given;
+    ``cs``: cos, sin of ``thr`` where known)."""
     y0 = xr - cl.origin
     yx, yy = y0.real.copy(), y0.imag.copy()
     th = np.array(thr, dtype=float) if out[1] is None else out[1]
     if out[1] is not None:
         np.copyto(th, thr)
-    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE)
+    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE, cs)
     x = np.empty(th.shape, complex) if out[0] is None else out[0]
     np.add(yx, cl.origin.real, out=x.real)
     np.add(yy, cl.origin.imag, out=x.imag)
@@ -624,12 +672,14 @@ class Tracks:
             return pairs[0]
         return np.repeat(np.array(pairs), self.n, axis=0)
 
-    def reference(self, phi: np.ndarray, cubic: bool = True):
-        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`)."""
+    def reference(self, phi: np.ndarray, cubic: bool = True, unit: bool = False):
+        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`;
+        with ``unit``, and None: no cos θ, sin θ)."""
         n = self.n
         empty = Track(0.0, np.zeros(0), np.zeros(0, complex), np.zeros(0), False, (0, 1), 1.0)
         parts = [(t or empty).reference(phi[v * n:(v + 1) * n], cubic) for v, t in enumerate(self.tracks)]
-        return tuple(np.concatenate(a) for a in zip(*parts))
+        out = tuple(np.concatenate(a) for a in zip(*parts))
+        return out + (None,) if unit else out
 
 
 def _walk(mech, g, phi0, start, sense, size, solve):
@@ -786,8 +836,8 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray, out=(None, None)):
     where that is unambiguous (well conditioned, a small correction), else every assembly
     found and the nearest to the branch taken. Returns J_r, θ, the mask of closed positions and
     cos θ + i·sin θ (J_r and θ in the arrays ``out`` where given, unless masked)."""
-    xr, thr, inside = trk.reference(phi)
-    x, th, quick, e = _settled(cl, xr, thr, out)
+    xr, thr, inside, cs = trk.reference(phi, unit=True)
+    x, th, quick, e = _settled(cl, xr, thr, out, cs)
     good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
