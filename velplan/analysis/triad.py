@@ -380,9 +380,12 @@ class Track:
 
     @cached_property
     def _node_units(self) -> tuple:
-        """cos, sin of θ at each interval's first node (the cubic's constant term)."""
-        th0 = self._columns[2][0]
-        return np.cos(th0), np.sin(th0)
+        """cos, sin of θ at each interval's first node (the cubic's constant term), and the
+        series `_unit` sums for the largest turn on an interval."""
+        th0, c1, c2, c3 = self._columns[2]
+        h = np.diff(self.t)
+        turn = float(np.max(np.abs(c1) * h + np.abs(c2) * h * h + np.abs(c3) * h ** 3, initial=0.0))
+        return np.cos(th0), np.sin(th0), _series(min(turn * (1 + 1e-6), UNIT_TURN))
 
     @cached_property
     def _columns(self) -> list:
@@ -392,32 +395,43 @@ class Track:
 
 UNIT_TURN = 0.1
 """Largest turn (rad) from an interval's node for which `_unit` sums the series."""
-_SIN = tuple((-1) ** j / math.factorial(2 * j + 1) for j in range(7))
-_COS = tuple((-1) ** j / math.factorial(2 * j) for j in range(7))
+SERIES_TAIL = 1e-18
+"""The first term left out of `_unit`'s series is below this (round-off is ≈ 1e-16)."""
+
+
+def _series(turn: float) -> tuple:
+    """The Taylor coefficients of cos δ and sin δ / δ in δ² (ascending) whose first term left out
+    is below `SERIES_TAIL` for |δ| up to ``turn`` (rad), and ``turn``."""
+    m = 2
+    while turn ** (2 * m) / math.factorial(2 * m) > SERIES_TAIL:
+        m += 1
+    return (tuple((-1) ** j / math.factorial(2 * j) for j in range(m)),
+            tuple((-1) ** j / math.factorial(2 * j + 1) for j in range(m)), turn)
 
 
 def _unit(node, k, turn, theta):
-    """cos θ, sin θ of θ = θ_k + ``turn`` (interval ``k``; ``node``: cos θ_k, sin θ_k) by the sum
-    of the angles, the turn's cosine and sine from their Taylor series to the 13th power (the
-    next term below 1e-25 for a turn up to `UNIT_TURN`: round-off); where a turn is larger, from
-    ``theta`` by numpy's cosine and sine."""
+    """cos θ, sin θ of θ = θ_k + ``turn`` (interval ``k``; ``node``: cos θ_k, sin θ_k and the
+    `_series` for the track's largest turn) by the sum of the angles, the turn's cosine and sine
+    from their Taylor series (to round-off); where a turn is larger than the series is made for,
+    from ``theta`` by numpy's cosine and sine."""
+    cos_terms, sin_terms, largest = node[2]
     t2 = turn * turn
-    sn = _horner(_SIN, t2)
+    sn = _horner(sin_terms, t2)
     sn *= turn
-    cn = _horner(_COS, t2)
+    cn = _horner(cos_terms, t2)
     c0, s0 = node[0].take(k), node[1].take(k)
     c = c0 * cn
     c -= s0 * sn
     s = s0 * cn
     s += c0 * sn
-    far = np.flatnonzero(~(np.abs(turn) <= UNIT_TURN))
+    far = np.flatnonzero(~(np.abs(turn) <= largest))
     if far.size:
         c[far], s[far] = np.cos(theta[far]), np.sin(theta[far])
     return c, s
 
 
 def _horner(coeffs, x):
-    """Σ coeffs[j]·x^j by Horner's rule (x an array)."""
+    """Σ coeffs[j]·x^j by Horner's rule (x an array; at least two coefficients)."""
     v = x * coeffs[-1]
     for a in coeffs[-2:0:-1]:
         v += a
