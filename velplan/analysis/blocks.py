@@ -109,6 +109,7 @@ def solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tra
             for name, m in res.slides.items():
                 st.put_slide(name, m)
             st.units.update(res.units)
+            st.spins.update(res.spins)
             slot = None if st.sink is None else st.sink.conditions.get(item.name)
             if slot is None:
                 conditions[item.name] = np.where(res.closed, res.condition, np.nan)
@@ -136,12 +137,14 @@ def solve_link_point(item: LinkPoint, st: State) -> None:
     x = np.multiply(item.along + 1j * item.offset, e, out=slot.p)
     x += o.p
     r = x - o.p  # as `carry`: the same numbers
-    t = 1j * link.omega
-    t *= r
+    spin = st.spins.get(item.link)
+    if spin is None:  # i·ω and i·ε − ω², kept for the link's other points
+        acc = np.multiply(link.epsilon, 1j)
+        acc -= link.omega * link.omega
+        spin = st.spins[item.link] = (1j * link.omega, acc)
+    t = np.multiply(spin[0], r)
     np.add(o.v, t, out=slot.v)
-    np.multiply(link.epsilon, 1j, out=t)
-    t -= link.omega * link.omega
-    t *= r
+    np.multiply(spin[1], r, out=t)
     np.add(o.a, t, out=slot.a)
     st.points[item.name] = slot
 

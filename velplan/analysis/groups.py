@@ -53,6 +53,9 @@ class GroupResult:
     units: dict = field(default_factory=dict)
     """Unit vectors cos θ + i·sin θ of links' reference directions where the group knows them
     without a sine (link name → complex array), for the points on those links."""
+    spins: dict = field(default_factory=dict)
+    """Links' i·ω and i·ε − ω² (complex arrays, 1/s and 1/s²) where the group has them already
+    (link name → the pair), for the points on those links (`velplan.analysis.groups.carry`)."""
 
 
 # ---- closed forms on plain complex values --------------------------------------------------
@@ -227,6 +230,8 @@ class State:
         self.units: dict[str, np.ndarray] = {}
         """Unit vectors of links' reference directions (`GroupResult.units`), and those found for
         their points."""
+        self.spins: dict[str, tuple] = {}
+        """Links' i·ω and i·ε − ω² (`GroupResult.spins`), and those found for their points."""
         self.sink = None
         """The block's views into preallocated outputs (`velplan.analysis.blocks.Sink`), or None:
         what is put into the state is written there, and producers may compute straight into

@@ -910,14 +910,14 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
             rhs_a.append(dot(d, ga + cor) + turn)
             slides.append((dot(j - base, u), sd, u, gv, ga, cor))
     e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0], None if slots is None else (slots.a, slots.base[2]))
-    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
+    return _result(g, leads, theta, (w, e2[1], w2[2], e2[2]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
                    (slides, spins), (minors[3], closed), scale, pair, slots)
 
 
 def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
-    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω) or (ε's
-    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r); ``out``: the
-    joints' arrays and the rate's to write them into (None each where new)."""
+    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω, i·ω) or
+    (i·ε − ω², ε, i·ε − ω²), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r); ``out``:
+    the joints' arrays and the rate's to write them into (None each where new)."""
     joints_out, rate_out = (None,) * len(offsets), None
     if out is not None:
         joints_out, rate_out = out
@@ -934,14 +934,14 @@ def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
     else:
         np.negative(w2, out=k.real)
         first = k
-    return (first, rate), [X if r is None else np.add(X, k * r, out=o) for r, o in zip(offsets, joints_out)]
+    return (first, rate, k), [X if r is None else np.add(X, k * r, out=o) for r, o in zip(offsets, joints_out)]
 
 
 def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair, slots=None):
     """The group's points (joints, special point, coincident points), links and slides; the
     base link's unit vector and the rods' (their reference directions: the link points on them
     need no sine); the rods' motions and the special point's computed into ``slots`` where given."""
-    w, e = rates
+    w, e, iw, iea = rates
     det, closed = det_closed
     normals, moments = normals
     slides, spins = slides
@@ -975,12 +975,9 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     out = (slots and slots.special) or Motion(None, None, None)
     K = _special_point(leads, joints, pair, normals, out.p)
     rK = K - B
-    t = 1j * w
-    t *= rK
+    t = iw * rK
     kv = np.add(vj[0], t, out=out.v)
-    t = 1j * e
-    t -= w * w
-    t *= rK
+    np.multiply(iea, rK, out=t)
     ka = np.add(aj[0], t, out=out.a)
     points[g.special_name] = Motion(K, kv, ka)
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
@@ -988,7 +985,8 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
     units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
     return GroupResult(points=points, links=links, slides=slide_out,
-                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units)
+                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units,
+                       spins={g.base: (iw, iea)})
 
 
 def _special_point(leads, joints, pair, normals=None, out=None):
