@@ -370,13 +370,13 @@ class Track:
             v *= u
             v += c1.take(k)
             v *= u
-            out.append(v)  # the turn from the interval's first node
-        turn = out[2].copy()
-        for v, (c0, _, _, _) in zip(out, self._columns):
-            v += c0.take(k)
+            out.append(v)  # from the interval's first node
         x = np.empty(tc.shape, complex)
-        x.real, x.imag = out[0], out[1]
-        return x, out[2], _unit(self._node_units, k, turn, out[2])
+        np.add(out[0], self._columns[0][0].take(k), out=x.real)
+        np.add(out[1], self._columns[1][0].take(k), out=x.imag)
+        turn = out[2]
+        th = turn + self._columns[2][0].take(k)
+        return x, th, _unit(self._node_units, k, turn, th)
 
     @cached_property
     def _node_units(self) -> tuple:
