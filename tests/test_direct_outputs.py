@@ -54,7 +54,7 @@ def test_unit_vector_of_the_branch_is_numpys(name):
     mech = velplan.load(name)
     prep = prepared(mech)
     for trk in prep.tracks(solver.solve).values():
-        phi = np.random.default_rng(3).uniform(-10, 10, 20000)
+        phi = np.random.default_rng(3).uniform(-10, 10, 20000)  # at least triad.UNIT_FROM
         x, th, inside, cs = trk.reference(phi, unit=True)
         assert cs is not None
         np.testing.assert_allclose(cs[0], np.cos(th), rtol=0, atol=4e-16)

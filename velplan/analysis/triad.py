@@ -354,7 +354,7 @@ class Track:
 
     def _cubic(self, tc: np.ndarray):
         """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]]), and cos θ, sin θ
-        (`_unit`)."""
+        (`_unit`; None below `UNIT_FROM` angles)."""
         last = self.pieces.shape[1] - 1
         if self._spacing:
             k = ((tc - self.t[0]) * (1.0 / self._spacing)).astype(np.intp)
@@ -376,7 +376,7 @@ class Track:
         np.add(out[1], self._columns[1][0].take(k), out=x.imag)
         turn = out[2]
         th = turn + self._columns[2][0].take(k)
-        return x, th, _unit(self._node_units, k, turn, th)
+        return x, th, _unit(self._node_units, k, turn, th) if tc.size >= UNIT_FROM else None
 
     @cached_property
     def _node_units(self) -> tuple:
@@ -393,6 +393,9 @@ class Track:
         return [[np.ascontiguousarray(self.pieces[j, :, q]) for j in range(4)] for q in range(3)]
 
 
+UNIT_FROM = 256
+"""From this many angles `Track.reference` gives cos θ, sin θ by `_unit` (a dozen numpy calls);
+below, numpy's cosine and sine cost less."""
 UNIT_TURN = 0.1
 """Largest turn (rad) from an interval's node for which `_unit` sums the series."""
 SERIES_TAIL = 1e-18
@@ -837,12 +840,16 @@ class _Slots:
     point; None each where the state has none (what is not computed in place is copied)."""
 
     def __init__(self, g: Triad, st):
-        pts = [st.out_point(name) if hasattr(st, "out_point") else None for name in g.joints]
+        if getattr(st, "sink", None) is None:
+            self.p = self.v = self.a = [None] * len(g.joints)
+            self.base, self.links, self.special = (None, None, None), dict.fromkeys(x.link for x in g.leads), None
+            return
+        pts = [st.out_point(name) for name in g.joints]
         self.p, self.v, self.a = ([None if m is None else getattr(m, k) for m in pts] for k in "pva")
-        base = st.out_link(g.base) if hasattr(st, "out_link") else None
+        base = st.out_link(g.base)
         self.base = (None, None, None) if base is None else (base.theta, base.omega, base.epsilon)
-        self.links = {spec.link: st.out_link(spec.link) if base is not None else None for spec in g.leads}
-        self.special = st.out_point(g.special_name) if base is not None else None
+        self.links = {spec.link: st.out_link(spec.link) for spec in g.leads}
+        self.special = st.out_point(g.special_name)
 
 
 def _branch(cl: _Closure, trk: Track, phi: np.ndarray, out=(None, None)):
