@@ -332,7 +332,10 @@ class Track:
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
             return (nan + 0j, nan, np.zeros(phi.shape, bool)) + ((None,) if unit else ())
-        t = np.mod(phi - self.phi0, 2 * np.pi)
+        t = phi - self.phi0
+        # `np.mod`'s numbers within two turns (7 ns an angle against 1): t in [0, 2π], or off it by
+        # round-off where the turn's floor is off by one at a whole turn (the same angle)
+        t -= (2 * np.pi) * np.floor(t * (1 / (2 * np.pi)))
         if self.full:  # t in [0, 2π] = [t[0], t[-1]]: every angle on the branch
             inside, tc = np.ones(t.shape, bool), t
         else:
@@ -886,8 +889,8 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
         offsets = [j - x for j in joints]
     rows, rhs_v, normals, guides = [], [], [], []
     for lead, j, r in zip(leads, joints, offsets):
-        if lead.rod:
-            d, gm = j - lead.p, None
+        if lead.rod:  # J − P as two contiguous real arrays
+            d, gm = _Parts(np.subtract(j.real, lead.p.real), np.subtract(j.imag, lead.p.imag)), None
             rhs_v.append(dot(d, lead.v))
         else:
             d, gm = 1j * lead.line()[0], lead.carried(j)
@@ -990,7 +993,7 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
     cond = np.abs(det) / scale / np.sqrt(norms)
     units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
-    units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    units.update({spec.link: _times(d, 1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
     return GroupResult(points=points, links=links, slides=slide_out,
                        condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units,
                        spins={g.base: (iw, iea)})
@@ -1007,7 +1010,28 @@ def _special_point(leads, joints, pair, normals=None, out=None):
         return K
     a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
-        return np.add(a_[0], a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1]), out=out)
+        return np.add(a_[0], _times(a_[1], cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])), out=out)
+
+
+class _Parts:
+    """A complex-encoded vector held as its two real parts (contiguous arrays), for `dot`,
+    `cross` and `_times` (a rod's J − P: its rows need no copies)."""
+
+    __slots__ = ("real", "imag")
+
+    def __init__(self, real: np.ndarray, imag: np.ndarray):
+        self.real, self.imag = real, imag
+
+
+def _times(v, k):
+    """The complex array of the vector ``v`` (complex or `_Parts`) times the real ``k`` (a number or
+    an array): the numbers of ``v * k``."""
+    if not isinstance(v, _Parts):
+        return v * k
+    out = np.empty(np.broadcast(v.real, k).shape, complex)
+    np.multiply(v.real, k, out=out.real)
+    np.multiply(v.imag, k, out=out.imag)
+    return out
 
 
 def _condition(rows, scale):
