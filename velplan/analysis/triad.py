@@ -67,8 +67,17 @@ def _cis(t):
 
 
 def dot(a, b):
-    """Scalar product of two complex-encoded vectors."""
-    return a.real * b.real + a.imag * b.imag
+    """Scalar product of two complex-encoded vectors (summed in place: one temporary fewer)."""
+    out = a.real * b.real
+    out += a.imag * b.imag
+    return out
+
+
+def _cross(a, b):
+    """`velplan.analysis.groups.cross` (the same numbers), its difference taken in place."""
+    out = a.real * b.imag
+    out -= a.imag * b.real
+    return out
 
 
 # ---- inputs of one evaluation ----------------------------------------------------------------
@@ -275,10 +284,20 @@ def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
 
 
 def _minors(rows):
-    """The 2×2 minors of the last two rows that Cramer's rule uses, and the determinant."""
+    """The 2×2 minors of the last two rows that Cramer's rule uses, and the determinant (a first
+    row's moment given as the number 0: the first rod's joint is J_r itself, its term left out)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
-    return bc, ac, ab, a1 * bc - b1 * ac + c1 * ab
+    det = a1 * bc
+    det -= b1 * ac
+    if not _zero(c1):
+        det += c1 * ab
+    return bc, ac, ab, det
+
+
+def _zero(c) -> bool:
+    """Whether a row's moment is the number 0 (not an array)."""
+    return np.ndim(c) == 0 and c == 0.0
 
 
 def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
@@ -289,10 +308,17 @@ def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
     r1, r2, r3 = rhs
     bc, ac, ab, det = _minors(rows) if minors is None else minors
     rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
-    x = np.divide(r1 * bc - b1 * rc - c1 * br, det, out=out[0])
-    y = np.divide(a1 * rc - r1 * ac + c1 * ar, det, out=out[1])
-    z = np.divide(a1 * br - b1 * ar + r1 * ab, det, out=out[2])
-    return x, y, z
+    x = r1 * bc
+    x -= b1 * rc
+    y = a1 * rc
+    y -= r1 * ac
+    if not _zero(c1):  # the first rod's row: c1 = 0
+        x -= c1 * br
+        y += c1 * ar
+    z = a1 * br
+    z -= b1 * ar
+    z += r1 * ab
+    return np.divide(x, det, out=out[0]), np.divide(y, det, out=out[1]), np.divide(z, det, out=out[2])
 
 
 # ---- the tracked branch -----------------------------------------------------------------------
@@ -898,7 +924,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
         normals.append(d)
         guides.append(gm)
         rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
-                     0.0 if r is None else cross(r, d)))  # d·(i·r)
+                     0.0 if r is None else _cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
     w2, vj = _joints_at(rows, rhs_v, minors, offsets, None, None if slots is None else (slots.v, slots.base[1]))
     w = w2[1]
@@ -908,7 +934,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
         if lead.rod:
             out = slots and slots.links[spec.link]
             # the rod's ω: |d| = its length
-            wl = np.multiply(cross(d, v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
+            wl = np.multiply(_cross(d, v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
             spins.append(wl)
             # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
             rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
@@ -970,7 +996,7 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             wl = next(wi)
             out = (slots and slots.links[spec.link]) or LinkMotion(spec.joint, None, None, None)
             # d × (a_J − a_P + ω²·d): the last term is d × d = 0
-            el = np.multiply(cross(d, a - lead.a), k, out=out.epsilon)
+            el = np.multiply(_cross(d, a - lead.a), k, out=out.epsilon)
             links[spec.link] = LinkMotion(spec.joint, np.arctan2(d.imag, d.real, out=out.theta), wl, el)
             norms *= moment + lead.length ** 2
         else:
@@ -1010,7 +1036,7 @@ def _special_point(leads, joints, pair, normals=None, out=None):
         return K
     a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
-        return np.add(a_[0], _times(a_[1], cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])), out=out)
+        return np.add(a_[0], _times(a_[1], _cross(b_[0] - a_[0], b_[1]) / _cross(a_[1], b_[1])), out=out)
 
 
 class _Parts:
