@@ -456,8 +456,8 @@ def _unit(node, k, turn, theta):
     c -= s0 * sn
     s = s0 * cn
     s += c0 * sn
-    far = np.flatnonzero(~(np.abs(turn) <= largest))
-    if far.size:
+    if not np.max(np.abs(turn), initial=0.0) <= largest:  # NaN included
+        far = np.flatnonzero(~(np.abs(turn) <= largest))
         c[far], s[far] = np.cos(theta[far]), np.sin(theta[far])
     return c, s
 
@@ -860,7 +860,7 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     x, theta, closed, e = _branch(cl, trk, phi, (slots.p[cl.ref], slots.base[0]))
     offsets = [None if z == 0 else z * e for z in cl.local]
     joints = [x if r is None else np.add(x, r, out=p) for r, p in zip(offsets, slots.p)]
-    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets, slots)
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets, slots, e)
 
 
 class _Slots:
@@ -907,10 +907,11 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray, out=(None, None)):
     return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
-def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots=None):
+def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots=None, unit=None):
     """The velocities and accelerations of the assemblies (J_r ``x``, θ, the joints ``joints``,
     their ``offsets`` from J_r: None where J_r itself): one matrix, its minors found once, for
-    both right sides; computed into ``slots`` (`_Slots`) where given."""
+    both right sides; computed into ``slots`` (`_Slots`) where given; ``unit``: cos θ + i·sin θ
+    where known."""
     if offsets is None:
         offsets = [j - x for j in joints]
     rows, rhs_v, normals, guides = [], [], [], []
@@ -947,7 +948,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
             slides.append((dot(j - base, u), sd, u, gv, ga, cor))
     e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0], None if slots is None else (slots.a, slots.base[2]))
     return _result(g, leads, theta, (w, e2[1], w2[2], e2[2]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
-                   (slides, spins), (minors[3], closed), scale, pair, slots)
+                   (slides, spins), (minors[3], closed), scale, pair, slots, unit)
 
 
 def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
@@ -973,7 +974,8 @@ def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
     return (first, rate, k), [X if r is None else np.add(X, k * r, out=o) for r, o in zip(offsets, joints_out)]
 
 
-def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair, slots=None):
+def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair, slots=None,
+            unit=None):
     """The group's points (joints, special point, coincident points), links and slides; the
     base link's unit vector and the rods' (their reference directions: the link points on them
     need no sine); the rods' motions and the special point's computed into ``slots`` where given."""
@@ -988,9 +990,10 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     slide_out, units = {}, {}
     si = iter(slides)
     norm = 1.0 / scale ** 2
-    norms = np.ones(theta.shape)
+    squares = []  # the rows' squared norms (|d| = l or 1)
     for lead, spec, name, j, v, a, d, r, c in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets, moments):
         moment = 0.0 if r is None else c * c * norm
+        squares.append((moment + lead.length ** 2) if lead.rod else (moment + 1.0))
         if lead.rod:
             k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
             wl = next(wi)
@@ -998,7 +1001,6 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             # d × (a_J − a_P + ω²·d): the last term is d × d = 0
             el = np.multiply(_cross(d, a - lead.a), k, out=out.epsilon)
             links[spec.link] = LinkMotion(spec.joint, np.arctan2(d.imag, d.real, out=out.theta), wl, el)
-            norms *= moment + lead.length ** 2
         else:
             s, sd, u, gv, ga, cor = next(si)
             sdd = dot(a - ga - cor, u)
@@ -1006,7 +1008,6 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
-            norms *= moment + 1.0
             units[spec.link] = u  # cis(θ_guide + angle), as the link's angle
     out = (slots and slots.special) or Motion(None, None, None)
     K = _special_point(leads, joints, pair, normals, out.p)
@@ -1017,8 +1018,10 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     ka = np.add(aj[0], t, out=out.a)
     points[g.special_name] = Motion(K, kv, ka)
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
+    norms = squares[0] * squares[1] * squares[2]
     cond = np.abs(det) / scale / np.sqrt(norms)
-    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
+    # the base link's frame runs B → C: its unit vector is cos θ + i·sin θ (as (C − B)/BC)
+    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0]) if unit is None else unit
     units.update({spec.link: _times(d, 1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
     return GroupResult(points=points, links=links, slides=slide_out,
                        condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units,
