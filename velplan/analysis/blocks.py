@@ -66,7 +66,8 @@ BLOCK = 16384
 """Crank angles solved at a time (the arrays of a block stay in the CPU's caches)."""
 
 
-def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None, sink=None) -> tuple[State, dict[str, np.ndarray]]:
+def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None,
+                sink=None) -> tuple[State, dict[str, np.ndarray]]:
     """The schedule ``items`` solved at the crank angles ``phi`` (rad), crank rates ``w1``, ``e1``:
     the motions and each group's condition estimate (NaN where it does not close). ``tracks``
     holds each class III group's branch over the turn (`velplan.analysis.triad.track`); ``sink``
@@ -74,10 +75,11 @@ def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None, sink=N
     n = phi.shape[0]
     st = State(n)
     st.sink = sink
-    zeros = np.zeros(n, dtype=complex) if sink is None else None
+    zeros = None
     for name, (x, y) in mech.ground:
         slot = st.out_point(name)
         if slot is None:
+            zeros = np.zeros(n, dtype=complex) if zeros is None else zeros
             st.points[name] = Motion(np.full(n, complex(x, y)), zeros, zeros)
         else:
             slot.p.fill(complex(x, y))

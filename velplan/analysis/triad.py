@@ -25,7 +25,8 @@ clearly the nearest), finds where it ends (an assembly limit, by bisection) or c
 comes back to itself after a full turn. At any crank angle the solver takes the root nearest
 to the tracked branch: Newton's correction from the branch's Hermite cubic between nodes (off
 by ≈ 1e-11 of the group's size, so one step settles it to round-off), every root only where
-that correction is ambiguous.
+that correction is ambiguous. The cubic also gives cos θ, sin θ there without a cosine or sine
+per angle (`_unit`: the node's, turned by the Taylor series of the turn from it).
 """
 
 from __future__ import annotations
@@ -1022,7 +1023,8 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     cond = np.abs(det) / scale / np.sqrt(norms)
     # the base link's frame runs B → C: its unit vector is cos θ + i·sin θ (as (C − B)/BC)
     units[g.base] = (joints[1] - B) * (1.0 / g.sides[0]) if unit is None else unit
-    units.update({spec.link: _times(d, 1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    units.update({spec.link: _times(d, 1.0 / lead.length)
+                  for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
     return GroupResult(points=points, links=links, slides=slide_out,
                        condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units,
                        spins={g.base: (iw, iea)})
