@@ -66,15 +66,26 @@ BLOCK = 16384
 """Crank angles solved at a time (the arrays of a block stay in the CPU's caches)."""
 
 
-def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None) -> tuple[State, dict[str, np.ndarray]]:
+def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None,
+                sink=None) -> tuple[State, dict[str, np.ndarray]]:
     """The schedule ``items`` solved at the crank angles ``phi`` (rad), crank rates ``w1``, ``e1``:
     the motions and each group's condition estimate (NaN where it does not close). ``tracks``
-    holds each class III group's branch over the turn (`velplan.analysis.triad.track`)."""
+    holds each class III group's branch over the turn (`velplan.analysis.triad.track`); ``sink``
+    (`Outputs.sink`): the block's views of the outputs, written as the items are solved."""
     n = phi.shape[0]
     st = State(n)
-    zeros = np.zeros(n, dtype=complex)
+    st.sink = sink
+    zeros = None
     for name, (x, y) in mech.ground:
-        st.points[name] = Motion(np.full(n, complex(x, y)), zeros, zeros)
+        slot = st.out_point(name)
+        if slot is None:
+            zeros = np.zeros(n, dtype=complex) if zeros is None else zeros
+            st.points[name] = Motion(np.full(n, complex(x, y)), zeros, zeros)
+        else:
+            slot.p.fill(complex(x, y))
+            slot.v.fill(0.0)
+            slot.a.fill(0.0)
+            st.points[name] = slot
     zr = np.zeros(n)
     st.links[GROUND] = LinkMotion(mech.ground[0][0], zr, zr, zr)
     conditions: dict[str, np.ndarray] = {}
@@ -89,27 +100,73 @@ def solve_items(items, st, phi, w1, e1, scale, conditions, on_failure, mech, tra
         if isinstance(item, Crank):
             solve_crank(item, st, phi, w1, e1)
         elif isinstance(item, LinkPoint):
-            link = st.links[item.link]
-            o = st.points[link.origin]
-            e = st.units.get(item.link)
-            if e is None:  # `link_point`, its unit vector kept for the link's other points
-                e = st.units[item.link] = cis(link.theta)
-            x = o.p + (item.along + 1j * item.offset) * e
-            st.points[item.name] = Motion(x, *carry(o.p, o.v, o.a, link.omega, link.epsilon, x))
+            solve_link_point(item, st)
         else:
             res = solve_group(item, st, scale, phi, tracks[item.name] if item.tracked else None)
             check_closed(item, res.closed, phi, on_failure)
-            st.points.update(res.points)
-            st.links.update(res.links)
-            st.slides.update(res.slides)
+            for name, m in res.points.items():
+                st.put_point(name, m)
+            for name, m in res.links.items():
+                st.put_link(name, m)
+            for name, m in res.slides.items():
+                st.put_slide(name, m)
             st.units.update(res.units)
-            conditions[item.name] = np.where(res.closed, res.condition, np.nan)
+            st.spins.update(res.spins)
+            slot = None if st.sink is None else st.sink.conditions.get(item.name)
+            if slot is None:
+                conditions[item.name] = np.where(res.closed, res.condition, np.nan)
+            else:
+                np.copyto(slot, res.condition)
+                if not res.closed.all():
+                    slot[~res.closed] = np.nan
+                conditions[item.name] = slot
+
+
+def solve_link_point(item: LinkPoint, st: State) -> None:
+    """A point of a link: its position from the link's unit vector (kept for the link's other
+    points), its velocity and acceleration carried from the link's origin (`carry`), written
+    into the outputs where the state has them."""
+    link = st.links[item.link]
+    o = st.points[link.origin]
+    e = st.units.get(item.link)
+    if e is None:  # `link_point`, its unit vector kept for the link's other points
+        e = st.units[item.link] = cis(link.theta)
+    slot = st.out_point(item.name)
+    if slot is None:
+        x = o.p + (item.along + 1j * item.offset) * e
+        st.points[item.name] = Motion(x, *carry(o.p, o.v, o.a, link.omega, link.epsilon, x))
+        return
+    x = np.multiply(item.along + 1j * item.offset, e, out=slot.p)
+    x += o.p
+    r = x - o.p  # as `carry`: the same numbers
+    spin = st.spins.get(item.link)
+    if spin is None:  # i·ω and i·ε − ω², kept for the link's other points
+        acc = np.multiply(link.epsilon, 1j)
+        acc -= link.omega * link.omega
+        spin = st.spins[item.link] = (1j * link.omega, acc)
+    t = np.multiply(spin[0], r)
+    np.add(o.v, t, out=slot.v)
+    np.multiply(spin[1], r, out=t)
+    np.add(o.a, t, out=slot.a)
+    st.points[item.name] = slot
 
 
 def solve_crank(c: Crank, st: State, phi: np.ndarray, w1: float, e1: float) -> None:
-    st.points[c.tip] = Motion(*crank_tip(st.points[c.pivot].p, c.length, phi, w1, e1))
-    n = phi.shape[0]
-    st.links[c.link] = LinkMotion(c.pivot, phi.copy(), np.full(n, w1), np.full(n, e1))
+    slot, link = st.out_point(c.tip), st.out_link(c.link)
+    if slot is None or link is None or np.ndim(w1) or np.ndim(e1):
+        st.points[c.tip] = Motion(*crank_tip(st.points[c.pivot].p, c.length, phi, w1, e1))
+        n = phi.shape[0]
+        st.links[c.link] = LinkMotion(c.pivot, phi.copy(), np.full(n, w1), np.full(n, e1))
+        return
+    r = c.length * cis(phi)  # `crank_tip`'s numbers, written into the outputs
+    np.add(st.points[c.pivot].p, r, out=slot.p)
+    np.multiply(1j * w1, r, out=slot.v)
+    np.multiply(1j * e1 - w1 * w1, r, out=slot.a)
+    st.points[c.tip] = slot
+    np.copyto(link.theta, phi)
+    link.omega.fill(w1)
+    link.epsilon.fill(e1)
+    st.links[c.link] = LinkMotion(c.pivot, link.theta, link.omega, link.epsilon)
 
 
 def group_point(g: Group) -> str:
@@ -170,12 +227,34 @@ def output_index(st: State, conditions: dict) -> dict:
             "group_index": {k: i for i, k in enumerate(conditions)}}
 
 
+class Sink:
+    """One block's views of `Outputs` (name → `Motion`, `LinkMotion`, the slide's (s, ṡ, s̈) rows,
+    the group's condition row): the state writes what it solves straight into them. A derivative
+    above the outputs' ``order`` gets a scratch array."""
+
+    def __init__(self, out: "Outputs", where: slice):
+        self.outputs, self.where = out, where
+        n = where.stop - where.start
+        k = out.order + 1
+        idx = out.index
+
+        def rows(arr, i):
+            return [arr[d, i, where] for d in range(k)] + [np.empty(n, arr.dtype) for _ in range(3 - k)]
+
+        self.points = {name: Motion(*rows(out.z, i)) for name, i in idx["point_index"].items()}
+        self.links = {name: LinkMotion(idx["link_origins"][name], *rows(out.rates, i))
+                      for name, i in idx["link_index"].items()}
+        self.slides = {name: [out.slides[i, d, where] for d in range(k)] + [np.empty(n) for _ in range(3 - k)]
+                       for name, i in idx["slide_index"].items()}
+        self.conditions = {name: out.condition[i, where] for name, i in idx["group_index"].items()}
+
+
 class Outputs:
     """Preallocated result arrays, point- (link-, slide-, group-) major so that each block
     writes contiguous rows; `kinematics` returns (n, …) views of them without a copy. Only the
     derivatives up to ``order`` are kept."""
 
-    def __init__(self, st: State, conditions: dict, n: int, order: int = 2, index: dict | None = None):
+    def __init__(self, st: State | None, conditions: dict | None, n: int, order: int = 2, index: dict | None = None):
         self.index = output_index(st, conditions) if index is None else index
         """The results' names → rows (`output_index`): given, when known from an earlier solve."""
         self.names = list(self.index["point_index"])
@@ -191,10 +270,18 @@ class Outputs:
         self.condition = np.empty((G, n))
         self.valid = np.empty(n, dtype=bool)
 
+    def sink(self, where: slice) -> Sink:
+        """The views a block at the positions ``where`` is solved into (`solve_block`'s ``sink``)."""
+        return Sink(self, where)
+
     def write(self, st: State, conditions: dict, where: slice) -> None:
         """Copy a block's motions to the positions ``where`` (one assignment per kind of output:
-        numpy's dispatch, not the copying, is the cost at a few positions), then mark them
-        (`_mark`) while they are still in the CPU's caches."""
+        numpy's dispatch, not the copying, is the cost at a few positions; nothing where the
+        block was solved into this `sink`), then mark them (`_mark`) while they are still in the
+        CPU's caches."""
+        if st.sink is not None and st.sink.outputs is self and st.sink.where == where:
+            self._mark(where)
+            return
         k = self.order + 1
         pts = [st.points[name] for name in self.names]
         _fill(self.z, [[m.p for m in pts], [m.v for m in pts], [m.a for m in pts]][:k], where)

@@ -53,6 +53,9 @@ class GroupResult:
     units: dict = field(default_factory=dict)
     """Unit vectors cos θ + i·sin θ of links' reference directions where the group knows them
     without a sine (link name → complex array), for the points on those links."""
+    spins: dict = field(default_factory=dict)
+    """Links' i·ω and i·ε − ω² (complex arrays, 1/s and 1/s²) where the group has them already
+    (link name → the pair), for the points on those links (`velplan.analysis.groups.carry`)."""
 
 
 # ---- closed forms on plain complex values --------------------------------------------------
@@ -227,12 +230,59 @@ class State:
         self.units: dict[str, np.ndarray] = {}
         """Unit vectors of links' reference directions (`GroupResult.units`), and those found for
         their points."""
+        self.spins: dict[str, tuple] = {}
+        """Links' i·ω and i·ε − ω² (`GroupResult.spins`), and those found for their points."""
+        self.sink = None
+        """The block's views into preallocated outputs (`velplan.analysis.blocks.Sink`), or None:
+        what is put into the state is written there, and producers may compute straight into
+        them (`out_point`, `out_link`)."""
+
+    def out_point(self, name: str) -> Motion | None:
+        """The output arrays (p, v, a) of point ``name`` to compute into, or None (no sink)."""
+        return None if self.sink is None else self.sink.points.get(name)
+
+    def out_link(self, name: str) -> LinkMotion | None:
+        """The output arrays (θ, ω, ε) of link ``name`` to compute into, or None (no sink)."""
+        return None if self.sink is None else self.sink.links.get(name)
+
+    def put_point(self, name: str, m: Motion) -> None:
+        """Point ``name`` solved: its arrays copied into the sink's (those not computed there)."""
+        slot = self.out_point(name)
+        if slot is not None:
+            _into(slot, m)
+            m = slot
+        self.points[name] = m
+
+    def put_link(self, name: str, m: LinkMotion) -> None:
+        """Link ``name`` solved (see `put_point`)."""
+        slot = self.out_link(name)
+        if slot is not None:
+            _into(slot, m)
+            m = LinkMotion(m.origin, slot.theta, slot.omega, slot.epsilon)
+        self.links[name] = m
+
+    def put_slide(self, name: str, m: Motion) -> None:
+        """Slide ``name`` solved: s, ṡ, s̈ (their real parts) copied into the sink's rows."""
+        slot = None if self.sink is None else self.sink.slides.get(name)
+        if slot is not None:
+            for dst, src in zip(slot, (m.p, m.v, m.a)):
+                np.copyto(dst, src.real if np.iscomplexobj(src) else src)
+        self.slides[name] = m
 
     def guide(self, g: Guide) -> tuple:
         """Arguments of a closed form for guide ``g``: its point's p, v, a, its link's θ, ω, ε,
         the guide's angle and offset."""
         m, link = self.points[g.through], self.links[g.link]
         return m.p, m.v, m.a, link.theta, link.omega, link.epsilon, g.angle, g.offset
+
+
+def _into(slot, m) -> None:
+    """Copy the arrays of ``m`` (a `Motion` or `LinkMotion`) into ``slot``'s, skipping those that
+    are ``slot``'s already (computed in place)."""
+    for key in ("p", "v", "a") if isinstance(slot, Motion) else ("theta", "omega", "epsilon"):
+        dst, src = getattr(slot, key), getattr(m, key)
+        if src is not dst:
+            np.copyto(dst, src)
 
 
 def solve_rrr(g: RRR, st: State) -> GroupResult:

@@ -103,16 +103,20 @@ def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, eng
             return kin
     began = perf_counter()
     w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
-    out: Outputs | None = None
-    # cache-sized blocks written into preallocated outputs: 2.5× faster at 10⁶ positions
+    n = phi.shape[0]
+    # cache-sized blocks solved straight into preallocated outputs (their layout known from an
+    # earlier solve; a few positions are copied in one assignment per kind: `Outputs.write`)
+    out = None if prep.outputs is None else Outputs(None, None, n, order, prep.outputs)
     tracks = prep.tracks(solve)
-    for start in range(0, max(phi.shape[0], 1), blocks.BLOCK):
+    for start in range(0, max(n, 1), blocks.BLOCK):
         block = phi[start:start + blocks.BLOCK]
-        st, conditions = solve_block(prep.local, block, w1o, e1o, prep.scale, on_failure, prep.items, tracks)
+        where = slice(start, start + block.shape[0])
+        sink = out.sink(where) if out is not None and block.shape[0] > blocks.ONE_ASSIGNMENT else None
+        st, conditions = solve_block(prep.local, block, w1o, e1o, prep.scale, on_failure, prep.items, tracks, sink)
         if out is None:
-            out = Outputs(st, conditions, phi.shape[0], order, prep.outputs)
+            out = Outputs(st, conditions, n, order, prep.outputs)
             prep.outputs = out.index
-        out.write(st, conditions, slice(start, start + block.shape[0]))
+        out.write(st, conditions, where)
     out.shift(prep.shift)
     kin = out.kinematics(mech, phi, w1, e1, st)
     if engine == "auto":  # time the compiled engine could have saved

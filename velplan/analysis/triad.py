@@ -25,7 +25,8 @@ clearly the nearest), finds where it ends (an assembly limit, by bisection) or c
 comes back to itself after a full turn. At any crank angle the solver takes the root nearest
 to the tracked branch: Newton's correction from the branch's Hermite cubic between nodes (off
 by ≈ 1e-11 of the group's size, so one step settles it to round-off), every root only where
-that correction is ambiguous.
+that correction is ambiguous. The cubic also gives cos θ, sin θ there without a cosine or sine
+per angle (`_unit`: the node's, turned by the Taylor series of the turn from it).
 """
 
 from __future__ import annotations
@@ -67,8 +68,17 @@ def _cis(t):
 
 
 def dot(a, b):
-    """Scalar product of two complex-encoded vectors."""
-    return a.real * b.real + a.imag * b.imag
+    """Scalar product of two complex-encoded vectors (summed in place: one temporary fewer)."""
+    out = a.real * b.real
+    out += a.imag * b.imag
+    return out
+
+
+def _cross(a, b):
+    """`velplan.analysis.groups.cross` (the same numbers), its difference taken in place."""
+    out = a.real * b.imag
+    out -= a.imag * b.real
+    return out
 
 
 # ---- inputs of one evaluation ----------------------------------------------------------------
@@ -275,23 +285,41 @@ def _companion_roots(coeffs: np.ndarray) -> np.ndarray:
 
 
 def _minors(rows):
-    """The 2×2 minors of the last two rows that Cramer's rule uses, and the determinant."""
+    """The 2×2 minors of the last two rows that Cramer's rule uses, and the determinant (a first
+    row's moment given as the number 0: the first rod's joint is J_r itself, its term left out)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     bc, ac, ab = b2 * c3 - b3 * c2, a2 * c3 - a3 * c2, a2 * b3 - a3 * b2
-    return bc, ac, ab, a1 * bc - b1 * ac + c1 * ab
+    det = a1 * bc
+    det -= b1 * ac
+    if not _zero(c1):
+        det += c1 * ab
+    return bc, ac, ab, det
 
 
-def _cramer3(rows, rhs, minors=None):
+def _zero(c) -> bool:
+    """Whether a row's moment is the number 0 (not an array)."""
+    return np.ndim(c) == 0 and c == 0.0
+
+
+def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
     """Solve the 3×3 systems whose rows are (a, b, c) arrays: returns the three unknowns (each
-    2×2 minor computed once; ``minors``: `_minors` of ``rows``, shared by systems with one matrix)."""
+    2×2 minor computed once; ``minors``: `_minors` of ``rows``, shared by systems with one matrix;
+    ``out``: arrays to write the unknowns into, None each where new)."""
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
     bc, ac, ab, det = _minors(rows) if minors is None else minors
     rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
-    x = (r1 * bc - b1 * rc - c1 * br) / det
-    y = (a1 * rc - r1 * ac + c1 * ar) / det
-    z = (a1 * br - b1 * ar + r1 * ab) / det
-    return x, y, z
+    x = r1 * bc
+    x -= b1 * rc
+    y = a1 * rc
+    y -= r1 * ac
+    if not _zero(c1):  # the first rod's row: c1 = 0
+        x -= c1 * br
+        y += c1 * ar
+    z = a1 * br
+    z -= b1 * ar
+    z += r1 * ab
+    return np.divide(x, det, out=out[0]), np.divide(y, det, out=out[1]), np.divide(z, det, out=out[2])
 
 
 # ---- the tracked branch -----------------------------------------------------------------------
@@ -324,13 +352,17 @@ class Track:
         """``theta`` without jumps of 2π (rad), for interpolating between nodes."""
         return np.unwrap(self.theta)
 
-    def reference(self, phi: np.ndarray, cubic: bool = True):
+    def reference(self, phi: np.ndarray, cubic: bool = True, unit: bool = False):
         """(x, θ, inside) of the branch at crank angles ``phi`` (`pieces` between nodes; with
-        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap)."""
+        ``cubic`` False the chords: fewer calls, for a few angles whose Newton steps are cheap);
+        with ``unit``, and (cos θ, sin θ) where the cubic gives them (`_unit`), else None."""
         if self.t.size == 0:
             nan = np.full(phi.shape, np.nan)
-            return nan + 0j, nan, np.zeros(phi.shape, bool)
-        t = np.mod(phi - self.phi0, 2 * np.pi)
+            return (nan + 0j, nan, np.zeros(phi.shape, bool)) + ((None,) if unit else ())
+        t = phi - self.phi0
+        # `np.mod`'s numbers within two turns (7 ns an angle against 1): t in [0, 2π], or off it by
+        # round-off where the turn's floor is off by one at a whole turn (the same angle)
+        t -= (2 * np.pi) * np.floor(t * (1 / (2 * np.pi)))
         if self.full:  # t in [0, 2π] = [t[0], t[-1]]: every angle on the branch
             inside, tc = np.ones(t.shape, bool), t
         else:
@@ -338,10 +370,11 @@ class Track:
             inside = (t >= self.t[0] - EDGE_TOL) & (t <= self.t[-1] + EDGE_TOL)
             tc = np.clip(t, self.t[0], self.t[-1])
         if self.pieces is not None and cubic:
-            return (*self._cubic(tc), inside)
+            x, th, cs = self._cubic(tc)
+            return (x, th, inside, cs) if unit else (x, th, inside)
         x = np.interp(tc, self.t, self.x.real) + 1j * np.interp(tc, self.t, self.x.imag)
         th = np.interp(tc, self.t, self.unwrapped)
-        return x, th, inside
+        return (x, th, inside, None) if unit else (x, th, inside)
 
     @cached_property
     def _spacing(self) -> float:
@@ -350,7 +383,8 @@ class Track:
         return float(h[0]) if h.size and np.ptp(h) <= 1e-9 * h[0] else 0.0
 
     def _cubic(self, tc: np.ndarray):
-        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]])."""
+        """x, θ of the `pieces` at the turns ``tc`` (within [t[0], t[-1]]), and cos θ, sin θ
+        (`_unit`; None below `UNIT_FROM` angles)."""
         last = self.pieces.shape[1] - 1
         if self._spacing:
             k = ((tc - self.t[0]) * (1.0 / self._spacing)).astype(np.intp)
@@ -366,16 +400,77 @@ class Track:
             v *= u
             v += c1.take(k)
             v *= u
-            v += c0.take(k)
-            out.append(v)
+            out.append(v)  # from the interval's first node
         x = np.empty(tc.shape, complex)
-        x.real, x.imag = out[0], out[1]
-        return x, out[2]
+        np.add(out[0], self._columns[0][0].take(k), out=x.real)
+        np.add(out[1], self._columns[1][0].take(k), out=x.imag)
+        turn = out[2]
+        th = turn + self._columns[2][0].take(k)
+        return x, th, _unit(self._node_units, k, turn, th) if tc.size >= UNIT_FROM else None
+
+    @cached_property
+    def _node_units(self) -> tuple:
+        """cos, sin of θ at each interval's first node (the cubic's constant term), and the
+        series `_unit` sums for the largest turn on an interval."""
+        th0, c1, c2, c3 = self._columns[2]
+        h = np.diff(self.t)
+        turn = float(np.max(np.abs(c1) * h + np.abs(c2) * h * h + np.abs(c3) * h ** 3, initial=0.0))
+        return np.cos(th0), np.sin(th0), _series(min(turn * (1 + 1e-6), UNIT_TURN))
 
     @cached_property
     def _columns(self) -> list:
         """`pieces` as contiguous columns: per quantity, its four coefficients over the intervals."""
         return [[np.ascontiguousarray(self.pieces[j, :, q]) for j in range(4)] for q in range(3)]
+
+
+UNIT_FROM = 256
+"""From this many angles `Track.reference` gives cos θ, sin θ by `_unit` (a dozen numpy calls);
+below, numpy's cosine and sine cost less."""
+UNIT_TURN = 0.1
+"""Largest turn (rad) from an interval's node for which `_unit` sums the series."""
+SERIES_TAIL = 1e-18
+"""The first term left out of `_unit`'s series is below this (round-off is ≈ 1e-16)."""
+
+
+def _series(turn: float) -> tuple:
+    """The Taylor coefficients of cos δ and sin δ / δ in δ² (ascending) whose first term left out
+    is below `SERIES_TAIL` for |δ| up to ``turn`` (rad), and ``turn``."""
+    m = 2
+    while turn ** (2 * m) / math.factorial(2 * m) > SERIES_TAIL:
+        m += 1
+    return (tuple((-1) ** j / math.factorial(2 * j) for j in range(m)),
+            tuple((-1) ** j / math.factorial(2 * j + 1) for j in range(m)), turn)
+
+
+def _unit(node, k, turn, theta):
+    """cos θ, sin θ of θ = θ_k + ``turn`` (interval ``k``; ``node``: cos θ_k, sin θ_k and the
+    `_series` for the track's largest turn) by the sum of the angles, the turn's cosine and sine
+    from their Taylor series (to round-off); where a turn is larger than the series is made for,
+    from ``theta`` by numpy's cosine and sine."""
+    cos_terms, sin_terms, largest = node[2]
+    t2 = turn * turn
+    sn = _horner(sin_terms, t2)
+    sn *= turn
+    cn = _horner(cos_terms, t2)
+    c0, s0 = node[0].take(k), node[1].take(k)
+    c = c0 * cn
+    c -= s0 * sn
+    s = s0 * cn
+    s += c0 * sn
+    if not np.max(np.abs(turn), initial=0.0) <= largest:  # NaN included
+        far = np.flatnonzero(~(np.abs(turn) <= largest))
+        c[far], s[far] = np.cos(theta[far]), np.sin(theta[far])
+    return c, s
+
+
+def _horner(coeffs, x):
+    """Σ coeffs[j]·x^j by Horner's rule (x an array; at least two coefficients)."""
+    v = x * coeffs[-1]
+    for a in coeffs[-2:0:-1]:
+        v += a
+        v *= x
+    v += coeffs[0]
+    return v
 
 
 def _distance(x, th, x0, th0, size):
@@ -569,12 +664,16 @@ def _correct(cl: _Closure, xr: np.ndarray, thr: np.ndarray, size: float):
     return _settled(cl, xr, thr)[:3]
 
 
-def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray):
-    """`_correct`, and cos θ + i·sin θ at the result."""
+def _settled(cl: _Closure, xr: np.ndarray, thr: np.ndarray, out=(None, None), cs=None):
+    """`_correct`, and cos θ + i·sin θ at the result (J_r, θ written into ``out`` where given;
+    ``cs``: cos, sin of ``thr`` where known)."""
     y0 = xr - cl.origin
-    yx, yy, th = y0.real.copy(), y0.imag.copy(), np.array(thr, dtype=float)
-    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE)
-    x = np.empty(th.shape, complex)
+    yx, yy = y0.real.copy(), y0.imag.copy()
+    th = np.array(thr, dtype=float) if out[1] is None else out[1]
+    if out[1] is not None:
+        np.copyto(th, thr)
+    c, s, ok = triad_settle.settle(triad_settle.Closure(cl), yx, yy, th, y0, thr, QUICK_MOVE, cs)
+    x = np.empty(th.shape, complex) if out[0] is None else out[0]
     np.add(yx, cl.origin.real, out=x.real)
     np.add(yy, cl.origin.imag, out=x.imag)
     e = np.empty(th.shape, complex)
@@ -620,12 +719,14 @@ class Tracks:
             return pairs[0]
         return np.repeat(np.array(pairs), self.n, axis=0)
 
-    def reference(self, phi: np.ndarray, cubic: bool = True):
-        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`)."""
+    def reference(self, phi: np.ndarray, cubic: bool = True, unit: bool = False):
+        """(x, θ, inside) of each variant's branch at its crank angles ``phi`` (`Track.reference`;
+        with ``unit``, and None: no cos θ, sin θ)."""
         n = self.n
         empty = Track(0.0, np.zeros(0), np.zeros(0, complex), np.zeros(0), False, (0, 1), 1.0)
         parts = [(t or empty).reference(phi[v * n:(v + 1) * n], cubic) for v, t in enumerate(self.tracks)]
-        return tuple(np.concatenate(a) for a in zip(*parts))
+        out = tuple(np.concatenate(a) for a in zip(*parts))
+        return out + (None,) if unit else out
 
 
 def _walk(mech, g, phi0, start, sense, size, solve):
@@ -756,19 +857,38 @@ def solve_triad(g: Triad, st, phi: np.ndarray, trk: Track, scale: float) -> Grou
     and the same rows for a_X, ε3 with the known normal, Coriolis terms on the right."""
     leads = inputs_from_state(g, st)
     cl = _Closure(g, leads)
-    x, theta, closed, e = _branch(cl, trk, phi)
+    slots = _Slots(g, st)
+    x, theta, closed, e = _branch(cl, trk, phi, (slots.p[cl.ref], slots.base[0]))
     offsets = [None if z == 0 else z * e for z in cl.local]
-    joints = [x if r is None else x + r for r in offsets]
-    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets)
+    joints = [x if r is None else np.add(x, r, out=p) for r, p in zip(offsets, slots.p)]
+    return _motion(g, leads, x, theta, joints, closed, scale, trk.pair, offsets, slots, e)
 
 
-def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
+class _Slots:
+    """The outputs a triad's results are computed into (`velplan.analysis.groups.State.out_point`,
+    `out_link`): the joints' p, v, a, the base link's θ, ω, ε, the leads' links and the special
+    point; None each where the state has none (what is not computed in place is copied)."""
+
+    def __init__(self, g: Triad, st):
+        if getattr(st, "sink", None) is None:
+            self.p = self.v = self.a = [None] * len(g.joints)
+            self.base, self.links, self.special = (None, None, None), dict.fromkeys(x.link for x in g.leads), None
+            return
+        pts = [st.out_point(name) for name in g.joints]
+        self.p, self.v, self.a = ([None if m is None else getattr(m, k) for m in pts] for k in "pva")
+        base = st.out_link(g.base)
+        self.base = (None, None, None) if base is None else (base.theta, base.omega, base.epsilon)
+        self.links = {spec.link: st.out_link(spec.link) for spec in g.leads}
+        self.special = st.out_point(g.special_name)
+
+
+def _branch(cl: _Closure, trk: Track, phi: np.ndarray, out=(None, None)):
     """The tracked branch's assembly at each crank angle: Newton from the tracked configuration
     where that is unambiguous (well conditioned, a small correction), else every assembly
     found and the nearest to the branch taken. Returns J_r, θ, the mask of closed positions and
-    cos θ + i·sin θ."""
-    xr, thr, inside = trk.reference(phi)
-    x, th, quick, e = _settled(cl, xr, thr)
+    cos θ + i·sin θ (J_r and θ in the arrays ``out`` where given, unless masked)."""
+    xr, thr, inside, cs = trk.reference(phi, unit=True)
+    x, th, quick, e = _settled(cl, xr, thr, out, cs)
     good = inside & quick
     rest = np.flatnonzero(inside & ~good)
     if rest.size:
@@ -788,16 +908,17 @@ def _branch(cl: _Closure, trk: Track, phi: np.ndarray):
     return np.where(closed, x, np.nan), np.where(closed, th, np.nan), closed, e
 
 
-def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
+def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots=None, unit=None):
     """The velocities and accelerations of the assemblies (J_r ``x``, θ, the joints ``joints``,
     their ``offsets`` from J_r: None where J_r itself): one matrix, its minors found once, for
-    both right sides."""
+    both right sides; computed into ``slots`` (`_Slots`) where given; ``unit``: cos θ + i·sin θ
+    where known."""
     if offsets is None:
         offsets = [j - x for j in joints]
     rows, rhs_v, normals, guides = [], [], [], []
     for lead, j, r in zip(leads, joints, offsets):
-        if lead.rod:
-            d, gm = j - lead.p, None
+        if lead.rod:  # J − P as two contiguous real arrays
+            d, gm = _Parts(np.subtract(j.real, lead.p.real), np.subtract(j.imag, lead.p.imag)), None
             rhs_v.append(dot(d, lead.v))
         else:
             d, gm = 1j * lead.line()[0], lead.carried(j)
@@ -805,15 +926,17 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
         normals.append(d)
         guides.append(gm)
         rows.append((np.ascontiguousarray(d.real), np.ascontiguousarray(d.imag),
-                     0.0 if r is None else cross(r, d)))  # d·(i·r)
+                     0.0 if r is None else _cross(r, d)))  # d·(i·r)
     minors = _minors(rows)  # one matrix for the velocities and the accelerations
-    w2, vj = _joints_at(rows, rhs_v, minors, offsets)
+    w2, vj = _joints_at(rows, rhs_v, minors, offsets, None, None if slots is None else (slots.v, slots.base[1]))
     w = w2[1]
     rhs_a, slides, spins = [], [], []
-    for lead, j, v, d, r, gm in zip(leads, joints, vj, normals, offsets, guides):
+    for lead, spec, j, v, d, r, gm in zip(leads, g.leads, joints, vj, normals, offsets, guides):
         turn = 0.0 if r is None else w2[0] * dot(d, r)
         if lead.rod:
-            wl = cross(d, v - lead.v) * (1.0 / lead.length ** 2)  # the rod's ω: |d| = its length
+            out = slots and slots.links[spec.link]
+            # the rod's ω: |d| = its length
+            wl = np.multiply(_cross(d, v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
             spins.append(wl)
             # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
             rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
@@ -824,17 +947,23 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None):
             cor = 2j * lead.omega * sd * u
             rhs_a.append(dot(d, ga + cor) + turn)
             slides.append((dot(j - base, u), sd, u, gv, ga, cor))
-    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0])
-    return _result(g, leads, theta, (w, e2[1]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
-                   (slides, spins), (minors[3], closed), scale, pair)
+    e2, aj = _joints_at(rows, rhs_a, minors, offsets, w2[0], None if slots is None else (slots.a, slots.base[2]))
+    return _result(g, leads, theta, (w, e2[1], w2[2], e2[2]), joints, vj, aj, (normals, [r[2] for r in rows]), offsets,
+                   (slides, spins), (minors[3], closed), scale, pair, slots, unit)
 
 
-def _joints_at(rows, rhs, minors, offsets, w2=None):
-    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω) or (ε's
-    i·ε − ω², ε), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r)."""
-    ux, uy, rate = _cramer3(rows, rhs, minors)
-    X = np.empty(rate.shape, complex)
-    X.real, X.imag = ux, uy
+def _joints_at(rows, rhs, minors, offsets, w2=None, out=None):
+    """The system's solution (X's rate, ω or ε) for the right sides ``rhs``: (w², ω, i·ω) or
+    (i·ε − ω², ε, i·ε − ω²), and the joints' rates X' + (i·ω)·r (or X'' + (i·ε − ω²)·r); ``out``:
+    the joints' arrays and the rate's to write them into (None each where new)."""
+    joints_out, rate_out = (None,) * len(offsets), None
+    if out is not None:
+        joints_out, rate_out = out
+    ref = next(i for i, r in enumerate(offsets) if r is None)
+    X = joints_out[ref]
+    if X is None:
+        X = np.empty(rows[0][0].shape, complex)
+    ux, uy, rate = _cramer3(rows, rhs, minors, (X.real, X.imag, rate_out))
     k = np.empty(rate.shape, complex)
     k.imag = rate
     if w2 is None:
@@ -843,14 +972,15 @@ def _joints_at(rows, rhs, minors, offsets, w2=None):
     else:
         np.negative(w2, out=k.real)
         first = k
-    return (first, rate), [X if r is None else X + k * r for r in offsets]
+    return (first, rate, k), [X if r is None else np.add(X, k * r, out=o) for r, o in zip(offsets, joints_out)]
 
 
-def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair):
+def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, det_closed, scale, pair, slots=None,
+            unit=None):
     """The group's points (joints, special point, coincident points), links and slides; the
     base link's unit vector and the rods' (their reference directions: the link points on them
-    need no sine)."""
-    w, e = rates
+    need no sine); the rods' motions and the special point's computed into ``slots`` where given."""
+    w, e, iw, iea = rates
     det, closed = det_closed
     normals, moments = normals
     slides, spins = slides
@@ -861,15 +991,17 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
     slide_out, units = {}, {}
     si = iter(slides)
     norm = 1.0 / scale ** 2
-    norms = np.ones(theta.shape)
+    squares = []  # the rows' squared norms (|d| = l or 1)
     for lead, spec, name, j, v, a, d, r, c in zip(leads, g.leads, g.joints, joints, vj, aj, normals, offsets, moments):
         moment = 0.0 if r is None else c * c * norm
+        squares.append((moment + lead.length ** 2) if lead.rod else (moment + 1.0))
         if lead.rod:
             k = 1.0 / lead.length ** 2  # |d| = the rod's length: the assembly closes
             wl = next(wi)
-            el = cross(d, a - lead.a) * k  # d × (a_J − a_P + ω²·d): the last term is d × d = 0
-            links[spec.link] = LinkMotion(spec.joint, np.angle(d), wl, el)
-            norms *= moment + lead.length ** 2
+            out = (slots and slots.links[spec.link]) or LinkMotion(spec.joint, None, None, None)
+            # d × (a_J − a_P + ω²·d): the last term is d × d = 0
+            el = np.multiply(_cross(d, a - lead.a), k, out=out.epsilon)
+            links[spec.link] = LinkMotion(spec.joint, np.arctan2(d.imag, d.real, out=out.theta), wl, el)
         else:
             s, sd, u, gv, ga, cor = next(si)
             sdd = dot(a - ga - cor, u)
@@ -877,25 +1009,31 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             slide_out[slide_name(spec.link, spec.guide.link)] = Motion(s + 0j, sd + 0j, sdd + 0j)
             if spec.coincident:
                 points[spec.coincident] = Motion(j, gv, ga)
-            norms *= moment + 1.0
             units[spec.link] = u  # cis(θ_guide + angle), as the link's angle
-    K = _special_point(leads, joints, pair, normals)
+    out = (slots and slots.special) or Motion(None, None, None)
+    K = _special_point(leads, joints, pair, normals, out.p)
     rK = K - B
-    kv = vj[0] + 1j * w * rK
-    ka = aj[0] + (1j * e - w * w) * rK
+    t = iw * rK
+    kv = np.add(vj[0], t, out=out.v)
+    np.multiply(iea, rK, out=t)
+    ka = np.add(aj[0], t, out=out.a)
     points[g.special_name] = Motion(K, kv, ka)
     # the Hadamard ratio of `_condition`, its determinant and row norms known: |d| = l or 1
+    norms = squares[0] * squares[1] * squares[2]
     cond = np.abs(det) / scale / np.sqrt(norms)
-    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0])
-    units.update({spec.link: d * (1.0 / lead.length) for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
+    # the base link's frame runs B → C: its unit vector is cos θ + i·sin θ (as (C − B)/BC)
+    units[g.base] = (joints[1] - B) * (1.0 / g.sides[0]) if unit is None else unit
+    units.update({spec.link: _times(d, 1.0 / lead.length)
+                  for lead, spec, d in zip(leads, g.leads, normals) if lead.rod})
     return GroupResult(points=points, links=links, slides=slide_out,
-                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units)
+                       condition=cond if closed.all() else np.where(closed, cond, np.nan), closed=closed, units=units,
+                       spins={g.base: (iw, iea)})
 
 
-def _special_point(leads, joints, pair, normals=None):
+def _special_point(leads, joints, pair, normals=None, out=None):
     """Assur's special point: where the lines of the two leads ``pair`` cross (a pair, or one
     per position, (n, 2)); ``normals``: the leads' velocity-system normals, a rod's its line's
-    direction."""
+    direction; ``out``: the array to write it into, or None."""
     if np.ndim(pair) == 2:
         K = np.full(joints[0].shape, np.nan + 0j)
         for p in {tuple(int(i) for i in row) for row in pair}:
@@ -903,7 +1041,28 @@ def _special_point(leads, joints, pair, normals=None):
         return K
     a_, b_ = ((joints[i], _lead_direction(leads[i], joints[i]) if normals is None else normals[i]) for i in pair)
     with np.errstate(all="ignore"):
-        return a_[0] + a_[1] * cross(b_[0] - a_[0], b_[1]) / cross(a_[1], b_[1])
+        return np.add(a_[0], _times(a_[1], _cross(b_[0] - a_[0], b_[1]) / _cross(a_[1], b_[1])), out=out)
+
+
+class _Parts:
+    """A complex-encoded vector held as its two real parts (contiguous arrays), for `dot`,
+    `cross` and `_times` (a rod's J − P: its rows need no copies)."""
+
+    __slots__ = ("real", "imag")
+
+    def __init__(self, real: np.ndarray, imag: np.ndarray):
+        self.real, self.imag = real, imag
+
+
+def _times(v, k):
+    """The complex array of the vector ``v`` (complex or `_Parts`) times the real ``k`` (a number or
+    an array): the numbers of ``v * k``."""
+    if not isinstance(v, _Parts):
+        return v * k
+    out = np.empty(np.broadcast(v.real, k).shape, complex)
+    np.multiply(v.real, k, out=out.real)
+    np.multiply(v.imag, k, out=out.imag)
+    return out
 
 
 def _condition(rows, scale):

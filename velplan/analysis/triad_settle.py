@@ -141,21 +141,22 @@ def _solve(rows, size: float):
     return dx, dy, dt, det >= norm
 
 
-def settle(eqs: Closure, yx, yy, th, x0, th0, quick_move: float = QUICK_MOVE):
+def settle(eqs: Closure, yx, yy, th, x0, th0, quick_move: float = QUICK_MOVE, cs=None):
     """Newton's correction of (Y, θ) (arrays, updated in place) by `Closure.step`, each position
     until its correction is below `SETTLED` (at most `STEPS` steps). Returns cos θ, sin θ at the
     result and whether each position is unambiguous: converged, well conditioned at its last
     step, and moved no more than ``quick_move`` from the start (``x0`` its J_r relative to the
     origin, ``th0``). The last step's |dθ| ≤ `SETTLED`, so cos, sin at the result come from
     those at its start without a new sine: cos(θ + dθ) = cos θ − dθ·sin θ to round-off. A
-    position settled in one step moved at most `SETTLED`: only those that took more are measured."""
+    position settled in one step moved at most `SETTLED`: only those that took more are measured.
+    ``cs``: cos θ, sin θ at the start where known (else numpy's)."""
     size = eqs.size
     c_out, s_out = np.empty_like(th), np.empty_like(th)
     ok = np.zeros(th.shape, bool)
     idx, cur, later = None, eqs, []
     for step in range(STEPS):
         X, Y, T = (yx, yy, th) if idx is None else (yx[idx], yy[idx], th[idx])
-        c, s = np.cos(T), np.sin(T)
+        c, s = cs if step == 0 and cs is not None else (np.cos(T), np.sin(T))
         dx, dy, dt, good = cur.step(X, Y, c, s)
         X += dx
         Y += dy
