@@ -45,7 +45,7 @@ from velplan.sheets.skeleton import (
 from velplan.sheets.solver import EPS_MM, Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import Arrangement, diagram_view
+from velplan.views.diagram import Arrangement, diagram_view, least_row_width
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import (
     MIN_VECTOR_MM, extent_mm, labelled_vectors, least_plan_size, plan_steps, plan_view)
@@ -159,6 +159,15 @@ class _Drawings:
     def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
         res, steps = self.steps(kind, number, mu)
         return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan, steps=steps)
+
+    def least_width(self, arrangement: Arrangement, length: float, height: float) -> float | None:
+        """A lower bound of the width of ``diagrams(arrangement, length, height)``, mm, known
+        without drawing for a row (`least_row_width`); None otherwise."""
+        if arrangement != "row":
+            return None
+        study = self.req.study
+        return least_row_width(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
+                               omega=study.mechanism.crank.omega, sizes=self.req.sizes.diagram)
 
     def plan_fits(self, kind: PlanKind, number: int, mu: float, w: float, h: float) -> bool:
         """Whether the plan at μ may fit w × h mm: False where its construction and title
@@ -478,7 +487,8 @@ def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     low = DIAGRAM_HEIGHTS[-1]
-    length = _longest_axis(lambda L: draw.diagrams(arrangement, L, low), w, arrangement)
+    length = _longest_axis(lambda L: draw.diagrams(arrangement, L, low), w, arrangement,
+                           least=lambda L: draw.least_width(arrangement, L, low))
     if length is not None:
         # the view grows with its diagrams' height: start from the tallest that the lowest
         # view's margins leave room for, and step down until one fits (or up while one does)
@@ -498,13 +508,15 @@ def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row
                      f"use a larger --format")
 
 
-def _longest_axis(draw_low, w: float, arrangement: str) -> float | None:
+def _longest_axis(draw_low, w: float, arrangement: str, least=None) -> float | None:
     """The longest of `DIAGRAM_LENGTHS` whose lowest view ``draw_low(length)`` is at most w mm
     wide, or None. An axis at which the diagrams side by side alone (each as wide as its φ
-    axis, 12 mm apart as `diagram_view` sets them) are wider is passed over undrawn."""
+    axis, 12 mm apart as `diagram_view` sets them), or the least width ``least(length)`` (mm)
+    where known, are wider is passed over undrawn."""
     columns = {"row": 3, "grid": 2}.get(arrangement, 1)
     found = largest_fitting(draw_low, DIAGRAM_LENGTHS, w, math.inf,
-                            skip=lambda length: columns * length + 12.0 * (columns - 1) > w)
+                            skip=lambda length: columns * length + 12.0 * (columns - 1) > w or (
+                                least is not None and (least(length) or 0.0) > w + EPS_MM))
     return None if found is None else found[0]
 
 
