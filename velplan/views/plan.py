@@ -408,7 +408,8 @@ def _title_lines(res, position: int, lang: Language, sizes: PlanSizes, items) ->
 def least_plan_size(res, position: int, steps: list[StepDrawing], *, lang: Language = "ru",
                     sizes: PlanSizes = PlanSizes()) -> tuple[float, float]:
     """A lower bound of the width and height (mm) of ``plan_view(res, position, lang=lang,
-    sizes=sizes, steps=steps)``, without placing its letters: the box of the construction
+    sizes=sizes, steps=steps)`` at position number `position` (1…n), without placing its
+    letters: the box of the construction
     `steps` and of the title above it, padded as the view is. The letters and the ≈ 0 list
     only widen the box, and the title, set above the box's upper left corner, only moves
     up and left with it, so the view is at least this large."""
