@@ -49,13 +49,14 @@ from velplan.sheets.layout import (
 from velplan.sheets.skeleton import (
     NARROWER_TABLE, ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
-from velplan.sheets.solver import Trials, fits, largest_fitting
+from velplan.sheets.solver import EPS_MM, Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
-from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view
+from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view, least_row_width
 from velplan.views.diagram_compact import Form, compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
-from velplan.views.plan import MIN_VECTOR_MM, extent_mm, labelled_vectors, plan_view
+from velplan.views.plan import (
+    MIN_VECTOR_MM, extent_mm, labelled_vectors, least_plan_size, plan_steps, plan_view)
 from velplan.views.table import table_view
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
@@ -139,8 +140,9 @@ def default_title(mech, lang: Language, fmt: str, scale: str, frame_style: str) 
 
 class _Drawings:
     """The trial drawings of one kinematic sheet, each drawn once however many layouts try
-    it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view), the
-    kinematic diagrams by (arrangement, φ axis mm, height mm)."""
+    it: the scheme by μl, a plan by (kind, position, μ) → (result at μ, view) and its
+    construction (``steps``, shared by the plan's view and its least size), the kinematic
+    diagrams by (arrangement, φ axis mm, height mm)."""
 
     def __init__(self, req: Request, chosen: Sequence[int]):
         self.req, self.thick, self.chosen = req, chosen[0], tuple(chosen)
@@ -150,6 +152,7 @@ class _Drawings:
         self.bold = tuple(dict.fromkeys(_extreme_positions(study) + tuple(chosen[1:])))
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
+        self.steps = Trials(self._steps)
         self.diagrams = Trials(self._diagrams)
         self.compact = Trials(self._compact)
 
@@ -159,9 +162,29 @@ class _Drawings:
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
                               extreme=study.other_extreme, bold=self.bold, special=self.chosen, plans=self.chosen)
 
-    def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
+    def _steps(self, kind: PlanKind, number: int, mu: float):
         res = self.req.study.plan(kind).at_scale(mu)
-        return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan)
+        return res, plan_steps(res, number, lang=self.req.lang)
+
+    def _plan(self, kind: PlanKind, number: int, mu: float) -> tuple[PlanResult, View]:
+        res, steps = self.steps(kind, number, mu)
+        return res, plan_view(res, number, lang=self.req.lang, sizes=self.req.sizes.plan, steps=steps)
+
+    def least_width(self, arrangement: Arrangement, length: float, height: float) -> float | None:
+        """A lower bound of the width of ``diagrams(arrangement, length, height)``, mm, known
+        without drawing for a row (`least_row_width`); None otherwise."""
+        if arrangement != "row":
+            return None
+        study = self.req.study
+        return least_row_width(study.diagrams, length_mm=length, height_mm=height, lang=self.req.lang,
+                               omega=study.mechanism.crank.omega, sizes=self.req.sizes.diagram)
+
+    def plan_fits(self, kind: PlanKind, number: int, mu: float, w: float, h: float) -> bool:
+        """Whether the plan at μ may fit w × h mm: False where its construction and title
+        alone (`least_plan_size`) exceed it, found without drawing its letters."""
+        res, steps = self.steps(kind, number, mu)
+        lw, lh = least_plan_size(res, number, steps, lang=self.req.lang, sizes=self.req.sizes.plan)
+        return lw <= w + EPS_MM and lh <= h + EPS_MM
 
     def _diagrams(self, arrangement: Arrangement, length: float, height: float) -> View:
         study = self.req.study
@@ -430,6 +453,8 @@ def _pairing(req: Request, draw: _Drawings, attempts, kinds, zone, floor: float,
             for region in regions:
                 if region[2] - region[0] < 40 or region[3] - region[1] < 40:
                     continue
+                if best is not None and _cannot_change(best[0], good, req, attempt, kinds, region):
+                    continue
                 try:
                     score, fitted = _fit_plans(req, draw, attempt, kinds, region)
                 except ScaleError as exc:
@@ -441,6 +466,13 @@ def _pairing(req: Request, draw: _Drawings, attempts, kinds, zone, floor: float,
             if good:
                 return best, failure
     return best, failure
+
+
+def _cannot_change(best: float, good: bool, req: Request, chosen, kinds, region) -> bool:
+    """Whether the plans in `region` can neither beat the `best` score nor make the scheme
+    `good` (`_score_bound`): they need not be fitted."""
+    bound = _score_bound(req.study, chosen, kinds, region, req.gap)
+    return bound <= best and (good or bound < GOOD_PLAN_MM[req.fmt])
 
 
 def _scheme_zone(top) -> tuple[float, float, float, float]:
@@ -563,7 +595,8 @@ def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     low = DIAGRAM_HEIGHTS[-1]
-    length = _longest_axis(lambda L: draw.diagrams(arrangement, L, low), w, arrangement)
+    length = _longest_axis(lambda L: draw.diagrams(arrangement, L, low), w, arrangement,
+                           least=lambda L: draw.least_width(arrangement, L, low))
     if length is not None:
         # the view grows with its diagrams' height: start from the tallest that the lowest
         # view's margins leave room for, and step down until one fits (or up while one does)
@@ -583,13 +616,15 @@ def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row
                      f"use a larger --format")
 
 
-def _longest_axis(draw_low, w: float, arrangement: str) -> float | None:
+def _longest_axis(draw_low, w: float, arrangement: str, least=None) -> float | None:
     """The longest of `DIAGRAM_LENGTHS` whose lowest view ``draw_low(length)`` is at most w mm
     wide, or None. An axis at which the diagrams side by side alone (each as wide as its φ
-    axis, 12 mm apart as `diagram_view` sets them) are wider is passed over undrawn."""
+    axis, 12 mm apart as `diagram_view` sets them), or the least width ``least(length)`` (mm)
+    where known, are wider is passed over undrawn."""
     columns = {"row": 3, "grid": 2}.get(arrangement, 1)
     found = largest_fitting(draw_low, DIAGRAM_LENGTHS, w, math.inf,
-                            skip=lambda length: columns * length + 12.0 * (columns - 1) > w)
+                            skip=lambda length: columns * length + 12.0 * (columns - 1) > w or (
+                                least is not None and (least(length) or 0.0) > w + EPS_MM))
     return None if found is None else found[0]
 
 
@@ -606,24 +641,15 @@ def _extreme_positions(study: Study) -> tuple[int, ...]:
     return tuple(dict.fromkeys(out))
 
 
-def _one_scale_per_kind(draw: _Drawings, plan_views, results, cells):
-    """The plans redrawn so that each kind has one μ, the largest of their fits (every plan
-    then fits its cell), each centred in its cell again."""
+def _one_scale_per_kind(draw: _Drawings, results, kinds) -> dict:
+    """The plans of each of `kinds` at one μ, the largest of their fits (every plan then fits
+    its cell), as results (no plan drawn): name → result."""
     common: dict[str, float] = {}
     for res in results.values():
         common[res.kind] = max(common.get(res.kind, 0.0), res.scale)
-    views, out = {}, {}
-    for name, res in results.items():
-        mu = common[res.kind]
-        if res.scale != mu:
-            res, view = draw.plan(res.kind, int(name.rsplit("-", 1)[1]), mu)
-            x0, y0, x1, y1 = cells[name]
-            views[name] = view.at(x0 + (x1 - x0 - view.width_mm) / 2,
-                                  y0 + (y1 - y0 - view.height_mm) / 2)
-        else:
-            views[name] = plan_views[name]
-        out[name] = res
-    return views, out
+    return {name: res if res.scale == common[res.kind] else
+            draw.steps(res.kind, int(name.rsplit("-", 1)[1]), common[res.kind])[0]
+            for name, res in results.items() if res.kind in kinds}
 
 
 #: Size (the larger side of its images' box) below which a plan drawn at the sheet's common
@@ -648,13 +674,22 @@ def legible_at(common: PlanResult, own: PlanResult, number: int, fmt: str) -> bo
 
 def _one_scale_where_legible(fmt: str, draw: _Drawings, plan_views, results, cells):
     """The plans of each kind at one μ where every one of them stays legible at it
-    (`legible_at`), else each plan of that kind at its own μ (its title states it)."""
-    views, out = _one_scale_per_kind(draw, plan_views, results, cells)
+    (`legible_at`), else each plan of that kind at its own μ (its title states it); a plan
+    is redrawn at the common μ only where that μ is kept, centred in its cell again."""
+    views, out = dict(plan_views), dict(results)
     for kind in {res.kind for res in results.values()}:
-        names = [n for n, res in results.items() if res.kind == kind]
-        if not all(legible_at(out[n], results[n], int(n.rsplit("-", 1)[1]), fmt) for n in names):
-            for n in names:
-                views[n], out[n] = plan_views[n], results[n]
+        common = _one_scale_per_kind(draw, results, (kind,))
+        if not all(legible_at(common[n], results[n], int(n.rsplit("-", 1)[1]), fmt) for n in common):
+            continue
+        mu = max(results[n].scale for n in common)
+        for name, res in common.items():
+            if res is results[name]:
+                continue
+            res, view = draw.plan(kind, int(name.rsplit("-", 1)[1]), mu)
+            x0, y0, x1, y1 = cells[name]
+            views[name] = view.at(x0 + (x1 - x0 - view.width_mm) / 2,
+                                  y0 + (y1 - y0 - view.height_mm) / 2)
+            out[name] = res
     return views, out
 
 
@@ -834,6 +869,41 @@ def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
     return worst
 
 
+def _score_bound(study: Study, chosen, kinds, region, gap: float) -> float:
+    """An upper bound of `_fit_plans`' score in `region` (mm), found without drawing: for
+    each grid shape, the least over its plans of the longest vector at the first scale
+    `_fit_one` may try in its cell (`_vector_bound`); the largest of them over the shapes."""
+    x0, y0, x1, y1 = region
+    W, H = x1 - x0, y1 - y0
+    bound = 0.0
+    for rows, cols, order in _grid_shapes(chosen, kinds):
+        cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
+        if cw <= 0 or ch <= 0:
+            continue
+        worst = math.inf
+        for kind, number in order:
+            worst = min(worst, _vector_bound(study.plan(kind), number, cw, ch))
+            if worst <= bound:
+                break
+        bound = max(bound, worst)
+    return bound
+
+
+def _vector_bound(res0: PlanResult, number: int, cw: float, ch: float) -> float:
+    """The longest vector (mm) of the plan of position ``number`` at the first (largest
+    drawing's) scale `_fit_one` tries in a cw × ch mm cell: no plan it fits there is longer;
+    0 where it tries none."""
+    ew, eh = extent_mm(res0, number)
+    room_w, room_h = cw - 2 * 12.0, ch - 2 * 12.0 - 14.0
+    if room_w <= 0 or room_h <= 0:
+        return 0.0
+    estimate = res0.scale * max(ew / room_w, eh / room_h, 1e-9)
+    for mu in _standard_from(estimate / 1.6):  # ends: the images shrink as μ grows
+        if ew * res0.scale / mu <= cw and eh * res0.scale / mu <= ch - 14.0:
+            return _peak(res0, number - 1) / mu
+    raise AssertionError("unreachable")
+
+
 def _peak(res: PlanResult, i: int) -> float:
     """The longest vector of the plan at position index i, in its units."""
     vec = res.kin.velocities if res.kind == "velocity" else res.kin.accelerations
@@ -909,7 +979,8 @@ def _fit_one(res0: PlanResult, number: int, draw: _Drawings, cw: float, ch: floa
     # which they do not is passed over undrawn; ten scales are drawn at most
     scales = islice((mu for mu in _legible(_standard_from(estimate / 1.6), peak, least)
                      if ew * res0.scale / mu <= cw and eh * res0.scale / mu <= ch - 14.0), 10)
-    found = largest_fitting(lambda mu: draw.plan(res0.kind, number, mu)[1], scales, cw, ch)
+    found = largest_fitting(lambda mu: draw.plan(res0.kind, number, mu)[1], scales, cw, ch,
+                            skip=lambda mu: not draw.plan_fits(res0.kind, number, mu, cw, ch))
     if found is None:
         return None
     mu, view = found

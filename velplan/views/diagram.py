@@ -191,18 +191,51 @@ def _plot(kind: str, d: Diagrams, sc: DiagramScales, *, lang: Language, sizes: D
                             "solid"))
     if not titled:
         return items
-    # title, scales and error, above the plot
+    return items + _heading(kind, d, sc, c, top, lang=lang, sizes=sizes, text_top=text_top, omega=omega,
+                            wrap_mm=wrap_mm)
+
+
+def _heading(kind: str, d: Diagrams, sc: DiagramScales, c: _Curve, top: float, *, lang: Language,
+             sizes: DiagramSizes, text_top: float | None, omega: float, wrap_mm: float | None) -> list[Text]:
+    """The title, the scales and the error written above a diagram whose curves reach `top`
+    (or above `text_top`, the diagrams' common top), mm."""
     lines = _scale_lines(kind, d, sc, c, lang, abs(omega))
     if wrap_mm is not None:  # one statement a line where a line runs wider than wrap_mm
         lines = [part.strip() for line in lines
                  for part in (line.split(";  ") if text_extent(line, sizes.label_mm)[0] > wrap_mm else [line])]
     y = (top if text_top is None else text_top) + 8.0 + 1.6 * sizes.label_mm * len(lines)
-    items.append(Text((-(c.H or 0.0), y + 1.8 * sizes.label_mm), c.title, "diagram-labels",
-                      sizes.title_mm))
+    items = [Text((-(c.H or 0.0), y + 1.8 * sizes.label_mm), c.title, "diagram-labels", sizes.title_mm)]
     for k, line in enumerate(lines):
         items.append(Text((-(c.H or 0.0), y - 1.6 * sizes.label_mm * k), line, "diagram-labels",
                           sizes.label_mm))
     return items
+
+
+def least_row_width(d: Diagrams, *, length_mm: float, height_mm: float, lang: Language = "ru",
+                    sizes: DiagramSizes = DiagramSizes(), gap_mm: float = 12.0, omega: float = 0.0) -> float:
+    """A lower bound of the width (mm) of ``diagram_view(d, arrangement="row")`` with these
+    arguments (no ``wrap_mm``), found without drawing the curves: each diagram at least as
+    wide as what its drawing keeps in place (its axes and their names, its pole and rays, the
+    lines above it; `axis_numbers_clear` moves only the position numbers), the three
+    `gap_mm` apart, padded as the view is."""
+    from velplan.views.base import bounds_of
+
+    sc = choose_scales(d, length_mm=length_mm, height_mm=height_mm)
+    common = max(_tops(d, sc))
+    width = 2 * gap_mm + 2 * 2.0
+    for kind in "sva":
+        c = _curve(kind, d, sc, lang, abs(omega) > 0)
+        top, bottom = _span(c.analytic[1], c.graphical[1], c.mu)
+        axes = phi_axes(sc.length_mm, top, bottom, d.n, f"{c.symbol}, {c.unit}" if c.unit else c.symbol,
+                        layer="diagram", text_layer="diagram-labels", label_mm=sizes.label_mm,
+                        tick_mm=sizes.label_mm * 0.8 if sizes.label_mm > 2.5 else sizes.label_mm)
+        items = [p for p in axes if not (isinstance(p, Text) and p.text.isdigit())]
+        if c.H is not None:
+            items += _pole_rays(kind, d, sc, c.H, sizes.label_mm)
+        items += _heading(kind, d, sc, c, top, lang=lang, sizes=sizes, text_top=common, omega=omega, wrap_mm=None)
+        x0, _, x1, _ = bounds_of(items)
+        width += x1 - x0
+    return width
 
 
 def _pole_rays(kind: str, d: Diagrams, sc: DiagramScales, H: float, size: float) -> list[Primitive]:

@@ -373,7 +373,7 @@ def plan_title(res, number: int, lang: Language) -> tuple[str, str]:
 
 
 def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = PlanSizes(),
-              title: bool = True) -> View:
+              title: bool = True, steps: list[StepDrawing] | None = None) -> View:
     """The plan of `res` at position number `position` as a view.
 
     Parameters
@@ -386,6 +386,8 @@ def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = P
     sizes : PlanSizes
     title : bool
         Write the title and the scale above the plan.
+    steps : list of StepDrawing, optional
+        ``plan_steps(res, position, lang=lang)`` where already made (a layout's trial).
 
     Returns
     -------
@@ -393,21 +395,42 @@ def plan_view(res, position: int, *, lang: Language = "ru", sizes: PlanSizes = P
         ``to_view`` maps plan mm (pole at 0) to the view's mm; ``meta`` holds ``kind``,
         ``number``, ``scale`` and ``images`` (target → plan mm).
     """
-    drawings = plan_steps(res, position, lang=lang)
+    drawings = plan_steps(res, position, lang=lang) if steps is None else steps
     items: list[Primitive] = [p for d in drawings for p in d.items]
     items += image_letters(res, position, drawings, size_mm=sizes.label_mm, leaders=True)
     if title:
-        _, _, text_layer = layer_names(_kind(res), position)
-        x0, _, _, y1 = _bounds(items)
-        head, scale = plan_title(res, position, lang)
-        items.append(Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer,
-                          sizes.title_mm))
-        items.append(Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm))
+        items += _title_lines(res, position, lang, sizes, items)
         items += _near_zero_lines(res, position, lang, items, sizes.label_mm, items[:-2])
     k, i = _kind(res), res.index_of(position)
     images = {t: _image(res, t, i) for d in drawings for t in d.images}
-    return make_view(f"plan-{k}-{position}", items, pad_mm=2.0, mu=None,
+    return make_view(f"plan-{k}-{position}", items, pad_mm=_PAD_MM, mu=None,
                      meta={"kind": k, "number": position, "scale": res.scale, "images": images})
+
+
+_PAD_MM = 2.0
+"""Margin of a plan view around its drawing, mm."""
+
+
+def _title_lines(res, position: int, lang: Language, sizes: PlanSizes, items) -> list[Text]:
+    """The title and the scale lines, above the upper left corner of the box of `items`."""
+    _, _, text_layer = layer_names(_kind(res), position)
+    x0, _, _, y1 = _bounds(items)
+    head, scale = plan_title(res, position, lang)
+    return [Text((x0, y1 + 3.0 + 1.5 * sizes.label_mm), head, text_layer, sizes.title_mm),
+            Text((x0, y1 + 3.0), scale, text_layer, sizes.label_mm)]
+
+
+def least_plan_size(res, position: int, steps: list[StepDrawing], *, lang: Language = "ru",
+                    sizes: PlanSizes = PlanSizes()) -> tuple[float, float]:
+    """A lower bound of the width and height (mm) of ``plan_view(res, position, lang=lang,
+    sizes=sizes, steps=steps)`` at position number `position` (1…n), without placing its
+    letters: the box of the construction
+    `steps` and of the title above it, padded as the view is. The letters and the ≈ 0 list
+    only widen the box, and the title, set above the box's upper left corner, only moves
+    up and left with it, so the view is at least this large."""
+    items: list[Primitive] = [p for d in steps for p in d.items]
+    x0, y0, x1, y1 = _bounds(items + _title_lines(res, position, lang, sizes, items))
+    return x1 - x0 + 2 * _PAD_MM, y1 - y0 + 2 * _PAD_MM
 
 
 def _near_zero_lines(res, position: int, lang: str, items, size: float, body) -> list[Text]:
