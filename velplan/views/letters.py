@@ -77,27 +77,49 @@ def _own_nearest(centres, half, point, others) -> np.ndarray:
     return dist[:, 1:].min(axis=1) > dist[:, 0] + _MARGIN_MM
 
 
+#: Candidates examined a stage at a time, the cheapest first: a stage is looked at only where
+#: its cheapest could still beat (or tie) the best clear candidate found.
+_STAGES = (24, 72)
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
             weight: float = SOFT_MM):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
     (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
-    tree of thin lines) across it costing `weight` mm: its centre and box, or None."""
-    centres, cost = _candidates(point, wanted, half, gaps)
-    padded = _boxes(centres, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
-    ok = np.ones(len(centres), dtype=bool)
-    if tree is not None:
-        ok[tree.query(padded, predicate="intersects")[0]] = False
-    if taken:
-        ok &= ~shapely.intersects(padded[:, None], np.array(taken)[None, :]).any(axis=1)
-    if need_nearest:
-        ok &= _own_nearest(centres, half, point, others)
-    if soft is not None and ok.any():
-        crossed = soft.query(_boxes(centres, half, 0.2), predicate="intersects")[0]
-        cost = cost + weight * np.bincount(crossed, minlength=len(centres))
-    if not ok.any():
+    tree of thin lines) across it costing `weight` mm: its centre and box, or None. Of equal
+    costs, the first candidate (`_candidates`' order) wins."""
+    centres, base = _candidates(point, wanted, half, gaps)
+    n = len(centres)
+    order = np.lexsort((np.arange(n), base))  # by cost, then by place in the candidates
+    taken_boxes = np.array(taken) if taken else None
+    best = None  # (cost, index, padded box)
+    for start, stop in zip((0, *_STAGES), (*_STAGES, n)):
+        if start >= n:
+            break
+        if best is not None and best[0] < base[order[start]]:
+            break  # every later candidate costs more than the best clear one
+        idx = np.sort(order[start:min(stop, n)])
+        c = centres[idx]
+        padded = _boxes(c, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
+        ok = np.ones(len(idx), dtype=bool)
+        if tree is not None:
+            ok[tree.query(padded, predicate="intersects")[0]] = False
+        if taken_boxes is not None and ok.any():
+            ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
+        if need_nearest and ok.any():
+            ok &= _own_nearest(c, half, point, others)
+        if not ok.any():
+            continue
+        cost = base[idx]
+        if soft is not None:
+            crossed = soft.query(_boxes(c, half, 0.2), predicate="intersects")[0]
+            cost = cost + weight * np.bincount(crossed, minlength=len(idx))
+        j = int(np.argmin(np.where(ok, cost, np.inf)))
+        if best is None or (cost[j], idx[j]) < (best[0], best[1]):
+            best = (float(cost[j]), int(idx[j]), padded[j])
+    if best is None:
         return None
-    j = int(np.argmin(np.where(ok, cost, np.inf)))
-    return centres[j], padded[j]
+    return centres[best[1]], best[2]
 
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
