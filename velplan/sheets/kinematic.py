@@ -752,8 +752,6 @@ def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_
     if alone is not None and "diagrams" in (sheet := alone()).views:
         return sheet
     refit = _diagrams_under_scheme(req, draw, views, *plans)
-    if refit is None and (region := _right_of_scheme(req, views, plans[0])) is not None:
-        refit = _diagrams_beside_plans(req, draw, views, *plans, region=region)
     if refit is not None:
         plan_views, results, cells = refit
         if not scale_per_plan:
@@ -780,8 +778,10 @@ def _diagrams_under_scheme(req: Request, draw: _Drawings, views: dict, cells, ch
     if table[0] < scheme[2] + g and table[3] > scheme[1] - g:  # the table moved meets the scheme
         return None
     w, h = min(table[0], req.title_block[0]) - g - fx0, scheme[1] - g - fy0
+    # below the plans' floor where it reaches right of the scheme
     blocks = [b for b in (draw.compact(form, length) for length in COMPACT_LENGTHS for form in FORMS)
-              if min(b.meta["drawn_ranges"]) >= MIN_ORDINATE_MM - 1e-6 and b.width_mm <= w and b.height_mm <= h]
+              if min(b.meta["drawn_ranges"]) >= MIN_ORDINATE_MM - 1e-6 and b.width_mm <= w and b.height_mm <= h
+              and (fx0 + b.width_mm <= scheme[2] or fy0 + b.height_mm <= top)]
     if not blocks:
         return None
     try:
@@ -794,29 +794,15 @@ def _diagrams_under_scheme(req: Request, draw: _Drawings, views: dict, cells, ch
     return fitted
 
 
-def _right_of_scheme(req: Request, views: dict, cells):
-    """The room of the plans widened to the whole band right of the scheme, from their floor
-    to the top of the drawing area (sheet mm); None where the plans do not lie right of it."""
-    if not cells:
-        return None
-    scheme = views["mechanism"].bounds
-    x0, y0 = min(b[0] for b in cells.values()), min(b[1] for b in cells.values())
-    if x0 < scheme[2]:
-        return None
-    return scheme[2] + req.gap, y0, req.area[2], req.area[3]
-
-
-def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds, region=None):
-    """(plan views, results, cells) of the plans fitted again into their region (their cells'
-    box, or `region`, sheet mm) less the compact diagrams' block (placed in `views`) at one of
-    its edges, the placing that leaves the plans the longest shortest vector (each plan
-    legible as `_fit_plans` asks); None where the plans are legible beside the block nowhere."""
+def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
+    """(plan views, results, cells) of the plans fitted again into their region less the
+    compact diagrams' block (placed in `views`) at one of its edges, the placing that leaves
+    the plans the longest shortest vector (each plan legible as `_fit_plans` asks); None
+    where the plans are legible beside the block nowhere."""
     if not cells:
         return None
     x0, y0 = min(b[0] for b in cells.values()), min(b[1] for b in cells.values())
     x1, y1 = max(b[2] for b in cells.values()), max(b[3] for b in cells.values())
-    if region is not None:
-        x0, y0, x1, y1 = region
     g = req.gap
     best = None
     for form in FORMS:
