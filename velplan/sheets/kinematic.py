@@ -14,7 +14,8 @@ raises :class:`~velplan.errors.ScaleError` with a one-line message.
 Where the diagrams find no room at their full size (A3), their compact block
 (`velplan.views.diagram_compact`, every curve 30 mm high at least) goes to a free spot, or
 beside the plans fitted again smaller where they stay legible, or beside the first position's
-plans alone. A plan crowded round its pole gets an enlarged detail at a stated scale
+plans alone, or under the scheme with the table moved back over the title block and the plans
+fitted again right of the scheme above it (the triad press). A plan crowded round its pole gets an enlarged detail at a stated scale
 (`velplan.views.plan_detail`) in the room left.
 
 Examples
@@ -234,8 +235,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         Draw the kinematic diagrams where they fit and the mechanism names an output (None,
         the default): beside the table, or else in the largest free corner left by the
         scheme and the plans, in a row, a grid or a column, or else as a compact block
-        (`velplan.views.diagram_compact`: a small sheet) in a free spot or beside the plans
-        drawn smaller where they stay legible; the same but raise ScaleError
+        (`velplan.views.diagram_compact`: a small sheet) in a free spot, beside the plans
+        drawn smaller where they stay legible or under the scheme; the same but raise ScaleError
         where they fit nowhere (True); leave them out (False).
     table : bool
         Draw the table of transfer functions.
@@ -737,8 +738,9 @@ def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_
     """Room for the kinematic diagrams, tried in turn: a free corner or spot (`_diagrams_if_room`);
     beside the plans fitted again smaller (`plans`: their cells, positions and kinds;
     `_diagrams_beside_plans`), which returns (plan views, results, cells); the sheet ``alone()``
-    draws with the first position's plans alone, returned where it has them. None where none
-    has room (ScaleError then if ``required``)."""
+    draws with the first position's plans alone, returned where it has them; under the scheme
+    (`_diagrams_under_scheme`, the plans fitted again). None where none has room (ScaleError
+    then if ``required``)."""
     _diagrams_if_room(req, draw, views, required=False)
     if "diagrams" in views:
         return None
