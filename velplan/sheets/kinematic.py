@@ -14,7 +14,8 @@ raises :class:`~velplan.errors.ScaleError` with a one-line message.
 Where the diagrams find no room at their full size (A3), their compact block
 (`velplan.views.diagram_compact`, every curve 30 mm high at least) goes to a free spot, or
 beside the plans fitted again smaller where they stay legible, or beside the first position's
-plans alone. A plan crowded round its pole gets an enlarged detail at a stated scale
+plans alone, or under the scheme with the table moved back over the title block and the plans
+fitted again right of the scheme above it (the triad press). A plan crowded round its pole gets an enlarged detail at a stated scale
 (`velplan.views.plan_detail`) in the room left.
 
 Examples
@@ -234,8 +235,8 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         Draw the kinematic diagrams where they fit and the mechanism names an output (None,
         the default): beside the table, or else in the largest free corner left by the
         scheme and the plans, in a row, a grid or a column, or else as a compact block
-        (`velplan.views.diagram_compact`: a small sheet) in a free spot or beside the plans
-        drawn smaller where they stay legible; the same but raise ScaleError
+        (`velplan.views.diagram_compact`: a small sheet) in a free spot, beside the plans
+        drawn smaller where they stay legible or under the scheme; the same but raise ScaleError
         where they fit nowhere (True); leave them out (False).
     table : bool
         Draw the table of transfer functions.
@@ -737,8 +738,9 @@ def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_
     """Room for the kinematic diagrams, tried in turn: a free corner or spot (`_diagrams_if_room`);
     beside the plans fitted again smaller (`plans`: their cells, positions and kinds;
     `_diagrams_beside_plans`), which returns (plan views, results, cells); the sheet ``alone()``
-    draws with the first position's plans alone, returned where it has them. None where none
-    has room (ScaleError then if ``required``)."""
+    draws with the first position's plans alone, returned where it has them; under the scheme
+    (`_diagrams_under_scheme`, the plans fitted again). None where none has room (ScaleError
+    then if ``required``)."""
     _diagrams_if_room(req, draw, views, required=False)
     if "diagrams" in views:
         return None
@@ -751,8 +753,47 @@ def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_
         return plan_views, results, cells
     if alone is not None and "diagrams" in (sheet := alone()).views:
         return sheet
+    refit = _diagrams_under_scheme(req, draw, views, *plans)
+    if refit is not None:
+        plan_views, results, cells = refit
+        if not scale_per_plan:
+            plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
+        views.update(plan_views)
+        return plan_views, results, cells
     _diagrams_if_room(req, draw, views, required=required)
     return None
+
+
+def _diagrams_under_scheme(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
+    """(plan views, results, cells) of the plans fitted again right of the scheme above the
+    table moved back over the title block, the compact diagrams' block (placed in `views`,
+    its longest φ axis that fits) in the lower left corner under the scheme, left of the
+    table and the title block; None where the plans do not lie right of the scheme, the
+    table moved meets the scheme, or the block or the plans fit nowhere."""
+    if not cells or "table" not in views or min(b[0] for b in cells.values()) < views["mechanism"].bounds[2]:
+        return None
+    g, (fx0, fy0, fx1, fy1) = req.gap, req.area
+    scheme = views["mechanism"].bounds
+    high: dict = {}
+    top = _bottom_band(req, draw, high, table=True, diagrams=False)
+    table = high["table"].bounds
+    if table[0] < scheme[2] + g and table[3] > scheme[1] - g:  # the table moved meets the scheme
+        return None
+    w, h = min(table[0], req.title_block[0]) - g - fx0, scheme[1] - g - fy0
+    # below the plans' floor where it reaches right of the scheme
+    blocks = [b for b in (draw.compact(form, length) for length in COMPACT_LENGTHS for form in FORMS)
+              if min(b.meta["drawn_ranges"]) >= MIN_ORDINATE_MM - 1e-6 and b.width_mm <= w and b.height_mm <= h
+              and (fx0 + b.width_mm <= scheme[2] or fy0 + b.height_mm <= top)]
+    if not blocks:
+        return None
+    try:
+        _, fitted = _fit_plans(req, draw, chosen, kinds, (scheme[2] + g, top + g, fx1, fy1))
+    except ScaleError:
+        return None
+    for name in [k for k in views if k.startswith("plan-")]:
+        del views[name]
+    views["table"], views["diagrams"] = high["table"], blocks[0].at(fx0, fy0)
+    return fitted
 
 
 def _diagrams_beside_plans(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
