@@ -20,7 +20,7 @@ FORMATS = ("A1",)
 # every A3 sheet carries its diagrams, each curve 30 mm high at least: the compact block
 # (velplan/views/diagram_compact.py) in a free spot, or beside plans fitted smaller, or beside the
 # first position's plans alone, or under the scheme with the table back over the title block
-# (triad-press; tests/sheet/test_a3_diagrams.py checks the ranges); may only go up
+# (triad-press; tests/sheet/test_gallery_marks_a3_kinematic.py checks the ranges); may only go up
 A3_DIAGRAMS = 25
 
 

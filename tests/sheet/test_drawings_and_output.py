@@ -65,7 +65,7 @@ def test_diagrams_demanded_go_where_they_fit_else_raise_scale_error():
     assert "diagrams" in sheet.views and sheet.frame_style == "iso"
     demanded = build_sheet("crank-slider", fmt="A1", lang="en", diagrams=True)
     assert demanded.svg() == sheet.svg()  # demanding them draws what "auto" draws
-    # on A3 the compact block holds them, 30 mm high at least (tests/sheet/test_a3_diagrams.py)
+    # on A3 the compact block holds them, 30 mm high at least (tests/sheet/test_gallery_marks_a3_kinematic.py)
     assert "diagrams" in build_sheet("crank-slider", fmt="A3", lang="en").views
     # the jaw crusher's two positions' plans leave them no room (the first position's alone do,
     # but --plans names both): ScaleError rather than squashed diagrams
