@@ -165,10 +165,11 @@ def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float
     Kennedy lines, dash-dotted for those not reached — and its title. Each number sits on or
     beside its own chord, as near its middle as no other chord, mark or number lets it, and
     nearer its own chord than any other; with ``grow``, the radius (``radius_mm`` at least)
-    grows by steps of :data:`CIRCLE_GROWTH` until every number finds such a spot."""
+    grows from ``radius_mm`` (scaled by the links beyond :data:`CIRCLE_LINKS`) by steps of
+    :data:`CIRCLE_GROWTH` until every number finds such a spot."""
     links = con.links
     n = len(links)
-    radius, numbers = radius_mm, None
+    radius, numbers = radius_mm * (max(1.0, n / CIRCLE_LINKS) if grow else 1.0), None
     while numbers is None:
         at = {k: radius * np.array([math.cos(math.pi / 2 - 2 * math.pi * j / n),
                                     math.sin(math.pi / 2 - 2 * math.pi * j / n)]) for j, k in enumerate(links)}
@@ -191,6 +192,8 @@ def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float
     return items
 
 
+#: The links a circle diagram of the standard radius holds; one of more links starts larger in proportion.
+CIRCLE_LINKS = 6
 #: The radius of the circle diagram grows by this factor a step while its numbers do not fit…
 CIRCLE_GROWTH = 1.15
 #: …up to this multiple of the radius asked for; beyond it the numbers take their least crossed spots.
@@ -201,6 +204,8 @@ VERTEX_MM = 1.2
 NUMBER_CLEAR_MM = 0.3
 #: How far beside its chord a number may sit (its centre from the chord), mm.
 NUMBER_ASIDE_MM = 2.4
+#: How much nearer its own chord than any other a number's centre is, at least, mm.
+NUMBER_NEAREST_MM = 1.5
 #: The gap between two chords' numbers, mm (beyond their clearance).
 NUMBER_GAP_MM = 1.5
 
@@ -219,7 +224,8 @@ def _number_spots(a: np.ndarray, b: np.ndarray) -> list[np.ndarray]:
 def _chord_numbers(con: Construction, at: dict, radius: float, *, forced: bool) -> list[Text] | None:
     """The numbers (order found) of the chords of the centres found by Kennedy lines, each at
     the first spot of `_number_spots` whose box no other chord, the circle, a link's mark or an
-    earlier number comes within :data:`NUMBER_CLEAR_MM` of and whose nearest chord is its own;
+    earlier number comes within :data:`NUMBER_CLEAR_MM` of and whose nearest chord is its own
+    (by :data:`NUMBER_NEAREST_MM` at least), clear of its own chord where it can be;
     None where one has no such spot, unless `forced`: then it takes the spot crossing fewest."""
     chords = [shapely.LineString([at[s.pair[0]], at[s.pair[1]]]) for s in con.steps]
     fixed = [shapely.Point(0.0, 0.0).buffer(radius, 64).exterior]
@@ -236,8 +242,8 @@ def _chord_numbers(con: Construction, at: dict, radius: float, *, forced: bool) 
             box = label_box(text)
             grown, centre = box.buffer(NUMBER_CLEAR_MM), box.centroid
             hits = int(shapely.intersects(grown, others).sum()) + int(shapely.intersects(grown, taken).sum())
-            if len(others) and chords[j].distance(centre) + NUMBER_CLEAR_MM > float(shapely.distance(centre, others).min()):
-                hits += 1
+            nearest_other = float(shapely.distance(centre, others).min()) if len(others) else math.inf
+            hits += int(chords[j].distance(centre) + NUMBER_NEAREST_MM > nearest_other)
             # a spot clear of its own chord too reads better than one the dashes strike through
             score = (hits, bool(grown.intersects(chords[j])))
             if fewest is None or score < fewest:
