@@ -17,6 +17,7 @@ from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics
 from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
+from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
 from velplan.views.letters import place_letters
@@ -158,45 +159,106 @@ COINCIDENT_MM = 1.0
 
 
 def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float = CIRCLE_MM,
-                   size_mm: float = 3.5) -> list[Primitive]:
+                   size_mm: float = 3.5, grow: bool = True) -> list[Primitive]:
     """The circle diagram around (0, 0) mm: links on a circle, a chord per centre — solid for
     the centres known at once, dashed and numbered in the order found for those found by
-    Kennedy lines, dash-dotted for those not reached — and its title."""
+    Kennedy lines, dash-dotted for those not reached — and its title. Each number sits on or
+    beside its own chord, as near its middle as no other chord, mark or number lets it, and
+    nearer its own chord than any other; with ``grow``, the radius (``radius_mm`` at least)
+    grows from ``radius_mm`` (scaled by the links beyond :data:`CIRCLE_LINKS`) by steps of
+    :data:`CIRCLE_GROWTH` until every number finds such a spot."""
     links = con.links
     n = len(links)
-    at = {k: radius_mm * np.array([math.cos(math.pi / 2 - 2 * math.pi * j / n),
-                                   math.sin(math.pi / 2 - 2 * math.pi * j / n)]) for j, k in enumerate(links)}
-    items: list[Primitive] = [Circle((0.0, 0.0), radius_mm, LAYER, "thin")]
-    numbers: list[Text] = []
-    used: list[np.ndarray] = list(at.values())
+    radius, numbers = radius_mm * (max(1.0, n / CIRCLE_LINKS) if grow else 1.0), None
+    while numbers is None:
+        at = {k: radius * np.array([math.cos(math.pi / 2 - 2 * math.pi * j / n),
+                                    math.sin(math.pi / 2 - 2 * math.pi * j / n)]) for j, k in enumerate(links)}
+        last = not grow or radius >= radius_mm * CIRCLE_MAX_GROWTH - 1e-9
+        numbers = _chord_numbers(con, at, radius, forced=last)
+        radius = radius if numbers is not None else radius * CIRCLE_GROWTH
+    items: list[Primitive] = [Circle((0.0, 0.0), radius, LAYER, "thin")]
     for s in con.steps:
         line = {"joint": "thick", "hinge": "thick", "slider": "thick", "kennedy": "hidden"}.get(s.how, "axis")
-        a, b = at[s.pair[0]], at[s.pair[1]]
-        items.append(Polyline([tuple(a), tuple(b)], LAYER, line))
-        if s.how == "kennedy":  # its number in the order found, where no other number is
-            t = max(CHORD_SPOTS, key=lambda f: min(float(np.hypot(*(a + f * (b - a) - q))) for q in used))
-            spot = a + t * (b - a)
-            used.append(spot)
-            numbers.append(Text(tuple(spot), str(len(numbers) + 1), "labels", 2.5, "middle", "middle"))
-    chords = [shapely.LineString(p.points).buffer(0.2) for p in items if isinstance(p, Polyline)]
-    items += place_labels(numbers, chords, rings=4)
+        items.append(Polyline([tuple(at[s.pair[0]]), tuple(at[s.pair[1]])], LAYER, line))
+    items += numbers
     for k, p in at.items():
-        items.append(Circle(tuple(p), 1.2, LAYER, "thin", "white"))
-        out = p / radius_mm * (radius_mm + 3.5)
+        items.append(Circle(tuple(p), VERTEX_MM, LAYER, "thin", "white"))
+        out = p / radius * (radius + 3.5)
         items.append(Text((out[0], out[1]), k, "labels", size_mm, "middle", "middle"))
     found = sum(1 for s in con.steps if s.how != "unreached")
     total = len(con.links) * (len(con.links) - 1) // 2
-    items.append(Text((0.0, -radius_mm - 10.0), _t("found", lang, found, total), "labels", 2.5, "middle"))
-    items.append(Text((0.0, radius_mm + 9.0), _t("circle", lang), "labels", size_mm, "middle"))
+    items.append(Text((0.0, -radius - 10.0), _t("found", lang, found, total), "labels", 2.5, "middle"))
+    items.append(Text((0.0, radius + 9.0), _t("circle", lang), "labels", size_mm, "middle"))
     return items
 
 
-#: Where along its chord (a fraction from its first link) a found centre's number may go.
-CHORD_SPOTS = (0.5, 0.4, 0.6, 0.3, 0.7, 0.22, 0.78)
+#: The links a circle diagram of the standard radius holds; one of more links starts larger in proportion.
+CIRCLE_LINKS = 6
+#: The radius of the circle diagram grows by this factor a step while its numbers do not fit…
+CIRCLE_GROWTH = 1.15
+#: …up to this multiple of the radius asked for; beyond it the numbers take their least crossed spots.
+CIRCLE_MAX_GROWTH = 2.5
+#: Radius of a link's mark on the circle diagram, mm.
+VERTEX_MM = 1.2
+#: The clearance around a chord's number that other chords, marks and numbers keep, mm.
+NUMBER_CLEAR_MM = 0.3
+#: How far beside its chord a number may sit (its centre from the chord), mm.
+NUMBER_ASIDE_MM = 2.4
+#: How much nearer its own chord than any other a number's centre is, at least, mm.
+NUMBER_NEAREST_MM = 1.5
+#: The gap between two chords' numbers, mm (beyond their clearance).
+NUMBER_GAP_MM = 1.5
+
+
+def _number_spots(a: np.ndarray, b: np.ndarray) -> list[np.ndarray]:
+    """Where a chord a–b's number may go: along the chord (12…88 % of it) and beside it on
+    either side, nearest the chord's middle first (mm)."""
+    d = b - a
+    side = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
+    spots = [a + t * d + off * side for t in np.linspace(0.12, 0.88, 39)
+             for off in (0.0, NUMBER_ASIDE_MM, -NUMBER_ASIDE_MM)]
+    mid = (a + b) / 2
+    return sorted(spots, key=lambda p: float(np.hypot(*(p - mid))))
+
+
+def _chord_numbers(con: Construction, at: dict, radius: float, *, forced: bool) -> list[Text] | None:
+    """The numbers (order found) of the chords of the centres found by Kennedy lines, each at
+    the first spot of `_number_spots` whose box no other chord, the circle, a link's mark or an
+    earlier number comes within :data:`NUMBER_CLEAR_MM` of and whose nearest chord is its own
+    (by :data:`NUMBER_NEAREST_MM` at least), clear of its own chord where it can be;
+    None where one has no such spot, unless `forced`: then it takes the spot crossing fewest."""
+    chords = [shapely.LineString([at[s.pair[0]], at[s.pair[1]]]) for s in con.steps]
+    fixed = [shapely.Point(0.0, 0.0).buffer(radius, 64).exterior]
+    fixed += [shapely.Point(*p).buffer(VERTEX_MM) for p in at.values()]
+    out: list[Text] = []
+    for j, s in enumerate(con.steps):
+        if s.how != "kennedy":
+            continue
+        others = np.array(chords[:j] + chords[j + 1:], dtype=object)
+        taken = np.array(fixed + [label_box(t).buffer(NUMBER_GAP_MM) for t in out], dtype=object)
+        best, fewest = None, None
+        for spot in _number_spots(at[s.pair[0]], at[s.pair[1]]):
+            text = Text(tuple(spot), str(len(out) + 1), "labels", 2.5, "middle", "middle")
+            box = label_box(text)
+            grown, centre = box.buffer(NUMBER_CLEAR_MM), box.centroid
+            hits = int(shapely.intersects(grown, others).sum()) + int(shapely.intersects(grown, taken).sum())
+            nearest_other = float(shapely.distance(centre, others).min()) if len(others) else math.inf
+            hits += int(chords[j].distance(centre) + NUMBER_NEAREST_MM > nearest_other)
+            # a spot clear of its own chord too reads better than one the dashes strike through
+            score = (hits, bool(grown.intersects(chords[j])))
+            if fewest is None or score < fewest:
+                best, fewest = text, score
+            if score == (0, False):
+                break
+        if fewest[0] and not forced:
+            return None
+        out.append(best)
+    return out
 
 
 def centres_view(con: Construction, *, fine: Kinematics, number: int | None = None, lang: Language = "en",
-                 sizes: MechanismSizes = MechanismSizes(), emphasis: int | None = None) -> View:
+                 sizes: MechanismSizes = MechanismSizes(), emphasis: int | None = None,
+                 circle_mm: float | None = None) -> View:
     """The scheme at the construction's position and scale with every centre, the Kennedy lines
     used, notes for the centres at infinity, off the drawing or not reached, and the circle
     diagram to the right.
@@ -211,12 +273,16 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
         The position's number (1-based) written in the title.
     emphasis : int, optional
         The step (1-based) whose centre and Kennedy lines are drawn thick.
+    circle_mm : float, optional
+        The circle diagram's radius, mm; by default the least from :data:`CIRCLE_MM` up at
+        which its numbers fit (`circle_diagram`).
 
     Returns
     -------
     View
         ``mu`` is μl (m/mm); ``meta["centres"]`` counts the centres drawn on the scheme,
-        ``meta["position"]`` is the position's number (1…n of the construction's kinematics).
+        ``meta["position"]`` is the position's number (1…n of the construction's kinematics),
+        ``meta["circle_mm"]`` the circle diagram's radius.
     """
     kin = con.kin
     scheme = mechanism_view(kin.mechanism, kin=kin, fine=fine, mu_l=con.mu_l, n=len(kin),
@@ -254,18 +320,19 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     items += placed + leaders
     items += place_labels([t for t in texts if t not in own] + labels, obstacles, rings=8, taken=placed)
     x0, y0, x1, y1 = bounds_of(items)
-    diagram = circle_diagram(con, lang=lang)
-    cx, cy = x1 + CIRCLE_MM + 20.0, (y0 + y1) / 2
+    diagram = circle_diagram(con, lang=lang, **({} if circle_mm is None else {"radius_mm": circle_mm, "grow": False}))
+    radius = next(p.radius for p in diagram if isinstance(p, Circle))
+    cx, cy = x1 + radius + 20.0, (y0 + y1) / 2
     items += [shift(p, cx, cy) for p in diagram]
     for k, note in enumerate(notes):
         items.append(Text((x0, y0 - 6.0 - 4.0 * k), note, "labels", 2.5))
     title = _t("title", lang) + (f", {_t('position', lang)} {number}" if number is not None else "")
     title += f", φ = {_number(round(float(kin.phi_deg[con.index]) % 360.0, 1) % 360.0, lang, 4)}°"
-    top = max(y1, cy + CIRCLE_MM + 12.0)
+    top = max(y1, cy + radius + 12.0)
     items.append(Text((x0, top + 4.0 + 1.6 * sizes.title_mm), title, "labels", sizes.title_mm))
     items.append(Text((x0, top + 4.0), scale_text("μl", con.mu_l, "m/mm", lang), "labels", sizes.label_mm))
     return make_view("centres", items, pad_mm=2.0, mu=con.mu_l, origin=tuple(scheme.origin),
-                     meta={"centres": len(marks), "position": position_number(con.index)})
+                     meta={"centres": len(marks), "position": position_number(con.index), "circle_mm": radius})
 
 
 def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: Language = "en",
@@ -289,7 +356,7 @@ def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lan
     for k in range(1, len(con.steps) + 1):
         done = con.steps[:k]
         part = replace(con, steps=done, centres={s.pair: s for s in done if s.how != "unreached"})
-        view = centres_view(part, fine=fine, number=number, lang=lang, emphasis=k)
+        view = centres_view(part, fine=fine, number=number, lang=lang, emphasis=k, circle_mm=full.meta["circle_mm"])
         x = margin_mm + full.origin[0] - view.origin[0]
         y = height - margin_mm - full.height_mm + full.origin[1] - view.origin[1]
         items = list(view.at(x, y).primitives)
