@@ -94,4 +94,4 @@ def test_fit_mode_stacks_only_the_units_that_fit_a_row():
     assert rows.unit_size(["c", "d"]) == pytest.approx((105.0, 50.0))
     placed: dict = {}
     rows.place_unit(["a", "b"], 0.0, 70.0, placed, {})
-    assert placed["b"].y == pytest.approx(0.0) and placed["a"].y == pytest.approx(40.0)
+    assert placed["a"].y == pytest.approx(40.0) and placed["b"].y == pytest.approx(5.0)  # 5 mm gap
