@@ -58,6 +58,11 @@ FORCE_SIZES: Mapping[str, ForceSizes] = MappingProxyType({
 })
 #: Smallest drawing (mm, its larger side) of a group, a polygon or the lever, per format.
 MIN_TARGET_MM: Mapping[str, float] = MappingProxyType({"A1": 40.0, "A2": 35.0, "A3": 30.0})
+#: Smallest larger side of Zhukovsky's lever (its velocity plan turned), mm, per format: the
+#: lever carries every force of the mechanism at its image points, a smaller one piles their
+#: arrows and labels on one another. The other drawings shrink first; a sheet that cannot
+#: give the lever this much refuses (ScaleError).
+MIN_LEVER_MM: Mapping[str, float] = MappingProxyType({"A1": 70.0, "A2": 60.0, "A3": 50.0})
 
 
 @dataclass(frozen=True)
@@ -162,16 +167,8 @@ def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plan
     chosen = check_plan_positions(default_force_positions(fa) if plans is None else plans, study.n)
     _check_regular(fa, chosen)
     draw = _ForceDrawings(fa, lang, FORCE_SIZES[fmt])
-    for share in DIAGRAM_SHARES:  # a lower diagram where the drawings above need the room
-        views: dict[str, PlacedView] = {}
-        scales: dict[str, float] = {}
-        band_top = _bottom_band(req, fa, views, scales, table=table, diagrams=diagrams, share=share)
-        try:
-            chosen, placed, top_scales = _top_views(draw, chosen, band_top, req, plans)
-            break
-        except ScaleError:
-            if share == DIAGRAM_SHARES[-1] or "mb-diagram" not in views:
-                raise
+    views, scales, (chosen, placed, top_scales) = _fit_sheet(req, fa, draw, chosen, plans,
+                                                             table=table, diagrams=diagrams)
     views.update(placed)
     scales.update(top_scales)
     info = title_with_scale(info, lambda s: default_force_title(mech, lang, s),
@@ -186,20 +183,42 @@ def build_force_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plan
 #: The least share of the drawing area's height the diagram M_b(φ) is given, in turn: the
 #: drawings above take the room of a lower one where they need it.
 DIAGRAM_SHARES = (0.26, 0.2)
+#: The arrangements of the drawings above the band (`_fit_top`), in turn: each tried with
+#: every diagram share before the next.
+ARRANGEMENTS = (("row", "stack"), ("fit",))
 
 
-def _top_views(draw, chosen, band_top: float, req: Request, plans):
+def _fit_sheet(req: Request, fa, draw, chosen, plans, *, table: bool, diagrams: bool | None):
+    """(bottom views, their scales, (positions, placed views, scales) above the band): the
+    first arrangement of `ARRANGEMENTS` that fits with the tallest diagram of
+    `DIAGRAM_SHARES`; the last ScaleError where none does."""
+    failure: ScaleError | None = None
+    for modes in ARRANGEMENTS:
+        for share in DIAGRAM_SHARES:  # a lower diagram where the drawings above need the room
+            views: dict[str, PlacedView] = {}
+            scales: dict[str, float] = {}
+            band_top = _bottom_band(req, fa, views, scales, table=table, diagrams=diagrams, share=share)
+            try:
+                return views, scales, _top_views(draw, chosen, band_top, req, plans, modes)
+            except ScaleError as exc:
+                failure = exc
+                if "mb-diagram" not in views:
+                    break  # no diagram: the share changes nothing
+    raise failure or ScaleError(f"the force views do not fit {req.fmt}")
+
+
+def _top_views(draw, chosen, band_top: float, req: Request, plans, modes=ARRANGEMENTS[0]):
     """(positions, placed views, scales) of the groups, polygons and lever above the band:
     the default pair of positions, or the largest |M_b| alone where the pair does not fit."""
     fx0, _, fx1, fy1 = req.area
     top = (fx0, band_top + req.gap, fx1, fy1)
     try:
-        return (chosen, *_fit_top(draw, chosen, top, req))
+        return (chosen, *_fit_top(draw, chosen, top, req, modes))
     except ScaleError:
         if plans is not None or len(chosen) == 1:
             raise
         chosen = (chosen[-1],)  # the default pair does not fit: the largest |M_b| alone
-        return (chosen, *_fit_top(draw, chosen, top, req))
+        return (chosen, *_fit_top(draw, chosen, top, req, modes))
 
 
 def _check_regular(fa: ForceAnalysis, chosen) -> None:
@@ -281,12 +300,13 @@ class _ForceDrawings:
         return lever_view(fa, k, mu_v=mu, lang=lang, sizes=sizes)
 
 
-def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
+def _fit_top(draw: _ForceDrawings, chosen, region, req: Request, modes=("row", "stack")):
     """Groups, polygons and levers of the chosen positions, a row per position under its
-    heading: each group with its polygon beside it or under it (whichever arrangement
-    leaves the larger drawings), then the lever. (placed views, scales)."""
+    heading: each group with its polygon beside it or under it (whichever of `modes`, the
+    arrangements of `_Rows`, leaves the larger drawings), then the lever. (placed views,
+    scales)."""
     best, failure = None, None
-    for mode in ("row", "stack"):
+    for mode in modes:
         rows = _Rows(draw, chosen, region, req, mode=mode)
         try:
             # a layout's score only falls as it shrinks: one that falls to the best is dropped
@@ -303,15 +323,17 @@ def _fit_top(draw: _ForceDrawings, chosen, region, req: Request):
 
 
 class _Rows(ShrinkingRows):
-    """One arrangement of :func:`_fit_top` (``mode``: a group's polygon beside it, "row", or
-    under it, "stack"), shrunk by `velplan.sheets.solver.ShrinkingRows`: each drawing starts
-    at the largest standard scale that fits the row's height; the groups together share μl
-    (an ESKD scale), each polygon and each lever has its own standard scale."""
+    """One arrangement of :func:`_fit_top` (``mode``: a group's polygon beside it, "row",
+    under it, "stack", or under it where the two fit a row's height so, "fit"), shrunk by
+    `velplan.sheets.solver.ShrinkingRows`: each drawing starts at the largest standard scale
+    that fits the row's height; the groups together share μl (an ESKD scale), each polygon
+    and each lever has its own standard scale, the lever's no smaller than `MIN_LEVER_MM`."""
 
     def __init__(self, draw: _ForceDrawings, chosen, region, req: Request, *, mode: str):
         fa = draw.fa
         self.draw, self.chosen, self.fmt = draw, chosen, req.fmt
         self.least = MIN_TARGET_MM[req.fmt]
+        self.least_lever = max(MIN_LEVER_MM[req.fmt], self.least)
         self.mech = fa.kinetostatics.mechanism
         x0, y0, x1, y1 = region
         count = len(chosen)
@@ -331,7 +353,17 @@ class _Rows(ShrinkingRows):
             f"the groups, force polygons and lever of position{'s' if count > 1 else ''} "
             f"{', '.join(map(str, self.chosen))} do not fit {self.fmt} at any standard scale with "
             f"drawings of at least {self.least:.0f} mm ({x1 - x0:.0f} × {y1 - y0:.0f} mm free, "
-            f"{why}); use fewer --plans or a larger --format")
+            f"Zhukovsky's lever at least {self.least_lever:.0f} mm across, {why}); use fewer "
+            f"--plans or a larger --format")
+
+    def solve(self, floor: float | None = None) -> bool:
+        """`ShrinkingRows.solve`, refused at once where a lever is below its least size at
+        the scale it starts at (the row is too low for it)."""
+        for k in self.chosen:
+            size = self.span[("lever", k)] / self.scale[("lever", k)]
+            if size < self.least_lever - 1e-9:
+                raise self.fail(f"lever-{k} {size:.0f} mm in rows of {max(self.row_h, 0):.0f} mm")
+        return super().solve(floor)
 
     def records(self, ref) -> bool:
         """The polygons' and levers' scales are recorded by view; the groups' is μl."""
@@ -360,7 +392,8 @@ class _Rows(ShrinkingRows):
         mu = self.scale[entity]
         if entity != "groups":
             nxt = standard_scale(mu * 1.0001)
-            return nxt if self.span[entity] / nxt >= self.least else None
+            least = self.least_lever if entity[0] == "lever" else self.least
+            return nxt if self.span[entity] / nxt >= least else None
         eskd = eskd_scales()
         j = eskd.index(mu) + 1
         if j >= len(eskd):

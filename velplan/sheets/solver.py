@@ -81,7 +81,8 @@ class ShrinkingRows:
     """Rows of drawings shrunk to fit a region, the one shrink-to-fit of a sheet's rows.
 
     ``layout`` holds the rows, each a list of units, each unit a list of drawings (``refs``):
-    a unit's drawings side by side (``mode`` "row") or one under another ("stack"). Every
+    a unit's drawings side by side (``mode`` "row"), one under another ("stack"), or under
+    one another where they are no taller than a row so, side by side otherwise ("fit"). Every
     drawing starts at the scale ``scale[entity(ref)]`` (drawings of one entity share it) and
     ``span[entity]`` is its size at scale 1. While a unit is taller than ``row_h``, its tallest
     drawing that can shrink goes one scale smaller; while a row is wider than the region, the
@@ -123,9 +124,17 @@ class ShrinkingRows:
         shrunk undrawn where it is the tallest of its unit."""
         return 0.0
 
+    def stacks(self, unit) -> bool:
+        """Whether the drawings of `unit` go one under another: always in mode "stack", never
+        in mode "row"; in mode "fit", where so they are no taller than a row (they save width)."""
+        if self.mode != "fit" or len(unit) == 1:
+            return self.mode == "stack"
+        heights = [self.view(r).height_mm for r in unit]
+        return sum(heights) + self.gap * (len(heights) - 1) <= self.row_h + 1e-6
+
     def unit_size(self, unit) -> tuple[float, float]:
         vs = [self.view(r) for r in unit]
-        if self.mode == "stack" or len(vs) == 1:
+        if self.stacks(unit) or len(vs) == 1:
             return max(v.width_mm for v in vs), sum(v.height_mm for v in vs) + self.gap * (len(vs) - 1)
         return sum(v.width_mm for v in vs) + self.gap * (len(vs) - 1), max(v.height_mm for v in vs)
 
@@ -188,8 +197,9 @@ class ShrinkingRows:
         share: dict = {}
         for unit in self.layout[worst]:
             vs = [self.view(r) for r in unit]
+            side_by_side = not self.stacks(unit)
             for r, v in zip(unit, vs):
-                if self.mode == "row" or v.width_mm >= max(w.width_mm for w in vs) - 1e-9:
+                if side_by_side or v.width_mm >= max(w.width_mm for w in vs) - 1e-9:
                     share[self.entity(r)] = max(share.get(self.entity(r), 0.0), v.width_mm)
         candidates = sorted((e for e in share if e not in self.stuck and self.smaller(e) is not None),
                             key=lambda e: (-share[e], str(e)))
@@ -205,12 +215,13 @@ class ShrinkingRows:
 
     def place_unit(self, unit, x: float, y: float, placed: dict, scales: dict) -> None:
         """A unit's views from its upper left corner (x, y): side by side, or stacked."""
+        stacked = self.stacks(unit)
         for ref in unit:
             v = self.view(ref)
             placed[v.name] = v.at(x, y - v.height_mm)
             if self.records(ref):
                 scales[v.name] = self.scale[self.entity(ref)]
-            if self.mode == "stack":
+            if stacked:
                 y -= v.height_mm + self.gap
             else:
                 x += v.width_mm + self.gap
