@@ -21,6 +21,7 @@ import shapely
 
 from velplan.render.layout import label_box
 from velplan.render.scene import Polyline, Text
+from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
@@ -32,10 +33,12 @@ def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
     step = 0.5 * text.size_mm
     out = [(x, y)]
     for r in range(1, rings + 1):
-        for k in range(12):
-            a = math.radians(30.0 * k)
-            out.append((x + r * step * math.cos(a), y + r * step * math.sin(a)))
+        out += [(x + r * step * c, y + r * step * s) for c, s in _TWELVE]
     return out
+
+
+#: The cosine and sine of the twelve directions 30° apart, computed once.
+_TWELVE = tuple((math.cos(math.radians(30.0 * k)), math.sin(math.radians(30.0 * k))) for k in range(12))
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
@@ -64,33 +67,97 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
     tree = shapely.STRtree(shapes) if shapes else None
     anchors = np.asarray(list(anchors), dtype=object)
     kinds = np.asarray(list(kinds))
-    placed: list = []
+    placed: list = []  # the placed labels' and leaders' keep-off areas
+    deep: list = []  # the same shrunk by 0.6 mm: overlapping one of these puts text over text
     out: list = []
     leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
-        best = None
-        for rank, spot in enumerate(_spots(text, rings)):
-            cand = dataclasses.replace(text, position=spot)
-            box = label_box(cand)
-            own = float(shapely.distance(box, anchors[i]))
-            others = shapely.distance(box, anchors[mates]) if mates.size else np.array([np.inf])
-            hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
-            # a line through the letters is worse than one grazing the box's edge
-            core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
-            cost = (0.05 * rank + 30.0 * hits + 100.0 * core
-                    + 1000.0 * sum(box.intersects(b) for b in placed)
-                    + 4000.0 * sum(box.intersects(b.buffer(-0.6)) for b in placed)
-                    + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
-            if best is None or cost < best[0]:
-                best = (cost, cand, box)
-            if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
-                break
+        deep += [b.buffer(-0.6) for b in placed[len(deep):]]
+        best = (_best_upright if text.rotation_deg == 0.0 else _best_each)(
+            text, _spots(text, rings), anchors[i], anchors[mates], tree, (placed, deep), reach)
         if leader_layer is not None and best[0] >= 100.0:
             best = _led(text, anchors[i], rings, tree, placed, leaders, leader_layer) or best
         out.append(best[1])
         placed.append(best[2].buffer(0.5))
     return out + leaders
+
+
+def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
+    """`place_anchored`'s choice for `text` among `spots`, costed one spot at a time; `taken`
+    is (the placed labels' areas, the same shrunk): (cost, label there, its box)."""
+    placed, deep = taken
+    best = None
+    for rank, spot in enumerate(spots):
+        cand = dataclasses.replace(text, position=spot)
+        box = label_box(cand)
+        own = float(shapely.distance(box, own_anchor))
+        others = shapely.distance(box, mate_anchors) if mate_anchors.size else np.array([np.inf])
+        hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
+        # a line through the letters is worse than one grazing the box's edge
+        core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
+        cost = (0.05 * rank + 30.0 * hits + 100.0 * core
+                + 1000.0 * sum(box.intersects(b) for b in placed)
+                + 4000.0 * sum(box.intersects(b) for b in deep)
+                + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
+        if best is None or cost < best[0]:
+            best = (cost, cand, box)
+        if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
+            break
+    return best
+
+
+#: Where the stages of an upright label's spots end, their costs computed a stage at a time:
+#: its own place (most labels stay there), the first ring, the next two, the rest.
+_STAGES = (1, 13, 37)
+
+
+def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
+    """:func:`_best_each`'s choice for an upright label, its spots' costs computed a stage at a
+    time with shapely's array functions (the same boxes, the same numbers in the same order)."""
+    placed, deep = np.array(taken[0], dtype=object), np.array(taken[1], dtype=object)
+    best = None
+    bounds = [0, *(b for b in _STAGES if b < len(spots)), len(spots)]
+    for start, stop in zip(bounds, bounds[1:]):
+        boxes = _upright_boxes(text, np.array(spots[start:stop], float))
+        n = stop - start
+        own = shapely.distance(boxes, own_anchor)
+        others = (shapely.distance(boxes[:, None], mate_anchors[None, :]).min(axis=1) if mate_anchors.size
+                  else np.full(n, np.inf))
+        hits, core = np.zeros(n, int), np.zeros(n, int)
+        if tree is not None:
+            hits = np.bincount(tree.query(boxes, predicate="intersects")[0], minlength=n)
+            grazed = np.flatnonzero(hits)  # a line through the letters costs more than one by the edge
+            cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
+            core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
+        crossed = shapely.intersects(boxes[:, None], placed[None, :]).sum(axis=1) if placed.size else 0
+        over = shapely.intersects(boxes[:, None], deep[None, :]).sum(axis=1) if deep.size else 0
+        far = np.where((own > reach) | (others <= own), 1000.0, 0.0)
+        costs = (0.05 * np.arange(start, stop) + 30.0 * hits + 100.0 * core
+                 + 1000.0 * crossed + 4000.0 * over + far)
+        for j, cost in enumerate(costs.tolist()):
+            rank = start + j
+            if best is None or cost < best[0]:
+                best = (cost, rank, boxes[j])
+            if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
+                return best[0], dataclasses.replace(text, position=spots[best[1]]), best[2]
+    return best[0], dataclasses.replace(text, position=spots[best[1]]), best[2]
+
+
+def _upright_boxes(text: Text, xy: np.ndarray) -> np.ndarray:
+    """The boxes of upright `text` at the places `xy` (n, 2), mm: `label_box`'s polygons, the
+    same numbers computed as `text_box` computes them."""
+    width = text_extent(text.text, text.size_mm)[0] * text.width_factor
+    x0 = -width * _ANCHOR_SHARE[text.anchor]
+    x1, y0 = x0 + width, -DESCENDER_DEPTH * text.size_mm
+    ox, oy = xy[:, 0], xy[:, 1] - _DROP_SHARE[text.baseline] * text.size_mm
+    top = oy + text.size_mm
+    return shapely.polygons(np.stack([np.column_stack([ox + x0, oy + y0]), np.column_stack([ox + x1, oy + y0]),
+                                      np.column_stack([ox + x1, top]), np.column_stack([ox + x0, top])], axis=1))
+
+
+_ANCHOR_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
+_DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 
 def _led(text: Text, anchor, rings: int, tree, placed: list, leaders: list, layer: str):
