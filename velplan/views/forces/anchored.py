@@ -68,25 +68,33 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
     anchors = np.asarray(list(anchors), dtype=object)
     kinds = np.asarray(list(kinds))
     placed: list = []  # the placed labels' and leaders' keep-off areas
-    deep: list = []  # the same shrunk by 0.6 mm: overlapping one of these puts text over text
+    taken = (placed, {})  # and those of them shrunk so far (`_shrunk`)
     out: list = []
     leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
-        deep += [b.buffer(-0.6) for b in placed[len(deep):]]
         best = (_best_upright if text.rotation_deg == 0.0 else _best_each)(
-            text, _spots(text, rings), anchors[i], anchors[mates], tree, (placed, deep), reach)
+            text, _spots(text, rings), anchors[i], anchors[mates], tree, taken, reach)
         if leader_layer is not None and best[0] >= 100.0:
-            best = _led(text, anchors[i], rings, tree, placed, leaders, leader_layer) or best
+            best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
         out.append(best[1])
         placed.append(best[2].buffer(0.5))
     return out + leaders
 
 
+def _shrunk(taken, j: int):
+    """The placed area `j` of `taken` shrunk by 0.6 mm, made once when first asked: a label
+    over it puts text over text."""
+    placed, shrunk = taken
+    if j not in shrunk:
+        shrunk[j] = placed[j].buffer(-0.6)
+    return shrunk[j]
+
+
 def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
     """`place_anchored`'s choice for `text` among `spots`, costed one spot at a time; `taken`
-    is (the placed labels' areas, the same shrunk): (cost, label there, its box)."""
-    placed, deep = taken
+    is (the placed labels' areas, those shrunk so far): (cost, label there, its box)."""
+    placed = taken[0]
     best = None
     for rank, spot in enumerate(spots):
         cand = dataclasses.replace(text, position=spot)
@@ -98,7 +106,7 @@ def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: 
         core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
         cost = (0.05 * rank + 30.0 * hits + 100.0 * core
                 + 1000.0 * sum(box.intersects(b) for b in placed)
-                + 4000.0 * sum(box.intersects(b) for b in deep)
+                + 4000.0 * sum(box.intersects(_shrunk(taken, j)) for j in range(len(placed)))
                 + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
         if best is None or cost < best[0]:
             best = (cost, cand, box)
@@ -115,7 +123,7 @@ _STAGES = (1, 13, 37)
 def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
     """:func:`_best_each`'s choice for an upright label, its spots' costs computed a stage at a
     time with shapely's array functions (the same boxes, the same numbers in the same order)."""
-    placed, deep = np.array(taken[0], dtype=object), np.array(taken[1], dtype=object)
+    placed = np.array(taken[0], dtype=object)
     best = None
     bounds = [0, *(b for b in _STAGES if b < len(spots)), len(spots)]
     for start, stop in zip(bounds, bounds[1:]):
@@ -130,8 +138,14 @@ def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reac
             grazed = np.flatnonzero(hits)  # a line through the letters costs more than one by the edge
             cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
             core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
-        crossed = shapely.intersects(boxes[:, None], placed[None, :]).sum(axis=1) if placed.size else 0
-        over = shapely.intersects(boxes[:, None], deep[None, :]).sum(axis=1) if deep.size else 0
+        crossed = over = 0
+        if placed.size:
+            meets = shapely.intersects(boxes[:, None], placed[None, :])
+            crossed = meets.sum(axis=1)
+            # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
+            near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
+            if near:
+                over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
         far = np.where((own > reach) | (others <= own), 1000.0, 0.0)
         costs = (0.05 * np.arange(start, stop) + 30.0 * hits + 100.0 * core
                  + 1000.0 * crossed + 4000.0 * over + far)
@@ -160,17 +174,18 @@ _ANCHOR_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
 _DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 
-def _led(text: Text, anchor, rings: int, tree, placed: list, leaders: list, layer: str):
+def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str):
     """The first clear place for `text` beyond `rings` rings, its leader from `anchor` (which
     crosses no placed label) appended to `leaders` and kept off by the later labels:
     (0, label, box), or None."""
+    placed = taken[0]
     for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
         cand = dataclasses.replace(text, position=spot)
         box = label_box(cand)
         if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
             continue
         line = shapely.shortest_line(anchor, box.buffer(0.4))
-        if any(line.intersects(b.buffer(-0.6)) for b in placed):
+        if any(line.intersects(_shrunk(taken, j)) for j in range(len(placed))):
             continue
         (x0, y0), (x1, y1) = line.coords
         leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
