@@ -128,27 +128,8 @@ def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reac
     bounds = [0, *(b for b in _STAGES if b < len(spots)), len(spots)]
     for start, stop in zip(bounds, bounds[1:]):
         boxes = _upright_boxes(text, np.array(spots[start:stop], float))
-        n = stop - start
-        own = shapely.distance(boxes, own_anchor)
-        others = (shapely.distance(boxes[:, None], mate_anchors[None, :]).min(axis=1) if mate_anchors.size
-                  else np.full(n, np.inf))
-        hits, core = np.zeros(n, int), np.zeros(n, int)
-        if tree is not None:
-            hits = np.bincount(tree.query(boxes, predicate="intersects")[0], minlength=n)
-            grazed = np.flatnonzero(hits)  # a line through the letters costs more than one by the edge
-            cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
-            core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
-        crossed = over = 0
-        if placed.size:
-            meets = shapely.intersects(boxes[:, None], placed[None, :])
-            crossed = meets.sum(axis=1)
-            # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
-            near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
-            if near:
-                over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
-        far = np.where((own > reach) | (others <= own), 1000.0, 0.0)
-        costs = (0.05 * np.arange(start, stop) + 30.0 * hits + 100.0 * core
-                 + 1000.0 * crossed + 4000.0 * over + far)
+        costs = _stage_costs(boxes, start, own_anchor, mate_anchors, tree, taken, placed, reach,
+                             np.inf if best is None else best[0])
         for j, cost in enumerate(costs.tolist()):
             rank = start + j
             if best is None or cost < best[0]:
@@ -158,6 +139,41 @@ def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reac
     return best[0], dataclasses.replace(text, position=spots[best[1]]), best[2]
 
 
+def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, placed, reach: float,
+                 best: float) -> np.ndarray:
+    """The costs of a stage's `boxes` (ranks from `start`) as `_best_each` adds them up; a box a
+    line meets whose cost without its lines through the letters (≥ 0) cannot beat `best` or a
+    box before it in the stage costs inf (it would not be chosen either way)."""
+    n = len(boxes)
+    rank = np.arange(start, start + n)
+    own = shapely.distance(boxes, own_anchor)
+    others = (shapely.distance(boxes[:, None], mate_anchors[None, :]).min(axis=1) if mate_anchors.size
+              else np.full(n, np.inf))
+    hits = np.zeros(n, int) if tree is None else np.bincount(tree.query(boxes, predicate="intersects")[0], minlength=n)
+    crossed = over = 0
+    if placed.size:
+        meets = shapely.intersects(boxes[:, None], placed[None, :])
+        crossed = meets.sum(axis=1)
+        # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
+        near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
+        if near:
+            over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
+    far = np.where((own > reach) | (others <= own), 1000.0, 0.0)
+    least = 0.05 * rank + 30.0 * hits + 1000.0 * crossed + 4000.0 * over + far  # rounding keeps it ≤ the cost
+    # the best a box meets on its turn is at most the least cost of the clear boxes before it
+    before = np.minimum.accumulate(np.concatenate([[best], np.where(hits == 0, least, np.inf)[:-1]]))
+    grazed = np.flatnonzero(hits)
+    grazed = grazed[(least[grazed] < before[grazed]) | (least[grazed] < 0.05 * (rank[grazed] + 1))]
+    core = np.zeros(n, int)  # a line through the letters costs more than one by the edge
+    if grazed.size:
+        cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
+        core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
+    costs = 0.05 * rank + 30.0 * hits + 100.0 * core + 1000.0 * crossed + 4000.0 * over + far
+    passed_over = hits > 0
+    passed_over[grazed] = False
+    return np.where(passed_over, np.inf, costs)
+
+
 def _upright_boxes(text: Text, xy: np.ndarray) -> np.ndarray:
     """The boxes of upright `text` at the places `xy` (n, 2), mm: `label_box`'s polygons, the
     same numbers computed as `text_box` computes them."""
@@ -165,9 +181,12 @@ def _upright_boxes(text: Text, xy: np.ndarray) -> np.ndarray:
     x0 = -width * _ANCHOR_SHARE[text.anchor]
     x1, y0 = x0 + width, -DESCENDER_DEPTH * text.size_mm
     ox, oy = xy[:, 0], xy[:, 1] - _DROP_SHARE[text.baseline] * text.size_mm
-    top = oy + text.size_mm
-    return shapely.polygons(np.stack([np.column_stack([ox + x0, oy + y0]), np.column_stack([ox + x1, oy + y0]),
-                                      np.column_stack([ox + x1, top]), np.column_stack([ox + x0, top])], axis=1))
+    corners = np.empty((len(xy), 4, 2))
+    corners[:, 0, 0] = corners[:, 3, 0] = ox + x0
+    corners[:, 1, 0] = corners[:, 2, 0] = ox + x1
+    corners[:, 0, 1] = corners[:, 1, 1] = oy + y0
+    corners[:, 2, 1] = corners[:, 3, 1] = oy + text.size_mm
+    return shapely.polygons(corners)
 
 
 _ANCHOR_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
