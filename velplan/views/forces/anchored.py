@@ -21,6 +21,7 @@ import shapely
 
 from velplan.render.layout import label_box
 from velplan.render.scene import Polyline, Text
+from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
@@ -32,10 +33,12 @@ def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
     step = 0.5 * text.size_mm
     out = [(x, y)]
     for r in range(1, rings + 1):
-        for k in range(12):
-            a = math.radians(30.0 * k)
-            out.append((x + r * step * math.cos(a), y + r * step * math.sin(a)))
+        out += [(x + r * step * c, y + r * step * s) for c, s in _TWELVE]
     return out
+
+
+#: The cosine and sine of the twelve directions 30° apart, computed once.
+_TWELVE = tuple((math.cos(math.radians(30.0 * k)), math.sin(math.radians(30.0 * k))) for k in range(12))
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
@@ -64,46 +67,144 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
     tree = shapely.STRtree(shapes) if shapes else None
     anchors = np.asarray(list(anchors), dtype=object)
     kinds = np.asarray(list(kinds))
-    placed: list = []
+    placed: list = []  # the placed labels' and leaders' keep-off areas
+    taken = (placed, {})  # and those of them shrunk so far (`_shrunk`)
     out: list = []
     leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
-        best = None
-        for rank, spot in enumerate(_spots(text, rings)):
-            cand = dataclasses.replace(text, position=spot)
-            box = label_box(cand)
-            own = float(shapely.distance(box, anchors[i]))
-            others = shapely.distance(box, anchors[mates]) if mates.size else np.array([np.inf])
-            hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
-            # a line through the letters is worse than one grazing the box's edge
-            core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
-            cost = (0.05 * rank + 30.0 * hits + 100.0 * core
-                    + 1000.0 * sum(box.intersects(b) for b in placed)
-                    + 4000.0 * sum(box.intersects(b.buffer(-0.6)) for b in placed)
-                    + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
-            if best is None or cost < best[0]:
-                best = (cost, cand, box)
-            if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
-                break
+        best = (_best_upright if text.rotation_deg == 0.0 else _best_each)(
+            text, _spots(text, rings), anchors[i], anchors[mates], tree, taken, reach)
         if leader_layer is not None and best[0] >= 100.0:
-            best = _led(text, anchors[i], rings, tree, placed, leaders, leader_layer) or best
+            best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
         out.append(best[1])
         placed.append(best[2].buffer(0.5))
     return out + leaders
 
 
-def _led(text: Text, anchor, rings: int, tree, placed: list, leaders: list, layer: str):
+def _shrunk(taken, j: int):
+    """The placed area `j` of `taken` shrunk by 0.6 mm, made once when first asked: a label
+    over it puts text over text."""
+    placed, shrunk = taken
+    if j not in shrunk:
+        shrunk[j] = placed[j].buffer(-0.6)
+    return shrunk[j]
+
+
+def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
+    """`place_anchored`'s choice for `text` among `spots`, costed one spot at a time; `taken`
+    is (the placed labels' areas, those shrunk so far): (cost, label there, its box)."""
+    placed = taken[0]
+    best = None
+    for rank, spot in enumerate(spots):
+        cand = dataclasses.replace(text, position=spot)
+        box = label_box(cand)
+        own = float(shapely.distance(box, own_anchor))
+        others = shapely.distance(box, mate_anchors) if mate_anchors.size else np.array([np.inf])
+        hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
+        # a line through the letters is worse than one grazing the box's edge
+        core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
+        cost = (0.05 * rank + 30.0 * hits + 100.0 * core
+                + 1000.0 * sum(box.intersects(b) for b in placed)
+                + 4000.0 * sum(box.intersects(_shrunk(taken, j)) for j in range(len(placed)))
+                + (1000.0 if own > reach or float(np.min(others)) <= own else 0.0))
+        if best is None or cost < best[0]:
+            best = (cost, cand, box)
+        if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
+            break
+    return best
+
+
+#: Where the stages of an upright label's spots end, their costs computed a stage at a time:
+#: its own place (most labels stay there), the first ring, the next two, the rest.
+_STAGES = (1, 13, 37)
+
+
+def _best_upright(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: float):
+    """:func:`_best_each`'s choice for an upright label, its spots' costs computed a stage at a
+    time with shapely's array functions (the same boxes, the same numbers in the same order)."""
+    placed = np.array(taken[0], dtype=object)
+    best = None
+    bounds = [0, *(b for b in _STAGES if b < len(spots)), len(spots)]
+    for start, stop in zip(bounds, bounds[1:]):
+        boxes = _upright_boxes(text, np.array(spots[start:stop], float))
+        costs = _stage_costs(boxes, start, own_anchor, mate_anchors, tree, taken, placed, reach,
+                             np.inf if best is None else best[0])
+        for j, cost in enumerate(costs.tolist()):
+            rank = start + j
+            if best is None or cost < best[0]:
+                best = (cost, rank, boxes[j])
+            if cost < 0.05 * (rank + 1):  # free and by its own anchor: the nearest such
+                return best[0], dataclasses.replace(text, position=spots[best[1]]), best[2]
+    return best[0], dataclasses.replace(text, position=spots[best[1]]), best[2]
+
+
+def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, placed, reach: float,
+                 best: float) -> np.ndarray:
+    """The costs of a stage's `boxes` (ranks from `start`) as `_best_each` adds them up; a box a
+    line meets whose cost without its lines through the letters (≥ 0) cannot beat `best` or a
+    box before it in the stage costs inf (it would not be chosen either way)."""
+    n = len(boxes)
+    rank = np.arange(start, start + n)
+    own = shapely.distance(boxes, own_anchor)
+    others = (shapely.distance(boxes[:, None], mate_anchors[None, :]).min(axis=1) if mate_anchors.size
+              else np.full(n, np.inf))
+    hits = np.zeros(n, int) if tree is None else np.bincount(tree.query(boxes, predicate="intersects")[0], minlength=n)
+    crossed = over = 0
+    if placed.size:
+        meets = shapely.intersects(boxes[:, None], placed[None, :])
+        crossed = meets.sum(axis=1)
+        # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
+        near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
+        if near:
+            over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
+    far = np.where((own > reach) | (others <= own), 1000.0, 0.0)
+    least = 0.05 * rank + 30.0 * hits + 1000.0 * crossed + 4000.0 * over + far  # rounding keeps it ≤ the cost
+    # the best a box meets on its turn is at most the least cost of the clear boxes before it
+    before = np.minimum.accumulate(np.concatenate([[best], np.where(hits == 0, least, np.inf)[:-1]]))
+    grazed = np.flatnonzero(hits)
+    grazed = grazed[(least[grazed] < before[grazed]) | (least[grazed] < 0.05 * (rank[grazed] + 1))]
+    core = np.zeros(n, int)  # a line through the letters costs more than one by the edge
+    if grazed.size:
+        cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
+        core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
+    costs = 0.05 * rank + 30.0 * hits + 100.0 * core + 1000.0 * crossed + 4000.0 * over + far
+    passed_over = hits > 0
+    passed_over[grazed] = False
+    return np.where(passed_over, np.inf, costs)
+
+
+def _upright_boxes(text: Text, xy: np.ndarray) -> np.ndarray:
+    """The boxes of upright `text` at the places `xy` (n, 2), mm: `label_box`'s polygons, the
+    same numbers computed as `text_box` computes them."""
+    width = text_extent(text.text, text.size_mm)[0] * text.width_factor
+    x0 = -width * _ANCHOR_SHARE[text.anchor]
+    x1, y0 = x0 + width, -DESCENDER_DEPTH * text.size_mm
+    ox, oy = xy[:, 0], xy[:, 1] - _DROP_SHARE[text.baseline] * text.size_mm
+    corners = np.empty((len(xy), 4, 2))
+    corners[:, 0, 0] = corners[:, 3, 0] = ox + x0
+    corners[:, 1, 0] = corners[:, 2, 0] = ox + x1
+    corners[:, 0, 1] = corners[:, 1, 1] = oy + y0
+    corners[:, 2, 1] = corners[:, 3, 1] = oy + text.size_mm
+    return shapely.polygons(corners)
+
+
+_ANCHOR_SHARE = {"start": 0.0, "middle": 0.5, "end": 1.0}
+_DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
+
+
+def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str):
     """The first clear place for `text` beyond `rings` rings, its leader from `anchor` (which
     crosses no placed label) appended to `leaders` and kept off by the later labels:
     (0, label, box), or None."""
+    placed = taken[0]
     for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
         cand = dataclasses.replace(text, position=spot)
         box = label_box(cand)
         if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
             continue
         line = shapely.shortest_line(anchor, box.buffer(0.4))
-        if any(line.intersects(b.buffer(-0.6)) for b in placed):
+        if any(line.intersects(_shrunk(taken, j)) for j in range(len(placed))):
             continue
         (x0, y0), (x1, y1) = line.coords
         leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
