@@ -589,7 +589,7 @@ DIAGRAM_LENGTHS = (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0)
 DIAGRAM_HEIGHTS = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 12.0, 10.0)
 
 
-def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: str = "row") -> View:
+def _fit_diagrams(req: Request, draw: _Drawings, region, arrangement: Arrangement = "row") -> View:
     """The kinematic diagrams in `region`: the longest φ axis that fits with the lowest
     diagrams, then the highest diagrams that fit with it, provided every diagram's ordinate
     range is at least `MIN_ORDINATE_MM` (diagrams squashed flatter are left out, not drawn)."""
