@@ -746,22 +746,24 @@ def _diagrams_anywhere(req: Request, draw: _Drawings, views: dict, plans, scale_
         return None
     refit = _diagrams_beside_plans(req, draw, views, *plans)
     if refit is not None:
-        plan_views, results, cells = refit
-        if not scale_per_plan:
-            plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
-        views.update(plan_views)
-        return plan_views, results, cells
+        return _refitted(req, draw, views, refit, scale_per_plan)
     if alone is not None and "diagrams" in (sheet := alone()).views:
         return sheet
     refit = _diagrams_under_scheme(req, draw, views, *plans)
     if refit is not None:
-        plan_views, results, cells = refit
-        if not scale_per_plan:
-            plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
-        views.update(plan_views)
-        return plan_views, results, cells
+        return _refitted(req, draw, views, refit, scale_per_plan)
     _diagrams_if_room(req, draw, views, required=required)
     return None
+
+
+def _refitted(req: Request, draw: _Drawings, views: dict, refit, scale_per_plan: bool):
+    """The plans fitted again beside the diagrams (`refit`: plan views, results, cells), at one
+    scale per kind where every plan stays legible, put into `views`; (plan views, results, cells)."""
+    plan_views, results, cells = refit
+    if not scale_per_plan:
+        plan_views, results = _one_scale_where_legible(req.fmt, draw, plan_views, results, cells)
+    views.update(plan_views)
+    return plan_views, results, cells
 
 
 def _diagrams_under_scheme(req: Request, draw: _Drawings, views: dict, cells, chosen, kinds):
