@@ -19,6 +19,7 @@ from velplan.plans import EXACT, Drafting
 from velplan.plans.centres import Construction, centre_name, velocities_by_centres
 from velplan.plans.scale import check_scale, check_scheme_scale
 from velplan.plans.text import LANGS
+from velplan.render.i18n import centres_words as _w
 from velplan.study import Study
 
 
@@ -123,41 +124,6 @@ def _draw(args, study: Study, con: Construction, number: int | None) -> None:
     write_outputs(to_svg(scene, SheetStyle(language=args.lang)), args.svg)
 
 
-_WORDS = {
-    "head": {"en": "instant centres", "ru": "мгновенные центры скоростей", "uk": "миттєві центри швидкостей",
-             "zh": "速度瞬心"},
-    "position": {"en": "position", "ru": "положение", "uk": "положення", "zh": "位置"},
-    "exact": {"en": "exact", "ru": "точно", "uk": "точно", "zh": "精确"},
-    "drafting": {"en": "drafted", "ru": "с точностью чертежа", "uk": "з точністю креслення", "zh": "按作图精度"},
-    "centre": {"en": "centre", "ru": "центр", "uk": "центр", "zh": "瞬心"},
-    "construction": {"en": "construction", "ru": "построение", "uk": "побудова", "zh": "作法"},
-    "exact_col": {"en": "exact", "ru": "точно", "uk": "точно", "zh": "精确"},
-    "joint": {"en": "joint {0}", "ru": "шарнир {0}", "uk": "шарнір {0}", "zh": "铰链 {0}"},
-    "hinge": {"en": "hinge {0}", "ru": "сложный шарнир {0}", "uk": "складний шарнір {0}", "zh": "复合铰链 {0}"},
-    "slider": {"en": "slider ⊥ guide at {0}", "ru": "ползун: ⊥ направляющей в {0}",
-               "uk": "повзун: ⊥ напрямної в {0}", "zh": "滑块：在 {0} 处 ⊥ 导路"},
-    "kennedy": {"en": "Kennedy via {0}, {1} (sin {2})", "ru": "Кеннеди через {0}, {1} (sin {2})",
-                "uk": "Кеннеді через {0}, {1} (sin {2})", "zh": "经 {0}、{1} 的肯尼迪线（sin {2}）"},
-    "not_reached": {"en": "not reached", "ru": "не найден", "uk": "не знайдено", "zh": "未求得"},
-    "not_reached_at": {"en": "not reached: {0}", "ru": "не найден: {0}", "uk": "не знайдено: {0}", "zh": "未求得：{0}"},
-    "circle": {"en": "circle diagram: {0} of {1} centres found", "ru": "круговая диаграмма: найдено {0} из {1} центров",
-               "uk": "кругова діаграма: знайдено {0} з {1} центрів", "zh": "瞬心多边形：已求得 {0}/{1}"},
-    "velocities": {"en": "velocities by centres, off the plan and analytic (|v| m/s, ω rad/s)",
-                   "ru": "скорости по центрам, по плану и аналитически (|v| м/с, ω рад/с)",
-                   "uk": "швидкості за центрами, за планом і аналітично (|v| м/с, ω рад/с)",
-                   "zh": "由瞬心、速度多边形与解析法所得速度（|v| m/s，ω rad/s）"},
-    "quantity": {"en": "quantity", "ru": "величина", "uk": "величина", "zh": "量"},
-    "by_centres": {"en": "centres", "ru": "по центрам", "uk": "за центрами", "zh": "瞬心法"},
-    "plan": {"en": "plan", "ru": "по плану", "uk": "за планом", "zh": "速度多边形"},
-    "analytic": {"en": "analytic", "ru": "аналит.", "uk": "аналіт.", "zh": "解析"},
-    "err_centres": {"en": "err centres", "ru": "погр. центр.", "uk": "похиб. центр.", "zh": "瞬心法误差"},
-    "err_plan": {"en": "err plan", "ru": "погр. плана", "uk": "похиб. плану", "zh": "多边形误差"},
-    "m": {"en": "m", "ru": "м", "uk": "м", "zh": "m"},
-}
-
-
-def _w(key: str, lang: str, *args) -> str:
-    return _WORDS[key][lang].format(*args)
 
 
 def _num(text: str, lang: str) -> str:
@@ -198,9 +164,9 @@ def _how(s, lang: str = "en") -> str:
 
 def _centre_rows(con: Construction, exact, i: int, lang: str = "en") -> list[str]:
     L = exact.size
-    m = _w("m", lang)
+    m = _w("metre", lang)
     rows = [f"{_w('centre', lang):<8}{'x, ' + m:>12}{'y, ' + m:>12}  {_w('construction', lang):<34}"
-            f"{_w('exact_col', lang) + ' x, ' + m:>12}{_w('exact_col', lang) + ' y, ' + m:>12}"]
+            f"{_w('exact', lang) + ' x, ' + m:>12}{_w('exact', lang) + ' y, ' + m:>12}"]
     for k, (a, b) in enumerate(exact.pairs):
         s = con.centre(a, b)
         p, d = exact.points[i, k], exact.directions[i, k]
@@ -249,11 +215,11 @@ def table(con: Construction, exact, res, number: int | None, *, lang: Language =
     phi = _num(format(float(kin.phi_deg[i]) % 360.0, ".3f"), lang)
     mu = _num(format(con.mu_l, "g"), lang)
     lines = [f"{kin.mechanism.name}: {_w('head', lang)}, {where}φ = {phi}°, "
-             f"μl = {mu} {_w('m', lang)}/{'mm' if lang in ('en', 'zh') else 'мм'}, {_w(con.drafting.mode, lang)}"]
+             f"μl = {mu} {_w('metre', lang)}/{'mm' if lang in ('en', 'zh') else 'мм'}, {_w(con.drafting.mode, lang)}"]
     lines += _centre_rows(con, exact, i, lang)
     for s in con.unreached:
         lines.append(_w("not_reached_at", lang, con.describe(lang)[s.number - 1]))
-    lines.append(_w("circle", lang, len(con.steps) - len(con.unreached), len(con.steps)))
+    lines.append(_w("circle_found", lang, len(con.steps) - len(con.unreached), len(con.steps)))
     lines.append(_w("velocities", lang))
     lines += _velocity_rows(con, res, i, lang)
     if steps:

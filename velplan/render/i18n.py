@@ -242,3 +242,56 @@ def label(key: str, lang: Language) -> str:
 def label_keys() -> tuple[str, ...]:
     """Return every label key, sorted."""
     return tuple(sorted(_LABELS))
+
+
+#: The words of the instant centres' figure and table, in the four languages ("{0}"… the values
+#: they carry).
+_CENTRES: Mapping[str, Mapping[str, str]] = {
+    "title": _entry("Instant centres of velocity", "Мгновенные центры скоростей",
+                    "Миттєві центри швидкостей", "速度瞬心"),
+    "position": _entry("position", "положение", "положення", "位置"),
+    "circle": _entry("Circle diagram", "Круговая диаграмма", "Кругова діаграма", "瞬心多边形"),
+    "found": _entry("found {0} of {1}", "найдено {0} из {1}", "знайдено {0} з {1}", "已求得 {0}/{1}"),
+    "off": _entry("off the drawing", "вне чертежа", "поза кресленням", "在图外"),
+    "metre": _entry("m", "м", "м", "m"),
+    "vertical": _entry("at infinity, vertically", "в бесконечности по вертикали",
+                       "у нескінченності по вертикалі", "在竖直方向的无穷远处"),
+    "horizontal": _entry("at infinity, horizontally", "в бесконечности по горизонтали",
+                         "у нескінченності по горизонталі", "在水平方向的无穷远处"),
+    "inclined": _entry("at infinity, along the line at {0}° to the horizontal",
+                       "в бесконечности по прямой под углом {0}° к горизонтали",
+                       "у нескінченності по прямій під кутом {0}° до горизонталі",
+                       "在与水平线成 {0}° 的方向的无穷远处"),
+    "not_reached": _entry("not reached", "не найден", "не знайдено", "未求得"),
+    "head": _entry("instant centres", "мгновенные центры скоростей", "миттєві центри швидкостей", "速度瞬心"),
+    "exact": _entry("exact", "точно", "точно", "精确"),
+    "drafting": _entry("drafted", "с точностью чертежа", "з точністю креслення", "按作图精度"),
+    "centre": _entry("centre", "центр", "центр", "瞬心"),
+    "construction": _entry("construction", "построение", "побудова", "作法"),
+    "joint": _entry("joint {0}", "шарнир {0}", "шарнір {0}", "铰链 {0}"),
+    "hinge": _entry("hinge {0}", "сложный шарнир {0}", "складний шарнір {0}", "复合铰链 {0}"),
+    "slider": _entry("slider ⊥ guide at {0}", "ползун: ⊥ направляющей в {0}",
+                     "повзун: ⊥ напрямної в {0}", "滑块：在 {0} 处 ⊥ 导路"),
+    "kennedy": _entry("Kennedy via {0}, {1} (sin {2})", "Кеннеди через {0}, {1} (sin {2})",
+                      "Кеннеді через {0}, {1} (sin {2})", "经 {0}、{1} 的肯尼迪线（sin {2}）"),
+    "not_reached_at": _entry("not reached: {0}", "не найден: {0}", "не знайдено: {0}", "未求得：{0}"),
+    "circle_found": _entry("circle diagram: {0} of {1} centres found",
+                           "круговая диаграмма: найдено {0} из {1} центров",
+                           "кругова діаграма: знайдено {0} з {1} центрів",
+                           "瞬心多边形：已求得 {0}/{1}"),
+    "velocities": _entry("velocities by centres, off the plan and analytic (|v| m/s, ω rad/s)",
+                         "скорости по центрам, по плану и аналитически (|v| м/с, ω рад/с)",
+                         "швидкості за центрами, за планом і аналітично (|v| м/с, ω рад/с)",
+                         "由瞬心、速度多边形与解析法所得速度（|v| m/s，ω rad/s）"),
+    "quantity": _entry("quantity", "величина", "величина", "量"),
+    "by_centres": _entry("centres", "по центрам", "за центрами", "瞬心法"),
+    "plan": _entry("plan", "по плану", "за планом", "速度多边形"),
+    "analytic": _entry("analytic", "аналит.", "аналіт.", "解析"),
+    "err_centres": _entry("err centres", "погр. центр.", "похиб. центр.", "瞬心法误差"),
+    "err_plan": _entry("err plan", "погр. плана", "похиб. плану", "多边形误差"),
+}
+
+
+def centres_words(key: str, lang: Language, *args) -> str:
+    """The instant centres' words `key` in `lang`, with `args` put in their places."""
+    return _CENTRES[key][lang].format(*args)

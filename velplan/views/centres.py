@@ -17,6 +17,7 @@ from velplan.analysis.numbering import position_number
 from velplan.analysis.solver import Kinematics
 from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
+from velplan.render.i18n import centres_words as _t
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
@@ -31,29 +32,6 @@ CIRCLE_MM = 28.0
 """Radius of the circle diagram, mm."""
 LAYER = "centres"
 
-_LABELS = {
-    "title": {"en": "Instant centres of velocity", "ru": "Мгновенные центры скоростей",
-              "uk": "Миттєві центри швидкостей", "zh": "速度瞬心"},
-    "position": {"en": "position", "ru": "положение", "uk": "положення", "zh": "位置"},
-    "circle": {"en": "Circle diagram", "ru": "Круговая диаграмма", "uk": "Кругова діаграма", "zh": "瞬心多边形"},
-    "found": {"en": "found {0} of {1}", "ru": "найдено {0} из {1}", "uk": "знайдено {0} з {1}",
-              "zh": "已求得 {0}/{1}"},
-    "off": {"en": "off the drawing", "ru": "вне чертежа", "uk": "поза кресленням", "zh": "在图外"},
-    "metre": {"en": "m", "ru": "м", "uk": "м", "zh": "m"},
-    "vertical": {"en": "at infinity, vertically", "ru": "в бесконечности по вертикали",
-                 "uk": "у нескінченності по вертикалі", "zh": "在竖直方向的无穷远处"},
-    "horizontal": {"en": "at infinity, horizontally", "ru": "в бесконечности по горизонтали",
-                   "uk": "у нескінченності по горизонталі", "zh": "在水平方向的无穷远处"},
-    "inclined": {"en": "at infinity, along the line at {0}° to the horizontal",
-                 "ru": "в бесконечности по прямой под углом {0}° к горизонтали",
-                 "uk": "у нескінченності по прямій під кутом {0}° до горизонталі",
-                 "zh": "在与水平线成 {0}° 的方向的无穷远处"},
-    "unreached": {"en": "not reached", "ru": "не найден", "uk": "не знайдено", "zh": "未求得"},
-}
-
-
-def _t(key: str, lang: Language, *args) -> str:
-    return _LABELS[key][lang].format(*args)
 
 
 def _name(pair: tuple[str, str]) -> str:
@@ -128,7 +106,7 @@ def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tupl
     for s in con.steps:
         name = _name(s.pair)
         if s.how == "unreached":
-            notes.append(f"{name}: {_t('unreached', lang)}")
+            notes.append(f"{name}: {_t('not_reached', lang)}")
         elif s.infinite:
             notes.append(f"{name}: {infinity_note(s.direction, lang)}")
             marks, names = _at_infinity(con, s, to_mm, name, size)
