@@ -122,6 +122,13 @@ def ordinate_ranges(sheet) -> list[float]:
             if isinstance(p, Polyline) and p.line == "thick" and len(p.points) > 5]
 
 
+def wittenbauer_range(sheet) -> list[float]:
+    """The ΔT range of the sheet's energy–mass diagram, mm, with its tangents' intercepts (none
+    without a flywheel to size)."""
+    view = sheet.views.get("wittenbauer")
+    return [] if view is None else [view.view.meta["delta_T_mm"]]
+
+
 def ambiguous_plan_letters(sheet) -> list[str]:
     """The image letters of the plans whose own image is not the image nearest to them
     ("nearer: …") or lies farther than :data:`ANCHOR_MM` from their box ("far: …"); a letter
@@ -232,6 +239,9 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
         out["crossed"] += [f"{where}: {t}" for t in crossed_texts(sheet.scene)]
         out["small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=False)]
         out["title_small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=True)]
+        if kind == "dynamics":
+            out["diagram"] += [f"{where}: Wittenbauer ΔT {r:.1f} mm" for r in wittenbauer_range(sheet)
+                               if r < 30.0 - 0.5]
         if kind != "kinematic":
             continue
         out["short_vector"] += [f"{where}: {v}" for v in short_unlisted_vectors(sheet)]

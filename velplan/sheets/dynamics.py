@@ -189,24 +189,65 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
                                                        width_factor=width),
                       req, what="table of results", max_width=fx1 - right_x0, advice="")
     views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
+    if d.flywheel is None:
+        return wit
     band_top = ty1 + g + table.height_mm
-    if d.flywheel is not None and d.flywheel.dimensions is not None:
-        band_top = _place_flywheel(req, views, scales, (right_x0, fy0, min(tx0, fx1 - table.width_mm) - g, band_top))
-    if d.flywheel is not None:
-        region = (right_x0, band_top + g, fx1, fy1)
-        wv, wit = _fit_wittenbauer(d, curves, lang, _sizes(req), region, req.fmt, req.study.n)
-        views["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
-        scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
-        # the table reads the segment off this drawing
-        table = results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=table.meta["size_mm"],
-                             title_mm=req.sizes.table_title, width_factor=table.meta["width_factor"])
-        views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
+    beside_table = (right_x0, fy0, min(tx0, fx1 - table.width_mm) - g, band_top)
+    placed, wit = _flywheel_and_wittenbauer(req, curves, beside_table, band_top)
+    for name, view in placed.items():
+        views[name] = view
+    if "flywheel" in placed:
+        scales["flywheel"] = placed["flywheel"].view.meta["scale"]
+    scales["mu_J"], scales["mu_T"] = wit.mu_J, wit.mu_T
+    # the table reads the segment off this drawing
+    table = results_view(results_rows(d, wit, lang, marked=True), lang=lang, size_mm=table.meta["size_mm"],
+                         title_mm=req.sizes.table_title, width_factor=table.meta["width_factor"])
+    views["results"] = table.at(fx1 - table.width_mm, ty1 + g)
     return wit
 
 
-def _place_flywheel(req: Request, views: dict, scales: dict, region) -> float:
-    """The flywheel's section beside the table (or, without room there, above it); the top
-    of the bottom band, mm."""
+READABLE_DELTA_T_MM = 40.0
+"""The ΔT range of Wittenbauer's diagram, mm, past which a larger flywheel drawing is preferred."""
+FLYWHEEL_BANDS = (0.3, 0.2, 0.14, 0.1)
+"""The heights, as shares of the drawing area, of the band above the table that the flywheel
+may take when it does not fit beside the table: the largest first."""
+
+
+def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: float):
+    """The flywheel's section (beside the table or in a band above it) and Wittenbauer's
+    diagram above: of the bands of :data:`FLYWHEEL_BANDS`, the one giving the diagram the
+    tallest ΔT range, up to :data:`READABLE_DELTA_T_MM` (the energy–mass diagram is the sheet's
+    construction, the flywheel a sketch of its result); the placed views and the diagram."""
+    d, g = req.study.dynamics, req.gap
+    fx0, fy0, fx1, fy1 = req.area
+    assert d.flywheel is not None  # drawn only when there is one to size
+    sized = d.flywheel.dimensions is not None
+    best = None
+    for share in FLYWHEEL_BANDS if sized else (0.0,):
+        placed: dict[str, PlacedView] = {}
+        top = band_top
+        try:
+            if sized:
+                top = _place_flywheel(req, placed, beside_table, share)
+            region = (beside_table[0], top + g, fx1, fy1)
+            wv, wit = _fit_wittenbauer(d, curves, req.lang, _sizes(req), region, req.fmt, req.study.n)
+        except ScaleError:
+            if best is None and share == FLYWHEEL_BANDS[-1]:
+                raise
+            continue
+        placed["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
+        rise = wv.meta["delta_T_mm"]
+        if best is None or rise > best[0] + 1.0:
+            best = (rise, placed, wit)
+        if rise >= READABLE_DELTA_T_MM or top == band_top:  # readable, or the flywheel beside the table
+            break
+    assert best is not None  # the last band raises when nothing fits
+    return best[1], best[2]
+
+
+def _place_flywheel(req: Request, views: dict, region, share: float) -> float:
+    """The flywheel's section beside the table (or, without room there, above it in a band
+    ``share`` of the drawing area's height); the top of the bottom band, mm."""
     flywheel = req.study.dynamics.flywheel
     assert flywheel is not None  # placed only when there is one to size
     dims = flywheel.dimensions
@@ -214,12 +255,11 @@ def _place_flywheel(req: Request, views: dict, scales: dict, region) -> float:
     fw = _fit_flywheel(dims, req.lang, _sizes(req), region)
     if fw is None:  # beside the table there is no room: above it
         H = req.area[3] - req.area[1]
-        region = (region[0], band_top + req.gap, req.area[2], band_top + req.gap + 0.3 * H)
+        region = (region[0], band_top + req.gap, req.area[2], band_top + req.gap + share * H)
         fw = _fit_flywheel(dims, req.lang, _sizes(req), region)
     if fw is None:
         raise ScaleError(f"the flywheel's section does not fit {req.fmt} at any ESKD scale; use a larger --format")
     views["flywheel"] = fw.at(region[0], region[1])
-    scales["flywheel"] = fw.meta["scale"]
     return max(band_top, region[1] + fw.height_mm)
 
 
@@ -281,11 +321,22 @@ def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
     t_span = max(float(T.max()), cp, 0.0) - min(float(T.min()), cm, 0.0)
     mu_J = nice_scale(max(float(J.max()), 1e-12) / max(w - 60.0, 20.0))
     mu_T = nice_scale(max(t_span, 1e-12) / max(h - 50.0, 20.0))
-    for _ in range(12):
+    def draw(mu_J, mu_T):
         wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
-        view = wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
-                                lang=lang, sizes=sizes)
+        return wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
+                                lang=lang, sizes=sizes), wit
+
+    for _ in range(12):
+        view, wit = draw(mu_J, mu_T)
         if fits(view, w, h):
+            # the first guess allowed for the texts round the curve; with their measured room,
+            # the finest scales that may still fit
+            finer = (nice_scale(max(float(J.max()), 1e-12) / max(w - (view.width_mm - view.meta["J_mm"]), 20.0)),
+                     nice_scale(t_span / max(h - (view.height_mm - view.meta["delta_T_mm"]), 20.0)))
+            if finer[0] <= mu_J and finer[1] <= mu_T and finer != (mu_J, mu_T):
+                better = draw(*finer)
+                if fits(better[0], w, h):
+                    return better
             return view, wit
         if view.width_mm > w:
             mu_J = nice_scale(mu_J * 1.0001)

@@ -273,7 +273,10 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     for k, line in enumerate(text):
         items.append(Text((0.0, ytext - 1.6 * size * k), line, LABELS, size))
     return make_view("wittenbauer", items, pad_mm=2.0, meta={"mu_J": mJ, "mu_T": mT,
-                                                             "segment_mm": w.segment_drawn_mm})
+                                                             "segment_mm": w.segment_drawn_mm,
+                                                             "J_mm": float(x.max()),
+                                                             "delta_T_mm": max(float(y.max()), ky, 0.0)
+                                                             - min(float(y.min()), ly, 0.0)})
 
 
 def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
