@@ -129,6 +129,11 @@ def wittenbauer_range(sheet) -> list[float]:
     return [] if view is None else [view.view.meta["delta_T_mm"]]
 
 
+def panel_ranges(sheet) -> dict[str, float]:
+    """The ordinate range of each curve panel of a dynamics sheet, mm."""
+    return {name: v.view.meta["span_mm"] for name, v in sheet.views.items() if "span_mm" in v.view.meta}
+
+
 def ambiguous_plan_letters(sheet) -> list[str]:
     """The image letters of the plans whose own image is not the image nearest to them
     ("nearer: …") or lies farther than :data:`ANCHOR_MM` from their box ("far: …"); a letter
@@ -242,6 +247,9 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
         if kind == "dynamics":
             out["diagram"] += [f"{where}: Wittenbauer ΔT {r:.1f} mm" for r in wittenbauer_range(sheet)
                                if r < 30.0 - 0.5]
+            # the four curve panels share one column: each keeps at least 20 mm of ordinates
+            out["diagram"] += [f"{where}: {name} {r:.1f} mm" for name, r in panel_ranges(sheet).items()
+                               if r < 20.0]
         if kind != "kinematic":
             continue
         out["short_vector"] += [f"{where}: {v}" for v in short_unlisted_vectors(sheet)]

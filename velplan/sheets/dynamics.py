@@ -35,6 +35,7 @@ from velplan.sheets.skeleton import (
 from velplan.sheets.solver import fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
+from velplan.views.diagram import standard_up
 from velplan.views.dynamics import (
     DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, results_rows, results_view, wittenbauer_view)
 
@@ -70,31 +71,45 @@ def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> Title
     return default_title_of("dynamics", mech, lang, scale)
 
 
-def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int) -> dict[str, View]:
-    """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`)."""
+def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int,
+            mus: dict[str, float] | None = None) -> dict[str, View]:
+    """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`); ``mus``: the
+    panels drawn at a given ordinate scale, only those when given."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
     kw: dict[str, Any] = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang,
                               sizes=sizes)
+    wanted = PANELS if mus is None else tuple(mus)
+    at = (lambda name: kw) if mus is None else (lambda name: {**kw, "mu": mus[name]})
     nm, joule = unit("N·m", lang), unit("J", lang)
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
-    loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
-    m_drv, m_res = indexed("M", drv), indexed("M", res)
-    driving = number(d.driving, lang, 5, scale=moment_scale(c["M_red"]))
-    drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
-    moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
-    views = {"moments": curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
-                                    title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **kw)}
-    works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
-    if np.all(np.isfinite(c["A_drive"])):
-        works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
-    views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
-                                 unit_text=joule, **kw)
-    jii = c["J_red"] - d.declared
-    views["inertia"] = curve_panel(
-        "inertia", travel, [Series(jii, "thick", indexed("J", "II"))], title=label("reduced_inertia", lang),
-        ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
-        notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **kw)
+    views: dict[str, View] = {}
+    if "moments" in wanted:
+        loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
+        m_drv, m_res = indexed("M", drv), indexed("M", res)
+        driving = number(d.driving, lang, 5, scale=moment_scale(c["M_red"]))
+        drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
+        moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
+        views["moments"] = curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
+                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **at("moments"))
+    if "works" in wanted:
+        works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
+        if np.all(np.isfinite(c["A_drive"])):
+            works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
+        views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
+                                     unit_text=joule, **at("works"))
+    if "inertia" in wanted:
+        views["inertia"] = curve_panel(
+            "inertia", travel, [Series(c["J_red"] - d.declared, "thick", indexed("J", "II"))],
+            title=label("reduced_inertia", lang), ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
+            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **at("inertia"))
+    if "omega" in wanted:
+        views["omega"] = _omega_panel(d, c, travel, lang, at("omega"))
+    return views
+
+
+def _omega_panel(d, c, travel, lang: Language, kw: dict[str, Any]) -> View:
+    """The crank's speed over the cycle about ω_m (the run's over its travel about its least)."""
     w = np.abs(c["omega"])
     st = d.steady or d.periodic
     if st is not None:
@@ -105,10 +120,9 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
     else:
         base, marks, base_label = float(np.nanmin(w)), [], ""
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
-    views["omega"] = curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
-                                 ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
-                                 notes=notes, base_label=base_label, **kw)
-    return views
+    return curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
+                       ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
+                       notes=notes, base_label=base_label, **kw)
 
 
 def _n(x: float, lang: Language) -> str:
@@ -215,13 +229,15 @@ may take when it does not fit beside the table: the largest first."""
 
 def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: float):
     """The flywheel's section (beside the table or in a band above it) and Wittenbauer's
-    diagram above: of the bands of :data:`FLYWHEEL_BANDS`, the one giving the diagram the
-    tallest ΔT range, up to :data:`READABLE_DELTA_T_MM` (the energy–mass diagram is the sheet's
+    diagram above: of the bands of :data:`FLYWHEEL_BANDS`, the first giving the diagram a ΔT
+    range of :data:`READABLE_DELTA_T_MM`, else the one with the larger of the least of the ΔT
+    range and twice the flywheel's drawn diameter (the energy–mass diagram is the sheet's
     construction, the flywheel a sketch of its result); the placed views and the diagram."""
     d, g = req.study.dynamics, req.gap
     fx0, fy0, fx1, fy1 = req.area
     assert d.flywheel is not None  # drawn only when there is one to size
-    sized = d.flywheel.dimensions is not None
+    dims = d.flywheel.dimensions
+    sized = dims is not None
     best = None
     for share in FLYWHEEL_BANDS if sized else (0.0,):
         placed: dict[str, PlacedView] = {}
@@ -237,8 +253,10 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
             continue
         placed["wittenbauer"] = wv.at(0.5 * (region[0] + region[2] - wv.width_mm), region[3] - wv.height_mm)
         rise = wv.meta["delta_T_mm"]
-        if best is None or rise > best[0] + 1.0:
-            best = (rise, placed, wit)
+        # the flywheel stays a readable sketch: twice its drawn diameter weighs against ΔT
+        disc = 2.0 * dims.outer / placed["flywheel"].view.meta["scale"] if dims is not None else np.inf
+        if best is None or min(rise, disc) > best[0] + 1.0:
+            best = (min(rise, disc), placed, wit)
         if rise >= READABLE_DELTA_T_MM or top == band_top:  # readable, or the flywheel beside the table
             break
     assert best is not None  # the last band raises when nothing fits
@@ -278,9 +296,32 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
         for h in heights:
             views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n)
             if _column_fits(list(views.values()), width, height, gap, beside):
-                return views
+                redraw = lambda mus: _panels(d, c, lang, length, h, sizes, n, mus)  # noqa: E731
+                return _finer_panels(views, redraw, lambda vs: _column_fits(vs, width, height, gap, beside))
     raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+
+
+def _finer_panels(views: dict[str, View], redraw, fit) -> dict[str, View]:
+    """The panels with the shortest ordinate range drawn one standard scale finer, in turn, while
+    the column still fits (the one height of :func:`_fit_panels` loses up to half of a panel's
+    range to the series' steps: 5.1 N·m/mm → 10)."""
+    stuck: set[str] = set()
+    for _ in range(4 * len(views)):
+        free = [k for k in views if k not in stuck]
+        if not free:
+            break
+        name = min(free, key=lambda k: views[k].meta["span_mm"])
+        mu = views[name].meta["mu"]
+        finer = standard_up(mu * 0.999 / 2.5)
+        while standard_up(finer * 1.001) < mu * 0.999:  # the next value of the series below μ
+            finer = standard_up(finer * 1.001)
+        trial = {**views, name: redraw({name: finer})[name]}
+        if fit(list(trial.values())):
+            views = trial
+        else:
+            stuck.add(name)
+    return views
 
 
 def _column_fits(views: list[View], width: float, height: float, gap: float, beside) -> bool:

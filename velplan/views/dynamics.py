@@ -71,7 +71,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "") -> View:
+                base_label: str = "", mu: float | None = None) -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -86,6 +86,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         Positions per turn marked (and numbered) on the φ axis.
     height_mm : float
         Largest span of the ordinates, mm: μ is the standard scale keeping it within.
+    mu : float, optional
+        The ordinate's scale, units per mm, instead of the one ``height_mm`` gives.
     base : float
         The value on the φ axis (ω_m for the speed, else 0), units of the values.
     base_label : str
@@ -99,7 +101,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
     low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
     span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
-    mu = standard_up(span / height_mm)
+    mu = mu or standard_up(span / height_mm)
     mu_phi = cycle / length_mm
     L = length_mm
     top, bottom = max(top_v / mu, 5.0), min(low_v / mu, 0.0)
@@ -155,7 +157,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items.append(Text((0.0, y + 1.8 * size), title, LABELS, sizes.title_mm))
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
-    return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base})
+    return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
+                                                    "span_mm": (top_v - low_v) / mu})
 
 
 def _text_boxes(items) -> list:
