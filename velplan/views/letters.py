@@ -103,7 +103,7 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         padded = _boxes(c, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
         ok = np.ones(len(idx), dtype=bool)
         if tree is not None:
-            ok[tree.query(padded, predicate="intersects")[0]] = False
+            ok &= ~_blocked(tree, padded)
         if taken_boxes is not None and ok.any():
             ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
         if need_nearest and ok.any():
@@ -120,6 +120,32 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
     if best is None:
         return None
     return centres[best[1]], best[2]
+
+
+def _blocked(tree, boxes) -> np.ndarray:
+    """Whether each of `boxes` meets a geometry of `tree` (a shapely STRtree): the answer of the
+    tree's "intersects" query with fewer exact tests. A box's candidates (the geometries whose
+    envelopes meet it) are tested in rounds, the one whose envelope the box covers most
+    first; a box leaves at its first hit."""
+    hit = np.zeros(len(boxes), dtype=bool)
+    i, j = tree.query(boxes)
+    if not len(i):
+        return hit
+    a, b = shapely.bounds(boxes)[i], shapely.bounds(tree.geometries)[j]
+    covered = ((np.minimum(a[:, 2], b[:, 2]) - np.maximum(a[:, 0], b[:, 0]))
+               * (np.minimum(a[:, 3], b[:, 3]) - np.maximum(a[:, 1], b[:, 1]))
+               / np.maximum((b[:, 2] - b[:, 0]) * (b[:, 3] - b[:, 1]), 1e-12))
+    order = np.lexsort((-covered, i))
+    i, j = i[order], j[order]
+    first = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
+    rank = np.arange(len(i)) - np.repeat(first, np.diff(np.r_[first, len(i)]))
+    geoms = tree.geometries
+    for r in range(int(rank.max()) + 1):
+        now = (rank == r) & ~hit[i]
+        if not now.any():
+            break
+        hit[i[now][shapely.intersects(geoms[j[now]], boxes[i[now]])]] = True
+    return hit
 
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
