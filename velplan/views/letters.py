@@ -104,16 +104,18 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         ok = np.ones(len(idx), dtype=bool)
         if tree is not None:
             ok &= ~_blocked(tree, padded)
-        if taken_boxes is not None and ok.any():
-            ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
+        if taken_boxes is not None and ok.any():  # the boxes still clear alone are tested on
+            k = np.flatnonzero(ok)
+            ok[k] = ~shapely.intersects(padded[k, None], taken_boxes[None, :]).any(axis=1)
         if need_nearest and ok.any():
             ok &= _own_nearest(c, half, point, others)
         if not ok.any():
             continue
         cost = base[idx]
-        if soft is not None:
-            crossed = soft.query(_boxes(c, half, 0.2), predicate="intersects")[0]
-            cost = cost + weight * np.bincount(crossed, minlength=len(idx))
+        if soft is not None:  # the lines across the clear boxes (the others are not chosen)
+            k = np.flatnonzero(ok)
+            crossed = soft.query(_boxes(c[k], half, 0.2), predicate="intersects")[0]
+            cost[k] += weight * np.bincount(crossed, minlength=len(k))
         j = int(np.argmin(np.where(ok, cost, np.inf)))
         if best is None or (cost[j], idx[j]) < (best[0], best[1]):
             best = (float(cost[j]), int(idx[j]), padded[j])
@@ -137,14 +139,13 @@ def _blocked(tree, boxes) -> np.ndarray:
                / np.maximum((b[:, 2] - b[:, 0]) * (b[:, 3] - b[:, 1]), 1e-12))
     order = np.lexsort((-covered, i))
     i, j = i[order], j[order]
-    first = np.flatnonzero(np.r_[True, i[1:] != i[:-1]])
-    rank = np.arange(len(i)) - np.repeat(first, np.diff(np.r_[first, len(i)]))
     geoms = tree.geometries
-    for r in range(int(rank.max()) + 1):
-        now = (rank == r) & ~hit[i]
-        if not now.any():
-            break
-        hit[i[now][shapely.intersects(geoms[j[now]], boxes[i[now]])]] = True
+    while len(i):  # each round tests the first candidate left of each box not yet hit
+        first = np.r_[True, i[1:] != i[:-1]]
+        now = i[first]
+        hit[now[shapely.intersects(geoms[j[first]], boxes[now])]] = True
+        rest = ~first & ~hit[i]
+        i, j = i[rest], j[rest]
     return hit
 
 
