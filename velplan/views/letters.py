@@ -141,7 +141,9 @@ def _blocked(tree, boxes) -> np.ndarray:
     i, j = i[order], j[order]
     geoms = tree.geometries
     while len(i):  # each round tests the first candidate left of each box not yet hit
-        first = np.r_[True, i[1:] != i[:-1]]
+        first = np.empty(len(i), dtype=bool)
+        first[0] = True
+        np.not_equal(i[1:], i[:-1], out=first[1:])
         now = i[first]
         hit[now[shapely.intersects(geoms[j[first]], boxes[now])]] = True
         rest = ~first & ~hit[i]
