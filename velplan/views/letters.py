@@ -103,23 +103,52 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         padded = _boxes(c, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
         ok = np.ones(len(idx), dtype=bool)
         if tree is not None:
-            ok[tree.query(padded, predicate="intersects")[0]] = False
-        if taken_boxes is not None and ok.any():
-            ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
+            ok &= ~_blocked(tree, padded)
+        if taken_boxes is not None and ok.any():  # the boxes still clear alone are tested on
+            k = np.flatnonzero(ok)
+            ok[k] = ~shapely.intersects(padded[k, None], taken_boxes[None, :]).any(axis=1)
         if need_nearest and ok.any():
             ok &= _own_nearest(c, half, point, others)
         if not ok.any():
             continue
         cost = base[idx]
-        if soft is not None:
-            crossed = soft.query(_boxes(c, half, 0.2), predicate="intersects")[0]
-            cost = cost + weight * np.bincount(crossed, minlength=len(idx))
+        if soft is not None:  # the lines across the clear boxes (the others are not chosen)
+            k = np.flatnonzero(ok)
+            crossed = soft.query(_boxes(c[k], half, 0.2), predicate="intersects")[0]
+            cost[k] += weight * np.bincount(crossed, minlength=len(k))
         j = int(np.argmin(np.where(ok, cost, np.inf)))
         if best is None or (cost[j], idx[j]) < (best[0], best[1]):
             best = (float(cost[j]), int(idx[j]), padded[j])
     if best is None:
         return None
     return centres[best[1]], best[2]
+
+
+def _blocked(tree, boxes) -> np.ndarray:
+    """Whether each of `boxes` meets a geometry of `tree` (a shapely STRtree): the answer of the
+    tree's "intersects" query with fewer exact tests. A box's candidates (the geometries whose
+    envelopes meet it) are tested in rounds, the one whose envelope the box covers most
+    first; a box leaves at its first hit."""
+    hit = np.zeros(len(boxes), dtype=bool)
+    i, j = tree.query(boxes)
+    if not len(i):
+        return hit
+    a, b = shapely.bounds(boxes)[i], shapely.bounds(tree.geometries)[j]
+    covered = ((np.minimum(a[:, 2], b[:, 2]) - np.maximum(a[:, 0], b[:, 0]))
+               * (np.minimum(a[:, 3], b[:, 3]) - np.maximum(a[:, 1], b[:, 1]))
+               / np.maximum((b[:, 2] - b[:, 0]) * (b[:, 3] - b[:, 1]), 1e-12))
+    order = np.lexsort((-covered, i))
+    i, j = i[order], j[order]
+    geoms = tree.geometries
+    while len(i):  # each round tests the first candidate left of each box not yet hit
+        first = np.empty(len(i), dtype=bool)
+        first[0] = True
+        np.not_equal(i[1:], i[:-1], out=first[1:])
+        now = i[first]
+        hit[now[shapely.intersects(geoms[j[first]], boxes[now])]] = True
+        rest = ~first & ~hit[i]
+        i, j = i[rest], j[rest]
+    return hit
 
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),

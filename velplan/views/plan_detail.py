@@ -48,7 +48,7 @@ def crowd_near_pole(images, extent_mm: float) -> tuple[complex, float] | None:
         return None
     reach = max(CROWD_MM, float(np.max(np.abs(z))) / 4.0)
     z = z[(np.abs(z) > 0.5) & (np.abs(z) <= reach)]
-    if len(np.unique(np.round(z))) < CROWD_COUNT:
+    if len(set(np.round(z).tolist())) < CROWD_COUNT:  # distinct places (np.unique would import numpy.ma)
         return None
     x0, x1 = min(0.0, float(np.min(z.real))), max(0.0, float(np.max(z.real)))
     y0, y1 = min(0.0, float(np.min(z.imag))), max(0.0, float(np.max(z.imag)))
