@@ -513,7 +513,8 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         guide = _guide(tr, mu_l, side)
         items += guide
         # the guide's outline (an inclined guide's bounding box would cover half the scheme)
-        obstacles.append(shapely.MultiPoint([q for g in guide for q in g.points]).convex_hull.buffer(0.3))
+        hull = shapely.multipoints(np.array([q for g in guide for q in g.points], float)).convex_hull
+        obstacles.append(hull.buffer(0.3))
     for name in geo.ground_pivots:
         support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
                               layer="mechanism")
