@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, NamedTuple, Sequence
+from typing import Any, Callable, Generator, NamedTuple, Sequence
 
 import numpy as np
 import shapely
@@ -417,6 +417,37 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
+    return run_scheme(scheme_steps(mech, kin=kin, fine=fine, mu_l=mu_l, n=n, thick=thick, lang=lang,
+                                   sizes=sizes, title=title, single=single, extreme=extreme,
+                                   special=special, bold=bold, plans=plans))
+
+
+class LetterRequest(NamedTuple):
+    """The arguments of one `place_letters` call a scheme's drawing waits on (`scheme_steps`)."""
+
+    args: tuple
+    kwargs: dict
+
+
+def run_scheme(steps: Generator[LetterRequest, tuple, View]) -> View:
+    """The view `scheme_steps` draws, each of its letter requests answered by `place_letters`."""
+    try:
+        request = next(steps)
+        while True:
+            request = steps.send(place_letters(*request.args, **request.kwargs))
+    except StopIteration as done:
+        return done.value
+
+
+def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
+                 thick: int = 1, lang: Language = "ru", sizes: MechanismSizes = MechanismSizes(),
+                 title: bool = True, single: bool = False,
+                 extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
+                 bold: Sequence[int] = (), plans: Sequence[int] = ()) -> Generator[LetterRequest, tuple, View]:
+    """`mechanism_view` as a generator: it yields each `place_letters` call it needs as a
+    `LetterRequest`, is sent that call's result, and returns the view (so that the drawings of
+    many positions can have their letters placed together, `velplan.html.scheme`). The same
+    parameters (`thick`, `bold`, `plans`: positions 1-based)."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -435,19 +466,19 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
     # the letters keep off the places the output's position numbers want, where they can
     wanted = [label_box(x) for x in labels if x.text.isdigit()]
-    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles,
-                                            thin=thin + wanted)
+    placed_letters, leaders = yield LetterRequest(
+        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted})
     if not single:  # the crank's numbers, each nearer its own position of the tip than any other
         tips = mm(kin.position(mech.crank.tip))
-        numbers, number_leaders = place_letters(
-            _crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles, thin=thin,
-            taken=[label_box(x).buffer(0.4) for x in placed_letters])
+        numbers, number_leaders = yield LetterRequest(
+            (_crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles),
+            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters]})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     # the links' numbers, each nearer its own link's point than another link's
-    numbers, number_leaders = place_letters(
-        [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
-        taken=[label_box(x).buffer(1.5) for x in (*placed_letters, *placed)])  # not read as one with a letter
+    numbers, number_leaders = yield LetterRequest(
+        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
+        {"thin": thin, "taken": [label_box(x).buffer(1.5) for x in (*placed_letters, *placed)]})  # not read as one with a letter
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
