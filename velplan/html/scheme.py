@@ -159,34 +159,51 @@ def _first_choices(rows) -> list:
         idx = np.sort(order[live, start:min(stop, n)], axis=1)
         c = centres[np.array(live)[:, None], idx]
         ok = _nearest(c, [rows[a] for a in live])
-        for row, a in enumerate(live):
-            hit = _stage(rows[a], c[row], idx[row], ok[row], base[a, idx[row]])
+        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx])):
             if hit is not None and (best[a] is None or hit[:2] < best[a][:2]):
                 best[a] = hit
     return [None if b is None else (centres[a, b[1]], b[2]) for a, b in enumerate(best)]
 
 
-def _stage(row, c, idx, ok, cost):
-    """One stage of `_choose` for one row, its nearness `ok` known: the best clear candidate's
-    (cost, index, padded box), or None."""
-    call, half = row[0], row[5]
-    if not ok.any():
-        return None
-    padded = _boxes(c[ok], 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
-    keep = np.ones(len(padded), dtype=bool)
-    if call.taken:
-        keep &= ~shapely.intersects(padded[:, None], np.array(call.taken)[None, :]).any(axis=1)
-    if call.tree is not None and keep.any():
-        at = np.flatnonzero(keep)
-        keep[at[call.tree.query(padded[at], predicate="intersects")[0]]] = False
-    padded = padded[keep]
+def _box_run(c: np.ndarray, half: np.ndarray, pad: float):
+    """`_boxes` of candidates (k, 2) of many rows at once, each row's half sizes (k, 2)."""
+    return shapely.box(c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
+                       c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad)
+
+
+def _stage(rows, c, idx, ok, cost) -> list:
+    """One stage of `_choose` for each row, its candidates (r, s, 2) and their indices, nearness
+    `ok` and costs (r, s) known: the best clear candidate's (cost, index, padded box), or None.
+    The boxes of all rows are made in one call; each row's own shapes are asked of shapely."""
+    half = np.array([r[5] for r in rows])
+    at, col = np.nonzero(ok)
+    padded = _box_run(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
+    first = np.searchsorted(at, np.arange(len(rows) + 1))
+    keep = np.ones(len(at), dtype=bool)
+    for r, row in enumerate(rows):
+        call, mine = row[0], slice(first[r], first[r + 1])
+        if first[r] == first[r + 1]:
+            continue
+        if call.taken:
+            keep[mine] &= ~shapely.intersects(padded[mine, None], np.array(call.taken)[None, :]).any(axis=1)
+        if call.tree is not None and keep[mine].any():
+            here = first[r] + np.flatnonzero(keep[mine])
+            keep[here[call.tree.query(padded[here], predicate="intersects")[0]]] = False
     ok = ok.copy()
-    ok[ok] = keep
-    if not ok.any():
-        return None
-    if call.soft is not None:
-        crossed = call.soft.query(_boxes(c[ok], half, 0.2), predicate="intersects")[0]
-        cost = cost.copy()
-        cost[ok] += SOFT_MM * np.bincount(crossed, minlength=int(ok.sum()))
-    j = int(np.argmin(np.where(ok, cost, np.inf)))
-    return float(cost[j]), int(idx[j]), padded[int(ok[:j].sum())]
+    ok[at, col] = keep
+    at, col, padded = at[keep], col[keep], padded[keep]
+    first = np.searchsorted(at, np.arange(len(rows) + 1))
+    cost = cost.copy()
+    soft = _box_run(c[at, col], half[at], 0.2)
+    out = []
+    for r, row in enumerate(rows):
+        call, mine = row[0], slice(first[r], first[r + 1])
+        if first[r] == first[r + 1]:
+            out.append(None)
+            continue
+        if call.soft is not None:
+            crossed = call.soft.query(soft[mine], predicate="intersects")[0]
+            cost[r, ok[r]] += SOFT_MM * np.bincount(crossed, minlength=first[r + 1] - first[r])
+        j = int(np.argmin(np.where(ok[r], cost[r], np.inf)))
+        out.append((float(cost[r, j]), int(idx[r, j]), padded[first[r] + int(ok[r, :j].sum())]))
+    return out

@@ -461,9 +461,10 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     letters, labels, links = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
-    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
+    obstacles += list(shapely.buffer(shapely.points(np.array([p for p in points if np.all(np.isfinite(p))],
+                                                             float).reshape(-1, 2)), POINT_CLEAR_MM, quad_segs=16))
     named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
-    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    thin = _lines([p.points for p in items if isinstance(p, Polyline) and p.line == "thin"])
     # the letters keep off the places the output's position numbers want, where they can
     wanted = [label_box(x) for x in labels if x.text.isdigit()]
     placed_letters, leaders = yield LetterRequest(
@@ -487,6 +488,14 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+def _lines(runs: list) -> list:
+    """Shapely lines through each run of points (mm), made in one call."""
+    if not runs:
+        return []
+    xy = np.array([q for run in runs for q in run], float).reshape(-1, 2)
+    return list(shapely.linestrings(xy, indices=np.repeat(np.arange(len(runs)), [len(r) for r in runs])))
 
 
 #: The letters keep this far off every point of the thick position (its own included), mm.
