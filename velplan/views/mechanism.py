@@ -27,6 +27,7 @@ from velplan.mechanism.structure import pairs, point_owners
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
+from velplan.render.shapes import text_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
@@ -479,7 +480,7 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
         ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
-        {"thin": thin, "taken": [label_box(x).buffer(1.5) for x in (*placed_letters, *placed)]})  # not read as one with a letter
+        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5)})  # not read as one with a letter
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
@@ -488,6 +489,13 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+def _grown(texts: list[Text], by_mm: float) -> list:
+    """Each text's `label_box` grown by `by_mm` (as ``label_box(t).buffer(by_mm)``), in one call."""
+    if not texts:
+        return []
+    return list(shapely.buffer(shapely.polygons([text_box(t) for t in texts]), by_mm, quad_segs=16))
 
 
 def _lines(runs: list) -> list:
