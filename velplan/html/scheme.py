@@ -13,7 +13,7 @@ steps.
 from __future__ import annotations
 
 import dataclasses
-from typing import Generator
+from typing import Any, Generator
 
 import numpy as np
 import shapely
@@ -195,7 +195,7 @@ def _stage(rows, c, idx, ok, cost) -> list:
     first = np.searchsorted(at, np.arange(len(rows) + 1))
     cost = cost.copy()
     soft = _box_run(c[at, col], half[at], 0.2)
-    out = []
+    out: list[tuple[float, int, Any] | None] = []
     for r, row in enumerate(rows):
         call, mine = row[0], slice(first[r], first[r + 1])
         if first[r] == first[r + 1]:
