@@ -558,17 +558,15 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
     for tr in tracks:
         side = _guide_side(tr, mu_l, centre, mm(geo.p(t, tr.point)), thick_segments, mm)
         guide_sides[tr.point] = side
-        guide = _guide(tr, mu_l, side)
+        guide, outline = _drawn_once(("guide", tr.base.tobytes(), tr.angle, tr.lo, tr.hi, mu_l, side.tobytes()),
+                                     lambda: _guide_and_outline(tr, mu_l, side))
         items += guide
-        # the guide's outline (an inclined guide's bounding box would cover half the scheme)
-        hull = shapely.multipoints(np.array([q for g in guide for q in g.points], float)).convex_hull
-        obstacles.append(hull.buffer(0.3))
+        obstacles += outline
     for name in geo.ground_pivots:
-        support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
-                              layer="mechanism")
+        at, towards = mm(geo.p(t, name)), _ground_side(geo, name, t, mm)
+        support, outline = _drawn_once(("pivot", at.tobytes(), towards), lambda: _support_and_outline(at, towards))
         items += support
-        # the triangle and the hatching: a letter may stand beside the pivot's circle
-        obstacles += [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
+        obstacles += outline
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -590,6 +588,37 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
     _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+#: Guides and supports drawn so far, by all they depend on (cleared when full): a page's frames
+#: and a sheet's trials draw the same ones again and again.
+_DRAWN: dict[tuple, tuple[tuple, tuple]] = {}
+
+
+def _drawn_once(key: tuple, draw: Callable[[], tuple[list, list]]) -> tuple[tuple, tuple]:
+    """The primitives and outlines `draw` makes, drawn once per `key` (both immutable)."""
+    hit = _DRAWN.get(key)
+    if hit is None:
+        if len(_DRAWN) >= _ROWS_KEPT:
+            _DRAWN.clear()
+        primitives, outlines = draw()
+        hit = _DRAWN[key] = (tuple(primitives), tuple(outlines))
+    return hit
+
+
+def _guide_and_outline(tr: GuideTrack, mu_l: float, side: np.ndarray) -> tuple[list, list]:
+    """A fixed guide (`_guide`) and its outline the letters keep off: its points' hull (an
+    inclined guide's bounding box would cover half the scheme), 0.3 mm round."""
+    guide = _guide(tr, mu_l, side)
+    hull = shapely.multipoints(np.array([q for g in guide for q in g.points], float)).convex_hull
+    return guide, [hull.buffer(0.3)]
+
+
+def _support_and_outline(at: np.ndarray, towards: float) -> tuple[list, list]:
+    """A fixed pivot's support at `at` (mm) on ground towards `towards` (deg), and its outlines:
+    the triangle and the hatching, 0.5 mm round (a letter may stand beside the pivot's circle)."""
+    support = fixed_pivot(at, direction_deg=towards, layer="mechanism")
+    return support, [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
 
 
 def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:
