@@ -593,13 +593,14 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
 #: Guides and supports drawn so far, by all they depend on (cleared when full): a page's frames
 #: and a sheet's trials draw the same ones again and again.
 _DRAWN: dict[tuple, tuple[tuple, tuple]] = {}
+_DRAWN_KEPT = 512
 
 
 def _drawn_once(key: tuple, draw: Callable[[], tuple[list, list]]) -> tuple[tuple, tuple]:
     """The primitives and outlines `draw` makes, drawn once per `key` (both immutable)."""
     hit = _DRAWN.get(key)
     if hit is None:
-        if len(_DRAWN) >= _ROWS_KEPT:
+        if len(_DRAWN) >= _DRAWN_KEPT:
             _DRAWN.clear()
         primitives, outlines = draw()
         hit = _DRAWN[key] = (tuple(primitives), tuple(outlines))
