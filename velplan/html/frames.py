@@ -2,7 +2,7 @@
 
 Nothing is solved or constructed here: the positions, the exact plans (at one scale for the
 whole turn, so that the slider moves them smoothly about a fixed pole) and the drafted plans
-all come from a `velplan.study.Study`; the views draw them (`mechanism_view`, `plan_steps`,
+all come from a `velplan.study.Study`; the views draw them (`scheme_steps`, `plan_steps`,
 `letters_to_place`) and `velplan.html.records` turns their primitives into compact records.
 
 Records the scheme shares between positions (guides, supports that do not move) are stored
@@ -27,9 +27,10 @@ from velplan.render.style import SheetStyle
 from velplan.study import Study
 from velplan.html.letters import capsules, place_letters
 from velplan.html.records import UNITS_PER_MM, encode, extent, round_sig
+from velplan.html.scheme import draw_together
 from velplan.html.text import templates
 from velplan.views.base import eskd_scales, scale_mark, scale_text, subscript, unit
-from velplan.views.mechanism import extent_m, mechanism_view, trajectory_points
+from velplan.views.mechanism import extent_m, scheme_steps, trajectory_points
 from velplan.views.plan import letters_to_place, plan_steps
 from velplan.views.steps import readable as _readable
 
@@ -83,13 +84,16 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
     reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    # each position's drawing, its letters placed by the scheme's own placer (`mechanism_view`)
+    # each position's drawing (the scheme's own, `scheme_steps`), the letters of all placed together
+    valid = [i for i in range(n) if kin.valid[i]]
+    steps = []
+    for i in valid:
+        idx = sorted(set(reference) | {i})
+        steps.append(scheme_steps(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
+                                  thick=position_number(idx.index(i)), lang=lang, single=True, title=False))
     per_position: list[list[list] | None] = [None] * n
     known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
-    for i in (i for i in range(n) if kin.valid[i]):
-        idx = sorted(set(reference) | {i})
-        view = mechanism_view(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
-                              thick=position_number(idx.index(i)), lang=lang, single=True, title=False)
+    for i, view in zip(valid, draw_together(steps)):
         drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
         per_position[i] = [r for p in drawn
                            for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),

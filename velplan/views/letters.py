@@ -49,14 +49,24 @@ def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
     return t, np.array([0.5 * (x0 + x1), 0.5 * (y0 + y1)]), np.array([0.5 * (x1 - x0), 0.5 * (y1 - y0)])
 
 
+#: Unit vectors of `_DIRECTIONS`, their absolute values, and per number of gaps the vectors
+#: repeated once a gap (made once).
+_UNITS = np.column_stack([np.cos(_DIRECTIONS), np.sin(_DIRECTIONS)])
+_REACH = np.abs(_UNITS)
+_TILED: dict[int, np.ndarray] = {}
+
+
 def _candidates(point, wanted, half, gaps) -> tuple[np.ndarray, np.ndarray]:
     """Box centres round `point` (mm) at each of `gaps` in every direction, and the cost of
     each: its gap plus the turn from the `wanted` direction, mm."""
-    u = np.column_stack([np.cos(_DIRECTIONS), np.sin(_DIRECTIONS)])
-    reach = np.abs(u[:, 0]) * half[0] + np.abs(u[:, 1]) * half[1]
+    u = _UNITS
+    reach = _REACH[:, 0] * half[0] + _REACH[:, 1] * half[1]
     turn = np.arccos(np.clip(u @ wanted, -1.0, 1.0))
     g = np.repeat(np.asarray(gaps, float), len(u))
-    centres = point + np.tile(u, (len(gaps), 1)) * (g + np.tile(reach, len(gaps)))[:, None]
+    tiled = _TILED.get(len(gaps))
+    if tiled is None:
+        tiled = _TILED[len(gaps)] = np.tile(u, (len(gaps), 1))
+    centres = point + tiled * (g + np.tile(reach, len(gaps)))[:, None]
     return centres, g + _TURN_MM * np.tile(turn, len(gaps))
 
 
@@ -100,25 +110,29 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
             break  # every later candidate costs more than the best clear one
         idx = np.sort(order[start:min(stop, n)])
         c = centres[idx]
-        padded = _boxes(c, 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
-        ok = np.ones(len(idx), dtype=bool)
+        # the cheap tests first (in closed form), shapely's only on the candidates they pass
+        ok = _own_nearest(c, half, point, others) if need_nearest else np.ones(len(idx), dtype=bool)
+        if not ok.any():
+            continue
+        padded = _boxes(c[ok], 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
+        keep = np.ones(len(padded), dtype=bool)
         if tree is not None:
-            ok &= ~_blocked(tree, padded)
-        if taken_boxes is not None and ok.any():  # the boxes still clear alone are tested on
-            k = np.flatnonzero(ok)
-            ok[k] = ~shapely.intersects(padded[k, None], taken_boxes[None, :]).any(axis=1)
-        if need_nearest and ok.any():
-            ok &= _own_nearest(c, half, point, others)
+            keep &= ~_blocked(tree, padded)
+        if taken_boxes is not None and keep.any():  # the boxes still clear alone are tested on
+            rows = np.flatnonzero(keep)
+            keep[rows] = ~shapely.intersects(padded[rows, None], taken_boxes[None, :]).any(axis=1)
+        padded = padded[keep]
+        ok[ok] = keep
         if not ok.any():
             continue
         cost = base[idx]
         if soft is not None:  # the lines across the clear boxes (the others are not chosen)
-            k = np.flatnonzero(ok)
-            crossed = soft.query(_boxes(c[k], half, 0.2), predicate="intersects")[0]
-            cost[k] += weight * np.bincount(crossed, minlength=len(k))
+            crossed = soft.query(_boxes(c[ok], half, 0.2), predicate="intersects")[0]
+            cost = cost.copy()
+            cost[ok] += weight * np.bincount(crossed, minlength=int(ok.sum()))
         j = int(np.argmin(np.where(ok, cost, np.inf)))
         if best is None or (cost[j], idx[j]) < (best[0], best[1]):
-            best = (float(cost[j]), int(idx[j]), padded[j])
+            best = (float(cost[j]), int(idx[j]), padded[int(ok[:j].sum())])
     if best is None:
         return None
     return centres[best[1]], best[2]

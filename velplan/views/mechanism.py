@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, NamedTuple, Sequence
+from typing import Any, Callable, Generator, NamedTuple, Sequence
 
 import numpy as np
 import shapely
@@ -27,6 +27,7 @@ from velplan.mechanism.structure import pairs, point_owners
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
+from velplan.render.shapes import text_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
@@ -417,6 +418,37 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         ``mu`` is μl; ``to_view`` maps metres to the view's mm. ``meta["positions"]`` holds
         the crank angles (rad), ``meta["thick"]`` the thick position.
     """
+    return run_scheme(scheme_steps(mech, kin=kin, fine=fine, mu_l=mu_l, n=n, thick=thick, lang=lang,
+                                   sizes=sizes, title=title, single=single, extreme=extreme,
+                                   special=special, bold=bold, plans=plans))
+
+
+class LetterRequest(NamedTuple):
+    """The arguments of one `place_letters` call a scheme's drawing waits on (`scheme_steps`)."""
+
+    args: tuple
+    kwargs: dict
+
+
+def run_scheme(steps: Generator[LetterRequest, tuple, View]) -> View:
+    """The view `scheme_steps` draws, each of its letter requests answered by `place_letters`."""
+    try:
+        request = next(steps)
+        while True:
+            request = steps.send(place_letters(*request.args, **request.kwargs))
+    except StopIteration as done:
+        return done.value
+
+
+def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: float, n: int = 12,
+                 thick: int = 1, lang: Language = "ru", sizes: MechanismSizes = MechanismSizes(),
+                 title: bool = True, single: bool = False,
+                 extreme: Kinematics | None = None, special: bool | Sequence[int] = False,
+                 bold: Sequence[int] = (), plans: Sequence[int] = ()) -> Generator[LetterRequest, tuple, View]:
+    """`mechanism_view` as a generator: it yields each `place_letters` call it needs as a
+    `LetterRequest`, is sent that call's result, and returns the view (so that the drawings of
+    many positions can have their letters placed together, `velplan.html.scheme`). The same
+    parameters (`thick`, `bold`, `plans`: positions 1-based)."""
     t = position_index(thick, n)
     geo = _Geometry(mech, kin)
     mm = lambda xy: np.asarray(xy, float) / mu_l  # noqa: E731 - content mm: model / μl
@@ -430,24 +462,25 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     letters, labels, links = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
-    obstacles += [shapely.Point(p).buffer(POINT_CLEAR_MM) for p in points if np.all(np.isfinite(p))]
+    obstacles += list(shapely.buffer(shapely.points(np.array([p for p in points if np.all(np.isfinite(p))],
+                                                             float).reshape(-1, 2)), POINT_CLEAR_MM, quad_segs=16))
     named = [mm(geo.p(t, name)) for name in kin.point_index] + [at for _, at in letters]
-    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    thin = _lines([p.points for p in items if isinstance(p, Polyline) and p.line == "thin"])
     # the letters keep off the places the output's position numbers want, where they can
     wanted = [label_box(x) for x in labels if x.text.isdigit()]
-    placed_letters, leaders = place_letters([x for x, _ in letters], [at for _, at in letters], named, obstacles,
-                                            thin=thin + wanted)
+    placed_letters, leaders = yield LetterRequest(
+        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted})
     if not single:  # the crank's numbers, each nearer its own position of the tip than any other
         tips = mm(kin.position(mech.crank.tip))
-        numbers, number_leaders = place_letters(
-            _crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles, thin=thin,
-            taken=[label_box(x).buffer(0.4) for x in placed_letters])
+        numbers, number_leaders = yield LetterRequest(
+            (_crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles),
+            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters]})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     # the links' numbers, each nearer its own link's point than another link's
-    numbers, number_leaders = place_letters(
-        [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
-        taken=[label_box(x).buffer(1.5) for x in (*placed_letters, *placed)])  # not read as one with a letter
+    numbers, number_leaders = yield LetterRequest(
+        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
+        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5)})  # not read as one with a letter
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
@@ -456,6 +489,21 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+def _grown(texts: list[Text], by_mm: float) -> list:
+    """Each text's `label_box` grown by `by_mm` (as ``label_box(t).buffer(by_mm)``), in one call."""
+    if not texts:
+        return []
+    return list(shapely.buffer(shapely.polygons([text_box(t) for t in texts]), by_mm, quad_segs=16))
+
+
+def _lines(runs: list) -> list:
+    """Shapely lines through each run of points (mm), made in one call."""
+    if not runs:
+        return []
+    xy = np.array([q for run in runs for q in run], float).reshape(-1, 2)
+    return list(shapely.linestrings(xy, indices=np.repeat(np.arange(len(runs)), [len(r) for r in runs])))
 
 
 #: The letters keep this far off every point of the thick position (its own included), mm.
@@ -510,16 +558,15 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
     for tr in tracks:
         side = _guide_side(tr, mu_l, centre, mm(geo.p(t, tr.point)), thick_segments, mm)
         guide_sides[tr.point] = side
-        guide = _guide(tr, mu_l, side)
+        guide, outline = _drawn_once(("guide", tr.base.tobytes(), tr.angle, tr.lo, tr.hi, mu_l, side.tobytes()),
+                                     lambda: _guide_and_outline(tr, mu_l, side))
         items += guide
-        # the guide's outline (an inclined guide's bounding box would cover half the scheme)
-        obstacles.append(shapely.MultiPoint([q for g in guide for q in g.points]).convex_hull.buffer(0.3))
+        obstacles += outline
     for name in geo.ground_pivots:
-        support = fixed_pivot(mm(geo.p(t, name)), direction_deg=_ground_side(geo, name, t, mm),
-                              layer="mechanism")
+        at, towards = mm(geo.p(t, name)), _ground_side(geo, name, t, mm)
+        support, outline = _drawn_once(("pivot", at.tobytes(), towards), lambda: _support_and_outline(at, towards))
         items += support
-        # the triangle and the hatching: a letter may stand beside the pivot's circle
-        obstacles += [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
+        obstacles += outline
     special_letters = [x for i in specials  # positions other than the thick one say theirs
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
@@ -541,6 +588,38 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
     _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+#: Guides and supports drawn so far, by all they depend on (cleared when full): a page's frames
+#: and a sheet's trials draw the same ones again and again.
+_DRAWN: dict[tuple, tuple[tuple, tuple]] = {}
+_DRAWN_KEPT = 512
+
+
+def _drawn_once(key: tuple, draw: Callable[[], tuple[list, list]]) -> tuple[tuple, tuple]:
+    """The primitives and outlines `draw` makes, drawn once per `key` (both immutable)."""
+    hit = _DRAWN.get(key)
+    if hit is None:
+        if len(_DRAWN) >= _DRAWN_KEPT:
+            _DRAWN.clear()
+        primitives, outlines = draw()
+        hit = _DRAWN[key] = (tuple(primitives), tuple(outlines))
+    return hit
+
+
+def _guide_and_outline(tr: GuideTrack, mu_l: float, side: np.ndarray) -> tuple[list, list]:
+    """A fixed guide (`_guide`) and its outline the letters keep off: its points' hull (an
+    inclined guide's bounding box would cover half the scheme), 0.3 mm round."""
+    guide = _guide(tr, mu_l, side)
+    hull = shapely.multipoints(np.array([q for g in guide for q in g.points], float)).convex_hull
+    return guide, [hull.buffer(0.3)]
+
+
+def _support_and_outline(at: np.ndarray, towards: float) -> tuple[list, list]:
+    """A fixed pivot's support at `at` (mm) on ground towards `towards` (deg), and its outlines:
+    the triangle and the hatching, 0.5 mm round (a letter may stand beside the pivot's circle)."""
+    support = fixed_pivot(at, direction_deg=towards, layer="mechanism")
+    return support, [shapely.Polygon(support[0].points).buffer(0.5), shapely.box(*bounds_of(support[1:-1])).buffer(0.5)]
 
 
 def _mass_signs(items: list, obstacles: list, geo: _Geometry, t: int, mm) -> None:

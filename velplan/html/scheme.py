@@ -1,0 +1,209 @@
+"""The scheme at every position of the page, its point letters placed for all positions together.
+
+Each position's scheme is drawn by the sheets' own drawing, `velplan.views.mechanism.scheme_steps`,
+which stops at each `place_letters` call it needs. Here the drawings of all positions run in
+step, and the calls they wait on are answered together (`place_together`): letter k of every
+call in one pass, with numpy over all of them, and shapely asked per call only what depends on
+that call's own lines (its tree of obstacles, of thin lines, the letters it placed before).
+The choices are `place_letters`' own: the same candidates, costs and tests in the same order,
+and a letter with no clear spot near its point (a leader) goes through `place_letters`' own
+steps.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Generator
+
+import numpy as np
+import shapely
+
+from velplan.render.layout import label_box
+from velplan.render.scene import Polyline
+from velplan.views.base import View
+from velplan.views.letters import (
+    _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
+    _boxes, _centred, _choose)
+from velplan.views.mechanism import LetterRequest
+
+
+def draw_together(steps: list[Generator[LetterRequest, tuple, View]]) -> list[View]:
+    """The views the `scheme_steps` generators draw, run in step: the letter requests pending
+    at each step answered together (`place_together`)."""
+    views: list[View | None] = [None] * len(steps)
+    pending = {}
+    for k, g in enumerate(steps):
+        try:
+            pending[k] = next(g)
+        except StopIteration as done:
+            views[k] = done.value
+    while pending:
+        keys = list(pending)
+        answers = place_together([pending[k] for k in keys])
+        pending = {}
+        for k, answer in zip(keys, answers):
+            try:
+                pending[k] = steps[k].send(answer)
+            except StopIteration as done:
+                views[k] = done.value
+    return views  # type: ignore[return-value]
+
+
+class _Call:
+    """One `place_letters` call's state: its trees, the boxes taken, what it placed so far."""
+
+    def __init__(self, request: LetterRequest):
+        texts, anchors, points, obstacles = request.args
+        kw = request.kwargs
+        if set(kw) - {"thin", "taken"}:
+            raise ValueError(f"place_together answers thin and taken only, not {sorted(kw)}")
+        self.texts, self.anchors = list(texts), list(anchors)
+        shapes = [g for g in obstacles if g is not None and not g.is_empty]
+        self.tree = shapely.STRtree(shapes) if shapes else None
+        self.taken = list(kw.get("taken", ()))
+        thin = [g for g in kw.get("thin", ()) if not g.is_empty]
+        self.soft = shapely.STRtree(thin) if thin else None
+        allp = np.asarray(points, float).reshape(-1, 2)
+        self.allp = allp[np.all(np.isfinite(allp), axis=1)]
+        self.out: list = []
+        self.leaders: list = []
+
+
+def place_together(requests: list[LetterRequest]) -> list[tuple[list, list]]:
+    """`place_letters(*r.args, **r.kwargs)` for each request (keyword arguments ``thin`` and
+    ``taken`` only), the same letters and leaders, letter k of every call placed in one pass."""
+    calls = [_Call(r) for r in requests]
+    for k in range(max([len(c.texts) for c in calls] + [0])):
+        _place_kth([c for c in calls if len(c.texts) > k], k)
+    return [(c.out, c.leaders) for c in calls]
+
+
+def _place_kth(calls: list[_Call], k: int) -> None:
+    """Letter k of each call: the first `_choose` of `place_letters` for all at once, the rest
+    (a letter with no clear spot near its point) as `place_letters` does it."""
+    rows = []
+    for c in calls:
+        p = np.asarray(c.anchors[k], float)
+        text = c.texts[k]
+        centred, offset, half = _centred(text)
+        wanted = np.asarray(text.position, float) - p
+        wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
+        others = c.allp[np.hypot(*(c.allp - p).T) > SAME_POINT_MM]
+        rows.append((c, text, p, centred, offset, half, wanted, others))
+    found = _first_choices(rows)
+    for (c, text, p, centred, offset, half, wanted, others), hit in zip(rows, found):
+        led = hit is None
+        if led:
+            hit = _choose(p, wanted, half, others, c.tree, c.taken, LEADER_GAPS_MM, False, c.soft)
+        if hit is None:  # crowded all round: off the other letters, over the fewest lines
+            hit = _choose(p, wanted, half, others, None, c.taken, (*GAPS_MM, *LEADER_GAPS_MM), False, c.tree, 20.0)
+            led = hit is not None
+        if hit is None:
+            c.out.append(text)
+            continue
+        centre, padded = hit
+        placed = dataclasses.replace(centred, position=tuple((centre - offset).tolist()))
+        c.taken.append(padded)
+        c.out.append(placed)
+        if led:
+            near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
+            c.leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
+
+
+def _candidates(rows) -> tuple[np.ndarray, np.ndarray]:
+    """`velplan.views.letters._candidates` of every row at `GAPS_MM`, the same sums: centres
+    (r, n, 2) and costs (r, n)."""
+    gaps = GAPS_MM
+    half = np.array([r[5] for r in rows])
+    point = np.array([r[2] for r in rows])
+    reach = _REACH[None, :, 0] * half[:, 0, None] + _REACH[None, :, 1] * half[:, 1, None]
+    turn = np.array([np.arccos(np.clip(_UNITS @ r[6], -1.0, 1.0)) for r in rows])
+    g = np.repeat(np.asarray(gaps, float), len(_UNITS))
+    tiled = _TILED.get(len(gaps))
+    if tiled is None:
+        tiled = _TILED[len(gaps)] = np.tile(_UNITS, (len(gaps), 1))
+    centres = point[:, None, :] + tiled[None] * (g[None, :] + np.tile(reach, (1, len(gaps))))[..., None]
+    return centres, g[None, :] + _TURN_MM * np.tile(turn, (1, len(gaps)))
+
+
+def _nearest(centres: np.ndarray, rows) -> np.ndarray:
+    """`velplan.views.letters._own_nearest` of candidates (r, s, 2) of every row, the same
+    sums: another point missing from a row stands at infinity (nearer nothing)."""
+    most = max(len(r[7]) for r in rows)
+    pts = np.full((len(rows), 1 + most, 2), np.inf)
+    for a, r in enumerate(rows):
+        pts[a, 0] = r[2]
+        pts[a, 1:1 + len(r[7])] = r[7]
+    half = np.array([r[5] for r in rows])
+    dx = np.maximum(np.abs(pts[:, None, :, 0] - centres[:, :, None, 0]) - half[:, None, None, 0], 0.0)
+    dy = np.maximum(np.abs(pts[:, None, :, 1] - centres[:, :, None, 1]) - half[:, None, None, 1], 0.0)
+    dist = np.hypot(dx, dy)
+    if most == 0:
+        return np.ones(centres.shape[:2], dtype=bool)
+    return dist[..., 1:].min(axis=2) > dist[..., 0] + _MARGIN_MM
+
+
+def _first_choices(rows) -> list:
+    """For each row, `_choose` at `GAPS_MM` with its own point nearest: the centre and the
+    padded box chosen, or None; the stages of `_choose` run for all rows at once."""
+    centres, base = _candidates(rows)
+    n = centres.shape[1]
+    order = np.lexsort((np.broadcast_to(np.arange(n), base.shape), base), axis=-1)
+    best: list = [None] * len(rows)  # (cost, index, padded box)
+    for start, stop in zip((0, *_STAGES), (*_STAGES, n)):
+        if start >= n:
+            break
+        live = [a for a in range(len(rows)) if best[a] is None or not best[a][0] < base[a, order[a, start]]]
+        if not live:
+            break
+        idx = np.sort(order[live, start:min(stop, n)], axis=1)
+        c = centres[np.array(live)[:, None], idx]
+        ok = _nearest(c, [rows[a] for a in live])
+        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx])):
+            if hit is not None and (best[a] is None or hit[:2] < best[a][:2]):
+                best[a] = hit
+    return [None if b is None else (centres[a, b[1]], b[2]) for a, b in enumerate(best)]
+
+
+def _box_run(c: np.ndarray, half: np.ndarray, pad: float):
+    """`_boxes` of candidates (k, 2) of many rows at once, each row's half sizes (k, 2)."""
+    return shapely.box(c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
+                       c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad)
+
+
+def _stage(rows, c, idx, ok, cost) -> list:
+    """One stage of `_choose` for each row, its candidates (r, s, 2) and their indices, nearness
+    `ok` and costs (r, s) known: the best clear candidate's (cost, index, padded box), or None.
+    The boxes of all rows are made in one call; each row's own shapes are asked of shapely."""
+    half = np.array([r[5] for r in rows])
+    at, col = np.nonzero(ok)
+    padded = _box_run(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
+    first = np.searchsorted(at, np.arange(len(rows) + 1))
+    keep = np.ones(len(at), dtype=bool)
+    for r, row in enumerate(rows):
+        call, mine = row[0], slice(first[r], first[r + 1])
+        if first[r] == first[r + 1]:
+            continue
+        if call.taken:
+            keep[mine] &= ~shapely.intersects(padded[mine, None], np.array(call.taken)[None, :]).any(axis=1)
+        if call.tree is not None and keep[mine].any():
+            here = first[r] + np.flatnonzero(keep[mine])
+            keep[here[call.tree.query(padded[here], predicate="intersects")[0]]] = False
+    ok = ok.copy()
+    ok[at, col] = keep
+    at, col, padded = at[keep], col[keep], padded[keep]
+    first = np.searchsorted(at, np.arange(len(rows) + 1))
+    cost = cost.copy()
+    soft = _box_run(c[at, col], half[at], 0.2)
+    out: list[tuple[float, int, Any] | None] = []
+    for r, row in enumerate(rows):
+        call, mine = row[0], slice(first[r], first[r + 1])
+        if first[r] == first[r + 1]:
+            out.append(None)
+            continue
+        if call.soft is not None:
+            crossed = call.soft.query(soft[mine], predicate="intersects")[0]
+            cost[r, ok[r]] += SOFT_MM * np.bincount(crossed, minlength=first[r + 1] - first[r])
+        j = int(np.argmin(np.where(ok[r], cost[r], np.inf)))
+        out.append((float(cost[r, j]), int(idx[r, j]), padded[first[r] + int(ok[r, :j].sum())]))
+    return out
