@@ -39,6 +39,9 @@ SOFT_MM = 1.5
 SAME_POINT_MM = 0.3
 #: A letter's own point must be nearer than any other by this, mm.
 _MARGIN_MM = 0.3
+#: How far from its point a letter without a leader may stand where the drawing asks it
+#: (`place_letters`' `near_mm`): within the teacher's 6 mm, with a margin, mm.
+NEAR_MM = 5.5
 
 
 def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
@@ -82,12 +85,22 @@ def _own_nearest(centres, half, point, others) -> np.ndarray:
 _STAGES = (24, 72)
 
 
+def _within(centres, half, point, near: float | None) -> np.ndarray:
+    """Whether each box (centred at `centres`, half sizes `half`, mm) lies within `near` mm of
+    `point` (all of them where `near` is None): a wide box beside its point on a slant stands
+    farther off than its gap along the slant."""
+    if near is None:
+        return np.ones(len(centres), dtype=bool)
+    d = np.maximum(np.abs(centres - np.asarray(point, float)) - half, 0.0)
+    return np.hypot(d[:, 0], d[:, 1]) <= near
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
-            weight: float = SOFT_MM):
+            weight: float = SOFT_MM, near: float | None = None):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
-    (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
-    tree of thin lines) across it costing `weight` mm: its centre and box, or None. Of equal
-    costs, the first candidate (`_candidates`' order) wins."""
+    (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it),
+    each line of `soft` (a tree of thin lines) across it costing `weight` mm: its centre and
+    box, or None. Of equal costs, the first candidate (`_candidates`' order) wins."""
     centres, base = _candidates(point, wanted, half, gaps)
     n = len(centres)
     order = np.lexsort((np.arange(n), base))  # by cost, then by place in the candidates
@@ -107,7 +120,7 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         if taken_boxes is not None and ok.any():
             ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
         if need_nearest and ok.any():
-            ok &= _own_nearest(c, half, point, others)
+            ok &= _own_nearest(c, half, point, others) & _within(c, half, point, near)
         if not ok.any():
             continue
         cost = base[idx]
@@ -124,7 +137,8 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
                   leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
-                  leader_gaps: Sequence[float] = LEADER_GAPS_MM) -> tuple[list[Text], list[Polyline]]:
+                  leader_gaps: Sequence[float] = LEADER_GAPS_MM,
+                  near_mm: float | None = None) -> tuple[list[Text], list[Polyline]]:
     """Place point letters, in order, each by its own point.
 
     Parameters
@@ -144,6 +158,9 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
     gaps, leader_gaps : sequence of float
         The gaps (mm) between a letter's box and its point tried without a leader, nearest
         first, and those of a letter with a leader.
+    near_mm : float, optional
+        How far from its point (box to point) a letter without a leader may stand, mm (e.g.
+        :data:`NEAR_MM`); by default as far as `gaps` take it.
 
     Returns
     -------
@@ -165,7 +182,7 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         wanted = np.asarray(text.position, float) - p
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
-        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft)
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, near=near_mm)
         led = found is None
         if led:
             found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
