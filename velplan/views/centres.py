@@ -22,7 +22,7 @@ from velplan.render.i18n import centres_words as _t
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
-from velplan.views.letters import NEAR_MM, place_letters
+from velplan.views.letters import LEADER_GAPS_MM, NEAR_MM, place_letters
 from velplan.views.mechanism import MechanismSizes, mechanism_view
 from velplan.views.base import number as _number  # `number` is also the position argument
 
@@ -94,6 +94,9 @@ def _at_infinity(con: Construction, s: CentreStep, to_mm, name: str, size: float
     return items, [(Text(tuple(tip), name + " → ∞", "labels", size, "middle", "middle"), at + reach * u)]
 
 
+#: Gaps of a name with a leader beyond `velplan.views.letters.LEADER_GAPS_MM`, mm: the Kennedy
+#: lines crowd a scheme more than its own lines do.
+FAR_LEADER_GAPS_MM = (15.0, 18.0)
 #: Half-length of the direction line of a centre at infinity through its slider's joint, mm.
 INFINITY_LINE_MM = 9.0
 
@@ -336,11 +339,33 @@ def _names_placed(items: list, labels: list, joints: dict, at_joint: dict, point
     own = [t for t in texts if t.text.split(" (")[0] in points]
     spots = [points[t.text.split(" (")[0]] for t in own] + [np.asarray(at, float) for _, at in labels]
     named = list(points.values()) + [np.asarray(at, float) for _, at in labels]
-    rest = place_labels([t for t in texts if t not in own], obstacles, rings=8)
-    placed, leaders = place_letters(own + [t for t, _ in labels], spots, named, obstacles,
-                                    taken=[label_box(t).buffer(0.4) for t in rest], near_mm=NEAR_MM)
+    others = [t for t in texts if t not in own]
+    rest = place_labels(others, obstacles, rings=8)
+    items = _leaders_followed(items, others, rest)
+    # the names at infinity first: each has one place, the end of its direction line
+    texts_of = [*own, *(t for t, _ in labels)]
+    order = sorted(range(len(texts_of)), key=lambda k: not texts_of[k].text.endswith("∞"))
+    placed, leaders = place_letters([texts_of[k] for k in order], [spots[k] for k in order], named, obstacles,
+                                    taken=[label_box(t).buffer(0.4) for t in rest], near_mm=NEAR_MM,
+                                    leader_gaps=(*LEADER_GAPS_MM, *FAR_LEADER_GAPS_MM))
     items += [*rest, *placed, *leaders]
     return items, {k: [tuple(map(float, xy)) for xy in v] for k, v in anchors.items() if v}
+
+
+def _leaders_followed(items: list, texts: list, moved: list) -> list:
+    """`items` with the thin leader of each of `texts` (the scheme's own: from its point to the
+    text's box) drawn to where the text was moved (`moved`, in the same order)."""
+    boxes = [(label_box(t).buffer(0.6), label_box(m).buffer(0.4)) for t, m in zip(texts, moved) if t != m]
+    out = []
+    for p in items:
+        if isinstance(p, Polyline) and p.layer == "labels" and p.line == "thin" and len(p.points) == 2:
+            end = shapely.Point(p.points[1])
+            to = next((new for old, new in boxes if old.contains(end)), None)
+            if to is not None:
+                near = shapely.shortest_line(to, shapely.Point(p.points[0])).coords[0]
+                p = replace(p, points=(tuple(p.points[0]), (near[0], near[1])))
+        out.append(p)
+    return out
 
 
 def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: Language = "en",

@@ -95,12 +95,32 @@ def _within(centres, half, point, near: float | None) -> np.ndarray:
     return np.hypot(d[:, 0], d[:, 1]) <= near
 
 
+#: How far a leader passes by the other points, mm (it would read as theirs).
+LEADER_CLEAR_MM = 1.0
+
+
+def _leaders_clear(centres, half, point, taken_boxes, others) -> np.ndarray:
+    """Whether the leader from `point` to each box (centred at `centres`, half sizes `half`,
+    mm; it ends 0.4 mm off the box, as `place_letters` draws it) keeps off the `taken` boxes
+    and passes the `others` points by :data:`LEADER_CLEAR_MM` at least."""
+    p = np.asarray(point, float)
+    ends = np.clip(p, centres - half - 0.4, centres + half + 0.4)
+    segments = shapely.linestrings(np.stack([np.broadcast_to(p, ends.shape), ends], axis=1))
+    ok = np.ones(len(centres), dtype=bool)
+    if taken_boxes is not None:
+        ok &= ~shapely.intersects(segments[:, None], taken_boxes[None, :]).any(axis=1)
+    if len(others):
+        ok &= shapely.distance(segments, shapely.multipoints(np.asarray(others, float))) > LEADER_CLEAR_MM
+    return ok
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
-            weight: float = SOFT_MM, near: float | None = None):
+            weight: float = SOFT_MM, near: float | None = None, leader: bool = False):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
-    (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it),
-    each line of `soft` (a tree of thin lines) across it costing `weight` mm: its centre and
-    box, or None. Of equal costs, the first candidate (`_candidates`' order) wins."""
+    (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it;
+    if `leader`, with its leader clear of the `taken` boxes and the `others` points), each line of `soft` (a tree of
+    thin lines) across it costing `weight` mm: its centre and box, or None. Of equal costs,
+    the first candidate (`_candidates`' order) wins."""
     centres, base = _candidates(point, wanted, half, gaps)
     n = len(centres)
     order = np.lexsort((np.arange(n), base))  # by cost, then by place in the candidates
@@ -121,6 +141,8 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
             ok &= ~shapely.intersects(padded[:, None], taken_boxes[None, :]).any(axis=1)
         if need_nearest and ok.any():
             ok &= _own_nearest(c, half, point, others) & _within(c, half, point, near)
+        if leader and ok.any():
+            ok &= _leaders_clear(c, half, point, taken_boxes, others)
         if not ok.any():
             continue
         cost = base[idx]
@@ -184,11 +206,15 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
         found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, near=near_mm)
         led = found is None
-        if led:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
-        if found is None:  # crowded all round: off the other letters, over the fewest lines
-            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0)
-            led = found is not None
+        # beyond the crowd with a leader, the leader off the other letters where it can be; then,
+        # crowded all round: off the other letters, over the fewest lines
+        for clear_leader in (True, False):
+            if found is None:
+                found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, leader=clear_leader)
+        for clear_leader in (True, False):
+            if found is None:
+                found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,
+                                leader=clear_leader)
         if found is None:
             out.append(text)
             continue
@@ -199,4 +225,5 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         if led:
             near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
             leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
+            taken.append(shapely.LineString(leaders[-1].points).buffer(0.3))  # the later letters keep off it
     return out, leaders
