@@ -49,6 +49,19 @@ def test_texts_keep_off_the_drawn_lines(figures):
     assert not every, every
 
 
+#: Texts crossed by any drawn line, thin ones too (Kennedy and construction lines, outlines,
+#: other texts' leaders), measured on 27 Nov 2026 (a ratchet: may only go down): the numbers of
+#: triad-eight-link's circle diagram that sit on their own chords at its largest radius (11)
+#: and two of its link numbers on Kennedy lines, stephenson-six-bar's "E (P₂₄)", and n₁ on
+#: triad-rocker's acceleration steps 34-36 (a thin line of the plan).
+CROSSED_BY_ANY_LINE = 17
+
+
+def test_texts_keep_off_the_thin_lines_too(figures):
+    every = [(where, t) for where, scene, _ in _each(figures) for t in gm.crossed_by_any_line(scene)]
+    assert len(every) <= CROSSED_BY_ANY_LINE, every
+
+
 def test_every_label_names_its_own_point(figures):
     """Every point's letter and centre's name has its own point nearest, within 6 mm (or a
     leader to it): the scheme's letters, the plans' image letters, the centres' names."""
