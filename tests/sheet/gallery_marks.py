@@ -6,6 +6,8 @@ and the measures the checks make on them."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import shapely
 
@@ -13,7 +15,7 @@ import velplan
 from velplan.errors import VelplanError
 from velplan.mechanism.loader import catalogue_names
 from velplan.render.layout import label_box, overlapping_labels
-from velplan.render.scene import Arrow, Circle, Polyline, Text
+from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import MIN_WIDTH_FACTOR, script_size, text_runs
 from velplan.sheets.dynamics import build_dynamics_sheet
 from velplan.sheets.forces import build_force_sheet, has_forces
@@ -266,3 +268,65 @@ def check_bounds(found: dict[str, list[str]], bounds: dict[str, int]) -> None:
     """Every check's count of violations at most its bound (0 unless `bounds` names a ratchet)."""
     over = {k: (len(v), bounds.get(k, 0), v[:6]) for k, v in found.items() if len(v) > bounds.get(k, 0)}
     assert not over, over
+
+
+def ambiguous_labels(scene, anchors) -> list[str]:
+    """The texts of a figure naming points of `anchors` (name as written → its points, mm; a
+    text names each of its parts: "b₂, s₂", "A (P₁₂)") whose own point is not the point nearest
+    to their box ("nearer: …") or lies farther than :data:`ANCHOR_MM` from it ("far: …"); a text
+    joined to its point by a thin leader excepted: the leader names its point."""
+    points = [(name, np.asarray(xy, float)) for name, xys in anchors.items() for xy in xys]
+    leaders = [np.asarray(p.points, float) for p in scene.primitives
+               if isinstance(p, Polyline) and p.line == "thin" and len(p.points) == 2]
+    out = []
+    for t in scene.of_kind(Text):
+        parts = [t.text] if t.text in anchors else [p for p in re.split(r", | \(|\)", t.text) if p]
+        own = [np.asarray(xy, float) for part in parts for xy in anchors.get(part, ())]
+        if not own or not all(part in anchors for part in parts):
+            continue
+        box = label_box(t)
+        d_own = min(box.distance(shapely.Point(xy)) for xy in own)
+        others = [box.distance(shapely.Point(xy)) for name, xy in points
+                  if name not in parts and min(np.hypot(*(xy - o)) for o in own) > 0.5]
+        near = box.buffer(0.6)
+        if any(min(np.hypot(*(lp[0] - o)) for o in own) < 1e-6 and near.contains(shapely.Point(lp[1])) for lp in leaders):
+            continue
+        if others and min(others) < d_own:
+            out.append(f"nearer: {t.text}")
+        elif d_own > ANCHOR_MM:
+            out.append(f"far: {t.text} {d_own:.1f} mm")
+    return out
+
+
+def crossed_by_any_line(scene) -> list[str]:
+    """The texts whose estimated box any drawn line crosses over more than 1 mm — thin ones
+    too (construction and Kennedy lines, other texts' leaders, outlines) — except the text's
+    own leader (a thin segment ending at its box) and the frame: the whole of "no text crossed
+    by a drawn line other than its own leader"."""
+    lines, leaders = [], []
+    for p in scene.primitives:
+        if getattr(p, "layer", "") == "frame":
+            continue
+        if isinstance(p, Polyline) and len(p.points) > 1:
+            lines.append(shapely.LineString(p.points))
+            leaders.append(p.line == "thin" and len(p.points) == 2)
+        elif isinstance(p, Arrow) and p.length > 0:
+            lines.append(shapely.LineString([p.start, p.end]))
+            leaders.append(False)
+        elif isinstance(p, Polygon):
+            lines.append(shapely.LinearRing(p.points))
+            leaders.append(False)
+    if not lines:
+        return []
+    tree = shapely.STRtree(lines)
+    out = []
+    for t in scene.of_kind(Text):
+        box = label_box(t)
+        own_end = box.buffer(0.6)
+        for j in tree.query(box, predicate="intersects"):
+            if leaders[j] and own_end.contains(shapely.Point(lines[j].coords[-1])):
+                continue  # its own leader
+            if lines[j].intersection(box).length > 1.0:
+                out.append(t.text)
+                break
+    return out

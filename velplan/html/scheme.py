@@ -12,18 +12,15 @@ steps.
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any, Generator
 
 import numpy as np
 import shapely
 
-from velplan.render.layout import label_box
-from velplan.render.scene import Polyline
 from velplan.views.base import View
 from velplan.views.letters import (
     _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
-    _boxes, _centred, _choose)
+    _beyond, _centred, _settle)
 from velplan.views.mechanism import LetterRequest
 
 
@@ -94,21 +91,8 @@ def _place_kth(calls: list[_Call], k: int) -> None:
     for (c, text, p, centred, offset, half, wanted, others), hit in zip(rows, found):
         led = hit is None
         if led:
-            hit = _choose(p, wanted, half, others, c.tree, c.taken, LEADER_GAPS_MM, False, c.soft)
-        if hit is None:  # crowded all round: off the other letters, over the fewest lines
-            hit = _choose(p, wanted, half, others, None, c.taken, (*GAPS_MM, *LEADER_GAPS_MM), False, c.tree, 20.0)
-            led = hit is not None
-        if hit is None:
-            c.out.append(text)
-            continue
-        centre, padded = hit
-        placed = dataclasses.replace(centred, position=tuple((centre - offset).tolist()))
-        c.taken.append(padded)
-        c.out.append(placed)
-        if led:
-            near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
-            c.leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
-
+            hit = _beyond(p, wanted, half, others, c.tree, c.taken, c.soft, GAPS_MM, LEADER_GAPS_MM)
+        _settle(text, centred, offset, hit, p if led else None, c.taken, c.out, c.leaders, "labels")
 
 def _candidates(rows) -> tuple[np.ndarray, np.ndarray]:
     """`velplan.views.letters._candidates` of every row at `GAPS_MM`, the same sums: centres

@@ -1,5 +1,5 @@
 """Tables of the note's .docx: ruled, the header row repeated on each page the table runs
-onto, and each column as wide as its contents need (a number or a word is never broken
+onto, its rows kept together (a table no longer than a page is not broken), and each column as wide as its contents need (a number or a word is never broken
 across lines; what is left of the text width goes to the columns that wrap)."""
 
 from __future__ import annotations
@@ -86,6 +86,7 @@ def layout_tables(doc, lang: str) -> int:
         _grid(tbl, widths or [])
         _rules(tbl)
         _head(tbl)
+        _kept_together(tbl)
         if size != size0:
             _text_size(tbl, size)
     return len(tables)
@@ -170,6 +171,24 @@ def _head(tbl) -> None:
         trpr.append(OxmlElement("w:cantSplit"))
         if k == 0:
             trpr.append(OxmlElement("w:tblHeader"))
+
+
+def _kept_together(tbl) -> None:
+    """Every row kept with the next (each paragraph of every row but the last "keep with next",
+    as Word and LibreOffice read it): a table of a page or less (a part of
+    `velplan.note.model.ROWS_PER_PAGE` rows of a longer one) goes whole to the next page with
+    its caption rather than leaving a row or two there under a repeated header without
+    "Продолжение таблицы N"."""
+    from velplan.note.docx_layout import put_ordered
+
+    for tr in tbl.findall(qn("w:tr"))[:-1]:
+        for p in tr.iter(qn("w:p")):
+            ppr = p.find(qn("w:pPr"))
+            if ppr is None:
+                ppr = OxmlElement("w:pPr")
+                p.insert(0, ppr)
+            if ppr.find(qn("w:keepNext")) is None:
+                put_ordered(ppr, OxmlElement("w:keepNext"))
 
 
 def _text_size(tbl, half_points: int) -> None:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from types import MappingProxyType
 
 import numpy as np
 import shapely
@@ -19,9 +20,9 @@ from velplan.options import Language
 from velplan.plans.centres import Construction, CentreStep, centre_name
 from velplan.render.i18n import centres_words as _t
 from velplan.render.layout import label_box
-from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
+from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
-from velplan.views.letters import place_letters
+from velplan.views.letters import LEADER_GAPS_MM, NEAR_MM, place_letters
 from velplan.views.mechanism import MechanismSizes, mechanism_view
 from velplan.views.base import number as _number  # `number` is also the position argument
 
@@ -77,7 +78,8 @@ def infinity_note(direction: complex, lang: Language) -> str:
 
 def _at_infinity(con: Construction, s: CentreStep, to_mm, name: str, size: float) -> tuple[list, list]:
     """A slider's centre at infinity on the drawing: its direction line through the slider's
-    joint, an arrowhead at each end, and its name with ∞ beyond one end."""
+    joint, an arrowhead at each end, and its name with ∞ beyond one end (with that end: the
+    point the name is placed by)."""
     joint = s.via[0] if s.how == "slider" and s.via else None
     if joint is None or joint not in con.kin.point_index:
         return [], []
@@ -89,17 +91,21 @@ def _at_infinity(con: Construction, s: CentreStep, to_mm, name: str, size: float
     items = [Arrow(tuple(at), tuple(at + reach * u), LAYER, "thin", 2.5, 0.8),
              Arrow(tuple(at), tuple(at - reach * u), LAYER, "thin", 2.5, 0.8)]
     tip = at + (reach + 1.0 + 0.6 * size) * u
-    return items, [Text(tuple(tip), name + " → ∞", "labels", size, "middle", "middle")]
+    return items, [(Text(tuple(tip), name + " → ∞", "labels", size, "middle", "middle"), at + reach * u)]
 
 
+#: Gaps of a name with a leader beyond `velplan.views.letters.LEADER_GAPS_MM`, mm: the Kennedy
+#: lines crowd a scheme more than its own lines do.
+FAR_LEADER_GAPS_MM = (15.0, 18.0)
 #: Half-length of the direction line of a centre at infinity through its slider's joint, mm.
 INFINITY_LINE_MM = 9.0
 
 
 def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tuple[list, list, list[str], dict]:
     """Centre marks, the names of the centres found by Kennedy lines (one merged name where
-    marks coincide), the notes for centres at infinity or off the drawing, and the names of
-    the centres at a lettered joint (joint → names: written with the joint's letter)."""
+    marks coincide), each with the point it names (mm), the notes for centres at infinity or
+    off the drawing, and the names of the centres at a lettered joint (joint → names: written
+    with the joint's letter)."""
     items, labels, notes = [], [], []
     joints: dict[str, list[str]] = {}
     spots: list[tuple[np.ndarray, list[str]]] = []
@@ -128,7 +134,7 @@ def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tupl
         else:
             xy = f"({number(s.point.real, lang, 4)}; {number(s.point.imag, lang, 4)}) {_t('metre', lang)}"
             notes.append(f"{name} = {xy.replace('-', '−')}: {_t('off', lang)}")
-    labels += [Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", size) for at, names in spots]
+    labels += [(Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", size), at) for at, names in spots]
     return items, labels, notes, joints
 
 
@@ -260,7 +266,8 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     View
         ``mu`` is μl (m/mm); ``meta["centres"]`` counts the centres drawn on the scheme,
         ``meta["position"]`` is the position's number (1…n of the construction's kinematics),
-        ``meta["circle_mm"]`` the circle diagram's radius.
+        ``meta["circle_mm"]`` the circle diagram's radius, ``meta["anchors"]`` each name written
+        (a point's letter, a centre's "P₁₃", "P₀₆ → ∞") → its points in the view, mm.
     """
     kin = con.kin
     scheme = mechanism_view(kin.mechanism, kin=kin, fine=fine, mu_l=con.mu_l, n=len(kin),
@@ -274,29 +281,10 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
             items += _kennedy_lines(con, s, to_mm, box, "thick" if s.number == emphasis else "construction")
     marks, labels, notes, joints = _markers(con, to_mm, box, sizes.number_mm + 0.5, lang)
     items += marks
-    # every letter placed anew, the scheme's with the centres': none over another, none on a
-    # Kennedy line; a joint that is a centre carries its name ("A (P₁₂)")
-    letters = {subscript(j): j for j in joints}
-    texts = [p for p in items if isinstance(p, Text)]
-    items = [p for p in items if not isinstance(p, Text)]
-    texts = [replace(t, text=f"{t.text} ({', '.join(joints.pop(letters[t.text]))})")
-             if t.text in letters and letters[t.text] in joints else t for t in texts]
-    for j, names in joints.items():  # a joint without a letter of its own
-        at = to_mm(complex(*kin.position(j)[con.index]))
-        texts.append(Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", sizes.number_mm + 0.5))
-    # the scheme's letters placed anew by their points (their old leaders dropped), then the rest
     points = {subscript(q): np.asarray(to_mm(complex(*kin.position(q)[con.index]))) for q in kin.point_index}
     points = {k: xy for k, xy in points.items() if np.all(np.isfinite(xy))}
-    items = [p for p in items if not (isinstance(p, Polyline) and p.layer == "labels" and p.line == "thin"
-                                      and len(p.points) == 2
-                                      and any(np.allclose(p.points[0], q) for q in points.values()))]
-    obstacles = [shapely.LineString(p.points).buffer(0.4) for p in items if isinstance(p, Polyline)]
-    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.4) for p in items if isinstance(p, Arrow)]
-    obstacles += [shapely.box(*p.bounds).buffer(0.3) for p in items if isinstance(p, Circle)]
-    own = [t for t in texts if t.text.split(" (")[0] in points]
-    placed, leaders = place_letters(own, [points[t.text.split(" (")[0]] for t in own], list(points.values()), obstacles)
-    items += placed + leaders
-    items += place_labels([t for t in texts if t not in own] + labels, obstacles, rings=8, taken=placed)
+    at_joint = {j: np.asarray(to_mm(complex(*kin.position(j)[con.index]))) for j in joints}
+    items, anchors = _names_placed(items, labels, joints, at_joint, points, sizes.number_mm + 0.5)
     x0, y0, x1, y1 = bounds_of(items)
     diagram = circle_diagram(con, lang=lang, **({} if circle_mm is None else {"radius_mm": circle_mm, "grow": False}))
     radius = next(p.radius for p in diagram if isinstance(p, Circle))
@@ -309,8 +297,75 @@ def centres_view(con: Construction, *, fine: Kinematics, number: int | None = No
     top = max(y1, cy + radius + 12.0)
     items.append(Text((x0, top + 4.0 + 1.6 * sizes.title_mm), title, "labels", sizes.title_mm))
     items.append(Text((x0, top + 4.0), scale_text("μl", con.mu_l, "m/mm", lang), "labels", sizes.label_mm))
-    return make_view("centres", items, pad_mm=2.0, mu=con.mu_l, origin=tuple(scheme.origin),
+    view = make_view("centres", items, pad_mm=2.0, mu=con.mu_l, origin=tuple(scheme.origin),
                      meta={"centres": len(marks), "position": position_number(con.index), "circle_mm": radius})
+    d = np.asarray(view.origin) - np.asarray(scheme.origin)  # content mm → the view's mm
+    anchors = {k: tuple((float(x + d[0]), float(y + d[1])) for x, y in v) for k, v in anchors.items()}
+    return replace(view, meta=MappingProxyType({**view.meta, "anchors": anchors}))
+
+
+def _names_placed(items: list, labels: list, joints: dict, at_joint: dict, points: dict,
+                  size: float) -> tuple[list, dict]:
+    """`items` with every letter placed anew, the scheme's with the centres' names (`labels`:
+    (text, its point)): none over another, none on a line; a joint that is a centre carries its
+    name ("A (P₁₂)"; `joints`: joint → names, `at_joint`: joint → mm), a joint without a letter
+    of its own its names alone. With each name written → its points (`points`: the scheme's
+    letters → mm, and the centres'), mm."""
+    anchors: dict[str, list] = {k: [xy] for k, xy in points.items()}
+    for j, names in joints.items():
+        for name in names:
+            anchors.setdefault(name, []).append(at_joint[j])
+    for t, at in labels:
+        for name in t.text.split(", "):
+            anchors.setdefault(name, []).append(at)
+    letters = {subscript(j): j for j in joints}
+    texts = [p for p in items if isinstance(p, Text)]
+    items = [p for p in items if not isinstance(p, Text)]
+    texts = [replace(t, text=f"{t.text} ({', '.join(joints.pop(letters[t.text]))})")
+             if t.text in letters and letters[t.text] in joints else t for t in texts]
+    labels = list(labels)
+    for j, names in joints.items():  # a joint without a letter of its own
+        at = at_joint[j]
+        labels.append((Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", size), at))
+    # the scheme's letters and the centres' names placed anew, each by its own point (the old
+    # leaders dropped), clear of every line drawn and of the rest (link numbers, ω: by their links)
+    items = [p for p in items if not (isinstance(p, Polyline) and p.layer == "labels" and p.line == "thin"
+                                      and len(p.points) == 2
+                                      and any(np.allclose(p.points[0], q) for q in points.values()))]
+    obstacles = [shapely.LineString(p.points).buffer(0.4) for p in items if isinstance(p, Polyline)]
+    obstacles += [shapely.LineString([p.start, p.end]).buffer(0.4) for p in items if isinstance(p, Arrow)]
+    obstacles += [shapely.box(*p.bounds).buffer(0.3) for p in items if isinstance(p, Circle)]
+    obstacles += [shapely.Polygon(p.points).buffer(0.4) for p in items if isinstance(p, Polygon)]  # blocks, ground
+    own = [t for t in texts if t.text.split(" (")[0] in points]
+    spots = [points[t.text.split(" (")[0]] for t in own] + [np.asarray(at, float) for _, at in labels]
+    named = list(points.values()) + [np.asarray(at, float) for _, at in labels]
+    others = [t for t in texts if t not in own]
+    rest = place_labels(others, obstacles, rings=8)
+    items = _leaders_followed(items, others, rest)
+    # the names at infinity first: each has one place, the end of its direction line
+    texts_of = [*own, *(t for t, _ in labels)]
+    order = sorted(range(len(texts_of)), key=lambda k: not texts_of[k].text.endswith("∞"))
+    placed, leaders = place_letters([texts_of[k] for k in order], [spots[k] for k in order], named, obstacles,
+                                    taken=[label_box(t).buffer(0.4) for t in rest], near_mm=NEAR_MM,
+                                    leader_gaps=(*LEADER_GAPS_MM, *FAR_LEADER_GAPS_MM))
+    items += [*rest, *placed, *leaders]
+    return items, {k: [tuple(map(float, xy)) for xy in v] for k, v in anchors.items() if v}
+
+
+def _leaders_followed(items: list, texts: list, moved: list) -> list:
+    """`items` with the thin leader of each of `texts` (the scheme's own: from its point to the
+    text's box) drawn to where the text was moved (`moved`, in the same order)."""
+    boxes = [(label_box(t).buffer(0.6), label_box(m).buffer(0.4)) for t, m in zip(texts, moved) if t != m]
+    out = []
+    for p in items:
+        if isinstance(p, Polyline) and p.layer == "labels" and p.line == "thin" and len(p.points) == 2:
+            end = shapely.Point(p.points[1])
+            to = next((new for old, new in boxes if old.contains(end)), None)
+            if to is not None:
+                near = shapely.shortest_line(to, shapely.Point(p.points[0])).coords[0]
+                p = replace(p, points=(tuple(p.points[0]), (near[0], near[1])))
+        out.append(p)
+    return out
 
 
 def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lang: Language = "en",
@@ -323,7 +378,7 @@ def centre_step_figures(con: Construction, *, fine: Kinematics, number: int, lan
 
     from velplan.render.i18n import label
     from velplan.render.layout import fit_text
-    from velplan.render.scene import Polygon, Scene
+    from velplan.render.scene import Scene
     from velplan.views.steps import StepFigure, readable
 
     full = centres_view(con, fine=fine, number=number, lang=lang)

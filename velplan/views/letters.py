@@ -39,6 +39,9 @@ SOFT_MM = 1.5
 SAME_POINT_MM = 0.3
 #: A letter's own point must be nearer than any other by this, mm.
 _MARGIN_MM = 0.3
+#: How far from its point a letter without a leader may stand where the drawing asks it
+#: (`place_letters`' `near_mm`): within the teacher's 6 mm, with a margin, mm.
+NEAR_MM = 5.5
 
 
 def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
@@ -92,12 +95,42 @@ def _own_nearest(centres, half, point, others) -> np.ndarray:
 _STAGES = (24, 72)
 
 
+def _within(centres, half, point, near: float | None) -> np.ndarray:
+    """Whether each box (centred at `centres`, half sizes `half`, mm) lies within `near` mm of
+    `point` (all of them where `near` is None): a wide box beside its point on a slant stands
+    farther off than its gap along the slant."""
+    if near is None:
+        return np.ones(len(centres), dtype=bool)
+    d = np.maximum(np.abs(centres - np.asarray(point, float)) - half, 0.0)
+    return np.hypot(d[:, 0], d[:, 1]) <= near
+
+
+#: How far a leader passes by the other points, mm (it would read as theirs).
+LEADER_CLEAR_MM = 1.0
+
+
+def _leaders_clear(centres, half, point, taken_boxes, others) -> np.ndarray:
+    """Whether the leader from `point` to each box (centred at `centres`, half sizes `half`,
+    mm; it ends 0.4 mm off the box, as `place_letters` draws it) keeps off the `taken` boxes
+    and passes the `others` points by :data:`LEADER_CLEAR_MM` at least."""
+    p = np.asarray(point, float)
+    ends = np.clip(p, centres - half - 0.4, centres + half + 0.4)
+    segments = shapely.linestrings(np.stack([np.broadcast_to(p, ends.shape), ends], axis=1))
+    ok = np.ones(len(centres), dtype=bool)
+    if taken_boxes is not None:
+        ok &= ~shapely.intersects(segments[:, None], taken_boxes[None, :]).any(axis=1)
+    if len(others):
+        ok &= shapely.distance(segments, shapely.multipoints(np.asarray(others, float))) > LEADER_CLEAR_MM
+    return ok
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
-            weight: float = SOFT_MM):
+            weight: float = SOFT_MM, near: float | None = None, leader: bool = False):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
-    (and, if `need_nearest`, nearer its own point than any other), each line of `soft` (a
-    tree of thin lines) across it costing `weight` mm: its centre and box, or None. Of equal
-    costs, the first candidate (`_candidates`' order) wins."""
+    (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it;
+    if `leader`, with its leader clear of the `taken` boxes and the `others` points), each line of `soft` (a tree of
+    thin lines) across it costing `weight` mm: its centre and box, or None. Of equal costs,
+    the first candidate (`_candidates`' order) wins."""
     centres, base = _candidates(point, wanted, half, gaps)
     n = len(centres)
     order = np.lexsort((np.arange(n), base))  # by cost, then by place in the candidates
@@ -111,7 +144,8 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         idx = np.sort(order[start:min(stop, n)])
         c = centres[idx]
         # the cheap tests first (in closed form), shapely's only on the candidates they pass
-        ok = _own_nearest(c, half, point, others) if need_nearest else np.ones(len(idx), dtype=bool)
+        ok = (_own_nearest(c, half, point, others) & _within(c, half, point, near) if need_nearest
+              else np.ones(len(idx), dtype=bool))
         if not ok.any():
             continue
         padded = _boxes(c[ok], 1.12 * half, 0.4)  # rendered glyphs run wider than the estimate
@@ -121,6 +155,9 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
         if taken_boxes is not None and keep.any():  # the boxes still clear alone are tested on
             rows = np.flatnonzero(keep)
             keep[rows] = ~shapely.intersects(padded[rows, None], taken_boxes[None, :]).any(axis=1)
+        if leader and keep.any():
+            rows = np.flatnonzero(keep)
+            keep[rows] = _leaders_clear(c[ok][rows], half, point, taken_boxes, others)
         padded = padded[keep]
         ok[ok] = keep
         if not ok.any():
@@ -167,7 +204,8 @@ def _blocked(tree, boxes) -> np.ndarray:
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
                   leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
-                  leader_gaps: Sequence[float] = LEADER_GAPS_MM) -> tuple[list[Text], list[Polyline]]:
+                  leader_gaps: Sequence[float] = LEADER_GAPS_MM,
+                  near_mm: float | None = None) -> tuple[list[Text], list[Polyline]]:
     """Place point letters, in order, each by its own point.
 
     Parameters
@@ -187,6 +225,9 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
     gaps, leader_gaps : sequence of float
         The gaps (mm) between a letter's box and its point tried without a leader, nearest
         first, and those of a letter with a leader.
+    near_mm : float, optional
+        How far from its point (box to point) a letter without a leader may stand, mm (e.g.
+        :data:`NEAR_MM`); by default as far as `gaps` take it.
 
     Returns
     -------
@@ -208,21 +249,41 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         wanted = np.asarray(text.position, float) - p
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
-        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft)
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, near=near_mm)
         led = found is None
         if led:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
-        if found is None:  # crowded all round: off the other letters, over the fewest lines
-            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0)
-            led = found is not None
-        if found is None:
-            out.append(text)
-            continue
-        centre, padded = found
-        placed = dataclasses.replace(centred, position=tuple((centre - offset).tolist()))
-        taken.append(padded)
-        out.append(placed)
-        if led:
-            near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
-            leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
+            found = _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps)
+        _settle(text, centred, offset, found, p if led else None, taken, out, leaders, leader_layer)
     return out, leaders
+
+
+def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps):
+    """A letter's place with a leader, where none is clear near its point: beyond the crowd,
+    the leader off the other letters where it can be; then, crowded all round, off the other
+    letters over the fewest lines: its centre and box, or None."""
+    found = None
+    for clear_leader in (True, False):
+        if found is None:
+            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, leader=clear_leader)
+    for clear_leader in (True, False):
+        if found is None:
+            found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,
+                            leader=clear_leader)
+    return found
+
+
+def _settle(text, centred, offset, found, led_from, taken, out, leaders, leader_layer) -> None:
+    """Record a letter: where `found` put it (as given where nothing did), its box taken, and
+    its leader from the point `led_from` (None: no leader), which the later letters keep off."""
+    if found is None:
+        out.append(text)
+        return
+    centre, padded = found
+    placed = dataclasses.replace(centred, position=tuple((centre - offset).tolist()))
+    taken.append(padded)
+    out.append(placed)
+    if led_from is not None:
+        p = led_from
+        near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
+        leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
+        taken.append(shapely.LineString(leaders[-1].points).buffer(0.3))

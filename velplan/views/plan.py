@@ -289,13 +289,15 @@ def letters_to_place(res, position: int, drawings: list[StepDrawing], *, size_mm
 
 
 def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: float = 3.5,
-                  upto: int | None = None, leaders: bool = False, avoid: Sequence = ()) -> list:
+                  upto: int | None = None, leaders: bool = False, avoid: Sequence = (),
+                  near_mm: float | None = None) -> list:
     """Letters of the images fixed by the first `upto` steps of the plan at position number
     `position`, clear of the vectors. With `leaders`, each letter goes to the nearest free
     spot where its own image is the nearest image to it, within `LEADER_MM` (never where a
     line crosses it), else farther out, joined to its image by a thin leader (the leaders
     follow the letters in the list).
-    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts."""
+    `avoid`: shapes (plan mm) the letters keep off besides the vectors, e.g. the title's texts;
+    `near_mm`: with `leaders`, how far from its image a letter without a leader may stand, mm."""
     texts, anchors, lines, circles = letters_to_place(res, position, drawings, size_mm=size_mm, upto=upto)
     obstacles = list(shapely.buffer(shapely.linestrings(np.array(lines, float).reshape(-1, 2, 2)), 0.5,
                                      quad_segs=16))
@@ -308,7 +310,7 @@ def image_letters(res, position: int, drawings: list[StepDrawing], *, size_mm: f
     named = anchors + [_xy(z) for z in _images(res, position) if np.isfinite(z)]
     placed, leader_lines = place_letters(texts, anchors, named, obstacles,
                                          leader_layer=layer_names(_kind(res), position)[1],
-                                         gaps=LETTER_GAPS_MM, leader_gaps=LEADER_GAPS_MM)
+                                         gaps=LETTER_GAPS_MM, leader_gaps=LEADER_GAPS_MM, near_mm=near_mm)
     return placed + leader_lines
 
 

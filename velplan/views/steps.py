@@ -10,9 +10,11 @@ worked solution is written ("Через точку a проводим пряму
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from typing import Mapping
+
+import numpy as np
 
 from velplan.analysis.numbering import position_index
 from velplan.analysis.solver import Kinematics
@@ -22,11 +24,13 @@ from velplan.options import Language
 from velplan.plans.engine import POSITION_PLAN_MM, PlanResult
 from velplan.render.i18n import label
 from velplan.render.layout import fit_text, label_box
+from velplan.views.letters import NEAR_MM
 from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
     image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
-from velplan.views.base import digits_down, eskd_scales, shift
+from velplan.plans.text import label_of
+from velplan.views.base import digits_down, eskd_scales, shift, subscript
 
 _MARGIN = 10.0
 _SENTENCE_H = 26.0
@@ -34,12 +38,15 @@ _SENTENCE_H = 26.0
 
 @dataclass(frozen=True)
 class StepFigure:
-    """One step: its number (1-based), the plan kind ("v"/"a"), sentence and scene."""
+    """One step: its number (1-based), the plan kind ("v"/"a"), sentence and scene; `anchors`:
+    each point's letter as written ("B₂", "b₂", "π") → where its points lie on the figure, mm
+    (the scheme's points and the images the step has drawn)."""
 
     number: int
     kind: str
     sentence: str
     scene: Scene
+    anchors: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
 
 
 def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResult], position: int, *,
@@ -81,12 +88,14 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
     width = max([_MARGIN * 3 + mview.width_mm + full.width_mm for _, _, full, _ in series] + [297.0])
     height = max([_MARGIN * 2 + max(mview.height_mm, full.height_mm) + _SENTENCE_H
                   for _, _, full, _ in series] + [210.0])
+    scheme = mview.at(_MARGIN, height - _MARGIN - mview.height_mm)
+    points = [(subscript(q), scheme.to_sheet(kin.position(q)[i])) for q in kin.point_index]
     for kd, res, full, drawings in series:
         px = _MARGIN * 2 + mview.width_mm
         py = height - _MARGIN - full.height_mm
         total = len(drawings)
         for k in range(1, total + 1):
-            items = list(mview.at(_MARGIN, height - _MARGIN - mview.height_mm).primitives)
+            items = list(scheme.primitives)
             items += [shift(p, px, py) for p in partial_plan(res, position, k, full=full, drawings=drawings,
                                                              lang=lang)]
             sentence = f"{label('step', lang)} {k}/{total}. {readable(drawings[k - 1].sentence)}"
@@ -94,9 +103,20 @@ def step_figures(mech: Mechanism, kin: Kinematics, plans: Mapping[str, PlanResul
             items += fit_text(sentence, box, layer="labels", size_mm=5.0, anchor="start")
             items.append(Polygon([(0, 0), (width, 0), (width, height), (0, height)], "frame",
                                  "thin"))
-            figures.append(StepFigure(k, kd[0], drawings[k - 1].sentence,
-                                      Scene(tuple(items), width, height)))
+            images = [(subscript(label_of(t)), complex(res.values[t][res.index_of(position)])
+                       + complex(px + full.origin[0], py + full.origin[1])) for d in drawings[:k] for t in d.images]
+            figures.append(StepFigure(k, kd[0], drawings[k - 1].sentence, Scene(tuple(items), width, height),
+                                      _anchors(points + [(n, (z.real, z.imag)) for n, z in images])))
     return figures
+
+
+def _anchors(named) -> dict[str, tuple[tuple[float, float], ...]]:
+    """(letter, (x, y)) pairs → letter → its finite points, mm."""
+    out: dict[str, list] = {}
+    for name, xy in named:
+        if np.all(np.isfinite(xy)):
+            out.setdefault(name, []).append((float(xy[0]), float(xy[1])))
+    return {k: tuple(v) for k, v in out.items()}
 
 
 _SYMBOL = re.compile(r"([VaRFωε])([ⁿᵗᵏʳ]?)_([A-Za-zА-Яа-яЁё0-9]+)")
@@ -126,7 +146,8 @@ def partial_plan(res, position: int, k: int, *, full, drawings, lang: Language) 
     items = [shift(_emphasis(p, j == k - 1), ox, oy) for j, d in enumerate(drawings[:k]) for p in d.items]
     heads = [p for p in full.primitives if isinstance(p, Text) and p.text in plan_title(res, position, lang)]
     avoid = [label_box(shift(t, -ox, -oy)) for t in heads]  # the letters keep off the title and μ
-    items += [shift(t, ox, oy) for t in image_letters(res, position, drawings, upto=k, avoid=avoid)]
+    items += [shift(t, ox, oy) for t in image_letters(res, position, drawings, upto=k, avoid=avoid, leaders=True,
+                                                                 near_mm=NEAR_MM)]
     return items + heads
 
 
