@@ -293,7 +293,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
         _place_structure(req, views, required=bool(structure))
-    _place_details(req, views, results)  # in the room left: a sheet loses nothing to them
+    _place_details(req, views, results, cells)  # in the room left: a sheet loses nothing to them
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
     return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
@@ -491,33 +491,69 @@ def _zone_share(view: View, zone) -> float:
 DETAIL_MM: Mapping[str, float] = MappingProxyType({"A1": 60.0, "A2": 48.0, "A3": 36.0})
 
 
-def _place_details(req: Request, views: dict, results) -> None:
+def _place_details(req: Request, views: dict, results, cells=None) -> None:
     """An enlarged detail of each plan whose images crowd round its pole
     (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
-    region marked on the plan; none where no spot is free or the mark leaves the plan's room."""
-    from velplan.views.plan_detail import FACTORS, NUMERALS, crowd_near_pole, detail_view, marked
+    region marked on the plan, its title above the circle or, where that finds no spot, beside
+    it; where the crowd's region is too large for any enlargement or spot, the tighter crowd
+    within `CROWD_MM` of the pole, then two thirds of it; none where no spot is free or the
+    mark leaves the plan's room. Another plan may slide to the top or the bottom of its cell
+    (`cells`: plan → its cell, sheet mm) to make the room."""
+    from velplan.views.plan_detail import CROWD_MM, NUMERALS, crowd_near_pole
 
     numerals = iter(NUMERALS)
     numeral = next(numerals)
     for name, res in sorted(results.items()):
-        placed, number = views[name], int(name.rsplit("-", 1)[1])
-        region = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
-        if region is None or (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
-            continue
-        view, (dx, dy) = mark
-        plan = view.at(placed.x - dx, placed.y - dy)
-        others = {k: v for k, v in views.items() if k != name}
-        if not _free_of(plan.bounds, others, req):
-            continue
-        taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
-        for factor in (f for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt]):
-            detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan,
-                                 numeral=numeral)
-            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
-            if at is not None:
-                views[name], views[detail.name] = plan, detail.at(*at)
+        number = int(name.rsplit("-", 1)[1])
+        extent = max(extent_mm(res, number))
+        for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):
+            region = crowd_near_pole(views[name].view.meta["images"], extent, reach)
+            if region is not None and _detail_placed(req, views, name, res, region, numeral, cells or {}):
                 numeral = next(numerals, numeral)
                 break
+
+
+def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str, cells) -> bool:
+    """Whether the detail of the plan `name` (its `region`, numbered `numeral`) found a spot:
+    then it is in `views`, the plan marked (and another plan moved within its cell where that
+    made the room)."""
+    from velplan.views.plan_detail import FACTORS, detail_view, marked
+
+    placed, number = views[name], int(name.rsplit("-", 1)[1])
+    if (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
+        return False
+    view, (dx, dy) = mark
+    plan = view.at(placed.x - dx, placed.y - dy)
+    if not _free_of(plan.bounds, {k: v for k, v in views.items() if k != name}, req):
+        return False
+    for factor, beside in ((f, b) for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt] for b in (False, True)):
+        detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
+                             beside=beside)
+        for others in _slid(views, name, cells, req):
+            taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
+            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
+            if at is not None:
+                views.update(others)
+                views[name], views[detail.name] = plan, detail.at(*at)
+                return True
+    return False
+
+
+def _slid(views: dict, name: str, cells, req: Request):
+    """The views but the plan `name` as they are, then with one other plan at the top, or at the
+    bottom, of its cell (`cells`; a plan that stands elsewhere stays), where it meets no other
+    view there, in turn."""
+    others = {k: v for k, v in views.items() if k != name}
+    yield others
+    for k in sorted(c for c in cells if c in others and c.startswith("plan-")):
+        v, rest = others[k], {j: w for j, w in others.items() if j != k}
+        (x0, y0, x1, y1), (bx0, by0, bx1, by1) = cells[k], v.bounds
+        if not (x0 - 1e-6 <= bx0 and bx1 <= x1 + 1e-6 and y0 - 1e-6 <= by0 and by1 <= y1 + 1e-6):
+            continue
+        for y in (cells[k][3] - v.view.height_mm, cells[k][1]):
+            moved = v.view.at(v.x, y)
+            if abs(y - v.y) > 1.0 and _free_of(moved.bounds, rest | {name: views[name]}, req):
+                yield others | {k: moved}
 
 
 def _free_of(box, views: dict, req: Request) -> bool:
