@@ -503,14 +503,16 @@ def _place_details(req: Request, views: dict, results, cells=None) -> None:
 
     numerals = iter(NUMERALS)
     numeral = next(numerals)
-    for name, res in sorted(results.items()):
-        number = int(name.rsplit("-", 1)[1])
-        extent = max(extent_mm(res, number))
-        for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):
-            region = crowd_near_pole(views[name].view.meta["images"], extent, reach)
+    done: set[str] = set()
+    for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):  # every plan's whole crowd before a tighter one
+        for name, res in sorted(results.items()):
+            if name in done:
+                continue
+            number = int(name.rsplit("-", 1)[1])
+            region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
             if region is not None and _detail_placed(req, views, name, res, region, numeral, cells or {}):
                 numeral = next(numerals, numeral)
-                break
+                done.add(name)
 
 
 def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str, cells) -> bool:

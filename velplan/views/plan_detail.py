@@ -92,14 +92,13 @@ def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon)
     from velplan.views.base import subscript
     from velplan.views.letters import place_letters
 
-    inner = window.buffer(-1.0)
     at: dict[str, list[np.ndarray]] = {}
     for target, z in full.meta["images"].items():
         if np.isfinite(z):
             at.setdefault(subscript(label_of(target)), []).append(np.asarray(full.to_view((z.real, z.imag)), float))
     letters, anchors = [], []
     for t in (p for p in full.primitives if isinstance(p, Text)):
-        own = [xy for part in t.text.split(", ") for xy in at.get(part, []) if inner.contains(shapely.Point(xy))]
+        own = [xy for part in t.text.split(", ") for xy in at.get(part, []) if window.contains(shapely.Point(xy))]
         if own:
             letters.append(t)
             anchors.append(own[0])
