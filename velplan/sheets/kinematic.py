@@ -293,7 +293,7 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
     if structure is not False:
         _place_structure(req, views, required=bool(structure))
-    _place_details(req, views, results, cells)  # in the room left: a sheet loses nothing to them
+    _place_details(req, views, results)  # in the room left: a sheet loses nothing to them
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
     return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
@@ -491,14 +491,14 @@ def _zone_share(view: View, zone) -> float:
 DETAIL_MM: Mapping[str, float] = MappingProxyType({"A1": 60.0, "A2": 48.0, "A3": 36.0})
 
 
-def _place_details(req: Request, views: dict, results, cells=None) -> None:
+def _place_details(req: Request, views: dict, results) -> None:
     """An enlarged detail of each plan whose images crowd round its pole
     (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
     region marked on the plan, its title above the circle or, where that finds no spot, beside
     it; where the crowd's region is too large for any enlargement or spot, the tighter crowd
     within `CROWD_MM` of the pole, then two thirds of it; none where no spot is free or the
-    mark leaves the plan's room. Another plan may slide to the top or the bottom of its cell
-    (`cells`: plan → its cell, sheet mm) to make the room."""
+    mark leaves the plan's room. A plan may slide up or down into the free room of its column
+    to make the room (`_slid`)."""
     from velplan.views.plan_detail import CROWD_MM, NUMERALS, crowd_near_pole
 
     numerals = iter(NUMERALS)
@@ -510,52 +510,52 @@ def _place_details(req: Request, views: dict, results, cells=None) -> None:
                 continue
             number = int(name.rsplit("-", 1)[1])
             region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
-            if region is not None and _detail_placed(req, views, name, res, region, numeral, cells or {}):
+            if region is not None and _detail_placed(req, views, name, res, region, numeral):
                 numeral = next(numerals, numeral)
                 done.add(name)
 
 
-def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str, cells) -> bool:
+def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str) -> bool:
     """Whether the detail of the plan `name` (its `region`, numbered `numeral`) found a spot:
-    then it is in `views`, the plan marked (and another plan moved within its cell where that
-    made the room)."""
+    then it is in `views`, the plan marked (and a plan slid in its column where that made the
+    room)."""
     from velplan.views.plan_detail import FACTORS, detail_view, marked
 
     placed, number = views[name], int(name.rsplit("-", 1)[1])
     if (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
         return False
     view, (dx, dy) = mark
-    plan = view.at(placed.x - dx, placed.y - dy)
-    if not _free_of(plan.bounds, {k: v for k, v in views.items() if k != name}, req):
+    with_mark = views | {name: view.at(placed.x - dx, placed.y - dy)}
+    if not _free_of(with_mark[name].bounds, {k: v for k, v in views.items() if k != name}, req):
         return False
     for factor, beside in ((f, b) for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt] for b in (False, True)):
         detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
                              beside=beside)
-        for others in _slid(views, name, cells, req):
-            taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
-            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
+        for arranged in _slid(with_mark, req):
+            taken = [v.bounds for v in arranged.values()] + [req.title_block]
+            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, arranged[name].bounds[2:])
             if at is not None:
-                views.update(others)
-                views[name], views[detail.name] = plan, detail.at(*at)
+                views.update(arranged)
+                views[detail.name] = detail.at(*at)
                 return True
     return False
 
 
-def _slid(views: dict, name: str, cells, req: Request):
-    """The views but the plan `name` as they are, then with one other plan at the top, or at the
-    bottom, of its cell (`cells`; a plan that stands elsewhere stays), where it meets no other
-    view there, in turn."""
-    others = {k: v for k, v in views.items() if k != name}
-    yield others
-    for k in sorted(c for c in cells if c in others and c.startswith("plan-")):
-        v, rest = others[k], {j: w for j, w in others.items() if j != k}
-        (x0, y0, x1, y1), (bx0, by0, bx1, by1) = cells[k], v.bounds
-        if not (x0 - 1e-6 <= bx0 and bx1 <= x1 + 1e-6 and y0 - 1e-6 <= by0 and by1 <= y1 + 1e-6):
-            continue
-        for y in (cells[k][3] - v.view.height_mm, cells[k][1]):
-            moved = v.view.at(v.x, y)
-            if abs(y - v.y) > 1.0 and _free_of(moved.bounds, rest | {name: views[name]}, req):
-                yield others | {k: moved}
+def _slid(views: dict, req: Request):
+    """The `views` as they are, then with one plan slid to the top, or to the bottom, of the free
+    room of its column (`req.gap` from the views above and below it, the drawing area and the
+    title block), in turn."""
+    yield views
+    boxes = {k: v.bounds for k, v in views.items()} | {"title block": req.title_block}
+    for k in sorted(c for c in views if c.startswith("plan-")):
+        x0, y0, x1, y1 = boxes[k]
+        column = [b for j, b in boxes.items() if j != k and b[0] < x1 + req.gap and x0 - req.gap < b[2]]
+        low = max([b[3] + req.gap for b in column if b[3] <= y0 + 1e-6] + [req.area[1]])
+        high = min([b[1] - req.gap for b in column if b[1] >= y1 - 1e-6] + [req.area[3]])
+        for y in (high - (y1 - y0), low):
+            moved = views[k].view.at(views[k].x, y)
+            if abs(y - y0) > 1.0 and _free_of(moved.bounds, {j: v for j, v in views.items() if j != k}, req):
+                yield views | {k: moved}
 
 
 def _free_of(box, views: dict, req: Request) -> bool:
