@@ -450,7 +450,7 @@ def mechanism_view(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: 
     numbers, number_leaders = place_letters(
         [x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles, thin=thin,
         taken=[label_box(x).buffer(1.5) for x in (*placed_letters, *placed)])  # not read as one with a letter
-    items += placed_letters + leaders + list(placed) + numbers + number_leaders
+    items += [*placed_letters, *leaders, *placed, *numbers, *number_leaders]
     out = output_point(mech)
     if not single and out is not None:
         kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
@@ -608,7 +608,7 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
 
 
 def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: list, thin: list,
-                          letters: list[Text]) -> tuple[list[Text], set[int], list[Polyline]]:
+                          letters: list[Text]) -> tuple[tuple[Text, ...], set[int], list[Polyline]]:
     """The scheme's labels (`placed` by `place_labels` from their `wanted` places) with each one
     that `place_labels` had to leave over a line or a symbol (`obstacles`) placed again by
     `place_letters` round its point (`anchors`: the point and the points it must stand nearer
@@ -617,9 +617,11 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
     of those placed again and their leaders."""
     shapes = [g for g in obstacles if not g.is_empty]
     if not shapes:
-        return list(placed), set(), []
+        return tuple(placed), set(), []
     tree = shapely.STRtree(shapes)
-    out, moved, leaders = list(placed), set(), []
+    out: list[Text] = list(placed)
+    moved: set[int] = set()
+    leaders: list[Polyline] = []
     for k, (text, where) in enumerate(zip(placed, anchors)):
         if (where is None or not np.all(np.isfinite(where[0]))
                 or not len(tree.query(label_box(text), predicate="intersects"))):
@@ -630,7 +632,7 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
             continue  # crowded all round: where place_labels left it
         out[k], leaders = again, leaders + led
         moved.add(k)
-    return out, moved, leaders
+    return tuple(out), moved, leaders
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,

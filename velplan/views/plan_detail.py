@@ -114,7 +114,7 @@ def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon)
     others = [label_box(t).buffer(0.4) for t in items if isinstance(t, Text) and t.text not in names]
     placed, leaders = place_letters(letters, anchors, points, hard, thin=thin, taken=others,
                                     leader_layer=letters[0].layer)
-    out = [t for t in placed if window.contains(label_box(t))]
+    out: list[Primitive] = [t for t in placed if window.contains(label_box(t))]
     return names, out + [ld for ld in leaders if window.contains(shapely.Point(ld.points[1]))]
 
 
