@@ -124,7 +124,8 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
 
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
                   leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
-                  leader_gaps: Sequence[float] = LEADER_GAPS_MM) -> tuple[list[Text], list[Polyline]]:
+                  leader_gaps: Sequence[float] = LEADER_GAPS_MM, soft_mm: float = SOFT_MM
+                  ) -> tuple[list[Text], list[Polyline]]:
     """Place point letters, in order, each by its own point.
 
     Parameters
@@ -144,6 +145,8 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
     gaps, leader_gaps : sequence of float
         The gaps (mm) between a letter's box and its point tried without a leader, nearest
         first, and those of a letter with a leader.
+    soft_mm : float
+        The millimetres of gap a thin line across a letter is worth.
 
     Returns
     -------
@@ -165,10 +168,10 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         wanted = np.asarray(text.position, float) - p
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
-        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft)
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, soft_mm)
         led = found is None
         if led:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft)
+            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, soft_mm)
         if found is None:  # crowded all round: off the other letters, over the fewest lines
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0)
             led = found is not None

@@ -30,6 +30,9 @@ CROWD_MM = 15.0
 CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
+#: Millimetres of gap a thin line across a letter of a detail is worth (twice a scheme's: a
+#: detail is drawn for its crowd, and a line through a letter there reads as part of it).
+DETAIL_SOFT_MM = 3.0
 #: The numerals of a sheet's details, in turn.
 NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 NUMERAL = NUMERALS[0]
@@ -113,7 +116,7 @@ def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon)
     thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
     others = [label_box(t).buffer(0.4) for t in items if isinstance(t, Text) and t.text not in names]
     placed, leaders = place_letters(letters, anchors, points, hard, thin=thin, taken=others,
-                                    leader_layer=letters[0].layer)
+                                    leader_layer=letters[0].layer, soft_mm=DETAIL_SOFT_MM)
     out: list[Primitive] = [t for t in placed if window.contains(label_box(t))]
     return names, out + [ld for ld in leaders if window.contains(shapely.Point(ld.points[1]))]
 
@@ -149,7 +152,7 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
 def marked(view: View, region: tuple[complex, float], size_mm: float,
            numeral: str = NUMERAL) -> tuple[View, tuple[float, float]] | None:
     """(the plan `view` with its detail's `region` (`crowd_near_pole`) marked — a thin circle
-    and the numeral outside it where no letter nor vector is —, the shift of its drawing in
+    and the numeral outside it where no letter nor line is —, the shift of its drawing in
     the new box, mm): place it that much lower and to the left to keep the drawing where it was;
     None where the circle would cross a text of the plan outside the region."""
     kind, number = view.meta["kind"], view.meta["number"]
@@ -158,7 +161,9 @@ def marked(view: View, region: tuple[complex, float], size_mm: float,
     cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
     taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
                               + [shapely.LineString([p.start, p.end]) for p in view.primitives
-                                 if isinstance(p, Arrow)]).buffer(0.5)
+                                 if isinstance(p, Arrow)]
+                              + [shapely.LineString(p.points) for p in view.primitives  # a line beside
+                                 if isinstance(p, Polyline) and len(p.points) >= 2]).buffer(0.5)  # "II" reads "III"
     numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
                      text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
                      "baseline" if math.sin(a) > 0 else "top")
