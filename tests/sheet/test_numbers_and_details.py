@@ -40,8 +40,8 @@ def check_number_by_its_tick(out, k: int, curves) -> None:
     assert not any(box.intersects(shapely.LineString(c)) for c in curves), text
     own = (k * LENGTH / N, 0.0)
     ticks = [(j * LENGTH / N, 0.0) for j in range(N)]
-    led = any(isinstance(p, Polyline) and np.allclose(p.points[0], own) and box.buffer(0.6).contains(shapely.Point(p.points[1]))
-              for p in out)
+    led = any(isinstance(p, Polyline) and np.allclose(p.points[0], own)
+              and box.buffer(0.6).contains(shapely.Point(p.points[1])) for p in out)
     nearest = min(ticks, key=lambda q: box.distance(shapely.Point(q)))
     assert led or nearest == own, (text.position, nearest)
 

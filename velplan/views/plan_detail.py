@@ -140,7 +140,9 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     letters, placed = _letters_inside(full, items, window)
     items = [q for q in items if not (isinstance(q, Text) and q.text in letters)] + placed
     items.append(Circle(tuple(centre), r, line_layer, "thin"))
-    x, top = (centre[0] + r + 3.0, centre[1] + r - 3.0 - 1.5 * sizes.label_mm) if beside else (centre[0] - r, centre[1] + r)
+    x, top = centre[0] - r, centre[1] + r
+    if beside:  # right of the circle's top
+        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
     items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
                       text_layer, sizes.title_mm))
     items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
