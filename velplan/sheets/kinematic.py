@@ -494,30 +494,68 @@ DETAIL_MM: Mapping[str, float] = MappingProxyType({"A1": 60.0, "A2": 48.0, "A3":
 def _place_details(req: Request, views: dict, results) -> None:
     """An enlarged detail of each plan whose images crowd round its pole
     (`velplan.views.plan_detail`), at the largest enlargement that finds a free spot, the
-    region marked on the plan; none where no spot is free or the mark leaves the plan's room."""
-    from velplan.views.plan_detail import FACTORS, NUMERALS, crowd_near_pole, detail_view, marked
+    region marked on the plan, its title above the circle or, where that finds no spot, beside
+    it; where the crowd's region is too large for any enlargement or spot, the tighter crowd
+    within `CROWD_MM` of the pole, then two thirds of it; none where no spot is free or the
+    mark leaves the plan's room. A plan may slide up or down into the free room of its column
+    to make the room (`_slid`)."""
+    from velplan.views.plan_detail import CROWD_MM, NUMERALS, crowd_near_pole
 
     numerals = iter(NUMERALS)
     numeral = next(numerals)
-    for name, res in sorted(results.items()):
-        placed, number = views[name], int(name.rsplit("-", 1)[1])
-        region = crowd_near_pole(placed.view.meta["images"], max(extent_mm(res, number)))
-        if region is None or (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
-            continue
-        view, (dx, dy) = mark
-        plan = view.at(placed.x - dx, placed.y - dy)
-        others = {k: v for k, v in views.items() if k != name}
-        if not _free_of(plan.bounds, others, req):
-            continue
-        taken = [v.bounds for v in others.values()] + [plan.bounds, req.title_block]
-        for factor in (f for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt]):
-            detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan,
-                                 numeral=numeral)
-            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, plan.bounds[2:])
-            if at is not None:
-                views[name], views[detail.name] = plan, detail.at(*at)
+    done: set[str] = set()
+    for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):  # every plan's whole crowd before a tighter one
+        for name, res in sorted(results.items()):
+            if name in done:
+                continue
+            number = int(name.rsplit("-", 1)[1])
+            region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
+            if region is not None and _detail_placed(req, views, name, res, region, numeral):
                 numeral = next(numerals, numeral)
-                break
+                done.add(name)
+
+
+def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str) -> bool:
+    """Whether the detail of the plan `name` (its `region`, numbered `numeral`) found a spot:
+    then it is in `views`, the plan marked (and a plan slid in its column where that made the
+    room)."""
+    from velplan.views.plan_detail import FACTORS, detail_view, marked
+
+    placed, number = views[name], int(name.rsplit("-", 1)[1])
+    if (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
+        return False
+    view, (dx, dy) = mark
+    with_mark = views | {name: view.at(placed.x - dx, placed.y - dy)}
+    if not _free_of(with_mark[name].bounds, {k: v for k, v in views.items() if k != name}, req):
+        return False
+    for factor, beside in ((f, b) for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt] for b in (False, True)):
+        detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
+                             beside=beside)
+        for arranged in _slid(with_mark, req):
+            taken = [v.bounds for v in arranged.values()] + [req.title_block]
+            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, arranged[name].bounds[2:])
+            if at is not None:
+                views.update(arranged)
+                views[detail.name] = detail.at(*at)
+                return True
+    return False
+
+
+def _slid(views: dict, req: Request):
+    """The `views` as they are, then with one plan slid to the top, or to the bottom, of the free
+    room of its column (`req.gap` from the views above and below it, the drawing area and the
+    title block), in turn."""
+    yield views
+    boxes = {k: v.bounds for k, v in views.items()} | {"title block": req.title_block}
+    for k in sorted(c for c in views if c.startswith("plan-")):
+        x0, y0, x1, y1 = boxes[k]
+        column = [b for j, b in boxes.items() if j != k and b[0] < x1 + req.gap and x0 - req.gap < b[2]]
+        low = max([b[3] + req.gap for b in column if b[3] <= y0 + 1e-6] + [req.area[1]])
+        high = min([b[1] - req.gap for b in column if b[1] >= y1 - 1e-6] + [req.area[3]])
+        for y in (high - (y1 - y0), low):
+            moved = views[k].view.at(views[k].x, y)
+            if abs(y - y0) > 1.0 and _free_of(moved.bounds, {j: v for j, v in views.items() if j != k}, req):
+                yield views | {k: moved}
 
 
 def _free_of(box, views: dict, req: Request) -> bool:

@@ -328,8 +328,10 @@ def axis_numbers_clear(items: list, curves) -> list:
     origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
     mirrored about it, or else a little farther below or above, under its tick, or, crossed
     there too, narrowed (`MIN_WIDTH_FACTOR`), below, else above, then a text height farther
-    from the axis, where that clears it; ``curves`` are polylines' points in the same mm.
-    Other primitives pass unchanged."""
+    from the axis, where that clears it; one that no such spot clears goes to the nearest
+    spot round its tick clear of the curves, the axes and the other texts where its own tick
+    stays the nearest (`_numbers_by_their_ticks`). ``curves`` are polylines' points in the
+    same mm. Other primitives pass unchanged."""
     import shapely
 
     from velplan.render.layout import label_box
@@ -358,6 +360,35 @@ def axis_numbers_clear(items: list, curves) -> list:
                             for q, s in zip(narrow, (-1.0, 1.0))])
                 p = next((q for q in tries if not len(field.query(label_box(q), predicate="intersects"))), p)
         out.append(p)
+    numbers = [k for k, p in enumerate(items)
+               if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0]
+    crossed = [k for k in numbers if len(field.query(label_box(out[k]), predicate="intersects"))]
+    return _numbers_by_their_ticks(out, crossed, numbers, items, lines) if crossed else out
+
+
+def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], items: list, lines: list) -> list:
+    """`out` with its position numbers at the indices `crossed` (texts a curve of `lines`
+    crosses) placed by `place_letters` round their ticks on the φ axis (the tick of a number
+    of `items`, at the indices `numbers`, is on the axis under its wanted place): clear of the
+    curves, the axes, ticks and rays, and every other text, its own tick nearer to it than
+    any other, else beyond them with a thin leader."""
+    import shapely
+
+    from velplan.render.layout import label_box
+    from velplan.render.scene import Text
+    from velplan.views.letters import place_letters
+
+    ticks = [(items[k].position[0], 0.0) for k in numbers]
+    drawn = [shapely.LineString([p.start, p.end]) for p in out if isinstance(p, Arrow)]
+    drawn += [shapely.LineString(p.points) for p in out if isinstance(p, Polyline)]
+    out = list(out)
+    for k in crossed:
+        taken = [label_box(p).buffer(0.4) for j, p in enumerate(out) if isinstance(p, Text) and j != k]
+        tick = (items[k].position[0], 0.0)
+        (placed,), leaders = place_letters([items[k]], [tick], ticks, [*lines, *drawn], taken=taken,
+                                           leader_layer=items[k].layer)
+        out[k] = placed
+        out += leaders
     return out
 
 

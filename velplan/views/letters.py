@@ -205,7 +205,7 @@ def _blocked(tree, boxes) -> np.ndarray:
 def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken=(), thin=(),
                   leader_layer: str = "labels", gaps: Sequence[float] = GAPS_MM,
                   leader_gaps: Sequence[float] = LEADER_GAPS_MM,
-                  near_mm: float | None = None) -> tuple[list[Text], list[Polyline]]:
+                  near_mm: float | None = None, soft_mm: float = SOFT_MM) -> tuple[list[Text], list[Polyline]]:
     """Place point letters, in order, each by its own point.
 
     Parameters
@@ -228,6 +228,8 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
     near_mm : float, optional
         How far from its point (box to point) a letter without a leader may stand, mm (e.g.
         :data:`NEAR_MM`); by default as far as `gaps` take it.
+    soft_mm : float
+        The millimetres of gap a thin line across a letter is worth.
 
     Returns
     -------
@@ -249,22 +251,23 @@ def place_letters(texts: Sequence[Text], anchors, points, obstacles=(), *, taken
         wanted = np.asarray(text.position, float) - p
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = allp[np.hypot(*(allp - p).T) > SAME_POINT_MM]
-        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, near=near_mm)
+        found = _choose(p, wanted, half, others, tree, taken, gaps, True, soft, soft_mm, near=near_mm)
         led = found is None
         if led:
-            found = _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps)
+            found = _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_mm)
         _settle(text, centred, offset, found, p if led else None, taken, out, leaders, leader_layer)
     return out, leaders
 
 
-def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps):
+def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_mm: float = SOFT_MM):
     """A letter's place with a leader, where none is clear near its point: beyond the crowd,
     the leader off the other letters where it can be; then, crowded all round, off the other
     letters over the fewest lines: its centre and box, or None."""
     found = None
     for clear_leader in (True, False):
         if found is None:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, leader=clear_leader)
+            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, soft_mm,
+                            leader=clear_leader)
     for clear_leader in (True, False):
         if found is None:
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,

@@ -459,7 +459,7 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     specials = ([t] if special is True else
                 [position_index(k, n) for k in special] if special else [])
     drawn = _thick_position(items, obstacles, geo, fine, t, mm, mu_l, sizes.label_mm, specials)
-    letters, labels, links = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
+    letters, labels, links, anchors = _scheme_labels(items, geo, drawn, t, mm, sizes, single, extreme, obstacles)
     # no letter over a point of the thick position: next to another point it would name that one
     points = [mm(geo.p(t, name)) for name in kin.point_index if name not in special_points(mech)]
     obstacles += list(shapely.buffer(shapely.points(np.array([p for p in points if np.all(np.isfinite(p))],
@@ -477,6 +477,8 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
             {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters]})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
+    placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles, thin, placed_letters)
+    leaders += moved_leaders
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
         ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
@@ -484,7 +486,9 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
-        items += _number_leaders(labels, placed, mm(kin.position(out)), mm(kin.position(mech.crank.tip)))
+        kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
+        items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
+                                 mm(kin.position(mech.crank.tip)))
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
@@ -641,27 +645,36 @@ def _output_on_track(mech: Mechanism, out: str) -> bool:
 
 
 def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes: MechanismSizes,
-                   single: bool, extreme: Kinematics | None, obstacles: list | None = None) -> tuple[list, list[Text], list]:
+                   single: bool, extreme: Kinematics | None, obstacles: list | None = None
+                   ) -> tuple[list, list[Text], list, list]:
     """The labels to place: the letters of the points of the thick position (and of the special
     points), each with its point (mm); the position numbers of the output, ω1 (its arrow added
     to `items`, and to `obstacles`: no letter is written over it), the numbers inside plates;
-    the other links' numbers, each with its point on the link (mm)."""
+    the other links' numbers, each with its point on the link (mm); and for each of the
+    second, the point it names and the points it must stand nearer to than to any other
+    (the output's positions; ω1's arc), or None (a number inside its plate)."""
     mech, kin = geo.mech, geo.kin
     letters = list(drawn.special_letters)
     letters += _point_labels(geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                              {pt: side for pt, side in drawn.guide_sides.items() if pt in _lead_blocks(mech)})
     labels: list[Text] = []
+    anchors: list = []
     out = output_point(mech)
     if out is not None and out != mech.crank.tip and not single:
         labels += _output_numbers(kin, out, mm, sizes.number_mm,
                                   _output_on_track(mech, out) and bool(drawn.tracks),
                                   drawn.centre, drawn.guide_sides.get(out))
+        anchors += [(p, mm(kin.position(out))) for p in mm(kin.position(out))]
     if extreme is not None and not single and extreme.valid[0] and out is not None:
         at = mm(extreme.position(out)[0])
         labels.append(Text((at[0] + 1.5, at[1] + 1.5), "1′", "labels", sizes.number_mm))
+        anchors.append((at, [at]))
     omega = _omega_arrow(mech, geo, t, mm, sizes.label_mm)
     items += omega[:-1]
     labels.append(omega[-1])
+    arc = np.asarray(omega[0].points)  # ω1 names its arc: the arc's point nearest its wanted place
+    on_arc = arc[int(np.argmin(np.hypot(*(arc - np.asarray(omega[-1].position)).T)))]
+    anchors.append((on_arc, [on_arc]))
     if obstacles is not None:
         obstacles += [shapely.LineString(p.points if isinstance(p, Polyline) else [p.start, p.end]).buffer(0.6)
                       for p in omega[:-1] if isinstance(p, (Polyline, Arrow))]
@@ -669,7 +682,36 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
     numbers = _link_numbers(mech, geo, t, mm, sizes.label_mm, drawn.segments, drawn.blocks,
                             drawn.centre, away_from_guides)
     labels += [x for x, at in numbers if at is None]
-    return letters, labels, [(x, at) for x, at in numbers if at is not None]
+    anchors += [None for _, at in numbers if at is None]
+    return letters, labels, [(x, at) for x, at in numbers if at is not None], anchors
+
+
+def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: list, thin: list,
+                          letters: list[Text]) -> tuple[tuple[Text, ...], set[int], list[Polyline]]:
+    """The scheme's labels (`placed` by `place_labels` from their `wanted` places) with each one
+    that `place_labels` had to leave over a line or a symbol (`obstacles`) placed again by
+    `place_letters` round its point (`anchors`: the point and the points it must stand nearer
+    to than to any other, as `_scheme_labels` gives them): the nearest free spot that reads as
+    its point's, else one beyond the crowd with a thin leader. Returns the labels, the indices
+    of those placed again and their leaders."""
+    shapes = [g for g in obstacles if not g.is_empty]
+    if not shapes:
+        return tuple(placed), set(), []
+    tree = shapely.STRtree(shapes)
+    out: list[Text] = list(placed)
+    moved: set[int] = set()
+    leaders: list[Polyline] = []
+    for k, (text, where) in enumerate(zip(placed, anchors)):
+        if (where is None or not np.all(np.isfinite(where[0]))
+                or not len(tree.query(label_box(text), predicate="intersects"))):
+            continue
+        taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
+        (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin)
+        if len(tree.query(label_box(again), predicate="intersects")):
+            continue  # crowded all round: where place_labels left it
+        out[k], leaders = again, leaders + led
+        moved.add(k)
+    return tuple(out), moved, leaders
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,

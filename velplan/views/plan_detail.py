@@ -30,23 +30,27 @@ CROWD_MM = 15.0
 CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
+#: Millimetres of gap a thin line across a letter of a detail is worth (twice a scheme's: a
+#: detail is drawn for its crowd, and a line through a letter there reads as part of it).
+DETAIL_SOFT_MM = 3.0
 #: The numerals of a sheet's details, in turn.
 NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 NUMERAL = NUMERALS[0]
 
 
-def crowd_near_pole(images, extent_mm: float) -> tuple[complex, float] | None:
+def crowd_near_pole(images, extent_mm: float, reach_mm: float | None = None) -> tuple[complex, float] | None:
     """(centre, radius) of the region (plan mm at the plan's scale, the pole at 0) that holds the
     crowd round the pole of a plan with `images` (target → plan mm, complex) `extent_mm` across,
     or None where no crowd calls for a detail. The crowd: the images within
     :data:`CROWD_MM` of the pole, or a quarter of the farthest image's distance where that is
-    more (images on the pole itself, or within a millimetre of one another, count once); the
+    more (or within `reach_mm`, where given: a tighter crowd, whose detail may be drawn larger);
+    images on the pole itself, or within a millimetre of one another, count once; the
     region: the circle round the box of the crowd and the pole, 3 mm wider for the letters."""
     z = np.array([complex(v) for v in images.values()], dtype=complex)
     z = z[np.isfinite(z)]
     if not len(z):
         return None
-    reach = max(CROWD_MM, float(np.max(np.abs(z))) / 4.0)
+    reach = max(CROWD_MM, float(np.max(np.abs(z))) / 4.0) if reach_mm is None else reach_mm
     z = z[(np.abs(z) > 0.5) & (np.abs(z) <= reach)]
     if len(set(np.round(z).tolist())) < CROWD_COUNT:  # distinct places (np.unique would import numpy.ma)
         return None
@@ -80,12 +84,51 @@ def _clipped(p: Primitive, window: shapely.Polygon) -> list[Primitive]:
     return []
 
 
+def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon) -> tuple[set[str], list[Primitive]]:
+    """(the letters of the plan `full`, at the detail's scale, whose images lie inside the
+    `window`, those letters placed again inside it by their images with their leaders): by
+    `place_letters`, clear of the drawn `items` (the plan's lines cut at the window, but its
+    letters) and of the window's edge, each nearest its own image, else with a thin leader
+    (the plan placed them for the whole plan: cut at the window, some would stand out of it, or
+    nearer another image). One that finds no room inside is left out."""
+    from velplan.plans.text import label_of
+    from velplan.views.base import subscript
+    from velplan.views.letters import place_letters
+
+    at: dict[str, list[np.ndarray]] = {}
+    for target, z in full.meta["images"].items():
+        if np.isfinite(z):
+            at.setdefault(subscript(label_of(target)), []).append(np.asarray(full.to_view((z.real, z.imag)), float))
+    letters, anchors = [], []
+    for t in (p for p in full.primitives if isinstance(p, Text)):
+        own = [xy for part in t.text.split(", ") for xy in at.get(part, []) if window.contains(shapely.Point(xy))]
+        if own:
+            letters.append(t)
+            anchors.append(own[0])
+    if not letters:
+        return set(), []
+    names = {t.text for t in letters}
+    points = [xy for xys in at.values() for xy in xys if window.contains(shapely.Point(xy))]
+    hard = [shapely.LineString([p.start, p.end]) for p in items if isinstance(p, Arrow)]
+    hard += [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line != "thin"]
+    hard += [shapely.Point(p.centre).buffer(p.radius + 0.3) for p in items if isinstance(p, Circle)]
+    hard.append(window.envelope.buffer(30.0).difference(window))  # the letters stay inside the circle
+    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
+    others = [label_box(t).buffer(0.4) for t in items if isinstance(t, Text) and t.text not in names]
+    placed, leaders = place_letters(letters, anchors, points, hard, thin=thin, taken=others,
+                                    leader_layer=letters[0].layer, soft_mm=DETAIL_SOFT_MM)
+    out: list[Primitive] = [t for t in placed if window.contains(label_box(t))]
+    return names, out + [ld for ld in leaders if window.contains(shapely.Point(ld.points[1]))]
+
+
 def detail_view(res, number: int, region: tuple[complex, float], factor: float, *,
-                lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL) -> View:
+                lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL,
+                beside: bool = False) -> View:
     """The `region` (centre, radius: plan mm at the plan's scale, `crowd_near_pole`) of the
     plan of `res` at position number `number`, drawn `factor` times larger (its scale μ/factor
-    written under the numeral and the enlargement, ``"I (4:1)"``), cut at a thin circle; the
-    view's origin is the pole."""
+    written under the numeral and the enlargement, ``"I (4:1)"``, above the circle or, with
+    `beside`, right of its top: a lower view), cut at a thin circle; the view's origin is the
+    pole."""
     big = res.at_scale(res.scale / factor)
     full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
     pole = np.asarray(full.origin)
@@ -94,8 +137,12 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     window = shapely.Point(centre).buffer(r, quad_segs=32)
     items = [q for p in full.primitives for q in _clipped(p, window)]
     _, line_layer, text_layer = layer_names(full.meta["kind"], number)
+    letters, placed = _letters_inside(full, items, window)
+    items = [q for q in items if not (isinstance(q, Text) and q.text in letters)] + placed
     items.append(Circle(tuple(centre), r, line_layer, "thin"))
     x, top = centre[0] - r, centre[1] + r
+    if beside:  # right of the circle's top
+        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
     items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
                       text_layer, sizes.title_mm))
     items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
@@ -107,7 +154,7 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
 def marked(view: View, region: tuple[complex, float], size_mm: float,
            numeral: str = NUMERAL) -> tuple[View, tuple[float, float]] | None:
     """(the plan `view` with its detail's `region` (`crowd_near_pole`) marked — a thin circle
-    and the numeral outside it where no letter nor vector is —, the shift of its drawing in
+    and the numeral outside it where no letter nor line is —, the shift of its drawing in
     the new box, mm): place it that much lower and to the left to keep the drawing where it was;
     None where the circle would cross a text of the plan outside the region."""
     kind, number = view.meta["kind"], view.meta["number"]
@@ -116,7 +163,9 @@ def marked(view: View, region: tuple[complex, float], size_mm: float,
     cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
     taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
                               + [shapely.LineString([p.start, p.end]) for p in view.primitives
-                                 if isinstance(p, Arrow)]).buffer(0.5)
+                                 if isinstance(p, Arrow)]
+                              + [shapely.LineString(p.points) for p in view.primitives  # a line beside
+                                 if isinstance(p, Polyline) and len(p.points) >= 2]).buffer(0.5)  # "II" reads "III"
     numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
                      text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
                      "baseline" if math.sin(a) > 0 else "top")
