@@ -196,10 +196,12 @@ def _import_cairocffi_by_soname() -> None:
     find_library also searches folders the loader does not.)"""
     import ctypes.util
 
+    from velplan.render.cairo_ffi import import_cairocffi
+
     found = ctypes.util.find_library
     ctypes.util.find_library = lambda name: None  # cairocffi then opens its file names
     try:
-        module = importlib.import_module("cairocffi")
+        module = import_cairocffi()  # its FFI from velplan's cache where it is there
     finally:
         ctypes.util.find_library = found
     module.find_library = found  # for its later look-ups (gdk-pixbuf)
