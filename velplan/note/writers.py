@@ -99,7 +99,6 @@ def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
 def _docx(note, tmp: Path, path: Path) -> bytes:
     """pandoc's .docx of the note (its figures SVG files, rasterised meanwhile for their PNG
     fallbacks), laid out as a course note."""
-    from velplan.note.docx_figures import add_png_fallbacks
     from velplan.note.docx_math import PLACEHOLDER, FormulaRun, formulas, put_formulas
 
     images, svgs = {}, {}
@@ -113,7 +112,8 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
     math = FormulaRun(wanted, tmp / "math") if wanted else None
     try:
         pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
-        docx = _module("docx")
+        docx = _module("docx")  # imported while pandoc runs
+        from velplan.note.docx_figures import add_png_fallbacks
         raw = run.result()
         doc = docx.Document(io.BytesIO(raw))
         if math is not None and not put_formulas(doc, wanted, math.equations()):
