@@ -76,3 +76,24 @@ def test_no_fork_where_no_core_is_free(monkeypatch):
     monkeypatch.setattr(raster, "core_free", lambda: False)
     with forces_aside.building_aside():
         assert not forces_aside.ENABLED
+
+
+def test_the_command_writes_the_same_docx_with_both_helpers(monkeypatch, tmp_path):
+    import zipfile
+
+    from velplan.cli import main
+    from velplan.note import figures
+
+    def document(name, free):
+        monkeypatch.setattr(raster, "core_free", lambda: free)
+        figures._png.cache_clear()
+        assert main(["note", "slider-press", "--positions", "6", "--lang", "uk", "-o", str(tmp_path / name)]) == 0
+        z = zipfile.ZipFile(tmp_path / name)
+        return {n: z.read(n) for n in z.namelist() if n != "docProps/core.xml"}
+
+    seen = []
+    real = forces_aside.ForcesAside.part
+    monkeypatch.setattr(forces_aside.ForcesAside, "part", lambda self, note, positions:
+                        seen.append(real(self, note, positions)) or seen[-1])
+    assert document("aside.docx", True) == document("here.docx", False)
+    assert seen == [True]  # the first built its part on forces in the fork, the second here
