@@ -30,7 +30,7 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
     fields : dict, optional
         Title page: ``organisation``, ``author``, ``group``, ``checker``, ``date``.
     """
-    from velplan.note import ends, forces as F, front, kinematics as K
+    from velplan.note import ends
     from velplan.render.i18n import check_language
     from velplan.sheets.forces import has_forces
     from velplan.sheets.kinematic import build_sheet
@@ -43,7 +43,32 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
     for part in parts:
         if part not in PARTS:
             raise VelplanError(f"--parts: unknown part {part!r}; known parts: {', '.join(PARTS)}")
-    sheet = build_sheet(study, plans=plans, fmt=fmt, lang=lang)
+    aside = _forces_aside(study, parts, plans, fmt, lang)
+    try:
+        sheet = build_sheet(study, plans=plans, fmt=fmt, lang=lang)
+        note = _kinematics(study, sheet, parts, asked, fields, lang)
+        if "forces" in parts:
+            if has_forces(study.mechanism):
+                _optional("forces", asked, lambda: _forces(note, study, sheet, fmt, lang, aside))
+            elif asked:
+                raise VelplanError(f"{study.mechanism.name} declares no masses and no loads: there are no forces "
+                                   f"to write out; add [link.N] masses or [[load]] tables")
+    finally:
+        if aside is not None:
+            aside.close()
+    if "dynamics" in parts:
+        _optional("dynamics", asked, lambda: _dynamics(note, study, fmt, lang))
+    _conclusion(note, study, parts)
+    ends.references(note)
+    return note
+
+
+def _kinematics(study, sheet, parts, asked, fields, lang) -> Note:
+    """The note up to its part on forces: title, introduction, data, structure, positions and
+    (where asked for) the kinematics."""
+    from velplan.note import ends, front, kinematics as K
+    from velplan.sheets.forces import has_forces
+
     note = Note(lang, f"{p('note', lang)}: {study.mechanism.name_in(lang)}")
     front.title_page(note, study, fields)
     ends.introduction(note, study, [x for x in parts if x != "forces" or has_forces(study.mechanism)])
@@ -58,17 +83,38 @@ def build_note(mech, *, n: int = 12, plans=None, parts=None, lang: Language = "r
                     K.plan_section(note, sheet, k, kind)
         K.analogues_section(note, study, sheet)
         K.diagrams_section(note, sheet, study)
-    if "forces" in parts:
-        if has_forces(study.mechanism):
-            _optional("forces", asked, lambda: F.forces_section(note, _force_sheet(study, sheet.positions, fmt, lang)))
-        elif asked:
-            raise VelplanError(f"{study.mechanism.name} declares no masses and no loads: there are no forces "
-                               f"to write out; add [link.N] masses or [[load]] tables")
-    if "dynamics" in parts:
-        _optional("dynamics", asked, lambda: _dynamics(note, study, fmt, lang))
-    _conclusion(note, study, parts)
-    ends.references(note)
     return note
+
+
+def _forces_aside(study, parts, plans, fmt, lang):
+    """The fork building the part on forces (`velplan.note.forces_aside`), where enabled and
+    the note has that part: for the positions given, else the kinematic sheet's default two."""
+    from velplan.note import forces_aside
+    from velplan.sheets.forces import has_forces
+
+    if not forces_aside.ENABLED or "forces" not in parts or not has_forces(study.mechanism):
+        return None
+    try:
+        return forces_aside.ForcesAside(study, _likely_positions(study, plans), fmt, lang)
+    except OSError:  # no fork: the part is written here
+        return None
+
+
+def _likely_positions(study, plans) -> tuple[int, ...]:
+    """The positions the kinematic sheet will likely draw: those given, else its default two
+    (it keeps the first alone where the two do not fit)."""
+    from velplan.sheets.kinematic import default_plan_positions
+
+    return tuple(plans) if plans is not None else tuple(default_plan_positions(study.plan("velocity")))
+
+
+def _forces(note, study, sheet, fmt, lang, aside) -> None:
+    """The part on forces: the fork's, else written here."""
+    if aside is not None and aside.part(note, sheet.positions):
+        return
+    from velplan.note import forces as F
+
+    F.forces_section(note, _force_sheet(study, sheet.positions, fmt, lang))
 
 
 def _conclusion(note, study, parts) -> None:

@@ -24,24 +24,30 @@ def typ_text(s: str) -> str:
     return _TYP_SPECIAL.sub(r"\\\1", s)
 
 
-def to_markdown(note, target: str, images: dict[str, str]) -> str:
-    """The whole note; ``images`` maps a figure's name to the path the output refers to."""
+def to_markdown(note, target: str, images: dict[str, str], *, placeholder: str | None = None) -> str:
+    """The whole note; ``images`` maps a figure's name to the path the output refers to; with
+    ``placeholder``, every formula is written as that TeX instead (`velplan.note.docx_math`)."""
     out = []
     for block in note.blocks:
-        out.append(_block(block, note, target, images))
+        out.append(_block(block, note, target, images, placeholder))
     return "\n\n".join(x for x in out if x) + "\n"
 
 
-def _block(b, note, target: str, images: dict[str, str]) -> str:
+def para_parts(b: Para, lang: str) -> list:
+    """A paragraph's plain pieces and its `Math`, each symbol of its text a formula."""
+    from velplan.note.prose import prose_parts
+
+    return [y for x in b.parts for y in ((x,) if isinstance(x, Math) else prose_parts(x, lang))]
+
+
+def _block(b, note, target: str, images: dict[str, str], placeholder: str | None = None) -> str:
     if isinstance(b, Heading):
         return "#" * b.level + " " + md_text(b.text) + ("" if b.numbered or target == "md" else " {-}")
     if isinstance(b, Para):
-        from velplan.note.prose import prose_parts
-
-        parts = [y for x in b.parts for y in ((x,) if isinstance(x, Math) else prose_parts(x, note.lang))]
-        return "".join(f"${x.tex}$" if isinstance(x, Math) else md_text(x) for x in parts)
+        return "".join(f"${placeholder or x.tex}$" if isinstance(x, Math) else md_text(x)
+                       for x in para_parts(b, note.lang))
     if isinstance(b, Equation):
-        return f"$${b.tex}$$"
+        return f"$${placeholder or b.tex}$$"
     if isinstance(b, Table):
         if target == "md":
             return f"**{md_text(b.caption)}**\n\n" + _pipe_table(b)

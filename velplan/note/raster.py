@@ -120,7 +120,7 @@ class Aside:
         number = len(self.numbers)
         try:
             (self.folder / f"{number}.svg").write_text(svg, encoding="utf-8")
-            self.helper.send.write(f"{number} {dpi!r}\n")
+            self.helper.send.write(f"{number} {float(dpi)!r}\n")  # numpy's repr is not a number
             self.helper.send.flush()
         except OSError:  # the helper is gone: the figures are rasterised here
             self.close()

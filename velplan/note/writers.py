@@ -99,21 +99,31 @@ def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
 def _docx(note, tmp: Path, path: Path) -> bytes:
     """pandoc's .docx of the note (its figures SVG files, rasterised meanwhile for their PNG
     fallbacks), laid out as a course note."""
-    from velplan.note.docx_figures import add_png_fallbacks
+    from velplan.note.docx_math import PLACEHOLDER, FormulaRun, formulas, put_formulas
 
     images, svgs = {}, {}
     for fig in _figures(note):
         images[fig.name] = f"{fig.name}.svg"
         svgs[fig.name] = fig.svg.encode("utf-8")
         (tmp / images[fig.name]).write_bytes(svgs[fig.name])
-    run = Pandoc(to_markdown(note, "docx", images), "docx", tmp, ["--number-sections"])
+    wanted = formulas(note)
+    run = Pandoc(to_markdown(note, "docx", images, placeholder=PLACEHOLDER if wanted else None), "docx", tmp,
+                 ["--number-sections"])
+    math = FormulaRun(wanted, tmp / "math") if wanted else None
     try:
         pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
-        docx = _module("docx")
+        docx = _module("docx")  # imported while pandoc runs
+        from velplan.note.docx_figures import add_png_fallbacks
         raw = run.result()
+        doc = docx.Document(io.BytesIO(raw))
+        if math is not None and not put_formulas(doc, wanted, math.equations()):
+            # a formula pandoc reads otherwise on its own: the whole note converted as one
+            doc = docx.Document(io.BytesIO(_pandoc(to_markdown(note, "docx", images), "docx", tmp,
+                                                   ["--number-sections"])))
     finally:
         run.cancel()
-    doc = docx.Document(io.BytesIO(raw))
+        if math is not None:
+            math.cancel()
     mm = docx.shared.Mm
     for section in doc.sections:  # A4 with the margins of a course note (GOST 2.105)
         section.page_width, section.page_height = mm(210), mm(297)

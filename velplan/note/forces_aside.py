@@ -1,0 +1,125 @@
+"""The note's part on forces built by a fork of this process while this process builds the
+kinematic sheet and writes its part: the fork builds the force sheet for the positions the
+kinematic sheet draws by default, then waits for the number of figures and tables written
+before the part, writes the part (`velplan.note.forces.forces_section`) and hands its blocks
+back. Only in the ``velplan note`` command (`building_aside`), on Linux, where a core is free
+(`velplan.note.raster.core_free`). Where the kinematic sheet draws other positions, or the fork
+fails in any way, this process writes the part itself as without it, errors included: the
+note is the same either way."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import pickle
+import signal
+
+ENABLED = False
+"""Whether `build_note` hands the part on forces to a fork (within `building_aside`)."""
+
+
+@contextlib.contextmanager
+def building_aside(enabled: bool = True):
+    """Within the block, `velplan.note.build_note` builds its part on forces in a fork where a
+    core is free for it."""
+    global ENABLED
+    from velplan.note.raster import FORK, core_free
+
+    was = ENABLED
+    ENABLED = enabled and FORK and core_free()
+    try:
+        yield
+    finally:
+        ENABLED = was
+
+
+class ForcesAside:
+    """A fork building the part on forces of ``study`` for ``positions``."""
+
+    def __init__(self, study, positions, fmt, lang):
+        self.positions = tuple(positions)
+        ask, told = os.pipe(), os.pipe()
+        self.pid = os.fork()
+        if self.pid == 0:  # the fork: ends at os._exit, nothing of the parent's flushed twice
+            code = 1
+            try:
+                os.close(ask[1])
+                os.close(told[0])
+                _serve(ask[0], told[1], study, self.positions, fmt, lang)
+                code = 0
+            finally:
+                os._exit(code)
+        os.close(ask[0])
+        os.close(told[1])
+        self.ask, self.told = ask[1], told[0]
+
+    def part(self, note, positions) -> bool:
+        """Add the fork's part to ``note`` (numbered after its figures and tables so far); False
+        where it has none for ``positions``."""
+        if self.pid is None or tuple(positions) != self.positions:
+            self.close()
+            return False
+        try:
+            os.write(self.ask, f"{note.figures} {note.tables}\n".encode("ascii"))
+            with open(self.told, "rb", closefd=False) as got:
+                data = got.read()
+        except OSError:
+            data = b""
+        self.close()
+        if not data:
+            return False
+        blocks, note.figures, note.tables = pickle.loads(data)
+        note.add(*blocks)
+        _hand_to_rasteriser(blocks)
+        return True
+
+    def close(self) -> None:
+        """End the fork (if running) and close the pipes."""
+        pid, self.pid = self.pid, None
+        for fd in (self.ask, self.told):
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self.ask = self.told = -1
+        if pid is not None:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+            with contextlib.suppress(OSError):
+                os.waitpid(pid, 0)
+
+
+def _serve(ask: int, told: int, study, positions, fmt, lang) -> None:
+    """In the fork: the force sheet, then the part once the counts arrive (nothing written where
+    anything fails: the parent then writes the part itself)."""
+    from velplan.note import figures
+    from velplan.note.build import _force_sheet
+    from velplan.note.forces import forces_section
+    from velplan.note.model import Note
+
+    figures.ASIDE = None  # the figures' helper is the parent's: it hands them on itself
+    try:
+        sheet = _force_sheet(study, positions, fmt, lang)
+    except Exception:  # the parent meets it again and reports it
+        return
+    with open(ask, "rb") as wanted:
+        line = wanted.readline().split()
+    if len(line) != 2:
+        return
+    note = Note(lang, "", figures=int(line[0]), tables=int(line[1]))
+    try:
+        forces_section(note, sheet)
+    except Exception:
+        return
+    data = pickle.dumps((note.blocks, note.figures, note.tables), protocol=pickle.HIGHEST_PROTOCOL)
+    with open(told, "wb") as out:
+        out.write(data)
+
+
+def _hand_to_rasteriser(blocks) -> None:
+    """The part's figures handed to the figures' helper, as if drawn here."""
+    from velplan.note import figures
+    from velplan.note.blocks import Figure
+
+    if figures.ASIDE is not None:
+        for b in blocks:
+            if isinstance(b, Figure):
+                figures.ASIDE.submit(b.picture.svg, b.picture.dpi)
