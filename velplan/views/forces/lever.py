@@ -59,7 +59,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     View
         ``to_view`` maps lever mm (pole at 0, turned) to the view's mm; ``meta`` holds
         ``"mb_lever"``, ``"mb_kinetostatics"`` (N·m, as computed), ``"percent"``,
-        ``"balancing_force"`` (N, signed) and the texts written (``"balance"``).
+        ``"balancing_force"`` (N, signed), the texts written (``"balance"``) and the image
+        points' letters with their points (``"letters"``, turned mm).
     """
     i, number = position_index(position, len(fa.kinematics)), position
     body_layer, force_layer, text_layer = lever_layers(number)
@@ -92,7 +93,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
                      meta={"number": number, "index": i, "mu_v": res.scale,
                            "mb_lever": mb_lever, "mb_kinetostatics": mb_kin, "percent": pct,
                            "balancing_force": fb, "balance": notes[1],
-                           "forces": tuple(forces)})
+                           "forces": tuple(forces),
+                           "letters": tuple((t.text, tuple(p)) for t, (p, _) in zip(letters, images))})
 
 
 def lever_body_size(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language = "ru",
