@@ -25,6 +25,9 @@ from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
+#: A box shrunk by this meets an obstacle (a line buffered by 0.6 mm) only where the line
+#: itself enters the box: it runs through the letters, not by the box's edge, mm.
+CORE_MM = 0.55
 
 
 def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
@@ -103,7 +106,7 @@ def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: 
         others = shapely.distance(box, mate_anchors) if mate_anchors.size else np.array([np.inf])
         hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
         # a line through the letters is worse than one grazing the box's edge
-        core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
+        core = len(tree.query(box.buffer(-CORE_MM), predicate="intersects")) if hits else 0
         cost = (0.05 * rank + 30.0 * hits + 100.0 * core
                 + 1000.0 * sum(box.intersects(b) for b in placed)
                 + 4000.0 * sum(box.intersects(_shrunk(taken, j)) for j in range(len(placed)))
@@ -166,7 +169,7 @@ def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, place
     grazed = grazed[(least[grazed] < before[grazed]) | (least[grazed] < 0.05 * (rank[grazed] + 1))]
     core = np.zeros(n, int)  # a line through the letters costs more than one by the edge
     if grazed.size:
-        cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
+        cores = shapely.buffer(boxes[grazed], -CORE_MM, quad_segs=16)  # as Polygon.buffer(-CORE_MM)
         core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
     costs = 0.05 * rank + 30.0 * hits + 100.0 * core + 1000.0 * crossed + 4000.0 * over + far
     passed_over = hits > 0

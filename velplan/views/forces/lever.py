@@ -173,8 +173,9 @@ def _image_letter(p, names, lines, layer: str, size: float) -> Text:
 def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: Language,
                  sizes: ForceSizes, layer: str, text_layer: str) -> tuple[list[Text], list]:
     """The forces at their images and the balancing force (thick) at the crank tip's image,
-    drawn first so that it keeps its place there. Returns their labels and the arrows' free
-    ends (away from their points), which the labels name."""
+    drawn first so that it keeps its place there. Returns their labels and what the labels
+    name: the arrows' free ends (away from their points), both ends of the balancing force's
+    (its name may stand by either, so no other label stands by its head)."""
     fb = float(lever.balancing_force[i])
     fb_dir = xy(complex(lever.direction[i]) * (1.0 if fb >= 0 else -1.0))
     tip = xy(complex(lever.tip_image[i]))
@@ -193,7 +194,10 @@ def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: La
         sk.obstacles.append(arrow_obstacle(arrow))
         texts.append(tag)
         p = np.asarray(entries[k][0], float)
-        ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
+        if k == len(entries) - 1:
+            ends.append(shapely.MultiPoint([a, b]))
+        else:
+            ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
     return texts, ends
 
 
