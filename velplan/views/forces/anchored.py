@@ -197,10 +197,12 @@ _DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 
 def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str):
-    """The first clear place for `text` beyond `rings` rings, its leader from `anchor` (which
-    crosses no placed label) appended to `leaders` and kept off by the later labels:
+    """The first clear place for `text` beyond `rings` rings whose leader from `anchor`
+    crosses no placed label and no drawn line (else the one whose leader crosses the fewest
+    lines), its leader appended to `leaders` and kept off by the later labels:
     (0, label, box), or None."""
     placed = taken[0]
+    best = None
     for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
         cand = dataclasses.replace(text, position=spot)
         box = label_box(cand)
@@ -209,8 +211,17 @@ def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str)
         line = shapely.shortest_line(anchor, box.buffer(0.4))
         if any(line.intersects(_shrunk(taken, j)) for j in range(len(placed))):
             continue
-        (x0, y0), (x1, y1) = line.coords
-        leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
-        placed.append(line.buffer(0.6))
-        return 0.0, cand, box
-    return None
+        start = shapely.Point(line.coords[0])  # the lines at the anchor not counted
+        crossed = 0 if tree is None else sum(not tree.geometries[j].intersects(start)
+                                             for j in tree.query(line, predicate="intersects"))
+        if best is None or crossed < best[0]:
+            best = (crossed, cand, box, line)
+        if crossed == 0:
+            break
+    if best is None:
+        return None
+    _, cand, box, line = best
+    (x0, y0), (x1, y1) = line.coords
+    leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
+    placed.append(line.buffer(0.6))
+    return 0.0, cand, box
