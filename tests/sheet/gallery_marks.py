@@ -269,15 +269,23 @@ def _force_anchors(name: str, placed, lang: str) -> tuple[list[tuple[str, str, o
     return None
 
 
+def _wittenbauer_anchors(name: str, placed) -> tuple[list[tuple[str, str, object]], str] | None:
+    """(label, kind, point) of the energy–mass diagram's letters k, l and position numbers."""
+    if name != "wittenbauer" or "marks" not in placed.view.meta:
+        return None
+    return [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in placed.view.meta["marks"]], "dynamics-labels"
+
+
 def ambiguous_force_labels(sheet, lang: str) -> list[str]:
     """The labels of a force sheet's groups, polygons and levers (points' letters, forces,
     couples) whose own anchor — a point, an arrow's free end, a couple's arc, a polygon's vector —
     is not the nearest anchor of its kind in its view to them ("nearer: …") or lies farther than
     :data:`ANCHOR_MM` from their box ("far: …"), as `tests/forces/test_force_sheet_legibility.py`
-    reads them; a label joined to its anchor by a thin leader excepted: the leader names it."""
+    reads them; a label joined to its anchor by a thin leader excepted: the leader names it.
+    On a dynamics sheet: the energy–mass diagram's letters k, l and numbers by their points."""
     out = []
     for name, placed in sheet.views.items():
-        found = _force_anchors(name, placed, lang)
+        found = _force_anchors(name, placed, lang) or _wittenbauer_anchors(name, placed)
         if found is None:
             continue
         anchors, layer = found
@@ -312,7 +320,7 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
         out["crossed"] += [f"{where}: {t}" for t in crossed_texts(sheet.scene)]
         out["small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=False)]
         out["title_small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=True)]
-        if kind == "forces":
+        if kind in ("forces", "dynamics"):
             for v in ambiguous_force_labels(sheet, lang_of(name)):
                 why, _, what = v.partition(": ")
                 out["ambiguous" if why == "nearer" else "far_label"].append(f"{where}: {what}")

@@ -25,6 +25,7 @@ from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
+from velplan.views.forces.anchored import place_anchored
 from velplan.views.table import grid_table, table_title
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
@@ -201,6 +202,12 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         The closed curve: J (kg·m²) and ΔT (J) at fine travels over the cycle.
     points : sequence of (J, ΔT)
         The numbered positions.
+
+    Returns
+    -------
+    View
+        ``meta["marks"]``: (text, point in the view's content mm) of the letters k, l and the
+        positions' numbers.
     """
     mJ, mT = w.mu_J, w.mu_T
     size = sizes.label_mm
@@ -225,10 +232,10 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         Polyline(np.column_stack([x, y]), LAYER, "thick"),
     ]
     names = []
-    for k, (pj, pt) in enumerate(points):
-        px, py = pj / mJ, pt / mT
-        items.append(Circle((px, py), 0.6, LAYER, "thin", "solid"))
-        names.append(Text((px + 1.2, py + 1.2), str(position_number(k)), LABELS, size, "start", "baseline"))
+    numbered = _numbered(points, mJ, mT)  # coincident positions under one label
+    for _, p in numbered:
+        items.append(Circle(p, 0.6, LAYER, "thin", "solid"))
+    marked = [Text((px + 1.2, py + 1.2), t, LABELS, size, "start", "baseline") for t, (px, py) in numbered]
     # the tangents: from the ΔT axis through the touch points and a little beyond
     for (ax, ay), (tx, ty), psi, mark in (((kx, ky), tmax, w.psi_max_deg, "k"), ((lx, ly), tmin, w.psi_min_deg, "l")):
         ex, ey = ends[mark]
@@ -243,7 +250,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         if mark == "k":
             items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
         else:
-            names.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
+            marked.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
         sym = indexed("ψ", "max" if mark == "k" else "min")
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
@@ -259,6 +266,11 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     lines = [shapely.LineString(np.column_stack([x, y])),
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
     lines += [shapely.LineString([(0.0, ay), end]) for ay, end in ((ky, ends["k"]), (ly, ends["l"]))]
+    # the numbers and l each by its own point, the nearest point to it (else led to it)
+    marks = numbered + [("l", (lx, ly)), ("k", (kx, ky))]  # k last: its letter stays where it is
+    dots = [shapely.Point(p).buffer(1.0) for _, p in marks]
+    items += place_anchored(marked, [shapely.Point(p) for _, p in marks], ["point"] * len(marks),
+                            [ln.buffer(0.6) for ln in lines] + dots + _text_boxes(items), leader_layer=LABELS)
     items += list(place_labels(names, lines + _text_boxes(items)))
     w2d = omega_mean**2 * delta
     mu_j, mu_t, wm = indexed("μ", "J"), indexed("μ", "T"), indexed("ω", "m")
@@ -273,7 +285,22 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     for k, line in enumerate(text):
         items.append(Text((0.0, ytext - 1.6 * size * k), line, LABELS, size))
     return make_view("wittenbauer", items, pad_mm=2.0, meta={"mu_J": mJ, "mu_T": mT,
-                                                             "segment_mm": w.segment_drawn_mm})
+                                                             "segment_mm": w.segment_drawn_mm,
+                                                             "marks": tuple(marks)})
+
+
+def _numbered(points, mJ: float, mT: float) -> list[tuple[str, tuple[float, float]]]:
+    """(number, point mm) of the energy–mass diagram's positions, those within 1 mm of one
+    numbered before them written with it ("2, 8")."""
+    out: list[tuple[str, tuple[float, float]]] = []
+    for k, (pj, pt) in enumerate(points):
+        p = (float(pj / mJ), float(pt / mT))
+        j = next((j for j, (_, q) in enumerate(out) if math.dist(p, q) < 1.0), None)
+        if j is None:
+            out.append((str(position_number(k)), p))
+        else:
+            out[j] = (f"{out[j][0]}, {position_number(k)}", out[j][1])
+    return out
 
 
 def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
