@@ -45,7 +45,7 @@ _TWELVE = tuple((math.cos(math.radians(30.0 * k)), math.sin(math.radians(30.0 * 
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
-                   reach: float = REACH_MM, leader_layer: str | None = None) -> list:
+                   reach: float = REACH_MM, leader_layer: str | None = None, lead=()) -> list:
     """Move labels, in order, clear of `obstacles` and of each other, each kept nearer to its
     own anchor than to any other anchor of its kind and within `reach` mm of it. Where no place
     is clear, the label takes the one nearest its anchor that overlaps no other label and has
@@ -65,6 +65,9 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
         Where a line would run through a label's letters at every place within reach, look
         farther out for a clear place and join the label to its anchor by a thin leader on
         this layer (the leaders follow the labels in the list).
+    lead : collection of int
+        The labels (by index) to set farther out with a leader wherever one finds a place:
+        those of points too close together for a letter beside each to tell them apart.
     """
     shapes = [g for g in obstacles if g is not None and not g.is_empty]
     tree = shapely.STRtree(shapes) if shapes else None
@@ -76,7 +79,10 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
     leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
-        best = (_best_upright if text.rotation_deg == 0.0 else _best_each)(
+        best = None
+        if leader_layer is not None and i in lead:
+            best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer)
+        best = best or (_best_upright if text.rotation_deg == 0.0 else _best_each)(
             text, _spots(text, rings), anchors[i], anchors[mates], tree, taken, reach)
         if leader_layer is not None and best[0] >= 100.0:
             best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
@@ -209,11 +215,12 @@ def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str)
         if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
             continue
         line = shapely.shortest_line(anchor, box.buffer(0.4))
-        if any(line.intersects(_shrunk(taken, j)) for j in range(len(placed))):
-            continue
-        start = shapely.Point(line.coords[0])  # the lines at the anchor not counted
-        crossed = 0 if tree is None else sum(not tree.geometries[j].intersects(start)
-                                             for j in tree.query(line, predicate="intersects"))
+        if (any(line.intersects(_shrunk(taken, j)) for j in range(len(placed)))
+                or any(line.intersects(shapely.LineString(other.points)) for other in leaders)):
+            continue  # through a label, or across another leader
+        # the lines it meets (or runs along) beyond 1.5 mm from the anchor, where they leave it
+        tail = line.difference(shapely.Point(line.coords[0]).buffer(1.5))
+        crossed = 0 if tree is None or tail.is_empty else len(tree.query(tail, predicate="intersects"))
         if best is None or crossed < best[0]:
             best = (crossed, cand, box, line)
         if crossed == 0:

@@ -28,6 +28,9 @@ from velplan.views.plan import plan_steps
 
 #: Margin of the view around what it draws, mm.
 PAD_MM = 2.0
+#: Image points nearer than this to another (and not one with it) are crowded: each is
+#: marked with a dot and its letter set out with a leader, mm.
+CROWDED_MM = 3.0
 #: The turn by +90° of the lever: x + iy → i(x + iy).
 TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
 
@@ -70,6 +73,10 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     _draw_turned_plan(sk, drawings, f"plan-v-{number}", body_layer)
     sk.items.append(Circle((0.0, 0.0), 0.8, body_layer, "thin", "solid"))
     images = _image_groups(drawings, res, i)
+    crowded = _crowded(images)
+    for k in crowded:
+        sk.items.append(Circle(tuple(images[k][0]), 0.5, body_layer, "thin", "solid"))
+        sk.obstacles.append(shapely.Point(images[k][0]).buffer(0.8))
     letters = [_image_letter(p, names, sk.lines, text_layer, sizes.label_mm)
                for p, names in images]
     forces = _lever_forces(lever, i)
@@ -78,7 +85,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     # each label kept by its own image point or arrow end (the nearest of its kind to it)
     anchors = [shapely.Point(p) for p, _ in images] + ends
     kinds = ["point"] * len(images) + ["force"] * len(ends)
-    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of(), leader_layer=text_layer)
+    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of(), leader_layer=text_layer,
+                                      lead=crowded)
     mb_lever = float(lever.balancing_moment[i])
     mb_kin = float(fa.kinetostatics.balancing_moment[i])
     pct = float(fa.lever_difference_percent[i])
@@ -157,6 +165,13 @@ def _image_groups(drawings, res, i: int) -> list[tuple[np.ndarray, list[str]]]:
             else:
                 groups.append((p, [t]))
     return groups
+
+
+def _crowded(images) -> list[int]:
+    """The indices of the image groups within CROWDED_MM of another."""
+    pts = [np.asarray(p, float) for p, _ in images]
+    return [k for k, p in enumerate(pts)
+            if any(j != k and np.hypot(*(p - q)) < CROWDED_MM for j, q in enumerate(pts))]
 
 
 def _image_letter(p, names, lines, layer: str, size: float) -> Text:
