@@ -28,6 +28,8 @@ REACH_MM = 6.0
 #: A box shrunk by this meets an obstacle (a line buffered by 0.6 mm) only where the line
 #: itself enters the box: it runs through the letters, not by the box's edge, mm.
 CORE_MM = 0.55
+#: The gap kept between two labels, mm: closer, two labels read as one ("cF(MΦ₅)").
+GAP_MM = 1.0
 
 
 def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
@@ -87,16 +89,16 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
         if leader_layer is not None and best[0] >= 100.0:
             best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
         out.append(best[1])
-        placed.append(best[2].buffer(0.5))
+        placed.append(best[2].buffer(GAP_MM))
     return out + leaders
 
 
 def _shrunk(taken, j: int):
-    """The placed area `j` of `taken` shrunk by 0.6 mm, made once when first asked: a label
-    over it puts text over text."""
+    """The placed area `j` of `taken` shrunk by GAP_MM + 0.1 mm, made once when first asked: a
+    label over it puts text over text."""
     placed, shrunk = taken
     if j not in shrunk:
-        shrunk[j] = placed[j].buffer(-0.6)
+        shrunk[j] = placed[j].buffer(-GAP_MM - 0.1)
     return shrunk[j]
 
 
@@ -163,7 +165,7 @@ def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, place
     if placed.size:
         meets = shapely.intersects(boxes[:, None], placed[None, :])
         crossed = meets.sum(axis=1)
-        # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
+        # a placed area's shrunk copy lies inside it: only those met can be overlapped
         near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
         if near:
             over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
