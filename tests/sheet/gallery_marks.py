@@ -224,9 +224,10 @@ def class_iii_marks(sheet, kin) -> list[str]:
 
 
 def _led_to(leaders, box, own) -> bool:
-    """Whether one of `leaders` (thin two-point lines) runs from the shape `own` to `box`."""
+    """Whether one of `leaders` (thin two-point lines) runs from the shape `own` (within 0.05 mm:
+    a curve's leader starts on the curve as drawn to the eye) to `box`."""
     near = box.buffer(0.6)
-    return any(own.distance(shapely.Point(p.points[0])) < 1e-6 and near.contains(shapely.Point(p.points[1]))
+    return any(own.distance(shapely.Point(p.points[0])) < 0.05 and near.contains(shapely.Point(p.points[1]))
                for p in leaders)
 
 
@@ -269,11 +270,16 @@ def _force_anchors(name: str, placed, lang: str) -> tuple[list[tuple[str, str, o
     return None
 
 
-def _wittenbauer_anchors(name: str, placed) -> tuple[list[tuple[str, str, object]], str] | None:
-    """(label, kind, point) of the energy–mass diagram's letters k, l and position numbers."""
-    if name != "wittenbauer" or "marks" not in placed.view.meta:
-        return None
-    return [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in placed.view.meta["marks"]], "dynamics-labels"
+def _dynamics_anchors(name: str, placed) -> tuple[list[tuple[str, str, object]], str] | None:
+    """(label, kind, shape) of the energy–mass diagram's letters k, l and position numbers
+    (by their points) and of the curve panels' names (by their curves) and marks (by their dots)."""
+    meta = placed.view.meta
+    if "marks" in meta:
+        return [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in meta["marks"]], "dynamics-labels"
+    if "named" in meta:
+        return [(t, "curve", shapely.LineString(placed.to_sheet(np.asarray(ps)))) if len(ps) > 1
+                else (t, "point", shapely.Point(placed.to_sheet(ps[0]))) for t, ps in meta["named"]], "dynamics-labels"
+    return None
 
 
 def ambiguous_force_labels(sheet, lang: str) -> list[str]:
@@ -282,10 +288,11 @@ def ambiguous_force_labels(sheet, lang: str) -> list[str]:
     is not the nearest anchor of its kind in its view to them ("nearer: …") or lies farther than
     :data:`ANCHOR_MM` from their box ("far: …"), as `tests/forces/test_force_sheet_legibility.py`
     reads them; a label joined to its anchor by a thin leader excepted: the leader names it.
-    On a dynamics sheet: the energy–mass diagram's letters k, l and numbers by their points."""
+    On a dynamics sheet: the energy–mass diagram's letters k, l and numbers by their points, the
+    curves' names by their curves and the marked extremes by their dots."""
     out = []
     for name, placed in sheet.views.items():
-        found = _force_anchors(name, placed, lang) or _wittenbauer_anchors(name, placed)
+        found = _force_anchors(name, placed, lang) or _dynamics_anchors(name, placed)
         if found is None:
             continue
         anchors, layer = found

@@ -126,6 +126,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # the curves, each named near its largest ordinate
     names = []
     lines = []
+    named = []  # (name, what it names: a curve's points or a marked point), mm
+    curve_of = []  # the index in `lines` of each named curve
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -140,14 +142,24 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
             px, py = xy[j]
             names.append(Text((float(px) + 1.5, float(py) + (1.5 if py >= 0 else -1.5 - size)), s.name,
                               LABELS, size, "start", "baseline"))
+            named.append((s.name, xy))
+            curve_of.append(len(lines) - 1)
     for t, v, text in marks:
         px, py = t / mu_phi, (v - base) / mu
         items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
         names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
                           "baseline"))
+        named.append((text, np.array([[px, py]], float)))
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    items += list(place_labels(names, lines + axes + _text_boxes(items)))
+    # each name nearer its own curve than any other (a mark's by its dot), else led to it
+    # (the curves simplified to 0.01 mm, for speed)
+    curves = shapely.simplify(np.array(lines, dtype=object), 0.01, preserve_topology=False).tolist() if lines else []
+    marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]  # the marks follow the curves
+    anchors = [curves[j] for j in curve_of] + marked
+    kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
+    keep_off = curves + axes + [a.buffer(1.0, quad_segs=2) for a in marked]
+    items += place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
     # title, scales and notes above the plot
     scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
@@ -156,7 +168,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items.append(Text((0.0, y + 1.8 * size), title, LABELS, sizes.title_mm))
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
-    return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base})
+    return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
+                                                    "named": tuple(named)})
 
 
 def _text_boxes(items) -> list:
