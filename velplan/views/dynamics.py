@@ -158,7 +158,9 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]  # the marks follow the curves
     anchors = [curves[j] for j in curve_of] + marked
     kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
-    keep_off = curves + axes + [a.buffer(1.0, quad_segs=2) for a in marked]
+    rough = shapely.simplify(np.array(lines + axes, dtype=object), 0.1, preserve_topology=False)
+    keep_off = shapely.buffer(rough, 0.6, quad_segs=1).tolist()  # what the names keep off
+    keep_off += [a.buffer(1.0, quad_segs=2) for a in marked]
     items += place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
     # title, scales and notes above the plot
     scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
