@@ -152,16 +152,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         named.append((text, np.array([[px, py]], float)))
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    # each name nearer its own curve than any other (a mark's by its dot), else led to it
-    # (the curves simplified to 0.01 mm, for speed)
-    curves = shapely.simplify(np.array(lines, dtype=object), 0.01, preserve_topology=False).tolist() if lines else []
-    marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]  # the marks follow the curves
-    anchors = [curves[j] for j in curve_of] + marked
-    kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
-    rough = shapely.simplify(np.array(lines + axes, dtype=object), 0.1, preserve_topology=False)
-    keep_off = shapely.buffer(rough, 0.6, quad_segs=1).tolist()  # what the names keep off
-    keep_off += [a.buffer(1.0, quad_segs=2) for a in marked]
-    items += place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
+    items += _placed_names(names, named, curve_of, lines, axes, items)
     # title, scales and notes above the plot
     scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
@@ -172,6 +163,21 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
                                                     "named": tuple(named)})
+
+
+def _placed_names(names, named, curve_of, lines, axes, items) -> list:
+    """The curves' names (`named[:len(curve_of)]`, of the curves `lines[curve_of]`) each nearer
+    its own curve than any other, and the marks' names (the rest) by their dots, clear of the
+    curves, the axes and the texts among `items`; a name with no such place led to its own.
+    The curves are simplified to 0.01 mm where they are named and to 0.1 mm where they are
+    kept off (for speed)."""
+    curves = shapely.simplify(np.array(lines, dtype=object), 0.01, preserve_topology=False).tolist() if lines else []
+    marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]
+    anchors = [curves[j] for j in curve_of] + marked
+    kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
+    rough = shapely.simplify(np.array(lines + axes, dtype=object), 0.1, preserve_topology=False)
+    keep_off = shapely.buffer(rough, 0.6, quad_segs=1).tolist() + [a.buffer(1.0, quad_segs=2) for a in marked]
+    return place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
 
 
 def _text_boxes(items) -> list:
