@@ -211,11 +211,16 @@ def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str)
     (0, label, box), or None."""
     placed = taken[0]
     best = None
-    for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
-        cand = dataclasses.replace(text, position=spot)
-        box = label_box(cand)
-        if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
-            continue
+    spots = _spots(text, 2 * rings)[1 + 12 * rings:]
+    boxes = (_upright_boxes(text, np.array(spots, float)) if text.rotation_deg == 0.0
+             else np.array([label_box(dataclasses.replace(text, position=p)) for p in spots], dtype=object))
+    clear = np.ones(len(spots), bool)  # off the lines and the placed labels, found at once
+    if tree is not None:
+        clear[tree.query(boxes, predicate="intersects")[0]] = False
+    if placed:
+        clear &= ~shapely.intersects(boxes[:, None], np.array(placed, dtype=object)[None, :]).any(axis=1)
+    for k in np.flatnonzero(clear).tolist():
+        cand, box = dataclasses.replace(text, position=spots[k]), boxes[k]
         line = shapely.shortest_line(anchor, box.buffer(0.4))
         if (any(line.intersects(_shrunk(taken, j)) for j in range(len(placed)))
                 or any(line.intersects(shapely.LineString(other.points)) for other in leaders)):
