@@ -85,7 +85,7 @@ def test_the_crowds_move_labels_and_draw_leaders():
             costs += batched[1]
     parts = {(c // 4000, c % 1000 // 100) for c in costs}  # text over text; lines through letters
     assert moved > 50 and leaders > 0
-    assert {(0, 0), (1, 0)} < parts and any(p[1] > 0 for p in parts)
+    assert (0, 0) in parts and any(p[0] >= 1 and p[1] == 0 for p in parts) and any(p[1] > 0 for p in parts)
 
 
 @given(seed=st.integers(0, 2**32 - 1))

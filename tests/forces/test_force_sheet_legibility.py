@@ -258,10 +258,11 @@ def test_lever_labels_by_their_arrows(name, lang, sheets):
             q = placed.to_sheet(np.asarray(p, float))
             ends.append([shapely.Point(a.end if math.dist(a.end, q) >= math.dist(a.start, q)
                                        else a.start)])
+        leaders = _of(placed, Polyline, text_layer)
         for t in _of(placed, Text, text_layer):
             if t.text not in names:
                 continue  # a letter of an image point, or a line of the balance
-            box = label_box(t)
+            box = _read_at(t, leaders)  # a label with a leader read at its other end
             d = [min(box.distance(e) for e in es) for es in ends]
             k = int(np.argmin(d))
             assert names[k] == t.text and d[k] <= NEAR_MM, (view_name, t.text, names[k], d[k])

@@ -14,6 +14,7 @@ import shapely
 import velplan
 from velplan.errors import VelplanError
 from velplan.mechanism.loader import catalogue_names
+from velplan.render.i18n import label
 from velplan.render.layout import label_box, overlapping_labels
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import MIN_WIDTH_FACTOR, script_size, text_runs
@@ -22,6 +23,7 @@ from velplan.sheets.forces import build_force_sheet, has_forces
 from velplan.plans.text import label_of
 from velplan.sheets.kinematic import build_sheet
 from velplan.views.base import subscript
+from velplan.views.forces import force_text, group_layers, lever_layers, polygon_layers
 from velplan.views.plan import MIN_VECTOR_MM, labelled_vectors
 
 LANGS = ("en", "ru", "uk", "zh")
@@ -187,16 +189,16 @@ def ambiguous_scheme_letters(sheet, kin) -> list[str]:
     points = {subscript(n): scheme.to_sheet(kin.position(n)[t]) for n in kin.point_index}
     points = {k: xy for k, xy in points.items() if np.all(np.isfinite(xy))}
     out = []
-    for label in (p for p in scheme.primitives if isinstance(p, Text) and p.text in points):
-        own, box = points[label.text], label_box(label)
-        if led(scheme, label, [own]):
+    for letter in (p for p in scheme.primitives if isinstance(p, Text) and p.text in points):
+        own, box = points[letter.text], label_box(letter)
+        if led(scheme, letter, [own]):
             continue
         d_own = box.distance(shapely.Point(own))
         others = [box.distance(shapely.Point(xy)) for k, xy in points.items() if np.hypot(*(xy - own)) > 1.0]
         if others and min(others) < d_own:
-            out.append(f"nearer: mechanism:{label.text}")
+            out.append(f"nearer: mechanism:{letter.text}")
         elif d_own > ANCHOR_MM:
-            out.append(f"far: mechanism:{label.text} {d_own:.1f} mm")
+            out.append(f"far: mechanism:{letter.text} {d_own:.1f} mm")
     return out
 
 
@@ -235,6 +237,99 @@ def class_iii_marks(sheet, kin) -> list[str]:
     return missing
 
 
+def _led_to(leaders, box, own) -> bool:
+    """Whether one of `leaders` (thin two-point lines) runs from the shape `own` (within 0.05 mm:
+    a curve's leader starts on the curve as drawn to the eye) to `box`."""
+    near = box.buffer(0.6)
+    return any(own.distance(shapely.Point(p.points[0])) < 0.05 and near.contains(shapely.Point(p.points[1]))
+               for p in leaders)
+
+
+def _free_end(a: Arrow, at) -> shapely.Point:
+    """The end of a force's arrow away from its point `at` (sheet mm): what its label names."""
+    return shapely.Point(a.end if np.hypot(*(np.subtract(a.end, at))) >= np.hypot(*(np.subtract(a.start, at)))
+                         else a.start)
+
+
+def _force_anchors(name: str, placed, lang: str) -> tuple[list[tuple[str, str, object]], str] | None:
+    """(label, kind, anchor shape) of every label a force view writes, and its labels' layer:
+    a group's point letters, its forces' free ends and its couples' arcs; a polygon's vectors;
+    the lever's image letters, the balancing force's arrow and the forces' free ends."""
+    meta = placed.view.meta
+    prims = placed.primitives
+    if name.startswith("group-"):
+        _, forces, texts = group_layers(meta["number"], meta["group"])
+        arrows = [p for p in prims if isinstance(p, Arrow) and p.layer == forces][:meta["arrows"]]
+        arcs = [p for p in prims if isinstance(p, Polyline) and p.layer == forces]
+        out = [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in meta["letters"]]
+        out += [(force_text(f), "force", _free_end(a, placed.to_sheet([z.real, z.imag])))
+                for (f, z, _), a in zip(meta["forces"], arrows)]
+        out += [(c[0], "couple", shapely.LineString(a.points)) for c, a in zip(meta["couples"], arcs)]
+        return out, texts
+    if name.startswith("polygon-"):
+        vectors, _, texts = polygon_layers(meta["number"], meta["group"])
+        arrows = [p for p in prims if isinstance(p, Arrow) and p.layer == vectors]
+        return [(force_text(f), "force", shapely.LineString([a.start, a.end]))
+                for f, a in zip(meta["drawn"], arrows)], texts
+    if name.startswith("lever-"):
+        _, forces, texts = lever_layers(meta["number"])
+        arrows = [p for p in prims if isinstance(p, Arrow) and p.layer == forces]
+        if not arrows:
+            return None
+        out = [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in meta["letters"]]
+        out.append((label("symbol_balancing_force", lang), "force", shapely.MultiPoint([arrows[0].start, arrows[0].end])))
+        out += [(force_text(f), "force", _free_end(a, placed.to_sheet(p)))
+                for (f, p, _), a in zip(meta["forces"], arrows[1:])]
+        return out, texts
+    return None
+
+
+def _dynamics_anchors(name: str, placed) -> tuple[list[tuple[str, str, object]], str] | None:
+    """(label, kind, shape) of the energy–mass diagram's letters k, l and position numbers
+    (by their points) and of the curve panels' names (by their curves) and marks (by their dots)."""
+    meta = placed.view.meta
+    if "marks" in meta:
+        return [(t, "point", shapely.Point(placed.to_sheet(p))) for t, p in meta["marks"]], "dynamics-labels"
+    if "named" in meta:
+        return [(t, "curve", shapely.LineString(placed.to_sheet(np.asarray(ps)))) if len(ps) > 1
+                else (t, "point", shapely.Point(placed.to_sheet(ps[0]))) for t, ps in meta["named"]], "dynamics-labels"
+    return None
+
+
+def ambiguous_force_labels(sheet, lang: str) -> list[str]:
+    """The labels of a force sheet's groups, polygons and levers (points' letters, forces,
+    couples) whose own anchor — a point, an arrow's free end, a couple's arc, a polygon's vector —
+    is not the nearest anchor of its kind in its view to them ("nearer: …") or lies farther than
+    :data:`ANCHOR_MM` from their box ("far: …"), as `tests/forces/test_force_sheet_legibility.py`
+    reads them; a label joined to its anchor by a thin leader excepted: the leader names it.
+    On a dynamics sheet: the energy–mass diagram's letters k, l and numbers by their points, the
+    curves' names by their curves and the marked extremes by their dots."""
+    out = []
+    for name, placed in sheet.views.items():
+        found = _force_anchors(name, placed, lang) or _dynamics_anchors(name, placed)
+        if found is None:
+            continue
+        anchors, layer = found
+        leaders = [p for p in placed.primitives if isinstance(p, Polyline) and p.layer == layer
+                   and p.line == "thin" and len(p.points) == 2]
+        for t in placed.primitives:
+            if not isinstance(t, Text) or t.layer != layer:
+                continue
+            own = [(k, g) for text, k, g in anchors if text == t.text]
+            if not own:
+                continue
+            kind, box = own[0][0], label_box(t)
+            if any(_led_to(leaders, box, g) for _, g in own):
+                continue
+            d_own = min(box.distance(g) for _, g in own)
+            others = [box.distance(g) for text, k, g in anchors if k == kind and text != t.text]
+            if others and min(others) < d_own:
+                out.append(f"nearer: {name}:{t.text}")
+            elif d_own > ANCHOR_MM:
+                out.append(f"far: {name}:{t.text} {d_own:.1f} mm")
+    return out
+
+
 def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
     out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
@@ -252,6 +347,10 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
             # the four curve panels share one column: each keeps at least 20 mm of ordinates
             out["diagram"] += [f"{where}: {name} {r:.1f} mm" for name, r in panel_ranges(sheet).items()
                                if r < 20.0]
+        if kind in ("forces", "dynamics"):
+            for v in ambiguous_force_labels(sheet, lang_of(name)):
+                why, _, what = v.partition(": ")
+                out["ambiguous" if why == "nearer" else "far_label"].append(f"{where}: {what}")
         if kind != "kinematic":
             continue
         out["short_vector"] += [f"{where}: {v}" for v in short_unlisted_vectors(sheet)]

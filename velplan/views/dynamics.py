@@ -25,6 +25,7 @@ from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
+from velplan.views.forces.anchored import place_anchored
 from velplan.views.table import grid_table, table_title
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
@@ -127,6 +128,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # the curves, each named near its largest ordinate
     names = []
     lines = []
+    named = []  # (name, what it names: a curve's points or a marked point), mm
+    curve_of = []  # the index in `lines` of each named curve
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -141,14 +144,17 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
             px, py = xy[j]
             names.append(Text((float(px) + 1.5, float(py) + (1.5 if py >= 0 else -1.5 - size)), s.name,
                               LABELS, size, "start", "baseline"))
+            named.append((s.name, xy))
+            curve_of.append(len(lines) - 1)
     for t, v, text in marks:
         px, py = t / mu_phi, (v - base) / mu
         items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
         names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
                           "baseline"))
+        named.append((text, np.array([[px, py]], float)))
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    items += list(place_labels(names, lines + axes + _text_boxes(items)))
+    items += _placed_names(names, named, curve_of, lines, axes, items)
     # title, scales and notes above the plot
     scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
@@ -158,7 +164,23 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
-                                                    "span_mm": (top_v - low_v) / mu})
+                                                    "span_mm": (top_v - low_v) / mu,
+                                                    "named": tuple(named)})
+
+
+def _placed_names(names, named, curve_of, lines, axes, items) -> list:
+    """The curves' names (`named[:len(curve_of)]`, of the curves `lines[curve_of]`) each nearer
+    its own curve than any other, and the marks' names (the rest) by their dots, clear of the
+    curves, the axes and the texts among `items`; a name with no such place led to its own.
+    The curves are simplified to 0.04 mm where they are named and to 0.1 mm where they are
+    kept off (for speed)."""
+    curves = shapely.simplify(np.array(lines, dtype=object), 0.04, preserve_topology=False).tolist() if lines else []
+    marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]
+    anchors = [curves[j] for j in curve_of] + marked
+    kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
+    rough = shapely.simplify(np.array(lines + axes, dtype=object), 0.1, preserve_topology=False)
+    keep_off = shapely.buffer(rough, 0.6, quad_segs=1).tolist() + [a.buffer(1.0, quad_segs=2) for a in marked]
+    return place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
 
 
 def _text_boxes(items) -> list:
@@ -204,6 +226,12 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         The closed curve: J (kg·m²) and ΔT (J) at fine travels over the cycle.
     points : sequence of (J, ΔT)
         The numbered positions.
+
+    Returns
+    -------
+    View
+        ``meta["marks"]``: (text, point in the view's content mm) of the letters k, l and the
+        positions' numbers.
     """
     mJ, mT = w.mu_J, w.mu_T
     size = sizes.label_mm
@@ -228,10 +256,10 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         Polyline(np.column_stack([x, y]), LAYER, "thick"),
     ]
     names = []
-    for k, (pj, pt) in enumerate(points):
-        px, py = pj / mJ, pt / mT
-        items.append(Circle((px, py), 0.6, LAYER, "thin", "solid"))
-        names.append(Text((px + 1.2, py + 1.2), str(position_number(k)), LABELS, size, "start", "baseline"))
+    numbered = _numbered(points, mJ, mT)  # coincident positions under one label
+    for _, p in numbered:
+        items.append(Circle(p, 0.6, LAYER, "thin", "solid"))
+    marked = [Text((px + 1.2, py + 1.2), t, LABELS, size, "start", "baseline") for t, (px, py) in numbered]
     # the tangents: from the ΔT axis through the touch points and a little beyond
     for (ax, ay), (tx, ty), psi, mark in (((kx, ky), tmax, w.psi_max_deg, "k"), ((lx, ly), tmin, w.psi_min_deg, "l")):
         ex, ey = ends[mark]
@@ -246,7 +274,7 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         if mark == "k":
             items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
         else:
-            names.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
+            marked.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
         sym = indexed("ψ", "max" if mark == "k" else "min")
         names.append(Text((ex + 1.0, ey), f"{sym} = "
                           f"{number(psi, lang, 4)}°", LABELS, size, "start", "middle"))
@@ -262,6 +290,11 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     lines = [shapely.LineString(np.column_stack([x, y])),
              shapely.LineString([(0, bottom), (0, top)]), shapely.LineString([(0, 0), (right, 0)])]
     lines += [shapely.LineString([(0.0, ay), end]) for ay, end in ((ky, ends["k"]), (ly, ends["l"]))]
+    # the numbers and l each by its own point, the nearest point to it (else led to it)
+    marks = numbered + [("l", (lx, ly)), ("k", (kx, ky))]  # k last: its letter stays where it is
+    dots = [shapely.Point(p).buffer(1.0) for _, p in marks]
+    items += place_anchored(marked, [shapely.Point(p) for _, p in marks], ["point"] * len(marks),
+                            [ln.buffer(0.6) for ln in lines] + dots + _text_boxes(items), leader_layer=LABELS)
     items += list(place_labels(names, lines + _text_boxes(items)))
     w2d = omega_mean**2 * delta
     mu_j, mu_t, wm = indexed("μ", "J"), indexed("μ", "T"), indexed("ω", "m")
@@ -279,7 +312,22 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
                                                              "segment_mm": w.segment_drawn_mm,
                                                              "J_mm": float(x.max()),
                                                              "delta_T_mm": max(float(y.max()), ky, 0.0)
-                                                             - min(float(y.min()), ly, 0.0)})
+                                                             - min(float(y.min()), ly, 0.0),
+                                                             "marks": tuple(marks)})
+
+
+def _numbered(points, mJ: float, mT: float) -> list[tuple[str, tuple[float, float]]]:
+    """(number, point mm) of the energy–mass diagram's positions, those within 1 mm of one
+    numbered before them written with it ("2, 8")."""
+    out: list[tuple[str, tuple[float, float]]] = []
+    for k, (pj, pt) in enumerate(points):
+        p = (float(pj / mJ), float(pt / mT))
+        j = next((j for j, (_, q) in enumerate(out) if math.dist(p, q) < 1.0), None)
+        if j is None:
+            out.append((str(position_number(k)), p))
+        else:
+            out[j] = (f"{out[j][0]}, {position_number(k)}", out[j][1])
+    return out
 
 
 def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),

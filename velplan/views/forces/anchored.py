@@ -25,6 +25,11 @@ from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
+#: A box shrunk by this meets an obstacle (a line buffered by 0.6 mm) only where the line
+#: itself enters the box: it runs through the letters, not by the box's edge, mm.
+CORE_MM = 0.55
+#: The gap kept between two labels, mm: closer, two labels read as one ("cF(MΦ₅)").
+GAP_MM = 1.0
 
 
 def _spots(text: Text, rings: int) -> list[tuple[float, float]]:
@@ -42,7 +47,7 @@ _TWELVE = tuple((math.cos(math.radians(30.0 * k)), math.sin(math.radians(30.0 * 
 
 
 def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
-                   reach: float = REACH_MM, leader_layer: str | None = None) -> list:
+                   reach: float = REACH_MM, leader_layer: str | None = None, lead=()) -> list:
     """Move labels, in order, clear of `obstacles` and of each other, each kept nearer to its
     own anchor than to any other anchor of its kind and within `reach` mm of it. Where no place
     is clear, the label takes the one nearest its anchor that overlaps no other label and has
@@ -62,6 +67,9 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
         Where a line would run through a label's letters at every place within reach, look
         farther out for a clear place and join the label to its anchor by a thin leader on
         this layer (the leaders follow the labels in the list).
+    lead : collection of int
+        The labels (by index) to set farther out with a leader wherever one finds a place:
+        those of points too close together for a letter beside each to tell them apart.
     """
     shapes = [g for g in obstacles if g is not None and not g.is_empty]
     tree = shapely.STRtree(shapes) if shapes else None
@@ -73,21 +81,24 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
     leaders: list = []
     for i, text in enumerate(texts):
         mates = np.flatnonzero((kinds == kinds[i]) & (np.arange(len(kinds)) != i))
-        best = (_best_upright if text.rotation_deg == 0.0 else _best_each)(
+        best = None
+        if leader_layer is not None and i in lead:
+            best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer)
+        best = best or (_best_upright if text.rotation_deg == 0.0 else _best_each)(
             text, _spots(text, rings), anchors[i], anchors[mates], tree, taken, reach)
         if leader_layer is not None and best[0] >= 100.0:
             best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
         out.append(best[1])
-        placed.append(best[2].buffer(0.5))
+        placed.append(best[2].buffer(GAP_MM))
     return out + leaders
 
 
 def _shrunk(taken, j: int):
-    """The placed area `j` of `taken` shrunk by 0.6 mm, made once when first asked: a label
-    over it puts text over text."""
+    """The placed area `j` of `taken` shrunk by GAP_MM + 0.1 mm, made once when first asked: a
+    label over it puts text over text."""
     placed, shrunk = taken
     if j not in shrunk:
-        shrunk[j] = placed[j].buffer(-0.6)
+        shrunk[j] = placed[j].buffer(-GAP_MM - 0.1)
     return shrunk[j]
 
 
@@ -103,7 +114,7 @@ def _best_each(text: Text, spots, own_anchor, mate_anchors, tree, taken, reach: 
         others = shapely.distance(box, mate_anchors) if mate_anchors.size else np.array([np.inf])
         hits = len(tree.query(box, predicate="intersects")) if tree is not None else 0
         # a line through the letters is worse than one grazing the box's edge
-        core = len(tree.query(box.buffer(-0.8), predicate="intersects")) if hits else 0
+        core = len(tree.query(box.buffer(-CORE_MM), predicate="intersects")) if hits else 0
         cost = (0.05 * rank + 30.0 * hits + 100.0 * core
                 + 1000.0 * sum(box.intersects(b) for b in placed)
                 + 4000.0 * sum(box.intersects(_shrunk(taken, j)) for j in range(len(placed)))
@@ -154,7 +165,7 @@ def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, place
     if placed.size:
         meets = shapely.intersects(boxes[:, None], placed[None, :])
         crossed = meets.sum(axis=1)
-        # a placed area's shrunk copy lies 0.6 mm inside it: only those met can be overlapped
+        # a placed area's shrunk copy lies inside it: only those met can be overlapped
         near = [_shrunk(taken, j) for j in np.flatnonzero(meets.any(axis=0)).tolist()]
         if near:
             over = shapely.intersects(boxes[:, None], np.array(near, dtype=object)[None, :]).sum(axis=1)
@@ -166,7 +177,7 @@ def _stage_costs(boxes, start: int, own_anchor, mate_anchors, tree, taken, place
     grazed = grazed[(least[grazed] < before[grazed]) | (least[grazed] < 0.05 * (rank[grazed] + 1))]
     core = np.zeros(n, int)  # a line through the letters costs more than one by the edge
     if grazed.size:
-        cores = shapely.buffer(boxes[grazed], -0.8, quad_segs=16)  # as Polygon.buffer(-0.8)
+        cores = shapely.buffer(boxes[grazed], -CORE_MM, quad_segs=16)  # as Polygon.buffer(-CORE_MM)
         core[grazed] = np.bincount(tree.query(cores, predicate="intersects")[0], minlength=grazed.size)
     costs = 0.05 * rank + 30.0 * hits + 100.0 * core + 1000.0 * crossed + 4000.0 * over + far
     passed_over = hits > 0
@@ -194,20 +205,37 @@ _DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 
 def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str):
-    """The first clear place for `text` beyond `rings` rings, its leader from `anchor` (which
-    crosses no placed label) appended to `leaders` and kept off by the later labels:
+    """The first clear place for `text` beyond `rings` rings whose leader from `anchor`
+    crosses no placed label and no drawn line (else the one whose leader crosses the fewest
+    lines), its leader appended to `leaders` and kept off by the later labels:
     (0, label, box), or None."""
     placed = taken[0]
-    for spot in _spots(text, 2 * rings)[1 + 12 * rings:]:
-        cand = dataclasses.replace(text, position=spot)
-        box = label_box(cand)
-        if (tree is not None and len(tree.query(box, predicate="intersects"))) or any(box.intersects(b) for b in placed):
-            continue
+    best = None
+    spots = _spots(text, 2 * rings)[1 + 12 * rings:]
+    boxes = (_upright_boxes(text, np.array(spots, float)) if text.rotation_deg == 0.0
+             else np.array([label_box(dataclasses.replace(text, position=p)) for p in spots], dtype=object))
+    clear = np.ones(len(spots), bool)  # off the lines and the placed labels, found at once
+    if tree is not None:
+        clear[tree.query(boxes, predicate="intersects")[0]] = False
+    if placed:
+        clear &= ~shapely.intersects(boxes[:, None], np.array(placed, dtype=object)[None, :]).any(axis=1)
+    for k in np.flatnonzero(clear).tolist():
+        cand, box = dataclasses.replace(text, position=spots[k]), boxes[k]
         line = shapely.shortest_line(anchor, box.buffer(0.4))
-        if any(line.intersects(_shrunk(taken, j)) for j in range(len(placed))):
-            continue
-        (x0, y0), (x1, y1) = line.coords
-        leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
-        placed.append(line.buffer(0.6))
-        return 0.0, cand, box
-    return None
+        if (any(line.intersects(_shrunk(taken, j)) for j in range(len(placed)))
+                or any(line.intersects(shapely.LineString(other.points)) for other in leaders)):
+            continue  # through a label, or across another leader
+        # the lines it meets (or runs along) beyond 1.5 mm from the anchor, where they leave it
+        tail = line.difference(shapely.Point(line.coords[0]).buffer(1.5))
+        crossed = 0 if tree is None or tail.is_empty else len(tree.query(tail, predicate="intersects"))
+        if best is None or crossed < best[0]:
+            best = (crossed, cand, box, line)
+        if crossed == 0:
+            break
+    if best is None:
+        return None
+    _, cand, box, line = best
+    (x0, y0), (x1, y1) = line.coords
+    leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
+    placed.append(line.buffer(0.6))
+    return 0.0, cand, box

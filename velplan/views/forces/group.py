@@ -127,7 +127,8 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
     View
         ``mu`` is μl, ``to_view`` maps metres to the view's mm; ``meta["forces"]`` holds
         (label, point m, force N) of the drawn arrows, ``meta["arrows"]`` their count,
-        ``meta["couples"]`` (label, centre in content mm, moment N·m) of the curved arrows.
+        ``meta["couples"]`` (label, centre in content mm, moment N·m) of the curved arrows,
+        ``meta["letters"]`` (letter, its point m) of the points' letters.
     """
     i, number = position_index(position, len(fa.kinematics)), position
     mech = fa.kinetostatics.mechanism
@@ -167,7 +168,8 @@ def group_view(fa: ForceAnalysis, group: str, position: int, *, mu_l: float, lan
                      meta={"group": group, "number": number, "index": i,
                            "forces": tuple(forces), "arrows": len(forces),
                            "couples": tuple((t, tuple(c), v) for t, c, v in couples),
-                           "arc_radius": radius})
+                           "arc_radius": radius,
+                           "letters": tuple((t.text, tuple(p * mu_l)) for t, p in zip(letters, at))})
 
 
 def group_body_size(fa: ForceAnalysis, group: str, position: int, *, mu_l: float,

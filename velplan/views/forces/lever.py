@@ -28,6 +28,9 @@ from velplan.views.plan import plan_steps
 
 #: Margin of the view around what it draws, mm.
 PAD_MM = 2.0
+#: Image points nearer than this to another (and not one with it) are crowded: each is
+#: marked with a dot and its letter set out with a leader, mm.
+CROWDED_MM = 3.0
 #: The turn by +90° of the lever: x + iy → i(x + iy).
 TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
 
@@ -59,7 +62,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     View
         ``to_view`` maps lever mm (pole at 0, turned) to the view's mm; ``meta`` holds
         ``"mb_lever"``, ``"mb_kinetostatics"`` (N·m, as computed), ``"percent"``,
-        ``"balancing_force"`` (N, signed) and the texts written (``"balance"``).
+        ``"balancing_force"`` (N, signed), the texts written (``"balance"``) and the image
+        points' letters with their points (``"letters"``, turned mm).
     """
     i, number = position_index(position, len(fa.kinematics)), position
     body_layer, force_layer, text_layer = lever_layers(number)
@@ -69,6 +73,10 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     _draw_turned_plan(sk, drawings, f"plan-v-{number}", body_layer)
     sk.items.append(Circle((0.0, 0.0), 0.8, body_layer, "thin", "solid"))
     images = _image_groups(drawings, res, i)
+    crowded = _crowded(images)
+    for k in crowded:
+        sk.items.append(Circle(tuple(images[k][0]), 0.5, body_layer, "thin", "solid"))
+        sk.obstacles.append(shapely.Point(images[k][0]).buffer(0.8))
     letters = [_image_letter(p, names, sk.lines, text_layer, sizes.label_mm)
                for p, names in images]
     forces = _lever_forces(lever, i)
@@ -77,7 +85,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     # each label kept by its own image point or arrow end (the nearest of its kind to it)
     anchors = [shapely.Point(p) for p, _ in images] + ends
     kinds = ["point"] * len(images) + ["force"] * len(ends)
-    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of(), leader_layer=text_layer)
+    items = sk.items + place_anchored(letters + texts, anchors, kinds, sk.clear_of(), leader_layer=text_layer,
+                                      lead=crowded)
     mb_lever = float(lever.balancing_moment[i])
     mb_kin = float(fa.kinetostatics.balancing_moment[i])
     pct = float(fa.lever_difference_percent[i])
@@ -92,7 +101,8 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
                      meta={"number": number, "index": i, "mu_v": res.scale,
                            "mb_lever": mb_lever, "mb_kinetostatics": mb_kin, "percent": pct,
                            "balancing_force": fb, "balance": notes[1],
-                           "forces": tuple(forces)})
+                           "forces": tuple(forces),
+                           "letters": tuple((t.text, tuple(p)) for t, (p, _) in zip(letters, images))})
 
 
 def lever_body_size(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language = "ru",
@@ -157,6 +167,13 @@ def _image_groups(drawings, res, i: int) -> list[tuple[np.ndarray, list[str]]]:
     return groups
 
 
+def _crowded(images) -> list[int]:
+    """The indices of the image groups within CROWDED_MM of another."""
+    pts = [np.asarray(p, float) for p, _ in images]
+    return [k for k, p in enumerate(pts)
+            if any(j != k and np.hypot(*(p - q)) < CROWDED_MM for j, q in enumerate(pts))]
+
+
 def _image_letter(p, names, lines, layer: str, size: float) -> Text:
     """The letters of the images at `p`, opposite the bars that leave it (else away from the
     pole)."""
@@ -171,8 +188,9 @@ def _image_letter(p, names, lines, layer: str, size: float) -> Text:
 def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: Language,
                  sizes: ForceSizes, layer: str, text_layer: str) -> tuple[list[Text], list]:
     """The forces at their images and the balancing force (thick) at the crank tip's image,
-    drawn first so that it keeps its place there. Returns their labels and the arrows' free
-    ends (away from their points), which the labels name."""
+    drawn first so that it keeps its place there. Returns their labels and what the labels
+    name: the arrows' free ends (away from their points), both ends of the balancing force's
+    (its name may stand by either, so no other label stands by its head)."""
     fb = float(lever.balancing_force[i])
     fb_dir = xy(complex(lever.direction[i]) * (1.0 if fb >= 0 else -1.0))
     tip = xy(complex(lever.tip_image[i]))
@@ -191,7 +209,10 @@ def _draw_forces(sk: Sketch, fa, lever, i: int, forces, marks, letters, lang: La
         sk.obstacles.append(arrow_obstacle(arrow))
         texts.append(tag)
         p = np.asarray(entries[k][0], float)
-        ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
+        if k == len(entries) - 1:
+            ends.append(shapely.MultiPoint([a, b]))
+        else:
+            ends.append(shapely.Point(b if np.hypot(*(b - p)) >= np.hypot(*(a - p)) else a))
     return texts, ends
 
 

@@ -220,7 +220,49 @@ def _led_label(name: str, a, b, centre, layer: str, size: float, tree, boxes, le
         leaders.append(Polyline((tuple(at.tolist()), (near[0], near[1])), layer, "thin"))
         boxes.append(line.buffer(0.8))  # the later labels keep off it
         return 0.0, text, box
-    return None
+    return _ringed_label(name, a, b, layer, size, tree, boxes, leaders)
+
+
+#: The distances (mm) from a vector's middle of the places tried all round it for its label
+#: with a leader, where none beside it is clear; the directions tried at each, 15° apart.
+RING_MM = (7.0, 9.0, 11.0, 13.0, 16.0, 19.0, 23.0, 28.0)
+_RING_DIRECTIONS = tuple((np.cos(np.radians(15.0 * k)), np.sin(np.radians(15.0 * k))) for k in range(24))
+
+
+def _ringed_label(name: str, a, b, layer: str, size: float, tree, boxes, leaders: list):
+    """The clear place all round the middle of vector a → b (a short vector in a crowd, whose
+    sides are crossed everywhere) whose leader from the vector crosses the fewest lines, the
+    nearest of those: (0, label, box), its leader appended to `leaders`; None where none is
+    clear."""
+    mid, seg = (a + b) / 2, shapely.LineString([a, b])
+    best = None
+    for r in RING_MM:
+        for c, s in _RING_DIRECTIONS:
+            text = Text(tuple((mid + r * np.array([c, s])).tolist()), force_text(name), layer, size,
+                        "middle", "middle")
+            box = label_box(text)
+            if len(tree.query(box, predicate="intersects")) or any(box.intersects(o) for o in boxes):
+                continue
+            t = float(np.clip(seg.project(box.centroid, normalized=True), 0.3, 0.7))
+            at = a + t * (b - a)
+            near = shapely.shortest_line(box.buffer(0.4), shapely.Point(at)).coords[0]
+            line = shapely.LineString([at, near])
+            if any(line.intersects(o.buffer(-1.2)) for o in boxes):
+                continue  # a leader through another label
+            start = shapely.Point(at)  # the lines at its start (its own vector's) not counted
+            cost = 10.0 * sum(not tree.geometries[j].intersects(start)
+                              for j in tree.query(line, predicate="intersects")) + r
+            if best is None or cost < best[0]:
+                best = (cost, text, box, line)
+        if best is not None and best[0] <= r:  # no line crossed: no farther place is better
+            break
+    if best is None:
+        return None
+    _, text, box, line = best
+    (x0, y0), (x1, y1) = line.coords
+    leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
+    boxes.append(line.buffer(0.8))
+    return 0.0, text, box
 
 
 def _label_spots(name: str, a, b, centre, layer: str, size: float, gaps=(0.8, 2.0, 3.5, 5.0),
