@@ -541,10 +541,13 @@ def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, aux=None) -> N
     """Run the program (`_chunks`' arguments from ``ops`` on) over every angle: on the calling
     thread up to `SERIAL` angles, else in ``numba.get_num_threads()`` equal shares of the chunks,
     one on the calling thread and the others on `_pool`'s. ``aux`` (G, 4, n): each class III
-    group's branch at the angles (`triad_aux`)."""
+    group's branch at the angles (`triad_aux`). A read-only ``phi`` is copied: to numba it is
+    another type, whose kernel would be compiled again (≈ 12 s) beside the writable one's."""
     import numba
 
     k = kernel()
+    if not phi.flags.writeable:  # one machine code for every caller: a read-only array is another type
+        phi = phi.copy()
     units = par.shape[0] * ((nper + CHUNK - 1) // CHUNK)
     args = (ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, ZERO, SINGULAR_BOUND,
             NO_AUX if aux is None else aux)
