@@ -533,6 +533,28 @@ def _load_cached(kernel, args: tuple) -> None:
         return
 
 
+def _compiled_once(kernel, args: tuple) -> None:
+    """Compile ``kernel`` for ``args`` (an empty range of units: no work) while holding a lock
+    file beside numba's disk cache, so that processes starting together (test workers, a batch's
+    pool) compile it once between them: the others wait, then load the machine code the first
+    wrote (≈ 0.3 s against ≈ 12 s). Without the lock (no ``fcntl``, no cache directory) each
+    compiles, as before."""
+    try:
+        import fcntl
+
+        path = os.path.join(kernel._cache._cache_path, "velplan-kernel.lock")
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        handle = open(path, "a")
+    except Exception:  # noqa: BLE001 - numba's private interface, another platform: no lock
+        return
+    with handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            kernel(0, 0, *args)
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
 NO_AUX = np.zeros((0, 4, 1))
 """``aux`` of a program without class III groups."""
 
@@ -553,6 +575,8 @@ def run(ops, par, ground, phi, w1s, e1s, nper, Z, R, S, C, valid, aux=None) -> N
             NO_AUX if aux is None else aux)
     if not getattr(k, "overloads", True):  # a plain function under NUMBA_DISABLE_JIT
         _load_cached(k, (0, units, *args))
+        if not k.overloads:  # no machine code on disk yet: one process compiles it
+            _compiled_once(k, args)
     if phi.shape[0] <= SERIAL:
         k(0, units, *args)
         return
