@@ -75,6 +75,7 @@ def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None,
     n = phi.shape[0]
     st = State(n)
     st.sink = sink
+    st.fixed = frozenset(name for name, _ in mech.ground)
     zeros = None
     for name, (x, y) in mech.ground:
         slot = st.out_point(name)
