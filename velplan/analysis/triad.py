@@ -88,7 +88,8 @@ def _cross(a, b):
 class Lead3:
     """The known motion a lead rests on, arrays over positions: a rod's outer joint P (p, v, a),
     or a block's guide (the guide link's point, its θ, ω, ε, the guide's angle and offset).
-    ``still``: a rod's outer joint is a ground point (v = a = 0: its terms are left out)."""
+    ``still``: the lead rests on the ground: a rod's outer joint is a ground point (v = a = 0: its
+    terms are left out), a block's guide is on the ground link (its direction found once)."""
 
     rod: bool
     length: float
@@ -114,6 +115,9 @@ class Lead3:
 
     @cached_property
     def _line(self):
+        if self.still:  # a guide on the ground: one direction (the same numbers) for every position
+            u = np.broadcast_to(cis(self.theta[:1] + self.angle), np.shape(self.p))
+            return u, self.p + 1j * self.offset * u
         return guide_line(self.p, self.theta, self.angle, self.offset)
 
     def carried(self, x):
@@ -130,7 +134,7 @@ def inputs_from_state(g: Triad, st) -> list[Lead3]:
         if lead.slider:
             m, link = st.points[lead.guide.through], st.links[lead.guide.link]
             out.append(Lead3(False, 0.0, m.p, m.v, m.a, link.theta, link.omega, link.epsilon,
-                             lead.guide.angle, lead.guide.offset))
+                             lead.guide.angle, lead.guide.offset, lead.guide.link == GROUND))
         else:
             m = st.points[lead.joint]
             out.append(Lead3(True, lead.length, m.p, m.v, m.a, still=lead.joint in fixed))
