@@ -10,6 +10,7 @@ that some sheets fail today holds a ratchet: BOUNDS, the count measured, which m
 import pytest
 
 from tests.sheet import gallery_marks as gm
+from tests.sheet import lever_checks
 
 FMT, KINDS = "A1", ("forces", "dynamics")
 # measured on 27 Nov 2026; each may only go down
@@ -18,11 +19,25 @@ BOUNDS: dict[str, int] = {
 
 
 @pytest.fixture(scope="module")
-def found():
-    return gm.violations(gm.GallerySheets(FMT), KINDS)
+def gallery():
+    """The sheets, built once for this module's checks and the lever's (`lever_checks.py`)."""
+    return gm.GallerySheets(FMT)
+
+
+@pytest.fixture(scope="module")
+def found(gallery):
+    return gm.violations(gallery, KINDS)
 
 
 @pytest.mark.parametrize("check", ["overlap", "crossed", "small", "title_small", "short_vector", "diagram",
                                    "ambiguous", "far_label", "class_iii"])
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
+
+
+def test_every_lever_is_at_least_the_floor(gallery):
+    lever_checks.check_every_lever_is_at_least_the_floor(gallery)
+
+
+def test_refusals_are_one_line_and_suggest_a_larger_format(gallery):
+    lever_checks.check_refusals_are_one_line_and_suggest_a_larger_format(gallery)

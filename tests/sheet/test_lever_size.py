@@ -3,55 +3,20 @@ item 8: a 35 mm lever carrying twenty forces piles their labels on one another):
 bundled and catalogue mechanism's force sheet that builds on A1 and A3 (the gallery's
 rotating language), the lever's turned velocity plan, measured from the kinematics at the
 sheet's μv, is at least the floor; the other drawings shrink first, and a sheet that cannot
-give the lever its floor refuses with a one-line ScaleError naming the lever."""
+give the lever its floor refuses with a one-line ScaleError naming the lever. The gallery's
+checks run on the sheets the force galleries build (`lever_checks.py`, called from
+`test_gallery_marks_a1_forces.py` and `test_gallery_marks_a3_forces.py`); here the press's
+lever and the shrinking rows."""
 
-import numpy as np
 import pytest
 
-import velplan
 from velplan.errors import ScaleError
-from velplan.sheets.forces import MIN_LEVER_MM, build_force_sheet, has_forces
+from velplan.sheets.forces import MIN_LEVER_MM, build_force_sheet
 from velplan.sheets.solver import ShrinkingRows
 from velplan.views.base import make_view
 from velplan.render.scene import Polyline
 
-from tests.sheet import gallery_marks as gm
-
-
-def _plan_span(fa, k: int) -> float:
-    """The larger side of the velocity plan at position `k` (m/s), from the velocities."""
-    v = np.asarray(fa.kinematics.velocities[k - 1], float)
-    v = np.vstack([v[np.all(np.isfinite(v), axis=1)], [[0.0, 0.0]]])
-    return float(np.max(np.ptp(v, axis=0)))
-
-
-@pytest.fixture(scope="module", params=["A1", "A3"])
-def gallery(request):
-    sheets = gm.GallerySheets(request.param)
-    names = [n for n in gm.NAMES if has_forces(velplan.load(n))]
-    return request.param, {n: sheets[n, "forces"] for n in names}, sheets.refused
-
-
-def test_every_lever_is_at_least_the_floor(gallery):
-    fmt, sheets, refused = gallery
-    built = {n: s for n, s in sheets.items() if s is not None}
-    assert len(built) >= len(sheets) // 2, refused
-    small = []
-    for name, sheet in built.items():
-        for k in sheet.positions:
-            mu = sheet.scales[f"lever-{k}"]
-            assert sheet.views[f"lever-{k}"].view.meta["mu_v"] == pytest.approx(mu)
-            size = _plan_span(sheet.analysis, k) / mu
-            if size < MIN_LEVER_MM[fmt] - 1e-6:
-                small.append(f"{name} lever-{k}: {size:.1f} mm")
-    assert not small, small
-
-
-def test_refusals_are_one_line_and_suggest_a_larger_format(gallery):
-    fmt, _, refused = gallery
-    for reason in refused.values():
-        assert "\n" not in reason
-        assert "--format" in reason
+from tests.sheet.lever_checks import plan_span
 
 
 def test_triad_press_a3_lever_is_legible_now():
@@ -59,7 +24,7 @@ def test_triad_press_a3_lever_is_legible_now():
     initial link's polygon under its link to make the room."""
     sheet = build_force_sheet("triad-press", fmt="A3", lang="ru")
     (k,) = sheet.positions
-    assert _plan_span(sheet.analysis, k) / sheet.scales[f"lever-{k}"] >= MIN_LEVER_MM["A3"]
+    assert plan_span(sheet.analysis, k) / sheet.scales[f"lever-{k}"] >= MIN_LEVER_MM["A3"]
     crank, poly = sheet.views[f"group-{k}-crank"], sheet.views[f"polygon-{k}-crank"]
     assert poly.bounds[3] <= crank.bounds[1] + 1e-6  # under it
     assert abs(poly.x - crank.x) < 1e-6

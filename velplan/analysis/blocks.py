@@ -75,6 +75,7 @@ def solve_block(mech, phi, w1, e1, scale, on_failure, items, tracks=None,
     n = phi.shape[0]
     st = State(n)
     st.sink = sink
+    st.fixed = frozenset(name for name, _ in mech.ground)
     zeros = None
     for name, (x, y) in mech.ground:
         slot = st.out_point(name)
@@ -144,6 +145,11 @@ def solve_link_point(item: LinkPoint, st: State) -> None:
         acc = np.multiply(link.epsilon, 1j)
         acc -= link.omega * link.omega
         spin = st.spins[item.link] = (1j * link.omega, acc)
+    if link.origin in st.fixed:  # the link turns about a ground point: v = i·ω·r, a = (i·ε − ω²)·r
+        np.multiply(spin[0], r, out=slot.v)
+        np.multiply(spin[1], r, out=slot.a)
+        st.points[item.name] = slot
+        return
     t = np.multiply(spin[0], r)
     np.add(o.v, t, out=slot.v)
     np.multiply(spin[1], r, out=t)

@@ -232,6 +232,8 @@ class State:
         their points."""
         self.spins: dict[str, tuple] = {}
         """Links' i·ω and i·ε − ω² (`GroupResult.spins`), and those found for their points."""
+        self.fixed: frozenset[str] = frozenset()
+        """The ground points (velocity and acceleration 0), where the solver set them."""
         self.sink = None
         """The block's views into preallocated outputs (`velplan.analysis.blocks.Sink`), or None:
         what is put into the state is written there, and producers may compute straight into

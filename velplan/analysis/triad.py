@@ -87,7 +87,9 @@ def _cross(a, b):
 @dataclass
 class Lead3:
     """The known motion a lead rests on, arrays over positions: a rod's outer joint P (p, v, a),
-    or a block's guide (the guide link's point, its θ, ω, ε, the guide's angle and offset)."""
+    or a block's guide (the guide link's point, its θ, ω, ε, the guide's angle and offset).
+    ``still``: the lead rests on the ground: a rod's outer joint is a ground point (v = a = 0: its
+    terms are left out), a block's guide is on the ground link (its direction found once)."""
 
     rod: bool
     length: float
@@ -99,12 +101,13 @@ class Lead3:
     epsilon: np.ndarray = None
     angle: float = 0.0
     offset: float = 0.0
+    still: bool = False
 
     def take(self, idx) -> "Lead3":
         """The same lead at positions ``idx`` only."""
         pick = lambda a: a if a is None or np.ndim(a) == 0 else a[idx]  # noqa: E731
         return Lead3(self.rod, self.length, pick(self.p), pick(self.v), pick(self.a), pick(self.theta),
-                     pick(self.omega), pick(self.epsilon), self.angle, self.offset)
+                     pick(self.omega), pick(self.epsilon), self.angle, self.offset, self.still)
 
     def line(self):
         """Guide: unit direction u and base point (arrays), found once."""
@@ -112,6 +115,9 @@ class Lead3:
 
     @cached_property
     def _line(self):
+        if self.still:  # a guide on the ground: one direction (the same numbers) for every position
+            u = np.broadcast_to(cis(self.theta[:1] + self.angle), np.shape(self.p))
+            return u, self.p + 1j * self.offset * u
         return guide_line(self.p, self.theta, self.angle, self.offset)
 
     def carried(self, x):
@@ -120,16 +126,18 @@ class Lead3:
 
 
 def inputs_from_state(g: Triad, st) -> list[Lead3]:
-    """The three leads' known motions from a solver `State`."""
+    """The three leads' known motions from a solver `State` (a rod on one of its ground points,
+    `State.fixed`, is `Lead3.still`)."""
     out = []
+    fixed = getattr(st, "fixed", ())
     for lead in g.leads:
         if lead.slider:
             m, link = st.points[lead.guide.through], st.links[lead.guide.link]
             out.append(Lead3(False, 0.0, m.p, m.v, m.a, link.theta, link.omega, link.epsilon,
-                             lead.guide.angle, lead.guide.offset))
+                             lead.guide.angle, lead.guide.offset, lead.guide.link == GROUND))
         else:
             m = st.points[lead.joint]
-            out.append(Lead3(True, lead.length, m.p, m.v, m.a))
+            out.append(Lead3(True, lead.length, m.p, m.v, m.a, still=lead.joint in fixed))
     return out
 
 
@@ -308,6 +316,12 @@ def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
     (a1, b1, c1), (a2, b2, c2), (a3, b3, c3) = rows
     r1, r2, r3 = rhs
     bc, ac, ab, det = _minors(rows) if minors is None else minors
+    if _zero(r1) or _zero(r2) or _zero(r3):  # a rod on a ground point: its right side is 0
+        rc, br, ar = _sum((1, r2, c3), (-1, r3, c2)), _sum((1, b2, r3), (-1, b3, r2)), _sum((1, a2, r3), (-1, a3, r2))
+        x = _sum((1, r1, bc), (-1, b1, rc), (-1, c1, br))
+        y = _sum((1, a1, rc), (-1, r1, ac), (1, c1, ar))
+        z = _sum((1, a1, br), (-1, b1, ar), (1, r1, ab))
+        return np.divide(x, det, out=out[0]), np.divide(y, det, out=out[1]), np.divide(z, det, out=out[2])
     rc, br, ar = r2 * c3 - r3 * c2, b2 * r3 - b3 * r2, a2 * r3 - a3 * r2
     x = r1 * bc
     x -= b1 * rc
@@ -320,6 +334,24 @@ def _cramer3(rows, rhs, minors=None, out=(None, None, None)):
     z -= b1 * ar
     z += r1 * ab
     return np.divide(x, det, out=out[0]), np.divide(y, det, out=out[1]), np.divide(z, det, out=out[2])
+
+
+def _sum(*terms):
+    """Σ ±p·q over the terms (sign, p, q), in their order, those with a factor the number 0 left
+    out (`_zero`): the numbers of the whole sum where its factors are finite; the number 0.0
+    when every term is left out."""
+    out = None
+    for sign, p, q in terms:
+        if _zero(p) or _zero(q):
+            continue
+        t = p * q
+        if out is None:
+            out = t if sign > 0 else np.negative(t, out=t)
+        elif sign > 0:
+            out += t
+        else:
+            out -= t
+    return 0.0 if out is None else out
 
 
 # ---- the tracked branch -----------------------------------------------------------------------
@@ -919,7 +951,7 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
     for lead, j, r in zip(leads, joints, offsets):
         if lead.rod:  # J − P as two contiguous real arrays
             d, gm = _Parts(np.subtract(j.real, lead.p.real), np.subtract(j.imag, lead.p.imag)), None
-            rhs_v.append(dot(d, lead.v))
+            rhs_v.append(0.0 if lead.still else dot(d, lead.v))
         else:
             d, gm = 1j * lead.line()[0], lead.carried(j)
             rhs_v.append(dot(d, gm[0]))
@@ -936,10 +968,10 @@ def _motion(g, leads, x, theta, joints, closed, scale, pair, offsets=None, slots
         if lead.rod:
             out = slots and slots.links[spec.link]
             # the rod's ω: |d| = its length
-            wl = np.multiply(_cross(d, v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
+            wl = np.multiply(_cross(d, v if lead.still else v - lead.v), 1.0 / lead.length ** 2, out=out and out.omega)
             spins.append(wl)
             # |V_J − V_P|² = (ω·l)²: the relative velocity is across the rod
-            rhs_a.append(dot(d, lead.a) + turn - wl * wl * lead.length ** 2)
+            rhs_a.append((turn if lead.still else dot(d, lead.a) + turn) - wl * wl * lead.length ** 2)
         else:
             u, base = lead.line()
             gv, ga = gm
@@ -1000,7 +1032,7 @@ def _result(g, leads, theta, rates, joints, vj, aj, normals, offsets, slides, de
             wl = next(wi)
             out = (slots and slots.links[spec.link]) or LinkMotion(spec.joint, None, None, None)
             # d × (a_J − a_P + ω²·d): the last term is d × d = 0
-            el = np.multiply(_cross(d, a - lead.a), k, out=out.epsilon)
+            el = np.multiply(_cross(d, a if lead.still else a - lead.a), k, out=out.epsilon)
             links[spec.link] = LinkMotion(spec.joint, np.arctan2(d.imag, d.real, out=out.theta), wl, el)
         else:
             s, sd, u, gv, ga, cor = next(si)
