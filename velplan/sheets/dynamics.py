@@ -91,18 +91,20 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
         drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
         moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
         views["moments"] = curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
-                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **at("moments"))
+                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm,
+                                       mu_symbol=indexed("μ", "M"), **at("moments"))
     if "works" in wanted:
         works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
         if np.all(np.isfinite(c["A_drive"])):
             works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
         views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
-                                     unit_text=joule, **at("works"))
+                                     unit_text=joule, mu_symbol=indexed("μ", "A"), **at("works"))
     if "inertia" in wanted:
         views["inertia"] = curve_panel(
             "inertia", travel, [Series(c["J_red"] - d.declared, "thick", indexed("J", "II"))],
             title=label("reduced_inertia", lang), ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
-            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **at("inertia"))
+            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], mu_symbol=indexed("μ", "J"),
+            **at("inertia"))
     if "omega" in wanted:
         views["omega"] = _omega_panel(d, c, travel, lang, at("omega"))
     return views
@@ -122,7 +124,7 @@ def _omega_panel(d, c, travel, lang: Language, kw: dict[str, Any]) -> View:
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
     return curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
                        ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
-                       notes=notes, base_label=base_label, **kw)
+                       notes=notes, base_label=base_label, mu_symbol=indexed("μ", "ω"), **kw)
 
 
 def _n(x: float, lang: Language) -> str:

@@ -25,6 +25,7 @@ from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
 from velplan.views.diagram import standard_up
+from velplan.views.forces.anchored import place_anchored
 from velplan.views.table import grid_table, table_title
 
 LAYER, LINES, LABELS = "dynamics", "dynamics-lines", "dynamics-labels"
@@ -71,7 +72,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "", mu: float | None = None) -> View:
+                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ") -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -96,12 +97,21 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         the ordinate itself (8.2, 8.3, …), not steps from ``base``.
     marks : sequence of (travel rad, value, text)
         Points marked with a dot and a label (the extremes of ω).
+    mu_symbol : str
+        The ordinate scale's symbol (``"μ_{M}"``).
+
+    A thin curve that never leaves the φ axis, or another curve, by more than
+    :data:`COINCIDE_MM` is not drawn: it is listed under the title as ≈ 0, or named with the
+    curve it lies on ("M_{r} ≈ M_{Fc}"). Each curve's name stands where the curve is farthest
+    from the other lines, nearer to it than to any other curve.
     """
     vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
     top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
     low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
     span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
     mu = mu or standard_up(span / height_mm)
+    series, merged_notes = _merged(series, base, mu, unit_text, lang)
+    notes = list(notes) + merged_notes
     mu_phi = cycle / length_mm
     L = length_mm
     top, bottom = max(top_v / mu, 5.0), min(low_v / mu, 0.0)
@@ -124,9 +134,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                               "middle", "top"))
     # ordinate ticks at round values of the ordinate, clear of the φ axis's own label
     items += _ordinate_ticks(bottom, top, mu, base, base_label, lang, size)
-    # the curves, each named near its largest ordinate
-    names = []
-    lines = []
+    # the curves
+    lines, named = [], []
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -137,20 +146,26 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         items.append(Polyline(xy, LAYER, s.line))
         lines.append(shapely.LineString(xy))
         if s.name:
-            j = int(np.argmax(np.abs(xy[:, 1]))) if len(series) > 1 else len(xy) // 3
-            px, py = xy[j]
-            names.append(Text((float(px) + 1.5, float(py) + (1.5 if py >= 0 else -1.5 - size)), s.name,
-                              LABELS, size, "start", "baseline"))
+            named.append((s.name, xy, len(lines) - 1))
+    axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
+    # each curve named where it stands apart from the other lines, the extremes of ω at their dots
+    names, anchors, kinds = [], [], []
+    for text, xy, i in named:
+        names.append(_name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1], L, size))
+        anchors.append(lines[i])
+        kinds.append("curve")
     for t, v, text in marks:
         px, py = t / mu_phi, (v - base) / mu
         items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
         names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
                           "baseline"))
+        anchors.append(shapely.Point(px, py))
+        kinds.append("mark")
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
-    axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    items += list(place_labels(names, lines + axes + _text_boxes(items)))
+    items += place_anchored(names, anchors, kinds, lines + axes + _text_boxes(items))
     # title, scales and notes above the plot
-    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
+    per_mm = f"({unit_text})/{unit('mm', lang)}" if "/" in unit_text else f"{unit_text}/{unit('mm', lang)}"
+    scale = (f"{mu_symbol} = {number(mu, lang)} {per_mm};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
     text_lines = [scale] + list(notes)
     y = top + 8.0 + 1.6 * size * len(text_lines)
@@ -161,6 +176,56 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                                                     "span_mm": (top_v - low_v) / mu})
 
 
+#: A thin curve within this of the φ axis, or of another curve, all along reads as that line, mm.
+COINCIDE_MM = 1.0
+
+
+def _merged(series: Sequence[Series], base: float, mu: float, unit_text: str,
+            lang: Language) -> tuple[list[Series], list[str]]:
+    """The series to draw at `mu` (units per mm; the φ axis at `base`) and the notes of those
+    left out: a thin named curve within :data:`COINCIDE_MM` of the φ axis all along is listed
+    as ≈ 0 with its largest value; one within it of a thick or dashed curve is named with it."""
+    out: list[Series | None] = list(series)
+    notes: list[str] = []
+    for i, s in enumerate(series):
+        v = np.asarray(s.values, float) - base
+        ok = np.isfinite(v)
+        if s.line != "thin" or not s.name or ok.sum() < 2:
+            continue
+        if np.max(np.abs(v[ok])) <= COINCIDE_MM * mu:
+            out[i] = None
+            notes.append(f"{s.name} ≈ 0 (|{s.name}| ≤ {number(float(np.max(np.abs(v[ok]))), lang, 2)} {unit_text})")
+            continue
+        for k, host in enumerate(out):
+            if host is None or host.line == "thin" or not host.name:
+                continue
+            w = np.asarray(host.values, float) - base
+            if np.all(np.isfinite(w[ok])) and np.max(np.abs(v[ok] - w[ok])) <= COINCIDE_MM * mu:
+                out[k] = Series(host.values, host.line, f"{host.name} ≈ {s.name}")
+                out[i] = None
+                break
+    return [s for s in out if s is not None], notes
+
+
+def _name_at(text: str, xy: np.ndarray, others: list, length: float, size: float) -> Text:
+    """The name `text` of the curve `xy` (mm) beside the point where the curve stands farthest
+    (up to 8 mm) from the `others` lines and, of those, farthest from the φ axis, with the name
+    still within the axis's `length`; on the side of the point away from the nearest other line."""
+    from velplan.render.layout import label_box
+
+    width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
+    pts = shapely.points(xy)
+    apart = np.full(len(xy), 8.0)
+    for ln in others:
+        apart = np.minimum(apart, shapely.distance(pts, ln))
+    score = 2.0 * apart + 0.1 * np.abs(xy[:, 1])
+    score[(xy[:, 0] < 3.0) | (xy[:, 0] + 1.5 + width > length)] -= 100.0
+    px, py = (float(c) for c in xy[int(np.argmax(score))])
+    up = min((float(shapely.distance(shapely.Point(px, py + 3.0), ln)) for ln in others), default=np.inf)
+    down = min((float(shapely.distance(shapely.Point(px, py - 3.0), ln)) for ln in others), default=np.inf)
+    return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline")
+
+
 def _text_boxes(items) -> list:
     """The boxes of the texts among `items`: the curves' names are placed clear of the
     numbers and titles already written."""
@@ -169,24 +234,55 @@ def _text_boxes(items) -> list:
     return [label_box(t) for t in items if isinstance(t, Text)]
 
 
+#: An ordinate axis numbers at least this many ticks where its height allows.
+MIN_NUMBERED_TICKS = 3
+#: The least distance between two ticks of an ordinate axis, mm (2.5 mm numbers and a gap).
+TICK_GAP_MM = 4.5
+
+
+def _finer_step(step: float) -> float:
+    """The step of the 1, 2, 2.5, 5 × 10ᵏ series next below `step`."""
+    e = math.floor(math.log10(step) + 1e-9)
+    m = round(step / 10.0**e, 6)
+    lower = [c for c in (1.0, 2.0, 2.5, 5.0) if c < m - 1e-9]
+    return (lower[-1] if lower else 5.0 / 10.0) * 10.0**e
+
+
+def _tick_step(lo: float, hi: float, mu: float, base: float, clear: float) -> float:
+    """The step of the ordinate's ticks: the largest of the 1, 2, 2.5, 5 series from
+    `nice_step` down that numbers :data:`MIN_NUMBERED_TICKS` ticks (none within `clear` mm of
+    the φ axis at `base`) with ticks :data:`TICK_GAP_MM` apart, else the one numbering most."""
+    step = nice_step(hi - lo)
+    best = (-1, step)
+    while True:
+        count = sum(abs(v - base) / mu >= clear for v in _ticks(lo, hi, step))
+        if count >= MIN_NUMBERED_TICKS:
+            return step
+        if count > best[0]:
+            best = (count, step)
+        finer = _finer_step(step)
+        if finer / mu < TICK_GAP_MM - 1e-9:
+            return best[1]
+        step = finer
+
+
 def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_label: str, lang: Language,
                     size: float) -> list[Primitive]:
     """Ticks and values of an ordinate axis drawn from `bottom` to `top` mm at `mu` units per mm
-    whose zero is the value `base`: round values (a `nice_step` apart, to the step's decimals);
+    whose zero is the value `base`: round values (`_tick_step` apart, to the step's decimals);
     where `base` is not 0, the φ axis's label (`base_label`, else the value) and no tick
     within a text height of it."""
     lo, hi = base + bottom * mu, base + top * mu
-    step = nice_step(hi - lo)
+    clear = 1e-9 if base == 0 else 1.5 * size
+    step = _tick_step(lo, hi, mu, base, max(clear, 1e-6))
     decimals = max(0, -math.floor(math.log10(step) + 1e-9) + (1 if f"{step:.3g}".rstrip("0").endswith("25") else 0))
     items: list[Primitive] = []
-    clear = 1e-9 if base == 0 else 1.5 * size
     for v in _ticks(lo, hi, step):
         y = (v - base) / mu
-        if abs(y) < clear:
-            continue
-        items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
-                           "end", "middle"))
+        if abs(y) >= clear:
+            items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
+            items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
+                              "end", "middle"))
     if base != 0:
         items.append(Text((-1.8, 0.0), base_label or number(base, lang, 4), LABELS, size, "end", "middle"))
     return items
@@ -325,12 +421,7 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
         items.append(Arrow((xd, 0.0), (xd, -r), "flywheel", "thin", 2.5, 0.8))
         items.append(Text((xd - 1.0, 0.5 * r), f"⌀{number(1000 * value, lang, 4)}", LABELS, size,
                           "middle", "baseline", 90.0))
-    yb = -R - 8.0
-    items.append(Polyline([(0.0, -R), (0.0, yb - 2.0)], "flywheel", "thin"))
-    items.append(Polyline([(b, -R), (b, yb - 2.0)], "flywheel", "thin"))
-    items.append(Arrow((0.5 * b, yb), (0.0, yb), "flywheel", "thin", 2.5, 0.8))
-    items.append(Arrow((0.5 * b, yb), (b, yb), "flywheel", "thin", 2.5, 0.8))
-    items.append(Text((0.5 * b, yb - 1.5), f"b = {number(1000 * dims.width, lang, 4)}", LABELS, size, "middle", "top"))
+    items += _width_dimension(b, -R - 8.0, -R, number(1000 * dims.width, lang, 4), size)
     lines = [f"{label('flywheel', lang)} ({label(dims.shape, lang)}){'  ' + scale_text if scale_text else ''}",
              f"m = {number(dims.mass, lang)} {unit('kg', lang)};  J = {number(dims.inertia, lang)} "
              f"{unit('kg·m²', lang)} (≥ {number(dims.required, lang)})",
@@ -342,6 +433,34 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
         items.append(Text((x0, y), line, LABELS, height))
         y -= 0.8 * height
     return make_view("flywheel", items, pad_mm=2.0, mu=scale, meta={"scale": scale})
+
+
+def _width_dimension(b: float, y: float, edge: float, value: str, size: float) -> list[Primitive]:
+    """The width `b` mm of a section whose lower edge is at `edge`, dimensioned as ESKD does at
+    the level `y` below it: extension lines, the dimension line with its arrows (outside the
+    extension lines where `b` leaves no room for two arrowheads) and the size over the line,
+    between the extension lines or, too wide for them, beyond the right one on the line
+    drawn out under it."""
+    from velplan.render.shapes import text_extent
+
+    arrow = 2.5
+    items: list[Primitive] = [Polyline([(0.0, edge), (0.0, y - 2.0)], "flywheel", "thin"),
+                              Polyline([(b, edge), (b, y - 2.0)], "flywheel", "thin")]
+    if b >= 2.0 * arrow + 1.0:
+        items += [Arrow((0.5 * b, y), (0.0, y), "flywheel", "thin", arrow, 0.8),
+                  Arrow((0.5 * b, y), (b, y), "flywheel", "thin", arrow, 0.8)]
+    else:
+        items += [Arrow((-arrow - 2.0, y), (0.0, y), "flywheel", "thin", arrow, 0.8),
+                  Arrow((b + arrow + 2.0, y), (b, y), "flywheel", "thin", arrow, 0.8),
+                  Polyline([(0.0, y), (b, y)], "flywheel", "thin")]
+    width = text_extent(value, size)[0]
+    if width + 2.0 <= b:
+        items.append(Text((0.5 * b, y + 1.0), value, LABELS, size, "middle", "baseline"))
+    else:
+        x0 = b + arrow + 3.0
+        items += [Polyline([(b, y), (x0 + width + 1.0, y)], "flywheel", "thin"),
+                  Text((x0, y + 1.0), value, LABELS, size, "start", "baseline")]
+    return items
 
 
 def bound(x: float, lang: Language) -> str:
