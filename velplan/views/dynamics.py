@@ -20,6 +20,7 @@ import shapely
 from velplan.analysis.numbering import position_number
 from velplan.options import Language
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
 from velplan.views.base import (
@@ -103,7 +104,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     A thin curve that never leaves the φ axis, or another curve, by more than
     :data:`COINCIDE_MM` is not drawn: it is listed under the title as ≈ 0, or named with the
     curve it lies on ("M_{r} ≈ M_{Fc}"). Each curve's name stands where the curve is farthest
-    from the other lines, nearer to it than to any other curve.
+    from the other lines, nearer to it than to any other curve, or joined to it by a leader.
     """
     vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
     top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
@@ -149,9 +150,18 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
             named.append((s.name, xy, len(lines) - 1))
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     # each curve named where it stands apart from the other lines, the extremes of ω at their dots
-    names, anchors, kinds = [], [], []
+    names, anchors, kinds, led = [], [], [], []
+    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
+    obstacles = lines + axes + _text_boxes(items)
     for text, xy, i in named:
-        names.append(_name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1], L, size))
+        spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
+                                obstacles + [label_box(t) for t in names + led], L, size)
+        if leader is not None:  # placed for good, with its leader
+            led.append(spot)
+            items.append(leader)
+            obstacles.append(shapely.LineString(leader.points))
+            continue
+        names.append(spot)
         anchors.append(lines[i])
         kinds.append("curve")
     for t, v, text in marks:
@@ -161,8 +171,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                           "baseline"))
         anchors.append(shapely.Point(px, py))
         kinds.append("mark")
-    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
-    items += place_anchored(names, anchors, kinds, lines + axes + _text_boxes(items))
+    items += led + place_anchored(names, anchors, kinds, obstacles + [label_box(t) for t in led], leader_layer=LINES)
     # title, scales and notes above the plot
     per_mm = f"({unit_text})/{unit('mm', lang)}" if "/" in unit_text else f"{unit_text}/{unit('mm', lang)}"
     scale = (f"{mu_symbol} = {number(mu, lang)} {per_mm};  μ_{{φ}} = {number(mu_phi, lang)} "
@@ -173,7 +182,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     for k, line in enumerate(text_lines):
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
-                                                    "span_mm": (top_v - low_v) / mu})
+                                                    "span_mm": (top_v - low_v) / mu,
+                                                    "curves": {text: xy for text, xy, _ in named}})
 
 
 #: A thin curve within this of the φ axis, or of another curve, all along reads as that line, mm.
@@ -207,23 +217,64 @@ def _merged(series: Sequence[Series], base: float, mu: float, unit_text: str,
     return [s for s in out if s is not None], notes
 
 
-def _name_at(text: str, xy: np.ndarray, others: list, length: float, size: float) -> Text:
-    """The name `text` of the curve `xy` (mm) beside the point where the curve stands farthest
-    (up to 8 mm) from the `others` lines and, of those, farthest from the φ axis, with the name
-    still within the axis's `length`; on the side of the point away from the nearest other line."""
-    from velplan.render.layout import label_box
+def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: float,
+             size: float) -> tuple[Text, Polyline | None]:
+    """The name `text` of the curve `xy` (mm) beside a point where the curve stands apart (up to
+    8 mm) from the `others` lines and far from the φ axis: of those points, best first, the
+    first where the name, above or below the curve, meets none of the `obstacles` (lines and
+    text boxes), stays within the axis's `length` and is nearer the curve than the `others`;
+    else a little away with a leader (`_led_name`), else beside the best point, on the side away
+    from the nearest other line; the name and its leader (or None)."""
 
     width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
+    own = shapely.LineString(xy)
     pts = shapely.points(xy)
     apart = np.full(len(xy), 8.0)
     for ln in others:
         apart = np.minimum(apart, shapely.distance(pts, ln))
     score = 2.0 * apart + 0.1 * np.abs(xy[:, 1])
     score[(xy[:, 0] < 3.0) | (xy[:, 0] + 1.5 + width > length)] -= 100.0
-    px, py = (float(c) for c in xy[int(np.argmax(score))])
+    field = shapely.STRtree(obstacles) if obstacles else None
+    order = np.argsort(-score, kind="stable")
+    for j in order[:: max(1, len(order) // 240)][:120]:
+        px, py = (float(c) for c in xy[j])
+        for dy in (1.5, -1.5 - size):
+            cand = Text((px + 1.5, py + dy), text, LABELS, size, "start", "baseline")
+            box = label_box(cand)
+            if field is not None and len(field.query(box.buffer(0.3), predicate="intersects")):
+                continue
+            d = box.distance(own)
+            if d <= 3.0 and all(box.distance(ln) > d for ln in others):
+                return cand, None
+    led = _led_name(text, xy, order, others, field, size)
+    if led is not None:
+        return led
+    px, py = (float(c) for c in xy[int(order[0])])
     up = min((float(shapely.distance(shapely.Point(px, py + 3.0), ln)) for ln in others), default=np.inf)
     down = min((float(shapely.distance(shapely.Point(px, py - 3.0), ln)) for ln in others), default=np.inf)
-    return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline")
+    return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline"), None
+
+
+def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
+    """The name `text` of the curve `xy` a little away from it, on a clear spot, joined to the
+    curve's point (of `order`, best first) by a thin leader that crosses no other curve
+    (`others`, the φ axis last) nor a text: (the name, its leader), or None."""
+    curves = shapely.STRtree(others[:-1]) if len(others) > 1 else None
+    for j in order[:: max(1, len(order) // 60)][:30]:
+        px, py = (float(c) for c in xy[j])
+        for r in (4.0, 6.0, 8.0):
+            for dx, dy in ((0.7, 0.7), (0.7, -0.7), (0.0, 1.0), (0.0, -1.0), (-0.7, 0.7), (-0.7, -0.7)):
+                cand = Text((px + r * dx, py + r * dy - (size if dy < 0 else 0.0)), text, LABELS, size,
+                            "start" if dx >= 0 else "end", "baseline")
+                box = label_box(cand)
+                if field is not None and len(field.query(box.buffer(0.3), predicate="intersects")):
+                    continue
+                leader = shapely.shortest_line(shapely.Point(px, py), box)
+                if curves is not None and len(curves.query(leader, predicate="intersects")):
+                    continue
+                (x0, y0), (x1, y1) = leader.coords
+                return cand, Polyline([(x0, y0), (x1, y1)], LINES, "thin")
+    return None
 
 
 def _text_boxes(items) -> list:
