@@ -154,8 +154,10 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
     obstacles = lines + axes + _text_boxes(items)
     for text, xy, i in named:
+        # a name keeps a letter's width off the numbers and names already written: "4M_{д}" reads as one
         spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
-                                obstacles + [label_box(t) for t in names + led], L, size)
+                                lines + axes + [label_box(t).buffer(size) for t in items + names + led
+                                                if isinstance(t, Text)], L, size)
         if leader is not None:  # placed for good, with its leader
             led.append(spot)
             items.append(leader)
@@ -260,9 +262,9 @@ def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float
     curve's point (of `order`, best first) by a thin leader that crosses no other curve
     (`others`, the φ axis last) nor a text: (the name, its leader), or None."""
     curves = shapely.STRtree(others[:-1]) if len(others) > 1 else None
-    for j in order[:: max(1, len(order) // 60)][:30]:
+    for j in order[:: max(1, len(order) // 120)][:60]:
         px, py = (float(c) for c in xy[j])
-        for r in (4.0, 6.0, 8.0):
+        for r in (4.0, 6.0, 8.0, 10.0, 12.0):
             for dx, dy in ((0.7, 0.7), (0.7, -0.7), (0.0, 1.0), (0.0, -1.0), (-0.7, 0.7), (-0.7, -0.7)):
                 cand = Text((px + r * dx, py + r * dy - (size if dy < 0 else 0.0)), text, LABELS, size,
                             "start" if dx >= 0 else "end", "baseline")
