@@ -150,30 +150,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
             named.append((s.name, xy, len(lines) - 1))
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     # each curve named where it stands apart from the other lines, the extremes of ω at their dots
-    names, anchors, kinds, led = [], [], [], []
-    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
-    obstacles = lines + axes + _text_boxes(items)
-    for text, xy, i in named:
-        # a name keeps a letter's width off the numbers and names already written: "4M_{д}" reads as one
-        spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
-                                lines + axes + [label_box(t).buffer(size) for t in items + names + led
-                                                if isinstance(t, Text)], L, size)
-        if leader is not None:  # placed for good, with its leader
-            led.append(spot)
-            items.append(leader)
-            obstacles.append(shapely.LineString(leader.points))
-            continue
-        names.append(spot)
-        anchors.append(lines[i])
-        kinds.append("curve")
-    for t, v, text in marks:
-        px, py = t / mu_phi, (v - base) / mu
-        items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
-        names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
-                          "baseline"))
-        anchors.append(shapely.Point(px, py))
-        kinds.append("mark")
-    items += led + place_anchored(names, anchors, kinds, obstacles + [label_box(t) for t in led], leader_layer=LINES)
+    items = _named(axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines]), lines, named,
+                   [(t / mu_phi, (v - base) / mu, text) for t, v, text in marks], axes, L, size)
     # title, scales and notes above the plot
     per_mm = f"({unit_text})/{unit('mm', lang)}" if "/" in unit_text else f"{unit_text}/{unit('mm', lang)}"
     scale = (f"{mu_symbol} = {number(mu, lang)} {per_mm};  μ_{{φ}} = {number(mu_phi, lang)} "
@@ -186,6 +164,40 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
                                                     "span_mm": (top_v - low_v) / mu,
                                                     "curves": {text: xy for text, xy, _ in named}})
+
+
+def _named(items: list, lines: list, named, marks, axes: list, length: float, size: float) -> list:
+    """`items` with the curves' names (`named`: (name, points mm, index in `lines`)) where each
+    stands apart (`_name_at`), with their leaders, and the `marks` ((x, y) mm, text): a dot and
+    its label; the labels kept by what they name (`place_anchored`)."""
+    names: list[Text] = []
+    anchors: list = []
+    kinds: list[str] = []
+    led: list[Text] = []
+    leaders: list = []
+    obstacles = lines + axes + _text_boxes(items)
+    for text, xy, i in named:
+        # a name keeps a letter's height off the numbers and names already written: "4M_{д}" reads as one
+        spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
+                                lines + axes + leaders + [label_box(t).buffer(size) for t in items + names + led
+                                                          if isinstance(t, Text)], length, size)
+        if leader is not None:  # placed for good, with its leader
+            led.append(spot)
+            items = items + [leader]
+            leaders.append(shapely.LineString(leader.points))
+            continue
+        names.append(spot)
+        anchors.append(lines[i])
+        kinds.append("curve")
+    items = list(items)
+    for px, py, text in marks:
+        items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
+        names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
+                          "baseline"))
+        anchors.append(shapely.Point(px, py))
+        kinds.append("mark")
+    return items + led + place_anchored(names, anchors, kinds, obstacles + leaders + [label_box(t) for t in led],
+                                        leader_layer=LINES)
 
 
 #: A thin curve within this of the φ axis, or of another curve, all along reads as that line, mm.
