@@ -138,6 +138,63 @@ def panel_ranges(sheet) -> dict[str, float]:
     return {name: v.view.meta["span_mm"] for name, v in sheet.views.items() if "span_mm" in v.view.meta}
 
 
+#: A dynamics panel's ordinate axis numbers at least this many ticks.
+MIN_TICKS = 3
+
+
+def curve_names(sheet) -> list[str]:
+    """The curve names of a dynamics sheet's panels that are not nearer to their own curve than
+    to every other curve of the panel and the φ axis, or lie farther than :data:`ANCHOR_MM`
+    from it, or name a curve twice ("panel: name …")."""
+    out = []
+    for name, placed in sheet.views.items():
+        curves = placed.view.meta.get("curves")
+        if not curves:
+            continue
+        lines = {k: shapely.LineString([placed.to_sheet(p) for p in xy]) for k, xy in curves.items()}
+        axis = shapely.LineString([placed.to_sheet((0.0, 0.0)), placed.to_sheet((max(np.asarray(xy)[:, 0].max()
+                                                                                      for xy in curves.values()), 0.0))])
+        texts = [t for t in placed.primitives if isinstance(t, Text)]
+        for k, line in lines.items():
+            own = [t for t in texts if t.text == k]
+            if len(own) != 1:
+                out.append(f"{name}: {k} written {len(own)} times")
+                continue
+            box = label_box(own[0])
+            d = box.distance(line)
+            others = [box.distance(g) for j, g in lines.items() if j != k] + ([box.distance(axis)] if len(lines) > 1
+                                                                             else [])
+            leader = any(isinstance(q, Polyline) and q.line == "thin" and len(q.points) == 2
+                         and line.distance(shapely.Point(q.points[0])) < 1e-6
+                         and box.buffer(0.6).contains(shapely.Point(q.points[1])) for q in placed.primitives)
+            if not leader and (d > ANCHOR_MM or (others and min(others) < d)):
+                out.append(f"{name}: {k} {d:.1f} mm from its curve, {min(others, default=np.inf):.1f} from another")
+    return out
+
+
+def ordinate_numbers(sheet) -> list[str]:
+    """What is wrong with the numbers on a dynamics sheet's ordinate axes: fewer than
+    :data:`MIN_TICKS`, not the sheet's decimal sign or minus sign, a power written as "e";
+    a panel's scale without its index ("μ = "); the ordinate axis without its unit."""
+    comma = sheet.lang in ("ru", "uk")
+    pattern = re.compile(r"−?\d+(,\d+)?" if comma else r"−?\d+(\.\d+)?")
+    out = []
+    for name, placed in sheet.views.items():
+        if "curves" not in placed.view.meta:
+            continue
+        texts = [t for t in placed.view.primitives if isinstance(t, Text)]
+        numbers = [t.text for t in texts if t.anchor == "end" and t.position[0] < placed.view.origin[0]
+                   and re.fullmatch(r"[−\-]?[\d.,e+\-]+", t.text)]
+        if len(numbers) < MIN_TICKS:
+            out.append(f"{name}: {len(numbers)} numbered ticks {numbers}")
+        out += [f"{name}: tick {n!r}" for n in numbers if not pattern.fullmatch(n)]
+        if any(t.text.startswith("μ = ") for t in texts):
+            out.append(f"{name}: a scale μ without its index")
+        if not any(re.fullmatch(r".+, \S+", t.text) and t.anchor == "middle" for t in texts):
+            out.append(f"{name}: the ordinate axis without its name and unit")
+    return out
+
+
 def ambiguous_plan_letters(sheet) -> list[str]:
     """The image letters of the plans whose own image is not the image nearest to them
     ("nearer: …") or lies farther than :data:`ANCHOR_MM` from their box ("far: …"); a letter
@@ -333,7 +390,8 @@ def ambiguous_force_labels(sheet, lang: str) -> list[str]:
 def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
     out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
-                                                  "diagram", "ambiguous", "far_label", "class_iii")}
+                                                  "diagram", "ambiguous", "far_label", "class_iii",
+                                                  "curve_names", "ordinate_numbers")}
     for name, kind, sheet in gallery.all(kinds):
         where = f"{name}/{kind}"
         out["overlap"] += [f"{where}: {a} | {b}" for a, b in overlaps(sheet.scene)]
@@ -347,6 +405,8 @@ def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list
             # the four curve panels share one column: each keeps at least 20 mm of ordinates
             out["diagram"] += [f"{where}: {name} {r:.1f} mm" for name, r in panel_ranges(sheet).items()
                                if r < 20.0]
+            out["curve_names"] += [f"{where}: {v}" for v in curve_names(sheet)]
+            out["ordinate_numbers"] += [f"{where}: {v}" for v in ordinate_numbers(sheet)]
         if kind in ("forces", "dynamics"):
             for v in ambiguous_force_labels(sheet, lang_of(name)):
                 why, _, what = v.partition(": ")

@@ -30,7 +30,7 @@ def found(gallery):
 
 
 @pytest.mark.parametrize("check", ["overlap", "crossed", "small", "title_small", "short_vector", "diagram",
-                                   "ambiguous", "far_label", "class_iii"])
+                                   "ambiguous", "far_label", "class_iii", "curve_names", "ordinate_numbers"])
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
 

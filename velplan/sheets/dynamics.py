@@ -91,18 +91,20 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
         drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
         moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
         views["moments"] = curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
-                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm, **at("moments"))
+                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm,
+                                       mu_symbol=indexed("μ", "M"), **at("moments"))
     if "works" in wanted:
         works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
         if np.all(np.isfinite(c["A_drive"])):
             works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
         views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
-                                     unit_text=joule, **at("works"))
+                                     unit_text=joule, mu_symbol=indexed("μ", "A"), **at("works"))
     if "inertia" in wanted:
         views["inertia"] = curve_panel(
             "inertia", travel, [Series(c["J_red"] - d.declared, "thick", indexed("J", "II"))],
             title=label("reduced_inertia", lang), ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
-            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], **at("inertia"))
+            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], mu_symbol=indexed("μ", "J"),
+            **at("inertia"))
     if "omega" in wanted:
         views["omega"] = _omega_panel(d, c, travel, lang, at("omega"))
     return views
@@ -122,7 +124,7 @@ def _omega_panel(d, c, travel, lang: Language, kw: dict[str, Any]) -> View:
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
     return curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
                        ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
-                       notes=notes, base_label=base_label, **kw)
+                       notes=notes, base_label=base_label, mu_symbol=indexed("μ", "ω"), **kw)
 
 
 def _n(x: float, lang: Language) -> str:
@@ -222,7 +224,10 @@ def _right_column(req: Request, curves, views: dict, scales: dict, right_x0: flo
 
 READABLE_DELTA_T_MM = 40.0
 """The ΔT range of Wittenbauer's diagram, mm, past which a larger flywheel drawing is preferred."""
-FLYWHEEL_BANDS = (0.3, 0.2, 0.14, 0.1)
+LEAST_DELTA_T_MM = 29.5
+"""The least ΔT range of Wittenbauer's diagram (30 mm, as every diagram's ordinates, to the
+drawing's half millimetre): a band that leaves the diagram less loses to one that does not."""
+FLYWHEEL_BANDS = (0.3, 0.2, 0.14, 0.12, 0.1)
 """The heights, as shares of the drawing area, of the band above the table that the flywheel
 may take when it does not fit beside the table: the largest first."""
 
@@ -230,8 +235,9 @@ may take when it does not fit beside the table: the largest first."""
 def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: float):
     """The flywheel's section (beside the table or in a band above it) and Wittenbauer's
     diagram above: of the bands of :data:`FLYWHEEL_BANDS`, the first giving the diagram a ΔT
-    range of :data:`READABLE_DELTA_T_MM`, else the one with the larger of the least of the ΔT
-    range and twice the flywheel's drawn diameter (the energy–mass diagram is the sheet's
+    range of :data:`READABLE_DELTA_T_MM`, else, of those leaving it :data:`LEAST_DELTA_T_MM` if
+    any do, the one with the larger of the least of the ΔT range and twice the flywheel's drawn
+    diameter (the energy–mass diagram is the sheet's
     construction, the flywheel a sketch of its result); the placed views and the diagram."""
     d, g = req.study.dynamics, req.gap
     fx0, fy0, fx1, fy1 = req.area
@@ -255,8 +261,9 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
         rise = wv.meta["delta_T_mm"]
         # the flywheel stays a readable sketch: twice its drawn diameter weighs against ΔT
         disc = 2.0 * dims.outer / placed["flywheel"].view.meta["scale"] if dims is not None else np.inf
-        if best is None or min(rise, disc) > best[0] + 1.0:
-            best = (min(rise, disc), placed, wit)
+        ok = rise >= LEAST_DELTA_T_MM
+        if best is None or (ok and not best[3]) or (ok == best[3] and min(rise, disc) > best[0] + 1.0):
+            best = (min(rise, disc), placed, wit, ok)
         if rise >= READABLE_DELTA_T_MM or top == band_top:  # readable, or the flywheel beside the table
             break
     assert best is not None  # the last band raises when nothing fits

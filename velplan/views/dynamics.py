@@ -20,6 +20,7 @@ import shapely
 from velplan.analysis.numbering import position_number
 from velplan.options import Language
 from velplan.render.i18n import label
+from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.render.style import LineType
 from velplan.views.base import (
@@ -72,7 +73,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "", mu: float | None = None) -> View:
+                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ") -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -97,12 +98,21 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         the ordinate itself (8.2, 8.3, …), not steps from ``base``.
     marks : sequence of (travel rad, value, text)
         Points marked with a dot and a label (the extremes of ω).
+    mu_symbol : str
+        The ordinate scale's symbol (``"μ_{M}"``).
+
+    A thin curve that never leaves the φ axis, or another curve, by more than
+    :data:`COINCIDE_MM` is not drawn: it is listed under the title as ≈ 0, or named with the
+    curve it lies on ("M_{r} ≈ M_{Fc}"). Each curve's name stands where the curve is farthest
+    from the other lines, nearer to it than to any other curve, or joined to it by a leader.
     """
     vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
     top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
     low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
     span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
     mu = mu or standard_up(span / height_mm)
+    series, merged_notes = _merged(series, base, mu, unit_text, lang)
+    notes = list(notes) + merged_notes
     mu_phi = cycle / length_mm
     L = length_mm
     top, bottom = max(top_v / mu, 5.0), min(low_v / mu, 0.0)
@@ -125,11 +135,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                               "middle", "top"))
     # ordinate ticks at round values of the ordinate, clear of the φ axis's own label
     items += _ordinate_ticks(bottom, top, mu, base, base_label, lang, size)
-    # the curves, each named near its largest ordinate
-    names = []
-    lines = []
-    named = []  # (name, what it names: a curve's points or a marked point), mm
-    curve_of = []  # the index in `lines` of each named curve
+    # the curves
+    lines, named = [], []
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -140,23 +147,15 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         items.append(Polyline(xy, LAYER, s.line))
         lines.append(shapely.LineString(xy))
         if s.name:
-            j = int(np.argmax(np.abs(xy[:, 1]))) if len(series) > 1 else len(xy) // 3
-            px, py = xy[j]
-            names.append(Text((float(px) + 1.5, float(py) + (1.5 if py >= 0 else -1.5 - size)), s.name,
-                              LABELS, size, "start", "baseline"))
-            named.append((s.name, xy))
-            curve_of.append(len(lines) - 1)
-    for t, v, text in marks:
-        px, py = t / mu_phi, (v - base) / mu
-        items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
-        names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
-                          "baseline"))
-        named.append((text, np.array([[px, py]], float)))
-    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
+            named.append((s.name, xy, len(lines) - 1))
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
-    items += _placed_names(names, named, curve_of, lines, axes, items)
+    # each curve named where it stands apart from the other lines, the extremes of ω at their dots
+    dots = [(t / mu_phi, (v - base) / mu, text) for t, v, text in marks]
+    items = _named(axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines]), lines, named, dots, axes, L,
+                   size)
     # title, scales and notes above the plot
-    scale = (f"μ = {number(mu, lang)} {unit_text}/{unit('mm', lang)};  μ_{{φ}} = {number(mu_phi, lang)} "
+    per_mm = f"({unit_text})/{unit('mm', lang)}" if "/" in unit_text else f"{unit_text}/{unit('mm', lang)}"
+    scale = (f"{mu_symbol} = {number(mu, lang)} {per_mm};  μ_{{φ}} = {number(mu_phi, lang)} "
              f"{unit('rad/mm', lang)} ({number(math.degrees(mu_phi), lang, 3)}°/{unit('mm', lang)})")
     text_lines = [scale] + list(notes)
     y = top + 8.0 + 1.6 * size * len(text_lines)
@@ -165,22 +164,134 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         items.append(Text((0.0, y - 1.6 * size * k), line, LABELS, size))
     return make_view(name, items, pad_mm=2.0, meta={"mu": mu, "mu_phi": mu_phi, "base": base,
                                                     "span_mm": (top_v - low_v) / mu,
-                                                    "named": tuple(named)})
+                                                    "curves": {text: xy for text, xy, _ in named},
+                                                    "named": tuple([(text, xy) for text, xy, _ in named]
+                                                                   + [(text, np.array([[x, y]])) for x, y, text in dots])})
 
 
-def _placed_names(names, named, curve_of, lines, axes, items) -> list:
-    """The curves' names (`named[:len(curve_of)]`, of the curves `lines[curve_of]`) each nearer
-    its own curve than any other, and the marks' names (the rest) by their dots, clear of the
-    curves, the axes and the texts among `items`; a name with no such place led to its own.
-    The curves are simplified to 0.04 mm where they are named and to 0.1 mm where they are
-    kept off (for speed)."""
-    curves = shapely.simplify(np.array(lines, dtype=object), 0.04, preserve_topology=False).tolist() if lines else []
-    marked = [shapely.Point(ps[0]) for _, ps in named[len(curve_of):]]
-    anchors = [curves[j] for j in curve_of] + marked
-    kinds = ["curve"] * len(curve_of) + ["point"] * len(marked)
-    rough = shapely.simplify(np.array(lines + axes, dtype=object), 0.1, preserve_topology=False)
-    keep_off = shapely.buffer(rough, 0.6, quad_segs=1).tolist() + [a.buffer(1.0, quad_segs=2) for a in marked]
-    return place_anchored(names, anchors, kinds, keep_off + _text_boxes(items), leader_layer=LABELS)
+def _named(items: list, lines: list, named, marks, axes: list, length: float, size: float) -> list:
+    """`items` with the curves' names (`named`: (name, points mm, index in `lines`)) where each
+    stands apart (`_name_at`), with their leaders, and the `marks` ((x, y) mm, text): a dot and
+    its label; the labels kept by what they name (`place_anchored`)."""
+    names: list[Text] = []
+    anchors: list = []
+    kinds: list[str] = []
+    led: list[Text] = []
+    leaders: list = []
+    obstacles = lines + axes + _text_boxes(items)
+    for text, xy, i in named:
+        # a name keeps a letter's height off the numbers and names already written: "4M_{д}" reads as one
+        spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
+                                lines + axes + leaders + [label_box(t).buffer(size) for t in items + names + led
+                                                          if isinstance(t, Text)], length, size)
+        if leader is not None:  # placed for good, with its leader
+            led.append(spot)
+            items = items + [leader]
+            leaders.append(shapely.LineString(leader.points))
+            continue
+        names.append(spot)
+        anchors.append(lines[i])
+        kinds.append("curve")
+    items = list(items)
+    for px, py, text in marks:
+        items.append(Circle((px, py), 0.7, LAYER, "thin", "solid"))
+        names.append(Text((px + 1.5, py + (1.5 if py >= 0 else -1.5 - size)), text, LABELS, size, "start",
+                          "baseline"))
+        anchors.append(shapely.Point(px, py))
+        kinds.append("mark")
+    return items + led + place_anchored(names, anchors, kinds, obstacles + leaders + [label_box(t) for t in led],
+                                        leader_layer=LABELS)
+
+
+#: A thin curve within this of the φ axis, or of another curve, all along reads as that line, mm.
+COINCIDE_MM = 1.0
+
+
+def _merged(series: Sequence[Series], base: float, mu: float, unit_text: str,
+            lang: Language) -> tuple[list[Series], list[str]]:
+    """The series to draw at `mu` (units per mm; the φ axis at `base`) and the notes of those
+    left out: a thin named curve within :data:`COINCIDE_MM` of the φ axis all along is listed
+    as ≈ 0 with its largest value; one within it of a thick or dashed curve is named with it."""
+    out: list[Series | None] = list(series)
+    notes: list[str] = []
+    for i, s in enumerate(series):
+        v = np.asarray(s.values, float) - base
+        ok = np.isfinite(v)
+        if s.line != "thin" or not s.name or ok.sum() < 2:
+            continue
+        if np.max(np.abs(v[ok])) <= COINCIDE_MM * mu:
+            out[i] = None
+            notes.append(f"{s.name} ≈ 0 (|{s.name}| ≤ {number(float(np.max(np.abs(v[ok]))), lang, 2)} {unit_text})")
+            continue
+        for k, host in enumerate(out):
+            if host is None or host.line == "thin" or not host.name:
+                continue
+            w = np.asarray(host.values, float) - base
+            if np.all(np.isfinite(w[ok])) and np.max(np.abs(v[ok] - w[ok])) <= COINCIDE_MM * mu:
+                out[k] = Series(host.values, host.line, f"{host.name} ≈ {s.name}")
+                out[i] = None
+                break
+    return [s for s in out if s is not None], notes
+
+
+def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: float,
+             size: float) -> tuple[Text, Polyline | None]:
+    """The name `text` of the curve `xy` (mm) beside a point where the curve stands apart (up to
+    8 mm) from the `others` lines and far from the φ axis: of those points, best first, the
+    first where the name, above or below the curve, meets none of the `obstacles` (lines and
+    text boxes), stays within the axis's `length` and is nearer the curve than the `others`;
+    else a little away with a leader (`_led_name`), else beside the best point, on the side away
+    from the nearest other line; the name and its leader (or None)."""
+
+    width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
+    own = shapely.LineString(xy)
+    pts = shapely.points(xy)
+    apart = np.full(len(xy), 8.0)
+    for ln in others:
+        apart = np.minimum(apart, shapely.distance(pts, ln))
+    score = 2.0 * apart + 0.1 * np.abs(xy[:, 1])
+    score[(xy[:, 0] < 3.0) | (xy[:, 0] + 1.5 + width > length)] -= 100.0
+    field = shapely.STRtree(obstacles) if obstacles else None
+    order = np.argsort(-score, kind="stable")
+    for j in order[:: max(1, len(order) // 240)][:120]:
+        px, py = (float(c) for c in xy[j])
+        for dy in (1.5, -1.5 - size):
+            cand = Text((px + 1.5, py + dy), text, LABELS, size, "start", "baseline")
+            box = label_box(cand)
+            if field is not None and len(field.query(box.buffer(0.3), predicate="intersects")):
+                continue
+            d = box.distance(own)
+            if d <= 3.0 and all(box.distance(ln) > d for ln in others):
+                return cand, None
+    led = _led_name(text, xy, order, others, field, size)
+    if led is not None:
+        return led
+    px, py = (float(c) for c in xy[int(order[0])])
+    up = min((float(shapely.distance(shapely.Point(px, py + 3.0), ln)) for ln in others), default=np.inf)
+    down = min((float(shapely.distance(shapely.Point(px, py - 3.0), ln)) for ln in others), default=np.inf)
+    return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline"), None
+
+
+def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
+    """The name `text` of the curve `xy` a little away from it, on a clear spot, joined to the
+    curve's point (of `order`, best first) by a thin leader that crosses no other curve
+    (`others`, the φ axis last) nor a text: (the name, its leader), or None."""
+    curves = shapely.STRtree(others[:-1]) if len(others) > 1 else None
+    for j in order[:: max(1, len(order) // 120)][:60]:
+        px, py = (float(c) for c in xy[j])
+        for r in (4.0, 6.0, 8.0, 10.0, 12.0):
+            for dx, dy in ((0.7, 0.7), (0.7, -0.7), (0.0, 1.0), (0.0, -1.0), (-0.7, 0.7), (-0.7, -0.7)):
+                cand = Text((px + r * dx, py + r * dy - (size if dy < 0 else 0.0)), text, LABELS, size,
+                            "start" if dx >= 0 else "end", "baseline")
+                box = label_box(cand)
+                if field is not None and len(field.query(box.buffer(0.3), predicate="intersects")):
+                    continue
+                leader = shapely.shortest_line(shapely.Point(px, py), box)
+                if curves is not None and len(curves.query(leader, predicate="intersects")):
+                    continue
+                (x0, y0), (x1, y1) = leader.coords
+                return cand, Polyline([(x0, y0), (x1, y1)], LABELS, "thin")
+    return None
 
 
 def _text_boxes(items) -> list:
@@ -191,24 +302,55 @@ def _text_boxes(items) -> list:
     return [label_box(t) for t in items if isinstance(t, Text)]
 
 
+#: An ordinate axis numbers at least this many ticks where its height allows.
+MIN_NUMBERED_TICKS = 3
+#: The least distance between two ticks of an ordinate axis, mm (2.5 mm numbers and a gap).
+TICK_GAP_MM = 4.5
+
+
+def _finer_step(step: float) -> float:
+    """The step of the 1, 2, 2.5, 5 × 10ᵏ series next below `step`."""
+    e = math.floor(math.log10(step) + 1e-9)
+    m = round(step / 10.0**e, 6)
+    lower = [c for c in (1.0, 2.0, 2.5, 5.0) if c < m - 1e-9]
+    return (lower[-1] if lower else 5.0 / 10.0) * 10.0**e
+
+
+def _tick_step(lo: float, hi: float, mu: float, base: float, clear: float) -> float:
+    """The step of the ordinate's ticks: the largest of the 1, 2, 2.5, 5 series from
+    `nice_step` down that numbers :data:`MIN_NUMBERED_TICKS` ticks (none within `clear` mm of
+    the φ axis at `base`) with ticks :data:`TICK_GAP_MM` apart, else the one numbering most."""
+    step = nice_step(hi - lo)
+    best = (-1, step)
+    while True:
+        count = sum(abs(v - base) / mu >= clear for v in _ticks(lo, hi, step))
+        if count >= MIN_NUMBERED_TICKS:
+            return step
+        if count > best[0]:
+            best = (count, step)
+        finer = _finer_step(step)
+        if finer / mu < TICK_GAP_MM - 1e-9:
+            return best[1]
+        step = finer
+
+
 def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_label: str, lang: Language,
                     size: float) -> list[Primitive]:
     """Ticks and values of an ordinate axis drawn from `bottom` to `top` mm at `mu` units per mm
-    whose zero is the value `base`: round values (a `nice_step` apart, to the step's decimals);
+    whose zero is the value `base`: round values (`_tick_step` apart, to the step's decimals);
     where `base` is not 0, the φ axis's label (`base_label`, else the value) and no tick
     within a text height of it."""
     lo, hi = base + bottom * mu, base + top * mu
-    step = nice_step(hi - lo)
+    clear = 1e-9 if base == 0 else 1.5 * size
+    step = _tick_step(lo, hi, mu, base, max(clear, 1e-6))
     decimals = max(0, -math.floor(math.log10(step) + 1e-9) + (1 if f"{step:.3g}".rstrip("0").endswith("25") else 0))
     items: list[Primitive] = []
-    clear = 1e-9 if base == 0 else 1.5 * size
     for v in _ticks(lo, hi, step):
         y = (v - base) / mu
-        if abs(y) < clear:
-            continue
-        items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
-        items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
-                           "end", "middle"))
+        if abs(y) >= clear:
+            items.append(Polyline([(-1.0, y), (1.0, y)], LAYER, "thin"))
+            items.append(Text((-1.8, y), fixed(v, lang, decimals), LABELS, 0.8 * size if size > 2.5 else size,
+                              "end", "middle"))
     if base != 0:
         items.append(Text((-1.8, 0.0), base_label or number(base, lang, 4), LABELS, size, "end", "middle"))
     return items
@@ -373,12 +515,7 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
         items.append(Arrow((xd, 0.0), (xd, -r), "flywheel", "thin", 2.5, 0.8))
         items.append(Text((xd - 1.0, 0.5 * r), f"⌀{number(1000 * value, lang, 4)}", LABELS, size,
                           "middle", "baseline", 90.0))
-    yb = -R - 8.0
-    items.append(Polyline([(0.0, -R), (0.0, yb - 2.0)], "flywheel", "thin"))
-    items.append(Polyline([(b, -R), (b, yb - 2.0)], "flywheel", "thin"))
-    items.append(Arrow((0.5 * b, yb), (0.0, yb), "flywheel", "thin", 2.5, 0.8))
-    items.append(Arrow((0.5 * b, yb), (b, yb), "flywheel", "thin", 2.5, 0.8))
-    items.append(Text((0.5 * b, yb - 1.5), f"b = {number(1000 * dims.width, lang, 4)}", LABELS, size, "middle", "top"))
+    items += _width_dimension(b, -R - 8.0, -R, number(1000 * dims.width, lang, 4), size)
     lines = [f"{label('flywheel', lang)} ({label(dims.shape, lang)}){'  ' + scale_text if scale_text else ''}",
              f"m = {number(dims.mass, lang)} {unit('kg', lang)};  J = {number(dims.inertia, lang)} "
              f"{unit('kg·m²', lang)} (≥ {number(dims.required, lang)})",
@@ -390,6 +527,34 @@ def flywheel_view(dims, *, scale: float, lang: Language, sizes: DynamicsSizes = 
         items.append(Text((x0, y), line, LABELS, height))
         y -= 0.8 * height
     return make_view("flywheel", items, pad_mm=2.0, mu=scale, meta={"scale": scale})
+
+
+def _width_dimension(b: float, y: float, edge: float, value: str, size: float) -> list[Primitive]:
+    """The width `b` mm of a section whose lower edge is at `edge`, dimensioned as ESKD does at
+    the level `y` below it: extension lines, the dimension line with its arrows (outside the
+    extension lines where `b` leaves no room for two arrowheads) and the size over the line,
+    between the extension lines or, too wide for them, beyond the right one on the line
+    drawn out under it."""
+    from velplan.render.shapes import text_extent
+
+    arrow = 2.5
+    items: list[Primitive] = [Polyline([(0.0, edge), (0.0, y - 2.0)], "flywheel", "thin"),
+                              Polyline([(b, edge), (b, y - 2.0)], "flywheel", "thin")]
+    if b >= 2.0 * arrow + 1.0:
+        items += [Arrow((0.5 * b, y), (0.0, y), "flywheel", "thin", arrow, 0.8),
+                  Arrow((0.5 * b, y), (b, y), "flywheel", "thin", arrow, 0.8)]
+    else:
+        items += [Arrow((-arrow - 2.0, y), (0.0, y), "flywheel", "thin", arrow, 0.8),
+                  Arrow((b + arrow + 2.0, y), (b, y), "flywheel", "thin", arrow, 0.8),
+                  Polyline([(0.0, y), (b, y)], "flywheel", "thin")]
+    width = text_extent(value, size)[0]
+    if width + 2.0 <= b:
+        items.append(Text((0.5 * b, y + 1.0), value, LABELS, size, "middle", "baseline"))
+    else:
+        x0 = b + arrow + 3.0
+        items += [Polyline([(b, y), (x0 + width + 1.0, y)], "flywheel", "thin"),
+                  Text((x0, y + 1.0), value, LABELS, size, "start", "baseline")]
+    return items
 
 
 def bound(x: float, lang: Language) -> str:
