@@ -469,12 +469,12 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     # the letters keep off the places the output's position numbers want, where they can
     wanted = [label_box(x) for x in labels if x.text.isdigit()]
     placed_letters, leaders = yield LetterRequest(
-        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted})
+        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted, "soft_mm": SCHEME_SOFT_MM})
     if not single:  # the crank's numbers, each nearer its own position of the tip than any other
         tips = mm(kin.position(mech.crank.tip))
         numbers, number_leaders = yield LetterRequest(
             (_crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles),
-            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters]})
+            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters], "soft_mm": SCHEME_SOFT_MM})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles, thin, placed_letters)
@@ -482,7 +482,8 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
         ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
-        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5)})  # not read as one with a letter
+        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5),  # not read as one with a letter
+         "soft_mm": SCHEME_SOFT_MM})
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
@@ -510,6 +511,10 @@ def _lines(runs: list) -> list:
     return list(shapely.linestrings(xy, indices=np.repeat(np.arange(len(runs)), [len(r) for r in runs])))
 
 
+#: Millimetres of gap a thin line (another position, a trajectory) across a scheme's letter or
+#: number is worth: more than any clear spot round its point costs (`letters.GAPS_MM` and the
+#: turn), so a letter crosses a thin line only where every spot within reach of its point does.
+SCHEME_SOFT_MM = 10.0
 #: The letters keep this far off every point of the thick position (its own included), mm.
 POINT_CLEAR_MM = 1.5
 
@@ -689,29 +694,47 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
 def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: list, thin: list,
                           letters: list[Text]) -> tuple[tuple[Text, ...], set[int], list[Polyline]]:
     """The scheme's labels (`placed` by `place_labels` from their `wanted` places) with each one
-    that `place_labels` had to leave over a line or a symbol (`obstacles`) placed again by
-    `place_letters` round its point (`anchors`: the point and the points it must stand nearer
-    to than to any other, as `_scheme_labels` gives them): the nearest free spot that reads as
-    its point's, else one beyond the crowd with a thin leader. Returns the labels, the indices
-    of those placed again and their leaders."""
+    that `place_labels` had to leave over a line or a symbol (`obstacles`), or over a `thin`
+    line, placed again by `place_letters` round its point (`anchors`: the point and the points
+    it must stand nearer to than to any other, as `_scheme_labels` gives them): the nearest
+    free spot that reads as its point's, else one beyond the crowd with a thin leader; one
+    that was only over thin lines moves where it crosses fewer. Returns the labels, the
+    indices of those placed again and their leaders."""
     shapes = [g for g in obstacles if not g.is_empty]
     if not shapes:
         return tuple(placed), set(), []
     tree = shapely.STRtree(shapes)
+    lines = [g for g in thin if not g.is_empty]
+    soft = shapely.STRtree(lines) if lines else None
     out: list[Text] = list(placed)
     moved: set[int] = set()
     leaders: list[Polyline] = []
     for k, (text, where) in enumerate(zip(placed, anchors)):
-        if (where is None or not np.all(np.isfinite(where[0]))
-                or not len(tree.query(label_box(text), predicate="intersects"))):
+        if where is None or not np.all(np.isfinite(where[0])):
+            continue
+        hard = bool(len(tree.query(label_box(text), predicate="intersects")))
+        crossing = _thin_crossings(soft, lines, text)
+        if not hard and not crossing:
             continue
         taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
-        (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin)
+        (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin,
+                                      soft_mm=SCHEME_SOFT_MM)
         if len(tree.query(label_box(again), predicate="intersects")):
             continue  # crowded all round: where place_labels left it
+        if not hard and _thin_crossings(soft, lines, again) >= crossing:
+            continue  # no spot crosses fewer thin lines
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
+
+
+def _thin_crossings(soft, lines: list, text: Text) -> int:
+    """How many of the thin `lines` (in the tree `soft`) cross the box of `text` over more
+    than 1 mm (what a reader sees as a line through it)."""
+    if soft is None:
+        return 0
+    box = label_box(text)
+    return sum(lines[j].intersection(box).length > 1.0 for j in soft.query(box, predicate="intersects"))
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
