@@ -13,7 +13,7 @@ FMT, KINDS = "A3", ("forces", "dynamics")
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
     "crossed_thin": 4,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
-    # thin lines across force and dynamics labels
+    # oscillating-cylinder R₀₃n, shaper-linkage s₂, v-compressor R₀₃, double-slider 12
     "crossed": 3,  # every crossed text, no longer one a sheet let pass: oscillating-cylinder R₀₃n,
     # shaper-linkage s₂, v-compressor R₀₃ (force labels a line runs through)
 }

@@ -25,8 +25,9 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed_thin": 186,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
-    # as on A1, the pivots' letters and the output numbers' leaders first
+    "crossed_thin": 11,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    # plan letters (triad-press n₅; triad-rocker n₁, c, "n₁, s₅, g"; stephenson s₅), the scheme's
+    # D (jaw-crusher, stephenson, triad-rocker), stephenson's numbers 4 and 7, yoke-punch-press 1′
 }
 
 

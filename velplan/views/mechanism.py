@@ -14,7 +14,7 @@ the title and the scale).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable, Generator, NamedTuple, Sequence
 
 import numpy as np
@@ -490,10 +490,43 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
         kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
         items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
                                  mm(kin.position(mech.crank.tip)))
+    items = _broken_under_texts(items)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+#: The thin lines a scheme's text interrupts (ESKD: a line is broken where a text must stand
+#: on it): the other positions and the trajectories, never a leader or an axis.
+_BROKEN_LAYERS = ("positions", "trajectory")
+#: The gap a broken line keeps round a text's box, mm.
+BREAK_MM = 0.4
+
+
+def _broken_under_texts(items: list) -> list:
+    """`items` with each thin line of the other positions or a trajectory broken where a text
+    stands on it (the letters went to the spots clear of them where their points have one):
+    the parts outside the texts' boxes (:data:`BREAK_MM` round), in the line's place."""
+    texts = [p for p in items if isinstance(p, Text)]
+    if not texts:
+        return items
+    holes = _grown(texts, BREAK_MM)
+    tree = shapely.STRtree(holes)
+    out: list = []
+    for p in items:
+        if not (isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS):
+            out.append(p)
+            continue
+        line = shapely.LineString(p.points)
+        hit = tree.query(line, predicate="intersects")
+        if not len(hit):
+            out.append(p)
+            continue
+        rest = line.difference(shapely.union_all([holes[j] for j in hit]))
+        out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
+                if not part.is_empty and part.length > 0.2]
+    return out
 
 
 def _grown(texts: list[Text], by_mm: float) -> list:
@@ -951,8 +984,25 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
         box = label_box(text)
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
-            out.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
+            leader = _past_the_others(shapely.LineString([p, near]), text, placed)
+            if leader is not None:
+                out.append(Polyline(leader, "labels", "thin"))
     return out
+
+
+def _past_the_others(leader, text: Text, placed) -> tuple | None:
+    """The piece of a number's `leader` (from its point to its box) that runs on from the last
+    other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
+    line with its point: its leader starts past them, not through them), or None where
+    nothing of it is left."""
+    others = [label_box(x).buffer(0.4) for x in placed if x is not text and x.text.isdigit()]
+    hit = [b for b in others if b.intersects(leader)]
+    if not hit:
+        return tuple(leader.coords)
+    end = shapely.Point(leader.coords[-1])
+    rest = leader.difference(shapely.union_all(hit))
+    parts = [g for g in getattr(rest, "geoms", [rest]) if not g.is_empty and g.distance(end) < 1e-6]
+    return tuple(parts[0].coords) if parts and parts[0].length > 0.5 else None
 
 
 def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> list:
