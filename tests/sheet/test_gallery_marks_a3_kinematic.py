@@ -25,9 +25,9 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed_thin": 11,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    "crossed_thin": 10,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
     # plan letters (triad-press n₅; triad-rocker n₁, c, "n₁, s₅, g"; stephenson s₅), the scheme's
-    # D (jaw-crusher, stephenson, triad-rocker), stephenson's numbers 4 and 7, yoke-punch-press 1′
+    # stephenson D, 4, 7, triad-rocker 1 and yoke-punch-press 1′ (other labels' leaders)
 }
 
 

@@ -747,18 +747,30 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
             continue
         hard = bool(len(tree.query(label_box(text), predicate="intersects")))
         crossing = _thin_crossings(soft, lines, text)
-        if not hard and not crossing:
+        blocked = _leader_blocked(text, where[0], letters)
+        if not hard and not crossing and not blocked:
             continue
         taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
         (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin,
                                       soft_mm=SCHEME_SOFT_MM)
         if len(tree.query(label_box(again), predicate="intersects")):
             continue  # crowded all round: where place_labels left it
-        if not hard and _thin_crossings(soft, lines, again) >= crossing:
-            continue  # no spot crosses fewer thin lines
+        now = _thin_crossings(soft, lines, again)
+        if not hard and (now > crossing or (now == crossing and not blocked)):
+            continue  # no spot crosses fewer thin lines (as many, where its leader would cross a letter)
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
+
+
+def _leader_blocked(text: Text, point, letters: list[Text]) -> bool:
+    """Whether `text`, standing farther than :data:`NUMBER_LEADER_MM` from its `point` (mm),
+    would have its leader (`_number_leaders`) run through one of the `letters`."""
+    box = label_box(text)
+    if box.distance(shapely.Point(point)) <= NUMBER_LEADER_MM:
+        return False
+    leader = shapely.shortest_line(box.buffer(0.4), shapely.Point(point))
+    return any(leader.intersection(label_box(x)).length > 0.5 for x in letters)
 
 
 def _thin_crossings(soft, lines: list, text: Text) -> int:
