@@ -742,12 +742,13 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
     out: list[Text] = list(placed)
     moved: set[int] = set()
     leaders: list[Polyline] = []
+    letter_boxes = shapely.polygons([text_box(x) for x in letters]) if letters else []
     for k, (text, where) in enumerate(zip(placed, anchors)):
         if where is None or not np.all(np.isfinite(where[0])):
             continue
         hard = bool(len(tree.query(label_box(text), predicate="intersects")))
         crossing = _thin_crossings(soft, lines, text)
-        blocked = _leader_blocked(text, where[0], letters)
+        blocked = _leader_blocked(text, where[0], letter_boxes)
         if not hard and not crossing and not blocked:
             continue
         taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
@@ -763,14 +764,14 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
     return tuple(out), moved, leaders
 
 
-def _leader_blocked(text: Text, point, letters: list[Text]) -> bool:
+def _leader_blocked(text: Text, point, letter_boxes) -> bool:
     """Whether `text`, standing farther than :data:`NUMBER_LEADER_MM` from its `point` (mm),
-    would have its leader (`_number_leaders`) run through one of the `letters`."""
+    would have its leader (`_number_leaders`) run through one of the letters (their boxes)."""
     box = label_box(text)
-    if box.distance(shapely.Point(point)) <= NUMBER_LEADER_MM:
+    if not len(letter_boxes) or box.distance(shapely.Point(point)) <= NUMBER_LEADER_MM:
         return False
     leader = shapely.shortest_line(box.buffer(0.4), shapely.Point(point))
-    return any(leader.intersection(label_box(x)).length > 0.5 for x in letters)
+    return bool((shapely.length(shapely.intersection(leader, letter_boxes)) > 0.5).any())
 
 
 def _thin_crossings(soft, lines: list, text: Text) -> int:
