@@ -757,11 +757,18 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
         if len(tree.query(label_box(again), predicate="intersects")):
             continue  # crowded all round: where place_labels left it
         now = _thin_crossings(soft, lines, again)
-        if not hard and (now > crossing or (now == crossing and not blocked)):
+        still = (_through(led[0], letter_boxes) if led else _leader_blocked(again, where[0], letter_boxes))
+        if not hard and (now > crossing or (now == crossing and not (blocked and not still))):
             continue  # no spot crosses fewer thin lines (as many, where its leader would cross a letter)
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
+
+
+def _through(leader: Polyline, boxes) -> bool:
+    """Whether `leader` runs through one of `boxes` (over 0.5 mm)."""
+    return bool(len(boxes)) and bool(
+        (shapely.length(shapely.intersection(shapely.LineString(leader.points), boxes)) > 0.5).any())
 
 
 def _leader_blocked(text: Text, point, letter_boxes) -> bool:
@@ -771,7 +778,7 @@ def _leader_blocked(text: Text, point, letter_boxes) -> bool:
     if not len(letter_boxes) or box.distance(shapely.Point(point)) <= NUMBER_LEADER_MM:
         return False
     leader = shapely.shortest_line(box.buffer(0.4), shapely.Point(point))
-    return bool((shapely.length(shapely.intersection(leader, letter_boxes)) > 0.5).any())
+    return _through(Polyline(tuple(leader.coords), "labels", "thin"), letter_boxes)
 
 
 def _thin_crossings(soft, lines: list, text: Text) -> int:
