@@ -389,14 +389,16 @@ def ambiguous_force_labels(sheet, lang: str) -> list[str]:
 
 def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
-    out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "small", "title_small", "short_vector",
-                                                  "diagram", "ambiguous", "far_label", "class_iii",
+    out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "crossed_thin", "small", "title_small",
+                                                  "short_vector", "diagram", "ambiguous", "far_label", "class_iii",
                                                   "curve_names", "ordinate_numbers")}
     for name, kind, sheet in gallery.all(kinds):
         where = f"{name}/{kind}"
         out["overlap"] += [f"{where}: {a} | {b}" for a, b in overlaps(sheet.scene)]
         # every crossed text counts (test_sheet_quality_ru.py's bar lets one a sheet pass, four on a triad)
         out["crossed"] += [f"{where}: {t}" for t in crossed_texts(sheet.scene)]
+        # the whole rule: thin lines too, but a text's own leader or construction line
+        out["crossed_thin"] += [f"{where}: {t}" for t in crossed_by_any_line(sheet.scene)]
         out["small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=False)]
         out["title_small"] += [f"{where}: {t}" for t in small_texts(sheet.scene, title=True)]
         if kind == "dynamics":

@@ -11,7 +11,12 @@ from tests.sheet import gallery_marks as gm
 
 FMT, KINDS = "A1", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
-BOUNDS: dict[str, int] = {}
+BOUNDS: dict[str, int] = {
+    "crossed_thin": 3,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    # triad-rocker's detail letter g, triad-eight-link's scheme letter D,
+    # sieve-shaker's structure number 2 over an outline
+    # position numbers crossed by the leaders of the numbers stepped out of a crowd
+}
 
 
 @pytest.fixture(scope="module")
@@ -19,8 +24,8 @@ def found():
     return gm.violations(gm.GallerySheets(FMT), KINDS)
 
 
-@pytest.mark.parametrize("check", ["overlap", "crossed", "small", "title_small", "short_vector", "diagram",
-                                   "ambiguous", "far_label", "class_iii"])
+@pytest.mark.parametrize("check", ["overlap", "crossed", "crossed_thin", "small", "title_small", "short_vector",
+                                   "diagram", "ambiguous", "far_label", "class_iii"])
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
 

@@ -24,7 +24,11 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
-BOUNDS: dict[str, int] = {}
+BOUNDS: dict[str, int] = {
+    "crossed_thin": 10,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    # plan letters (triad-press n₅; triad-rocker n₁, c, "n₁, s₅, g"; stephenson s₅), the scheme's
+    # stephenson D, 4, 7, triad-rocker 1 and yoke-punch-press 1′ (other labels' leaders)
+}
 
 
 @pytest.fixture(scope="module")
@@ -38,8 +42,8 @@ def found(gallery):
     return gm.violations(gallery, KINDS)
 
 
-@pytest.mark.parametrize("check", ["overlap", "crossed", "small", "title_small", "short_vector", "diagram",
-                                   "ambiguous", "far_label", "class_iii"])
+@pytest.mark.parametrize("check", ["overlap", "crossed", "crossed_thin", "small", "title_small", "short_vector",
+                                   "diagram", "ambiguous", "far_label", "class_iii"])
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
 

@@ -52,14 +52,15 @@ class _Call:
     def __init__(self, request: LetterRequest):
         texts, anchors, points, obstacles = request.args
         kw = request.kwargs
-        if set(kw) - {"thin", "taken"}:
-            raise ValueError(f"place_together answers thin and taken only, not {sorted(kw)}")
+        if set(kw) - {"thin", "taken", "soft_mm"}:
+            raise ValueError(f"place_together answers thin, taken and soft_mm only, not {sorted(kw)}")
         self.texts, self.anchors = list(texts), list(anchors)
         shapes = [g for g in obstacles if g is not None and not g.is_empty]
         self.tree = shapely.STRtree(shapes) if shapes else None
         self.taken = list(kw.get("taken", ()))
         thin = [g for g in kw.get("thin", ()) if not g.is_empty]
         self.soft = shapely.STRtree(thin) if thin else None
+        self.soft_mm = float(kw.get("soft_mm", SOFT_MM))
         allp = np.asarray(points, float).reshape(-1, 2)
         self.allp = allp[np.all(np.isfinite(allp), axis=1)]
         self.out: list = []
@@ -67,8 +68,8 @@ class _Call:
 
 
 def place_together(requests: list[LetterRequest]) -> list[tuple[list, list]]:
-    """`place_letters(*r.args, **r.kwargs)` for each request (keyword arguments ``thin`` and
-    ``taken`` only), the same letters and leaders, letter k of every call placed in one pass."""
+    """`place_letters(*r.args, **r.kwargs)` for each request (keyword arguments ``thin``,
+    ``taken`` and ``soft_mm`` only), the same letters and leaders, letter k of every call placed in one pass."""
     calls = [_Call(r) for r in requests]
     for k in range(max([len(c.texts) for c in calls] + [0])):
         _place_kth([c for c in calls if len(c.texts) > k], k)
@@ -91,7 +92,7 @@ def _place_kth(calls: list[_Call], k: int) -> None:
     for (c, text, p, centred, offset, half, wanted, others), hit in zip(rows, found):
         led = hit is None
         if led:
-            hit = _beyond(p, wanted, half, others, c.tree, c.taken, c.soft, GAPS_MM, LEADER_GAPS_MM)
+            hit = _beyond(p, wanted, half, others, c.tree, c.taken, c.soft, GAPS_MM, LEADER_GAPS_MM, c.soft_mm)
         _settle(text, centred, offset, hit, p if led else None, c.taken, c.out, c.leaders, "labels")
 
 def _candidates(rows) -> tuple[np.ndarray, np.ndarray]:
@@ -187,7 +188,7 @@ def _stage(rows, c, idx, ok, cost) -> list:
             continue
         if call.soft is not None:
             crossed = call.soft.query(soft[mine], predicate="intersects")[0]
-            cost[r, ok[r]] += SOFT_MM * np.bincount(crossed, minlength=first[r + 1] - first[r])
+            cost[r, ok[r]] += call.soft_mm * np.bincount(crossed, minlength=first[r + 1] - first[r])
         j = int(np.argmin(np.where(ok[r], cost[r], np.inf)))
         out.append((float(cost[r, j]), int(idx[r, j]), padded[first[r] + int(ok[r, :j].sum())]))
     return out

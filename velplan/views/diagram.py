@@ -247,7 +247,8 @@ def _pole_rays(kind: str, d: Diagrams, sc: DiagramScales, H: float, size: float)
     intercepts = H * (np.roll(parent, -1) - parent) / parent_mu / step
     items: list[Primitive] = [Polyline([(-H, 0.0), (0.0, 0.0)], "diagram", "thin"),
                               Circle((-H, 0.0), 0.6, "diagram", "thin", "solid"),
-                              Text((-H, -1.5), "P", "diagram-labels", size, "middle", "top")]
+                              # left of the pole: its rays and the axis run to the right
+                              Text((-H - 1.2, 0.0), "P", "diagram-labels", size, "end", "middle")]
     for yi in intercepts:
         if abs(yi) > 1e-6:
             items.append(Polyline([(-H, 0.0), (0.0, float(yi))], "diagram-lines", "construction"))

@@ -22,6 +22,7 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
+from velplan.render.shapes import DESCENDER_DEPTH
 from velplan.render.style import LineType
 from velplan.views.base import (
     View, axis_numbers_clear, fixed, indexed, make_view, number, place_labels, power_of_ten, unit)
@@ -414,7 +415,9 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
         # that tangent), and off the axis's tail (an upright l beside a parallel line reads as
         # a tick)
         if mark == "k":
-            items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.8), mark, LABELS, sizes.title_mm, "middle", "baseline"))
+            # its box (descender depth included) 0.5 mm clear of the extension line it stands on
+            items.append(Text((0.45 * KL_OFFSET_MM, ay + 0.5 + DESCENDER_DEPTH * sizes.title_mm), mark, LABELS,
+                              sizes.title_mm, "middle", "baseline"))
         else:
             marked.append(Text((4.0, ay - 1.0), mark, LABELS, sizes.title_mm, "start", "top"))
         sym = indexed("ψ", "max" if mark == "k" else "min")

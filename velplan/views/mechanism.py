@@ -14,7 +14,7 @@ the title and the scale).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable, Generator, NamedTuple, Sequence
 
 import numpy as np
@@ -469,12 +469,12 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     # the letters keep off the places the output's position numbers want, where they can
     wanted = [label_box(x) for x in labels if x.text.isdigit()]
     placed_letters, leaders = yield LetterRequest(
-        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted})
+        ([x for x, _ in letters], [at for _, at in letters], named, obstacles), {"thin": thin + wanted, "soft_mm": SCHEME_SOFT_MM})
     if not single:  # the crank's numbers, each nearer its own position of the tip than any other
         tips = mm(kin.position(mech.crank.tip))
         numbers, number_leaders = yield LetterRequest(
             (_crank_numbers(mech, kin, mm, sizes.number_mm), tips, tips, obstacles),
-            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters]})
+            {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters], "soft_mm": SCHEME_SOFT_MM})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
     placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles, thin, placed_letters)
@@ -482,17 +482,51 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
         ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
-        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5)})  # not read as one with a letter
+        {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5),  # not read as one with a letter
+         "soft_mm": SCHEME_SOFT_MM})
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
     out = output_point(mech)
     if not single and out is not None:
         kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
         items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
                                  mm(kin.position(mech.crank.tip)))
+    items = _broken_under_texts(items)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
     return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+#: The thin lines a scheme's text interrupts (ESKD: a line is broken where a text must stand
+#: on it): the other positions and the trajectories, never a leader or an axis.
+_BROKEN_LAYERS = ("positions", "trajectory")
+#: The gap a broken line keeps round a text's box, mm.
+BREAK_MM = 0.4
+
+
+def _broken_under_texts(items: list) -> list:
+    """`items` with each thin line of the other positions or a trajectory broken where a text
+    stands on it (the letters went to the spots clear of them where their points have one):
+    the parts outside the texts' boxes (:data:`BREAK_MM` round), in the line's place."""
+    texts = [p for p in items if isinstance(p, Text)]
+    if not texts:
+        return items
+    holes = _grown(texts, BREAK_MM)
+    tree = shapely.STRtree(holes)
+    out: list = []
+    for p in items:
+        if not (isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS):
+            out.append(p)
+            continue
+        line = shapely.LineString(p.points)
+        hit = tree.query(line, predicate="intersects")
+        if not len(hit):
+            out.append(p)
+            continue
+        rest = line.difference(shapely.union_all([holes[j] for j in hit]))
+        out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
+                if not part.is_empty and part.length > 0.2]
+    return out
 
 
 def _grown(texts: list[Text], by_mm: float) -> list:
@@ -510,6 +544,10 @@ def _lines(runs: list) -> list:
     return list(shapely.linestrings(xy, indices=np.repeat(np.arange(len(runs)), [len(r) for r in runs])))
 
 
+#: Millimetres of gap a thin line (another position, a trajectory) across a scheme's letter or
+#: number is worth: more than any clear spot round its point costs (`letters.GAPS_MM` and the
+#: turn), so a letter crosses a thin line only where every spot within reach of its point does.
+SCHEME_SOFT_MM = 10.0
 #: The letters keep this far off every point of the thick position (its own included), mm.
 POINT_CLEAR_MM = 1.5
 
@@ -689,29 +727,67 @@ def _scheme_labels(items: list, geo: _Geometry, drawn: _Thick, t: int, mm, sizes
 def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: list, thin: list,
                           letters: list[Text]) -> tuple[tuple[Text, ...], set[int], list[Polyline]]:
     """The scheme's labels (`placed` by `place_labels` from their `wanted` places) with each one
-    that `place_labels` had to leave over a line or a symbol (`obstacles`) placed again by
-    `place_letters` round its point (`anchors`: the point and the points it must stand nearer
-    to than to any other, as `_scheme_labels` gives them): the nearest free spot that reads as
-    its point's, else one beyond the crowd with a thin leader. Returns the labels, the indices
-    of those placed again and their leaders."""
+    that `place_labels` had to leave over a line or a symbol (`obstacles`), or over a `thin`
+    line, placed again by `place_letters` round its point (`anchors`: the point and the points
+    it must stand nearer to than to any other, as `_scheme_labels` gives them): the nearest
+    free spot that reads as its point's, else one beyond the crowd with a thin leader; one
+    that was only over thin lines moves where it crosses fewer. Returns the labels, the
+    indices of those placed again and their leaders."""
     shapes = [g for g in obstacles if not g.is_empty]
     if not shapes:
         return tuple(placed), set(), []
     tree = shapely.STRtree(shapes)
+    lines = [g for g in thin if not g.is_empty]
+    soft = shapely.STRtree(lines) if lines else None
     out: list[Text] = list(placed)
     moved: set[int] = set()
     leaders: list[Polyline] = []
+    letter_boxes = shapely.polygons([text_box(x) for x in letters]) if letters else []
     for k, (text, where) in enumerate(zip(placed, anchors)):
-        if (where is None or not np.all(np.isfinite(where[0]))
-                or not len(tree.query(label_box(text), predicate="intersects"))):
+        if where is None or not np.all(np.isfinite(where[0])):
+            continue
+        hard = bool(len(tree.query(label_box(text), predicate="intersects")))
+        crossing = _thin_crossings(soft, lines, text)
+        blocked = _leader_blocked(text, where[0], letter_boxes)
+        if not hard and not crossing and not blocked:
             continue
         taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
-        (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin)
+        (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin,
+                                      soft_mm=SCHEME_SOFT_MM)
         if len(tree.query(label_box(again), predicate="intersects")):
             continue  # crowded all round: where place_labels left it
+        now = _thin_crossings(soft, lines, again)
+        still = (_through(led[0], letter_boxes) if led else _leader_blocked(again, where[0], letter_boxes))
+        if not hard and (now > crossing or (now == crossing and not (blocked and not still))):
+            continue  # no spot crosses fewer thin lines (as many, where its leader would cross a letter)
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
+
+
+def _through(leader: Polyline, boxes) -> bool:
+    """Whether `leader` runs through one of `boxes` (over 0.5 mm)."""
+    return bool(len(boxes)) and bool(
+        (shapely.length(shapely.intersection(shapely.LineString(leader.points), boxes)) > 0.5).any())
+
+
+def _leader_blocked(text: Text, point, letter_boxes) -> bool:
+    """Whether `text`, standing farther than :data:`NUMBER_LEADER_MM` from its `point` (mm),
+    would have its leader (`_number_leaders`) run through one of the letters (their boxes)."""
+    box = label_box(text)
+    if not len(letter_boxes) or box.distance(shapely.Point(point)) <= NUMBER_LEADER_MM:
+        return False
+    leader = shapely.shortest_line(box.buffer(0.4), shapely.Point(point))
+    return _through(Polyline(tuple(leader.coords), "labels", "thin"), letter_boxes)
+
+
+def _thin_crossings(soft, lines: list, text: Text) -> int:
+    """How many of the thin `lines` (in the tree `soft`) cross the box of `text` over more
+    than 1 mm (what a reader sees as a line through it)."""
+    if soft is None:
+        return 0
+    box = label_box(text)
+    return sum(lines[j].intersection(box).length > 1.0 for j in soft.query(box, predicate="intersects"))
 
 
 def _title(items: list, thick: int, single: bool, mu_l: float, lang: Language,
@@ -928,8 +1004,25 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
         box = label_box(text)
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
-            out.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), "labels", "thin"))
+            leader = _past_the_others(shapely.LineString([p, near]), text, placed)
+            if leader is not None:
+                out.append(Polyline(leader, "labels", "thin"))
     return out
+
+
+def _past_the_others(leader, text: Text, placed) -> tuple | None:
+    """The piece of a number's `leader` (from its point to its box) that runs on from the last
+    other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
+    line with its point: its leader starts past them, not through them), or None where
+    nothing of it is left."""
+    others = [label_box(x).buffer(0.4) for x in placed if x is not text and x.text.isdigit()]
+    hit = [b for b in others if b.intersects(leader)]
+    if not hit:
+        return tuple(leader.coords)
+    end = shapely.Point(leader.coords[-1])
+    rest = leader.difference(shapely.union_all(hit))
+    parts = [g for g in getattr(rest, "geoms", [rest]) if not g.is_empty and g.distance(end) < 1e-6]
+    return tuple(parts[0].coords) if parts and parts[0].length > 0.5 else None
 
 
 def _omega_arrow(mech: Mechanism, geo: _Geometry, t: int, mm, size: float) -> list:

@@ -30,9 +30,10 @@ CROWD_MM = 15.0
 CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
-#: Millimetres of gap a thin line across a letter of a detail is worth (twice a scheme's: a
-#: detail is drawn for its crowd, and a line through a letter there reads as part of it).
-DETAIL_SOFT_MM = 3.0
+#: Millimetres of gap a thin line across a letter of a detail is worth: more than any clear
+#: spot round its image costs (a detail is drawn for its crowd, and a line through a letter
+#: there reads as part of it), as the scheme's (`mechanism.SCHEME_SOFT_MM`).
+DETAIL_SOFT_MM = 10.0
 #: The numerals of a sheet's details, in turn.
 NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 NUMERAL = NUMERALS[0]
