@@ -61,6 +61,13 @@ class GallerySheets(dict):
         self[key] = sheet
         return sheet
 
+    def found(self, kinds: tuple[str, ...]) -> dict[str, list[str]]:
+        """`violations` of the sheets of `kinds`, made once."""
+        cache = self.__dict__.setdefault("_found", {})
+        if kinds not in cache:
+            cache[kinds] = violations(self, kinds)
+        return cache[kinds]
+
     def all(self, kinds=("kinematic", "forces", "dynamics")):
         """(name, kind, sheet) of every sheet of `kinds` the gallery has."""
         for name in NAMES:
@@ -387,11 +394,14 @@ def ambiguous_force_labels(sheet, lang: str) -> list[str]:
     return out
 
 
+CHECKS = ("overlap", "crossed", "crossed_thin", "small", "title_small", "short_vector", "diagram", "ambiguous",
+          "far_label", "class_iii", "curve_names", "ordinate_numbers")
+"""The checks `violations` makes (the last two on dynamics sheets only)."""
+
+
 def violations(gallery: GallerySheets, kinds: tuple[str, ...]) -> dict[str, list[str]]:
     """Per check, "name/kind: what" of every sheet of `kinds` in the gallery that fails it."""
-    out: dict[str, list[str]] = {k: [] for k in ("overlap", "crossed", "crossed_thin", "small", "title_small",
-                                                  "short_vector", "diagram", "ambiguous", "far_label", "class_iii",
-                                                  "curve_names", "ordinate_numbers")}
+    out: dict[str, list[str]] = {k: [] for k in CHECKS}
     for name, kind, sheet in gallery.all(kinds):
         where = f"{name}/{kind}"
         out["overlap"] += [f"{where}: {a} | {b}" for a, b in overlaps(sheet.scene)]

@@ -24,8 +24,7 @@ def found():
     return gm.violations(gm.GallerySheets(FMT), KINDS)
 
 
-@pytest.mark.parametrize("check", ["overlap", "crossed", "crossed_thin", "small", "title_small", "short_vector",
-                                   "diagram", "ambiguous", "far_label", "class_iii"])
+@pytest.mark.parametrize("check", gm.CHECKS)
 def test_gallery_sheets_pass_or_hold_their_ratchet(found, check):
     gm.check_bounds({check: found[check]}, BOUNDS)
 

@@ -232,10 +232,17 @@ def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str)
             best = (crossed, cand, box, line)
         if crossed == 0:
             break
+    return kept_leader(best, leaders, placed, layer, 0.6)
+
+
+def kept_leader(best, leaders: list, taken: list, layer: str, clear_mm: float):
+    """The label of `best` ((cost, label, box, leader line) or None) with its leader: the leader
+    drawn thin on `layer` into `leaders` and kept off by `clear_mm` mm (`taken`); (0, label,
+    box), or None."""
     if best is None:
         return None
-    _, cand, box, line = best
+    _, text, box, line = best
     (x0, y0), (x1, y1) = line.coords
     leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
-    placed.append(line.buffer(0.6))
-    return 0.0, cand, box
+    taken.append(line.buffer(clear_mm))
+    return 0.0, text, box

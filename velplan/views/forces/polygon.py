@@ -21,6 +21,7 @@ from velplan.render.shapes import text_extent
 from velplan.render.style import SheetStyle
 from velplan.views.base import View, bounds_of, make_view, unit
 from velplan.views.base import number as _num
+from velplan.views.forces.anchored import kept_leader
 from velplan.views.forces.arrows import arrow_obstacle
 from velplan.views.forces.common import (
     ForceSizes, Sketch, anchor_of, force_text, newton, newton_metre, note_lines, number_text,
@@ -256,13 +257,7 @@ def _ringed_label(name: str, a, b, layer: str, size: float, tree, boxes, leaders
                 best = (cost, text, box, line)
         if best is not None and best[0] <= r:  # no line crossed: no farther place is better
             break
-    if best is None:
-        return None
-    _, text, box, line = best
-    (x0, y0), (x1, y1) = line.coords
-    leaders.append(Polyline(((x0, y0), (x1, y1)), layer, "thin"))
-    boxes.append(line.buffer(0.8))
-    return 0.0, text, box
+    return kept_leader(best, leaders, boxes, layer, 0.8)
 
 
 def _label_spots(name: str, a, b, centre, layer: str, size: float, gaps=(0.8, 2.0, 3.5, 5.0),
