@@ -72,13 +72,14 @@ def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> Title
 
 
 def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int,
-            mus: dict[str, float] | None = None) -> dict[str, View]:
+            mus: dict[str, float] | None = None, names: bool = True) -> dict[str, View]:
     """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`); ``mus``: the
-    panels drawn at a given ordinate scale, only those when given."""
+    panels drawn at a given ordinate scale, only those when given; `names`: with the curves'
+    names (`curve_panel`)."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
     kw: dict[str, Any] = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang,
-                              sizes=sizes)
+                              sizes=sizes, names=names)
     wanted = PANELS if mus is None else tuple(mus)
     at = (lambda name: kw) if mus is None else (lambda name: {**kw, "mu": mus[name]})
     nm, joule = unit("N·m", lang), unit("J", lang)
@@ -292,21 +293,36 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
     """The four panels at the longest φ axis, then the tallest ordinates, that fit `width` ×
     `height` mm; ``beside`` = (width, height) mm of the column's bottom part that the title
     block leaves: a column wider than that ends above it."""
+    fit = lambda vs: _column_fits(vs, width, height, gap, beside)  # noqa: E731
+    # sought with the panels unnamed, then drawn named; named all along where the names take more room
+    for names in (False, True):
+        for length, h, views in _fitting(d, c, lang, sizes, n, width, fit, names):
+            found = _finer_panels(views, lambda mus: _panels(d, c, lang, length, h, sizes, n, mus, names), fit)
+            if not names:
+                found = _panels(d, c, lang, length, h, sizes, n, {k: v.meta["mu"] for k, v in found.items()})
+            if fit(list(found.values())):
+                return found
+            break
+    raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
+                     f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+
+
+def _fitting(d, c, lang, sizes, n, width, fit, names: bool):
+    """(φ axis length, ordinate height, the panels) of the longest axis, then the tallest
+    ordinates, whose column `fit`s; none where nothing does."""
     lengths = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
     heights = (120.0, 100.0, 80.0, 70.0, 60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0)
     for length in lengths:
         if length < MIN_DIAGRAM_MM:
             break
-        low = _panels(d, c, lang, length, heights[-1], sizes, n)
+        low = _panels(d, c, lang, length, heights[-1], sizes, n, names=names)
         if max(v.width_mm for v in low.values()) > width:
             continue
         for h in heights:
-            views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n)
-            if _column_fits(list(views.values()), width, height, gap, beside):
-                redraw = lambda mus: _panels(d, c, lang, length, h, sizes, n, mus)  # noqa: E731
-                return _finer_panels(views, redraw, lambda vs: _column_fits(vs, width, height, gap, beside))
-    raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
-                     f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+            views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n, names=names)
+            if fit(list(views.values())):
+                yield length, h, views
+                return
 
 
 def _finer_panels(views: dict[str, View], redraw, fit) -> dict[str, View]:

@@ -74,7 +74,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ") -> View:
+                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ", names: bool = True) -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -99,6 +99,9 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         the ordinate itself (8.2, 8.3, …), not steps from ``base``.
     marks : sequence of (travel rad, value, text)
         Points marked with a dot and a label (the extremes of ω).
+    names : bool
+        Whether the curves and the marks are named (a panel only measured while a layout is
+        sought goes without: placing the names is most of its cost).
     mu_symbol : str
         The ordinate scale's symbol (``"μ_{M}"``).
 
@@ -152,8 +155,11 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     axes = [shapely.LineString([(0, 0), (L + 8, 0)]), shapely.LineString([(0, bottom - 3), (0, top + 6)])]
     # each curve named where it stands apart from the other lines, the extremes of ω at their dots
     dots = [(t / mu_phi, (v - base) / mu, text) for t, v, text in marks]
-    items = _named(axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines]), lines, named, dots, axes, L,
-                   size)
+    items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
+    if names:
+        items = _named(items, lines, named, dots, axes, L, size)
+    else:
+        items += [Circle((px, py), 0.7, LAYER, "thin", "solid") for px, py, _ in dots]
     # title, scales and notes above the plot
     per_mm = f"({unit_text})/{unit('mm', lang)}" if "/" in unit_text else f"{unit_text}/{unit('mm', lang)}"
     scale = (f"{mu_symbol} = {number(mu, lang)} {per_mm};  μ_{{φ}} = {number(mu_phi, lang)} "
