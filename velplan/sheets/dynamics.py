@@ -385,10 +385,13 @@ def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
     t_span = max(float(T.max()), cp, 0.0) - min(float(T.min()), cm, 0.0)
     mu_J = nice_scale(max(float(J.max()), 1e-12) / max(w - 60.0, 20.0))
     mu_T = nice_scale(max(t_span, 1e-12) / max(h - 50.0, 20.0))
-    def draw(mu_J, mu_T):
+    def draw(mu_J, mu_T, numbers=False):  # sought with the numbers where first put, then placed
         wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
-        return wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
-                                lang=lang, sizes=sizes), wit
+        view = wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
+                                lang=lang, sizes=sizes, numbers=numbers)
+        if not numbers and fits(view, w, h):
+            return draw(mu_J, mu_T, True)
+        return view, wit
 
     for _ in range(12):
         view, wit = draw(mu_J, mu_T)

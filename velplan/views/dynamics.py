@@ -364,7 +364,8 @@ def _ordinate_ticks(bottom: float, top: float, mu: float, base: float, base_labe
 
 
 def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequence[tuple[float, float]], *,
-                     omega_mean: float, delta: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes()) -> View:
+                     omega_mean: float, delta: float, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
+                     numbers: bool = True) -> View:
     """Wittenbauer's energy–mass diagram: ΔT against the variable inertia J at the scales of
     ``w`` (a `velplan.dynamics.flywheel.Wittenbauer`), the positions numbered on the curve,
     the tangents at ψ_max and ψ_min to the ΔT axis, the segment kl they cut and J_I from it.
@@ -444,8 +445,11 @@ def wittenbauer_view(w, curve_J: np.ndarray, curve_T: np.ndarray, points: Sequen
     # the numbers and l each by its own point, the nearest point to it (else led to it)
     marks = numbered + [("l", (lx, ly)), ("k", (kx, ky))]  # k last: its letter stays where it is
     dots = [shapely.Point(p).buffer(1.0) for _, p in marks]
-    items += place_anchored(marked, [shapely.Point(p) for _, p in marks], ["point"] * len(marks),
-                            [ln.buffer(0.6) for ln in lines] + dots + _text_boxes(items), leader_layer=LABELS)
+    if numbers:
+        items += place_anchored(marked, [shapely.Point(p) for _, p in marks], ["point"] * len(marks),
+                                [ln.buffer(0.6) for ln in lines] + dots + _text_boxes(items), leader_layer=LABELS)
+    else:  # a drawing only measured while its scales are sought: the numbers where first put
+        items += marked
     items += list(place_labels(names, lines + _text_boxes(items)))
     w2d = omega_mean**2 * delta
     mu_j, mu_t, wm = indexed("μ", "J"), indexed("μ", "T"), indexed("ω", "m")
