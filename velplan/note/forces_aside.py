@@ -12,10 +12,13 @@ from __future__ import annotations
 import contextlib
 import os
 import pickle
+import select
 import signal
 
 ENABLED = False
 """Whether `build_note` hands the part on forces to a fork (within `building_aside`)."""
+WAIT_S = 120.0
+"""How long the note waits for the fork's first byte, s; then it writes the part itself."""
 
 
 @contextlib.contextmanager
@@ -61,8 +64,11 @@ class ForcesAside:
             return False
         try:
             os.write(self.ask, f"{note.figures} {note.tables}\n".encode("ascii"))
-            with open(self.told, "rb", closefd=False) as got:
-                data = got.read()
+            data = b""
+            # a fork stuck (a lock another thread held when it was made) is not waited on forever
+            if select.select([self.told], [], [], WAIT_S)[0]:
+                with open(self.told, "rb", closefd=False) as got:
+                    data = got.read()
         except OSError:
             data = b""
         self.close()
