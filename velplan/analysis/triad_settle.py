@@ -98,31 +98,24 @@ def _parts(z):
     return np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
 
 
+def _minor(p, q, r, s):
+    """p·q − r·s, elementwise, in one new array (no temporaries beyond it)."""
+    out = p * q
+    out -= r * s
+    return out
+
+
 def _solve(rows, size: float):
     """Cramer's rule for rows (a, b, c | r) whose first c is zero (None); and the condition test."""
     (a1, b1, _, r1), (a2, b2, c2, r2), (a3, b3, c3, r3) = rows
-    bc = b2 * c3
-    bc -= b3 * c2
-    ac = a2 * c3
-    ac -= a3 * c2
-    det = a1 * bc
-    det -= b1 * ac
-    rc = r2 * c3
-    rc -= r3 * c2
-    dx = r1 * bc
-    dx -= b1 * rc
+    bc, ac, rc = _minor(b2, c3, b3, c2), _minor(a2, c3, a3, c2), _minor(r2, c3, r3, c2)
+    det = _minor(a1, bc, b1, ac)
+    dx = _minor(r1, bc, b1, rc)
     dx /= det
-    dy = a1 * rc
-    dy -= r1 * ac
+    dy = _minor(a1, rc, r1, ac)
     dy /= det
-    ab = a2 * b3
-    ab -= a3 * b2
-    br = b2 * r3
-    br -= b3 * r2
-    ar = a2 * r3
-    ar -= a3 * r2
-    dt = a1 * br
-    dt -= b1 * ar
+    ab, br, ar = _minor(a2, b3, a3, b2), _minor(b2, r3, b3, r2), _minor(a2, r3, a3, r2)
+    dt = _minor(a1, br, b1, ar)
     dt += r1 * ab
     dt /= det
     # |det|/size ≥ Q·Π‖row‖ (rows with the θ column over size), squared: no roots
