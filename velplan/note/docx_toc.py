@@ -1,6 +1,11 @@
-"""The contents of the note's .docx written out: the TOC field carries its result (each heading
-of levels 1–2 with its number, a dot leader and its page), so a viewer that does not update
-fields (LibreOffice, a browser preview) shows a filled contents page; Word updates it on opening.
+"""The contents of the note's .docx written out: each heading of levels 1–2 with its number, a
+dot leader and its page, the page a PAGEREF field to a bookmark in the heading. An office
+program computes the field as it lays the pages out (LibreOffice on every layout, Word on
+opening: ``w:updateFields``), so the printed number is the page the heading lands on; the
+field's stored result, shown by a viewer that computes no fields, is the page estimated here.
+
+Not one TOC field: LibreOffice reads a TOC field's result as fixed text and leaves the
+PAGEREF fields inside it as they were written.
 
 The pages are estimated, not measured: the body is walked once with the heights of its lines,
 equations, tables and pictures on an A4 page of the note's margins (`estimate_pages`).
@@ -94,20 +99,36 @@ def estimate_pages(body, lang: str, start: int = 1) -> list[int]:
 
 
 def entries(doc, lang: str, depth: int = 2) -> list[Entry]:
-    """The headings of levels 1..``depth`` with their numbers, anchors and estimated pages."""
+    """The headings of levels 1..``depth`` with their numbers, anchors and estimated pages;
+    each such heading gets a hidden bookmark ``_Toc<n>`` round its text, the anchor."""
     body = doc.element.body
     pages = estimate_pages(body, lang)
-    out, anchor = [], ""
+    ids = [int(b.get(qn("w:id"))) for b in body.iter(qn("w:bookmarkStart")) if (b.get(qn("w:id")) or "").isdigit()]
+    free = max(ids, default=0) + 1
+    out = []
     for k, el in enumerate(body):
-        if el.tag == qn("w:bookmarkStart"):
-            anchor = el.get(qn("w:name"))
+        if el.tag != qn("w:p"):
             continue
-        if el.tag == qn("w:p"):
-            style = _style(el)
-            if style.startswith("Heading") and style[7:].isdigit() and int(style[7:]) <= depth:
-                out.append(Entry(int(style[7:]), " ".join(_text(el).split()), anchor, pages[k]))
-            anchor = ""
+        style = _style(el)
+        if style.startswith("Heading") and style[7:].isdigit() and int(style[7:]) <= depth:
+            anchor = _bookmark(el, free)
+            free += 1
+            out.append(Entry(int(style[7:]), " ".join(_text(el).split()), anchor, pages[k]))
     return out
+
+
+def _bookmark(p, number: int) -> str:
+    """A bookmark ``_Toc<number>`` round the runs of paragraph ``p``; returns its name (a
+    bookmark between paragraphs, as pandoc writes them, LibreOffice loses after a table)."""
+    name = f"_Toc{number}"
+    start, end = OxmlElement("w:bookmarkStart"), OxmlElement("w:bookmarkEnd")
+    start.set(qn("w:id"), str(number))
+    start.set(qn("w:name"), name)
+    end.set(qn("w:id"), str(number))
+    ppr = p.find(qn("w:pPr"))
+    (ppr.addnext if ppr is not None else lambda e: p.insert(0, e))(start)
+    p.append(end)
+    return name
 
 
 def _run(text: str | None = None, *, tab: bool = False, fld: str | None = None, instr: str | None = None):
@@ -149,29 +170,26 @@ def _entry_paragraph(e: Entry, look):
     if e.anchor:
         link.set(qn("w:anchor"), e.anchor)
     link.set(qn("w:history"), "1")
-    for r in (_run(e.text), _run(tab=True), _run(str(e.page))):
+    field = [_run(fld="begin"), _run(instr=f" PAGEREF {e.anchor} \\h "), _run(fld="separate"),
+             _run(str(e.page)), _run(fld="end")] if e.anchor else [_run(str(e.page))]
+    for r in [_run(e.text), _run(tab=True)] + field:
         link.append(r)
     p.append(link)
     return p
 
 
 def fill_contents(doc, lang: str) -> int:
-    """Replace the TOC field's placeholder by its entries; returns the number of entries."""
+    """Replace the contents' placeholder (the TOC field the Markdown writes) by its entries;
+    returns the number of entries."""
     body = doc.element.body
     field = next((p for p in body.iter(qn("w:p"))
                   if any((t.text or "").lstrip().startswith("TOC") for t in p.iter(qn("w:instrText")))), None)
     if field is None:
         return 0
-    instr = next(t.text for t in field.iter(qn("w:instrText")))
     items = entries(doc, lang)
     look = LOOKS.get(lang, LOOKS["en"])
-    paragraphs = [_entry_paragraph(e, look) for e in items] or [OxmlElement("w:p")]
-    first, last = paragraphs[0], paragraphs[-1]
-    for k, r in enumerate((_run(fld="begin"), _run(instr=instr), _run(fld="separate"))):
-        first.insert(1 + k, r)
-    last.append(_run(fld="end"))
     anchor = field
-    for p in paragraphs:
+    for p in [_entry_paragraph(e, look) for e in items]:
         anchor.addnext(p)
         anchor = p
     body.remove(field)
