@@ -112,3 +112,15 @@ def test_contents_page_numbers_are_the_pages_of_the_headings(notes, printed, cas
         assert found is not None, f"{case}: heading {text!r} not found after page {at + 1}"
         assert page == found + 1, f"{case}: {text!r} is listed on page {page}, printed on {found + 1}"
         at = found
+
+
+@pytest.mark.parametrize("case", CASES, ids=["-".join(c) for c in CASES])
+def test_stored_pages_estimate_the_printed_ones(notes, printed, case):
+    """The fields' stored results (what a viewer that computes no fields shows) are the
+    layout model's estimate: within a page of LibreOffice's, and most of them exact."""
+    pages = printed[case]
+    listed = [int(m.group(2)) for m in (re.match(r"(.*?)\s*\.{4,}\s*(\d+)$", x) for x in _lines(pages[1])) if m]
+    stored = [page for _, _, page in _entries(notes[case])]
+    assert len(stored) == len(listed)
+    off = [abs(a - b) for a, b in zip(stored, listed)]
+    assert max(off) <= 1 and off.count(0) >= 0.8 * len(off), list(zip(stored, listed))
