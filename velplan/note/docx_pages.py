@@ -29,7 +29,7 @@ PAGE_PT = 257 / 25.4 * 72
 LINE = 1.149
 """Height of a single line, font sizes (Times New Roman's ascent 0.891, descent 0.216 and
 line gap 0.042 of an em)."""
-CJK_LINE = 1.25
+CJK_LINE = 1.175
 """The same for a line holding Chinese characters (the fallback font is taller)."""
 RULE_PT = 0.55
 """What a table row's rules add to its lines, points."""
@@ -136,34 +136,38 @@ def _math_width(formula, size: float) -> float:
     return ems * size * 20
 
 
-def _words(p, size: float) -> list[float]:
-    """Widths of the words of paragraph ``p`` (what lies between its breakable spaces, an
-    inline formula part of its word), twips; a Chinese character is a word of its own."""
-    words, word = [], 0.0
+def _words(p, size: float) -> list[tuple[float, float]]:
+    """The words of paragraph ``p`` (what lies between its breakable spaces, an inline formula
+    part of its word; a Chinese character a word of its own): the space before each and its
+    width, twips."""
+    words, word, gap, space = [], 0.0, 0.0, _char(" ") * size * 20
     for el in p.iter(qn("w:t"), qn("w:tab"), f"{_M}oMath"):
         if el.tag == f"{_M}oMath":
             word += _math_width(el, size)
             continue
         for c in " " if el.tag == qn("w:tab") else (el.text or ""):
-            if c == " " or unicodedata.east_asian_width(c) in "WF":
+            wide = unicodedata.east_asian_width(c) in "WF"
+            if c == " " or wide:
                 if word:
-                    words.append(word)
-                word = 0.0 if c == " " else _char(c) * size * 20
-                if c != " ":
-                    words.append(word)
-                    word = 0.0
+                    words.append((gap, word))
+                    gap = 0.0
+                word = 0.0
+                if wide:
+                    words.append((gap, _char(c) * size * 20))
+                gap = space if c == " " else 0.0
             else:
                 word += _char(c) * size * 20
-    return words + [word] if word else words
+    return words + [(gap, word)] if word else words
 
 
-def _lines(words: list[float], size: float, width: float, first: float) -> int:
-    """Lines the words (their widths, twips) take, broken greedily between them."""
-    lines, used, room, space = 1, 0.0, width - first, _char(" ") * size * 20
-    for w in words:
-        if used and used + space + w > room:
+def _lines(words: list[tuple[float, float]], width: float, first: float) -> int:
+    """Lines the words (the space before each, its width; twips) take, broken greedily."""
+    lines, used, room = 1, 0.0, width - first
+    for gap, w in words:
+        if used and used + gap + w > room:
             lines, used, room = lines + 1, 0.0, width
-        used += (space if used else 0.0) + w
+            gap = 0.0
+        used += (gap if used else 0.0) + w
     return lines
 
 
@@ -191,6 +195,15 @@ def _math_extra(el) -> float:
         mm = _MATH_MM["script" if scripts else "plain"] + (_MATH_MM["nested"] if nested else 0.0)
         mm += (_MATH_MM["sup"] if sup else 0.0) + (_MATH_MM["accent"] if el.find(f".//{_M}acc") is not None else 0.0)
     return mm * _PT_PER_MM
+
+
+def _display(formula, para: Para) -> float:
+    """Height of a displayed formula on its line of ``para``, points: a long one is a matrix
+    whose rows stand one under another, each a font's height and what its symbols add."""
+    rows = formula.findall(f".//{_M}mr")
+    if not rows:
+        return line_pt(para) + _math_extra(formula)
+    return line_pt(para) - para.size * LINE + sum(para.size * LINE + _math_extra(r) for r in rows)
 
 
 @dataclass
@@ -223,7 +236,7 @@ def _table(tbl, known: dict[str, Para]) -> Block:
                 para = _para(p, known)
                 sizes = [int(s.get(qn("w:val"))) / 2 for s in p.iter(qn("w:sz"))]
                 para.size = min(sizes) if sizes else para.size
-                lines = _lines(_words(p, para.size), para.size, width - CELL_PAD_TWIPS - para.indent, 0)
+                lines = _lines(_words(p, para.size), width - CELL_PAD_TWIPS - para.indent, 0)
                 height += lines * line_pt(para, _cjk(p)) + para.before + para.after
             tallest = max(tallest, height)
         rows.append(tallest + RULE_PT)
@@ -244,9 +257,8 @@ def _paragraph(p, known: dict[str, Para]) -> Block:
     display = p.find(f"{_M}oMathPara")
     if display is not None:
         lines = display.findall(f"{_M}oMath") or [display]
-        rows = [max(1, len(m.findall(f".//{_M}mr"))) for m in lines]
-        return Block([sum(n * (line_pt(para) + _math_extra(m)) for n, m in zip(rows, lines))], **spacing)
-    lines = _lines(_words(p, para.size), para.size, TEXT_WIDTH_TWIPS - para.indent, para.first)
+        return Block([sum(_display(m, para) for m in lines)], **spacing)
+    lines = _lines(_words(p, para.size), TEXT_WIDTH_TWIPS - para.indent, para.first)
     line = line_pt(para, _cjk(p))
     pieces = [line] * lines
     tallest = max((_math_extra(m) for m in p.iter(f"{_M}oMath")), default=0.0)
