@@ -155,7 +155,12 @@ def apply_look(doc, lang: str) -> None:
                 _child(ppr, "w:keepNext")
         elif sid in ("Title", "TOCHeading"):
             _size(rpr, look.headings[0])
-            _child(rpr, "w:b")
+            for tag in ("w:b", "w:bCs"):  # pandoc's TOC Heading says bold off
+                _child(rpr, tag).attrib.pop(qn("w:val"), None)
+            if sid == "TOCHeading":
+                ppr = _child(style, "w:pPr")
+                _set(_child(ppr, "w:ind"), firstLine=0)
+                _set(_child(ppr, "w:jc"), val="center")
 
 
 def heading_spaces(doc) -> int:
@@ -175,6 +180,41 @@ def heading_spaces(doc) -> int:
             runs[1].append(t)
             fixed += 1
     return fixed
+
+
+def centre_unnumbered(doc) -> int:
+    """The headings of the note's parts that carry no number (introduction, conclusion,
+    references) centred, with no indent, as "Содержание" is (ГОСТ 2.105: headings of the
+    document's parts symmetric to the text). Returns the headings centred."""
+    centred = 0
+    for p in doc.element.body.iter(qn("w:p")):
+        style = p.find(f"{qn('w:pPr')}/{qn('w:pStyle')}")
+        if style is None or style.get(qn("w:val")) != "Heading1":
+            continue
+        if any(_is_section_number(r) for r in p.findall(qn("w:r"))):
+            continue
+        ppr = p.find(qn("w:pPr"))
+        _set(_child(ppr, "w:ind"), firstLine=0)
+        _set(_child(ppr, "w:jc"), val="center")
+        centred += 1
+    return centred
+
+
+def keep_lead_ins(doc) -> int:
+    """A paragraph of text that ends with a colon ("Формула строения:") kept with what it
+    introduces, so a page break never parts them. Returns the paragraphs kept."""
+    kept = 0
+    for p in doc.element.body.iter(qn("w:p")):
+        text = "".join(t.text or "" for t in p.iter(qn("w:t"))).rstrip()
+        if not text.endswith(":") or p.getparent() is not doc.element.body:
+            continue
+        ppr = p.find(qn("w:pPr"))
+        if ppr is None:
+            ppr = OxmlElement("w:pPr")
+            p.insert(0, ppr)
+        _child(ppr, "w:keepNext")
+        kept += 1
+    return kept
 
 
 def _is_section_number(run) -> bool:

@@ -10,7 +10,7 @@ import numpy as np
 from velplan.note.dynamics_worked import motor_name
 from velplan.note.formulas import txt
 from velplan.note.model import Heading, Math, Para
-from velplan.note.text import LANG_INDEX, balancing, p, roman
+from velplan.note.text import LANG_INDEX, balancing, mechanism_of, p, roman
 from velplan.views.base import number
 
 REFERENCES = {
@@ -51,7 +51,7 @@ def introduction(note, study, parts) -> None:
     done = [_INTRO[k][LANG_INDEX[lang]] for k in ("kinematics", "forces", "dynamics") if k in parts]
     sep = "、" if lang == "zh" else ", "
     note.add(Heading(p("sec_intro", lang), 1, numbered=False),
-             Para.of(p("intro", lang, study.mechanism.name_in(lang), sep.join(done))))
+             Para.of(p("intro", lang, mechanism_of(study.mechanism.name_in(lang), lang), sep.join(done))))
 
 
 def conclusion(note, study, moments=None, flywheel=None, drive=None) -> None:

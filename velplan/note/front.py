@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from velplan.mechanism.structure import structure, pairs
 from velplan.note.model import Contents, Equation, Heading, PageBreak, Para, TitlePage
-from velplan.note.text import group_kind, group_name, p, roman
+from velplan.note.text import group_kind, group_name, mechanism_of, p, roman
 from velplan.views.data import data_lines
 
 BLANK = "____________"
@@ -12,7 +12,9 @@ BLANK = "____________"
 
 def title_page(note, study, fields: dict | None = None) -> None:
     """Title page with the ESKD fields (``organisation``, ``author``, ``group``, ``checker``,
-    ``date``; blank lines for what velplan does not know: it never reads the clock)."""
+    ``date``; blank lines for what velplan does not know: it never reads the clock). The
+    designation is the course work's code, the sheets' (``ТММ 01.00.000``…) with number 00 and
+    "ПЗ" in ru/uk: no file name (ГОСТ 2.201)."""
     lang, mech = note.lang, study.mechanism
     fields = dict(fields or {})
     prefix = "ТММ" if lang in ("ru", "uk") else "TMM"
@@ -20,8 +22,8 @@ def title_page(note, study, fields: dict | None = None) -> None:
     note.add(TitlePage(
         organisation=fields.get("organisation") or BLANK,
         kind=p("note", lang), course=p("course", lang),
-        topic=p("topic", lang, mech.name_in(lang)),
-        designation=f"{prefix}.{mech.name}.00{suffix}",
+        topic=p("topic", lang, mechanism_of(mech.name_in(lang), lang)),
+        designation=f"{prefix} 00.00.000{suffix}",
         fields=((p("student", lang), fields.get("author") or BLANK),
                 (p("group", lang), fields.get("group") or BLANK),
                 (p("supervisor", lang), fields.get("checker") or BLANK)),

@@ -3,6 +3,8 @@ units come from the sheets themselves: `velplan.plans.text`, `velplan.render.i18
 
 from __future__ import annotations
 
+import re
+
 from velplan.options import Language
 from velplan.plans.text import check_lang
 
@@ -14,8 +16,8 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "course": ("to the course project in the theory of machines and mechanisms",
                "к курсовому проекту по теории механизмов и машин",
                "до курсового проєкту з теорії механізмів і машин", "机械原理课程设计"),
-    "topic": ("Analysis and synthesis of the mechanism of the {0}", "Исследование механизма: {0}",
-              "Дослідження механізму: {0}", "{0}机构的分析与综合"),
+    "topic": ("Analysis and synthesis of the {0}", "Исследование механизма: {0}",
+              "Дослідження механізму: {0}", "{0}的分析与综合"),
     "organisation": ("Organisation", "Организация", "Організація", "单位"),
     "department": ("Department", "Кафедра", "Кафедра", "教研室"),
     "student": ("Student", "Выполнил студент", "Виконав студент", "学生"),
@@ -250,7 +252,7 @@ _P: dict[str, tuple[str, str, str, str]] = {
     "sec_conclusion": ("Conclusion", "Заключение", "Висновки", "结论"),
     "sec_references": ("References", "Список использованных источников", "Список використаних джерел",
                        "参考文献"),
-    "intro": ("The task of the course project is the study of the mechanism of the {0}: its structure, {1}. "
+    "intro": ("The task of the course project is the study of the {0}: its structure, {1}. "
               "The initial data are those of the task (section 1); the methods follow the textbooks in the "
               "list of references, and every number is that of the drawing sheets.",
               "Задача курсового проекта — исследование механизма: {0}. Выполнены структурный анализ, {1}. "
@@ -259,7 +261,7 @@ _P: dict[str, tuple[str, str, str, str]] = {
               "Завдання курсового проєкту — дослідження механізму: {0}. Виконано структурний аналіз, {1}. "
               "Вихідні дані взято із завдання (розділ 1); методи відповідають підручникам зі списку "
               "використаних джерел, усі числа збігаються з аркушами графічної частини.",
-              "本课程设计的任务是研究{0}机构：结构分析、{1}。原始数据取自设计任务书（第1节）；方法依据参考文献中的教材，"
+              "本课程设计的任务是研究{0}：结构分析、{1}。原始数据取自设计任务书（第1节）；方法依据参考文献中的教材，"
               "全部数值与图纸一致。"),
     "concl_structure": ("The mechanism has one degree of freedom W = {0} and is of class {1}.",
                         "Механизм имеет степень подвижности W = {0}, механизм {1} класса.",
@@ -354,6 +356,18 @@ _P: dict[str, tuple[str, str, str, str]] = {
 def p(key: str, lang: Language, *args) -> str:
     """The phrase ``key`` in ``lang``, formatted with ``args``."""
     return _P[key][LANG_INDEX[check_lang(lang)]].format(*args)
+
+
+def mechanism_of(name: str, lang: Language) -> str:
+    """The mechanism a machine's name ``name`` calls for in the topic and the introduction:
+    in en "mechanism of the shaping machine" but "offset crank-slider mechanism" (no
+    "mechanism of the … mechanism"), in zh 牛头刨床机构 but 曲柄滑块机构; ru and uk name
+    the machine after "механизма:"."""
+    if lang == "en":
+        return name if re.search(r"\b(mechanism|linkage)\b", name) else f"mechanism of the {name}"
+    if lang == "zh":
+        return name if name.endswith("机构") or "机构（" in name else name + "机构"
+    return name
 
 
 def direction(value: float, lang: Language) -> str:

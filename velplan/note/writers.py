@@ -145,6 +145,8 @@ def _layout(doc, lang: str) -> None:
 
     docx_layout.apply_look(doc, lang)
     docx_layout.heading_spaces(doc)
+    docx_layout.centre_unnumbered(doc)
+    docx_layout.keep_lead_ins(doc)
     docx_layout.math_size(doc, lang)
     docx_tables.layout_tables(doc, lang)
     docx_toc.fill_contents(doc, lang)
