@@ -89,3 +89,20 @@ def test_topic_names_the_mechanism_once():
         zh = p("intro", "zh", mechanism_of(mech.name_in("zh"), "zh"), "")
         assert "机构机构" not in zh and "机构" in zh, zh
         assert p("topic", "ru", mechanism_of(mech.name_in("ru"), "ru")).startswith("Исследование механизма: ")
+
+
+def test_column_headings_start_with_a_capital_unless_a_symbol(note_docx):
+    """ГОСТ 2.105: a table's column headings begin with a capital letter ("По плану",
+    "Отрезок, мм"); a symbol keeps its case ("h, мм", "ω3/ω2")."""
+    from velplan.note.cells import split_symbol
+
+    _, doc = note_docx
+    headings = []
+    for tbl in doc.element.body.iter(qn("w:tbl")):
+        for tc in tbl.find(qn("w:tr")).findall(qn("w:tc")):
+            headings.append("".join(t.text or "" for t in tc.iter(qn("w:t"))))
+    assert len(headings) >= 20
+    for h in headings:
+        word = re.match(r"[^\W\d_]+", h)
+        if word and len(word.group(0)) >= 2 and not split_symbol(re.match(r"\w+", h).group(0)):
+            assert word.group(0)[0].isupper(), h

@@ -7,11 +7,13 @@ Text is plain Unicode (the sheets' own strings); formulas are TeX (`Math` inline
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 
 from velplan.note.blocks import (  # noqa: F401  (the blocks, re-exported)
     Block, Contents, Equation, Figure, Heading, Math, PageBreak, Para, Table, TitlePage)
+from velplan.note.cells import split_symbol
 from velplan.options import Language
 
 
@@ -56,6 +58,7 @@ class Note:
         from velplan.note.text import p
 
         self.tables += 1
+        header = [capital_header(h) for h in header]
         rows = [tuple(r) for r in rows]
         parts = [rows[k:k + ROWS_PER_PAGE] for k in range(0, len(rows), ROWS_PER_PAGE)] or [[]]
         self.add(Table(f"{p('table', self.lang)} {self.tables} — {caption}", tuple(header), tuple(parts[0]), key))
@@ -68,3 +71,18 @@ class Note:
     def equations(self) -> int:
         """Displayed equations in the note."""
         return sum(isinstance(b, Equation) for b in self.blocks)
+
+
+def capital_header(cell: str) -> str:
+    """A table's column heading with a capital first letter where it starts with a word
+    ("по плану" → "По плану", "segment, mm" → "Segment, mm"; ГОСТ 2.105); one that starts
+    with a symbol ("h, мм", "ω3/ω2", "aA4") is left as it is.
+
+    >>> [capital_header(c) for c in ("пол.", "read off the plan", "h, мм", "ω3/ω2", "aA4", "δ, %", "k²")]
+    ['Пол.', 'Read off the plan', 'h, мм', 'ω3/ω2', 'aA4', 'δ, %', 'k²']
+    """
+    word = re.match(r"\w+", str(cell))
+    letters = re.match(r"[^\W\d_²³]+", word.group(0)) if word else None
+    if letters is None or len(letters.group(0)) < 2 or split_symbol(word.group(0)):
+        return cell
+    return cell[0].upper() + cell[1:]
