@@ -15,6 +15,7 @@ accents add (`_MATH_MM`).
 
 from __future__ import annotations
 
+import copy
 import unicodedata
 from dataclasses import dataclass
 
@@ -39,6 +40,7 @@ _MATH_MM = {"plain": 0.1, "script": 0.4, "nested": 0.4, "sup": 0.6, "accent": 0.
 symbols; a sub- or superscript, scripts on scripts, a superscript, an accent (each adds);
 a fraction, a fraction with scripts inside, and scripts on scripts in it."""
 _M = "{http://schemas.openxmlformats.org/officeDocument/2006/math}"
+_W = "{http://schemas.openxmlformats.org/wordprocessingml/2006/main}"
 _WP = "{http://schemas.openxmlformats.org/drawingml/2006/wordprocessingDrawing}"
 _PT_PER_MM = 72 / 25.4
 
@@ -61,52 +63,52 @@ class Para:
 def _apply(para: Para, ppr, rpr) -> None:
     """Overlay the properties ``ppr`` / ``rpr`` (either None) on ``para``."""
     if ppr is not None:
-        sp = ppr.find(qn("w:spacing"))
+        sp = ppr.find(f"{_W}spacing")
         if sp is not None:
             for attr, name in (("before", "before"), ("after", "after")):
-                if sp.get(qn(f"w:{attr}")) is not None:
-                    setattr(para, name, int(sp.get(qn(f"w:{attr}"))) / 20)
-            if sp.get(qn("w:line")) is not None and sp.get(qn("w:lineRule"), "auto") == "auto":
-                para.line = int(sp.get(qn("w:line"))) / 240
-        keep = ppr.find(qn("w:keepNext"))
+                if sp.get(_W + attr) is not None:
+                    setattr(para, name, int(sp.get(_W + attr)) / 20)
+            if sp.get(f"{_W}line") is not None and sp.get(f"{_W}lineRule", "auto") == "auto":
+                para.line = int(sp.get(f"{_W}line")) / 240
+        keep = ppr.find(f"{_W}keepNext")
         if keep is not None:
-            para.keep_next = keep.get(qn("w:val"), "true") not in ("0", "false")
-        ind = ppr.find(qn("w:ind"))
+            para.keep_next = keep.get(f"{_W}val", "true") not in ("0", "false")
+        ind = ppr.find(f"{_W}ind")
         if ind is not None:
-            side = sum(int(ind.get(qn(f"w:{k}"), 0)) for k in ("left", "right"))
-            para.indent = side if (ind.get(qn("w:left")) or ind.get(qn("w:right"))) else para.indent
-            if ind.get(qn("w:firstLine")) is not None:
-                para.first = int(ind.get(qn("w:firstLine")))
+            side = sum(int(ind.get(_W + k, 0)) for k in ("left", "right"))
+            para.indent = side if (ind.get(f"{_W}left") or ind.get(f"{_W}right")) else para.indent
+            if ind.get(f"{_W}firstLine") is not None:
+                para.first = int(ind.get(f"{_W}firstLine"))
     if rpr is not None:
-        sz = rpr.find(qn("w:sz"))
+        sz = rpr.find(f"{_W}sz")
         if sz is not None:
-            para.size = int(sz.get(qn("w:val"))) / 2
+            para.size = int(sz.get(f"{_W}val")) / 2
 
 
 def styles(doc) -> dict[str, Para]:
     """Each paragraph style of ``doc`` resolved through the styles it is based on."""
     root = doc.styles.element
     base = Para()
-    defaults = root.find(qn("w:docDefaults"))
+    defaults = root.find(f"{_W}docDefaults")
     if defaults is not None:
         _apply(base, defaults.find(f"{qn('w:pPrDefault')}/{qn('w:pPr')}"),
                defaults.find(f"{qn('w:rPrDefault')}/{qn('w:rPr')}"))
-    raw = {s.get(qn("w:styleId")): s for s in root.findall(qn("w:style")) if s.get(qn("w:type")) == "paragraph"}
+    raw = {s.get(f"{_W}styleId"): s for s in root.findall(f"{_W}style") if s.get(f"{_W}type") == "paragraph"}
     done: dict[str, Para] = {}
 
     def resolve(sid: str, depth: int = 0) -> Para:
         if sid in done:
             return done[sid]
         style = raw.get(sid)
-        parent = style.find(qn("w:basedOn")) if style is not None else None
-        para = Para(**vars(resolve(parent.get(qn("w:val")), depth + 1) if parent is not None and depth < 20
+        parent = style.find(f"{_W}basedOn") if style is not None else None
+        para = Para(**vars(resolve(parent.get(f"{_W}val"), depth + 1) if parent is not None and depth < 20
                            else base))
         if style is not None:
-            _apply(para, style.find(qn("w:pPr")), style.find(qn("w:rPr")))
+            _apply(para, style.find(f"{_W}pPr"), style.find(f"{_W}rPr"))
         done[sid] = para
         return para
 
-    default = next((k for k, s in raw.items() if s.get(qn("w:default")) in ("1", "true")), "Normal")
+    default = next((k for k, s in raw.items() if s.get(f"{_W}default") in ("1", "true")), "Normal")
     done[""] = resolve(default)
     for sid in raw:
         resolve(sid)
@@ -114,9 +116,14 @@ def styles(doc) -> dict[str, Para]:
 
 
 def _para(p, known: dict[str, Para]) -> Para:
-    ppr = p.find(qn("w:pPr"))
-    sid = ppr.find(qn("w:pStyle")) if ppr is not None else None
-    para = Para(**vars(known.get(sid.get(qn("w:val")) if sid is not None else "", known[""])))
+    """The properties of paragraph ``p``: its style's, with its own over them (not to be
+    changed: a paragraph of its style's alone shares them)."""
+    ppr = p.find(f"{_W}pPr")
+    sid = ppr.find(f"{_W}pStyle") if ppr is not None else None
+    style = known.get(sid.get(f"{_W}val") if sid is not None else "", known[""])
+    if ppr is None or len(ppr) == (sid is not None):
+        return style
+    para = copy.copy(style)
     _apply(para, ppr, None)
     return para
 
@@ -140,24 +147,33 @@ def _words(p, size: float) -> list[tuple[float, float]]:
     """The words of paragraph ``p`` (what lies between its breakable spaces, an inline formula
     part of its word; a Chinese character a word of its own): the space before each and its
     width, twips."""
-    words, word, gap, space = [], 0.0, 0.0, _char(" ") * size * 20
-    for el in p.iter(qn("w:t"), qn("w:tab"), f"{_M}oMath"):
+    words, word, gap, twips = [], 0.0, 0.0, size * 20
+    for el in p.iter(f"{_W}t", f"{_W}tab", f"{_M}oMath"):
         if el.tag == f"{_M}oMath":
-            word += _math_width(el, size)
+            word += _math_width(el, size) / twips
             continue
-        for c in " " if el.tag == qn("w:tab") else (el.text or ""):
-            wide = unicodedata.east_asian_width(c) in "WF"
+        for c in " " if el.tag == f"{_W}tab" else (el.text or ""):
+            ems, wide = _EMS.get(c) or _ems(c)
             if c == " " or wide:
                 if word:
-                    words.append((gap, word))
+                    words.append((gap, word * twips))
                     gap = 0.0
                 word = 0.0
                 if wide:
-                    words.append((gap, _char(c) * size * 20))
-                gap = space if c == " " else 0.0
+                    words.append((gap, ems * twips))
+                gap = _EMS[" "][0] * twips if c == " " else 0.0
             else:
-                word += _char(c) * size * 20
-    return words + [(gap, word)] if word else words
+                word += ems
+    return words + [(gap, word * twips)] if word else words
+
+
+_EMS: dict[str, tuple[float, bool]] = {}
+
+
+def _ems(c: str) -> tuple[float, bool]:
+    """The advance width of ``c`` (ems) and whether it is a Chinese (wide) character, kept."""
+    _EMS[c] = (_char(c), unicodedata.east_asian_width(c) in "WF")
+    return _EMS[c]
 
 
 def _lines(words: list[tuple[float, float]], width: float, first: float) -> int:
@@ -172,7 +188,7 @@ def _lines(words: list[tuple[float, float]], width: float, first: float) -> int:
 
 
 def _cjk(p) -> bool:
-    return any(unicodedata.east_asian_width(c) in "WF" for t in p.iter(qn("w:t")) for c in t.text or "")
+    return any(unicodedata.east_asian_width(c) in "WF" for t in p.iter(f"{_W}t") for c in t.text or "")
 
 
 def line_pt(para: Para, cjk: bool = False) -> float:
@@ -226,15 +242,15 @@ class Block:
 
 
 def _table(tbl, known: dict[str, Para]) -> Block:
-    grid = [int(c.get(qn("w:w"))) for c in tbl.find(qn("w:tblGrid"))] or [TEXT_WIDTH_TWIPS]
+    grid = [int(c.get(f"{_W}w")) for c in tbl.find(f"{_W}tblGrid")] or [TEXT_WIDTH_TWIPS]
     rows = []
-    for tr in tbl.findall(qn("w:tr")):
+    for tr in tbl.findall(f"{_W}tr"):
         tallest = 0.0
-        for tc, width in zip(tr.findall(qn("w:tc")), grid):
+        for tc, width in zip(tr.findall(f"{_W}tc"), grid):
             height = 0.0
-            for p in tc.iter(qn("w:p")):
-                para = _para(p, known)
-                sizes = [int(s.get(qn("w:val"))) / 2 for s in p.iter(qn("w:sz"))]
+            for p in tc.iter(f"{_W}p"):
+                para = copy.copy(_para(p, known))
+                sizes = [int(s.get(f"{_W}val")) / 2 for s in p.iter(f"{_W}sz")]
                 para.size = min(sizes) if sizes else para.size
                 lines = _lines(_words(p, para.size), width - CELL_PAD_TWIPS - para.indent, 0)
                 height += lines * line_pt(para, _cjk(p)) + para.before + para.after
@@ -245,7 +261,7 @@ def _table(tbl, known: dict[str, Para]) -> Block:
 
 def _paragraph(p, known: dict[str, Para]) -> Block:
     para = _para(p, known)
-    if any(b.get(qn("w:type")) == "page" for b in p.iter(qn("w:br"))):
+    if any(b.get(f"{_W}type") == "page" for b in p.iter(f"{_W}br")):
         return Block([], breaks=True)
     font_line = para.size * LINE
     spacing = {"before": para.before, "after": para.after, "keep_next": para.keep_next,
@@ -264,8 +280,8 @@ def _paragraph(p, known: dict[str, Para]) -> Block:
     tallest = max((_math_extra(m) for m in p.iter(f"{_M}oMath")), default=0.0)
     if tallest > _MATH_MM["plain"] * _PT_PER_MM:  # the line that holds it, half of it on each other line
         pieces = [line + tallest] + [line + tallest / 2] * (lines - 1)
-    style = p.find(f"{qn('w:pPr')}/{qn('w:pStyle')}")
-    heading = style is not None and style.get(qn("w:val"), "").startswith("Heading")
+    style = p.find(f"{_W}pPr/{_W}pStyle")
+    heading = style is not None and style.get(f"{_W}val", "").startswith("Heading")
     return Block(pieces if not heading else [sum(pieces)], splits=not heading, **spacing)
 
 
@@ -274,9 +290,9 @@ def blocks(doc) -> list[Block | None]:
     known = styles(doc)
     out: list[Block | None] = []
     for el in doc.element.body:
-        if el.tag == qn("w:tbl"):
+        if el.tag == f"{_W}tbl":
             out.append(_table(el, known))
-        elif el.tag == qn("w:p"):
+        elif el.tag == f"{_W}p":
             out.append(_paragraph(el, known))
         else:
             out.append(None)
