@@ -106,3 +106,15 @@ def test_column_headings_start_with_a_capital_unless_a_symbol(note_docx):
         word = re.match(r"[^\W\d_]+", h)
         if word and len(word.group(0)) >= 2 and not split_symbol(re.match(r"\w+", h).group(0)):
             assert word.group(0)[0].isupper(), h
+
+
+def test_what_stands_left_of_an_equals_sign_is_a_formula(note_docx):
+    """"lAB = 0.2 m", "Fc = 1400 N", "H = 0.1 m" of the input data are symbols with their
+    indices (l_AB, F_c), not words of plain text, in English as in Russian."""
+    from tests.note_prose import prose
+
+    _, doc = note_docx
+    texts = [text for _, text in prose(doc.element.body)]
+    assert texts
+    plain = [t for t in texts if re.search(r"(?<!\w)[A-Za-z][A-Za-z₀-₉]* = ", t)]
+    assert not plain, plain[:5]

@@ -20,8 +20,10 @@ TOKEN = re.compile(
     rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>\d+)(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<pts>[A-Za-zπ][A-Za-zπ]*\d[A-Za-z0-9π]*)(?![{_NOT_WORD}])")
 LETTERS = re.compile(rf"(?<![{_NOT_WORD}])(Δ?)([A-Za-z][A-Za-z₀-₉]*)(?![{_NOT_WORD}])")
-INDEXED = re.compile(r"(?<![A-Za-z0-9_])([A-Za-z][A-Za-z₀-₉]*[₀-₉][A-Za-z₀-₉]*)")
-"""A symbol with a subscript digit (lO₂A, JS₄, m₄, O₃): a symbol in every language."""
+INDEXED = re.compile(r"(?<![A-Za-z0-9_])([A-Za-z][A-Za-z₀-₉]*[₀-₉][A-Za-z₀-₉]*)"
+                     r"|(?<!\w)()([A-Za-z][A-Za-z₀-₉]*)(?= = )")
+"""A symbol with a subscript digit (lO₂A, JS₄, m₄, O₃): a symbol in every language; and in
+en, where a word may be English, what stands left of " = " (lBF, Fc, H, n)."""
 UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
@@ -48,7 +50,7 @@ def prose_parts(text: str, lang: str = "en") -> list:
         at = 0
         for m in (INDEXED if lang == "en" else LETTERS).finditer(piece):
             if lang == "en":
-                out += [x for x in (piece[at:m.start()], Math(_letters("", m.group(1)))) if x]
+                out += [x for x in (piece[at:m.start()], Math(_letters("", m.group(1) or m.group(3)))) if x]
                 at = m.end()
                 continue
             if (lang == "zh" and m.group(2) in UNITS) or re.fullmatch(r"[IVX]+", m.group(2)):
