@@ -118,3 +118,14 @@ def test_what_stands_left_of_an_equals_sign_is_a_formula(note_docx):
     assert texts
     plain = [t for t in texts if re.search(r"(?<!\w)[A-Za-z][A-Za-z₀-₉]* = ", t)]
     assert not plain, plain[:5]
+
+
+def test_a_dyads_kind_is_plain_text(note_docx):
+    """The kind of an Assur dyad (RRP, RPR) is a name, not R with the index "RP"."""
+    lang, doc = note_docx
+    cells = [tc for tc in doc.element.body.iter(qn("w:tc"))
+             if re.search(r"\b[RP]{3}\b", "".join(t.text or "" for t in tc.iter(qn("w:t"))))]
+    if lang == "en":
+        assert cells
+    for tc in cells:
+        assert tc.find(f".//{qn('w:vertAlign')}") is None, "".join(t.text or "" for t in tc.iter(qn("w:t")))

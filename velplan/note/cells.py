@@ -21,11 +21,11 @@ def split_symbol(word: str) -> tuple[str, str] | None:
 
     >>> split_symbol("VA₄"), split_symbol("ω2"), split_symbol("Mд"), split_symbol("ΔTII")
     (('V', 'A4'), ('ω', '2'), ('M', 'д'), ('ΔT', 'II'))
-    >>> split_symbol("Value"), split_symbol("II"), split_symbol("at"), split_symbol("0,25")
-    (None, None, None, None)
+    >>> split_symbol("Value"), split_symbol("II"), split_symbol("at"), split_symbol("0,25"), split_symbol("RPR")
+    (None, None, None, None, None)
     """
     m = SYMBOL.match(word)
-    if not m or re.fullmatch(r"[IVX]+", word):
+    if not m or re.fullmatch(r"[IVX]+|[RP]{3}", word):  # a Roman numeral, a dyad's kind (RPR)
         return None
     head, index = m.group("head"), m.group("index")
     if head.islower() and head.isascii() and head not in LOWER_HEADS:
