@@ -9,6 +9,13 @@ from html import escape as html_escape
 
 from velplan.note.blocks import Contents, Equation, Figure, Heading, Math, PageBreak, Para, Table, TitlePage
 
+
+def xml_escape(s: str) -> str:
+    """``&``, ``<`` and ``>`` escaped for XML text (as `xml.sax.saxutils.escape`, whose import
+    brings urllib.request, http.client and email)."""
+    return html_escape(s, quote=False)
+
+
 _MD_SPECIAL = re.compile(r"([\\*_$\[\]<>#^~|`@])")
 _TYP_SPECIAL = re.compile(r"([\\#\[\]*_$<>@~`'\"/=+-])")
 
@@ -89,7 +96,7 @@ def _title(b: TitlePage, target: str) -> str:
     if target == "docx":
         def para(text, size=28, space=0):
             return (f'<w:p><w:pPr><w:spacing w:before="{space}"/><w:jc w:val="center"/></w:pPr><w:r><w:rPr>'
-                    f'<w:sz w:val="{size}"/></w:rPr><w:t xml:space="preserve">{html_escape(text, quote=False)}</w:t></w:r></w:p>')
+                    f'<w:sz w:val="{size}"/></w:rPr><w:t xml:space="preserve">{xml_escape(text)}</w:t></w:r></w:p>')
         body = (para(b.organisation) + para(b.kind, 40, 3000) + para(b.course) + para(b.topic, 32, 400)
                 + para(b.designation, 28, 400) + "".join(para(x, 28, 200 if k else 2400) for k, x in enumerate(people))
                 + para(b.place_year, 28, 2400))
@@ -117,7 +124,7 @@ def _contents(b: Contents, note, target: str) -> str:
                  'xml:space="preserve">TOC \\o "1-2" \\h \\z \\u</w:instrText></w:r><w:r><w:fldChar '
                  'w:fldCharType="separate"/></w:r><w:r><w:t>…</w:t></w:r><w:r><w:fldChar w:fldCharType="end"/>'
                  '</w:r></w:p>')
-        head = f'<w:p><w:pPr><w:pStyle w:val="TOCHeading"/></w:pPr><w:r><w:t>{html_escape(b.title, quote=False)}</w:t></w:r></w:p>'
+        head = f'<w:p><w:pPr><w:pStyle w:val="TOCHeading"/></w:pPr><w:r><w:t>{xml_escape(b.title)}</w:t></w:r></w:p>'
         return "```{=openxml}\n" + head + field + "\n```"
     if target == "typst":
         return f"```{{=typst}}\n#outline(title: [{typ_text(b.title)}], depth: 2)\n```"
