@@ -6,9 +6,15 @@ from __future__ import annotations
 
 import re
 from html import escape as html_escape
-from xml.sax.saxutils import escape as xml_escape
 
 from velplan.note.blocks import Contents, Equation, Figure, Heading, Math, PageBreak, Para, Table, TitlePage
+
+
+def xml_escape(s: str) -> str:
+    """``&``, ``<`` and ``>`` escaped for XML text (as `xml.sax.saxutils.escape`, whose import
+    brings urllib.request, http.client and email)."""
+    return html_escape(s, quote=False)
+
 
 _MD_SPECIAL = re.compile(r"([\\*_$\[\]<>#^~|`@])")
 _TYP_SPECIAL = re.compile(r"([\\#\[\]*_$<>@~`'\"/=+-])")

@@ -130,8 +130,9 @@ def _apart(items: list) -> list:
     (`place_labels`) clear of the other texts and of the lines, unless it heads a block
     (then the earlier one moves)."""
     texts = [i for i, p in enumerate(items) if isinstance(p, Text)]
+    boxes = [label_box(items[i]) for i in texts]  # kept up to date as texts move
+    lines = None  # the drawn lines do not move: made once, where a text has to
     for _ in range(3):
-        boxes = [label_box(items[i]) for i in texts]
         tree = shapely.STRtree(boxes)
         movers = set()
         for a, box in enumerate(boxes):
@@ -141,9 +142,9 @@ def _apart(items: list) -> list:
                     movers.add(_mover(items[texts[a]], items[texts[b]], a, int(b)))
         if not movers:
             break
+        lines = _lines(items) if lines is None else lines
         for k in sorted(movers):
             others = [boxes[j] for j in range(len(texts)) if j != k]
-            lines = _lines(items)
             moved, = place_labels([items[texts[k]]], others + lines)
             items[texts[k]] = moved
             boxes[k] = label_box(moved)

@@ -18,6 +18,7 @@ from velplan.io import write_atomic
 from velplan.note.blocks import Figure
 from velplan.note.markdown import to_markdown
 from velplan.note.pandoc import INSTALL, Pandoc, installed
+from velplan.render.export import shared_fonts
 FORMATS = {".docx": "docx", ".pdf": "pdf", ".html": "html", ".htm": "html", ".md": "md"}
 FONT_DIR = Path(__file__).resolve().parent.parent / "fonts"
 
@@ -86,9 +87,10 @@ def _figures(note) -> list:
 def _png_files(note, tmp: Path) -> dict[str, str]:
     """Each figure's PNG written into ``tmp``: figure name → file name."""
     images = {}
-    for fig in _figures(note):
-        images[fig.name] = f"{fig.name}.png"
-        (tmp / images[fig.name]).write_bytes(fig.png)
+    with shared_fonts():
+        for fig in _figures(note):
+            images[fig.name] = f"{fig.name}.png"
+            (tmp / images[fig.name]).write_bytes(fig.png)
     return images
 
 
@@ -111,9 +113,10 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
                  ["--number-sections"])
     math = FormulaRun(wanted, tmp / "math") if wanted else None
     try:
-        pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
-        docx = _module("docx")  # imported while pandoc runs
+        docx = _module("docx")  # imported while pandoc runs (and the figures' helper, if any, ends)
         from velplan.note.docx_figures import add_png_fallbacks
+        with shared_fonts():
+            pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
         raw = run.result()
         doc = docx.Document(io.BytesIO(raw))
         if math is not None and not put_formulas(doc, wanted, math.equations()):

@@ -15,6 +15,7 @@ font-family lists and anchors.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import re
@@ -205,12 +206,44 @@ def _import_cairocffi_by_soname() -> None:
     module.find_library = found  # for its later look-ups (gdk-pixbuf)
 
 
+_BATCH: dict | None = None
+"""The conversions' shared `CairoFonts` within `shared_fonts` (None outside it)."""
+
+
+@contextlib.contextmanager
+def shared_fonts():
+    """Within the block the conversions measure their texts with one `CairoFonts`, made at the
+    first: a batch converted together (a note's figures) asks cairo about each character once,
+    not once a drawing. Outside it each conversion asks afresh (fonts may be installed between
+    two)."""
+    global _BATCH
+    if _BATCH is not None:  # within an outer batch: its fonts
+        yield
+        return
+    _BATCH = {}
+    try:
+        yield
+    finally:
+        _BATCH = None
+
+
+def _fonts():
+    """The `CairoFonts` a conversion measures with: the batch's, else a new one."""
+    from velplan.render.fonts import CairoFonts
+
+    if _BATCH is None:
+        return CairoFonts(importlib.import_module("cairocffi"))
+    if "fonts" not in _BATCH:
+        _BATCH["fonts"] = CairoFonts(importlib.import_module("cairocffi"))
+    return _BATCH["fonts"]
+
+
 def _convert(function: str, svg_text: str, *, grey: bool = False, **options) -> bytes:
     converter = _grey_png(_cairosvg()) if grey else getattr(_cairosvg(), function)
-    from velplan.render.fonts import CairoFonts, register_with_fontconfig
+    from velplan.render.fonts import register_with_fontconfig
 
     register_with_fontconfig()
-    fonts = CairoFonts(importlib.import_module("cairocffi"))
+    fonts = _fonts()
     fitted = texts_for_cairo(svg_text, fonts, what=function.removeprefix("svg2").upper())
     try:
         return converter(bytestring=fitted.encode("utf-8"), **options)

@@ -21,18 +21,19 @@ def serve(folder: str | None = None, stdin=None, stdout=None) -> int:
     the first argument); returns how many were converted."""
     folder = Path(folder if folder is not None else sys.argv[1])
     stdin, stdout = stdin or sys.stdin, stdout or sys.stdout
-    from velplan.render.export import svg_to_png
+    from velplan.render.export import shared_fonts, svg_to_png
 
     done = 0
-    for line in stdin:
-        number, dpi = line.split()
-        try:
-            svg = (folder / f"{number}.svg").read_text(encoding="utf-8")
-            (folder / f"{number}.png").write_bytes(svg_to_png(svg, dpi=float(dpi), grey=True))
-            answer = "ok"
-            done += 1
-        except Exception:  # the parent converts it again and reports the error
-            answer = "failed"
-        stdout.write(f"{number} {answer}\n")
-        stdout.flush()
+    with shared_fonts():  # the note's figures: each character measured once
+        for line in stdin:
+            number, dpi = line.split()
+            try:
+                svg = (folder / f"{number}.svg").read_text(encoding="utf-8")
+                (folder / f"{number}.png").write_bytes(svg_to_png(svg, dpi=float(dpi), grey=True))
+                answer = "ok"
+                done += 1
+            except Exception:  # the parent converts it again and reports the error
+                answer = "failed"
+            stdout.write(f"{number} {answer}\n")
+            stdout.flush()
     return done
