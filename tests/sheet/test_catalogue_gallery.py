@@ -8,6 +8,7 @@ import pytest
 import shapely
 
 import velplan
+from tests.sheet import gallery_marks as gm
 from velplan.mechanism.loader import catalogue_names
 from velplan.render.layout import label_box, overlapping_labels
 from velplan.render.scene import Text
@@ -36,7 +37,8 @@ class Gallery(dict):
     def __missing__(self, key):
         name, fmt = key
         study = self.studies.setdefault(name, velplan.Study(name))
-        self[key] = sheet = build_sheet(study, fmt=fmt, lang="ru")
+        # built once with the kinematic gallery's where that is Russian too (`gallery_marks.shared`)
+        self[key] = sheet = gm.shared(name, "kinematic", "ru", fmt, lambda: build_sheet(study, fmt=fmt, lang="ru"))
         return sheet
 
 
