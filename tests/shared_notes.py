@@ -5,15 +5,17 @@ other), which read it and write nothing into it."""
 
 from __future__ import annotations
 
-from functools import cache
+_BUILT: list = []
 
 
-@cache
 def shaper_ru(tmp_path_factory):
-    """(the study, the note, the .docx's path), in a folder of the session's temporary files."""
-    from velplan.note import build_note, write_note
-    from velplan.study import Study
+    """(the study, the note, the .docx's path), the .docx in a folder of the session's temporary
+    files; built on the first call of the process."""
+    if not _BUILT:
+        from velplan.note import build_note, write_note
+        from velplan.study import Study
 
-    study = Study("shaper", delta=0.05)
-    note = build_note(study, lang="ru")
-    return study, note, write_note(note, tmp_path_factory.mktemp("note-shaper-ru") / "note.docx")
+        study = Study("shaper", delta=0.05)
+        note = build_note(study, lang="ru")
+        _BUILT.append((study, note, write_note(note, tmp_path_factory.mktemp("note-shaper-ru") / "note.docx")))
+    return _BUILT[0]
