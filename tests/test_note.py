@@ -16,6 +16,7 @@ pytest.importorskip("docx")
 pdfium = pytest.importorskip("pypdfium2")
 pdfium_raw = pytest.importorskip("pypdfium2.raw")
 
+from tests import shared_notes  # noqa: E402
 from velplan.cli import main  # noqa: E402
 from velplan.note import build_note, write_note  # noqa: E402
 from velplan.note.formulas import force  # noqa: E402
@@ -29,9 +30,8 @@ MM = 72 / 25.4  # PDF points per mm
 def ru(tmp_path_factory):
     """The shaper's full note in Russian: 2 positions, kinematics, forces, dynamics."""
     out = tmp_path_factory.mktemp("note-ru")
-    study = Study("shaper", delta=0.05)
-    note = build_note(study, lang="ru")
-    paths = {ext: write_note(note, out / f"note.{ext}") for ext in ("docx", "pdf", "md")}
+    study, note, docx = shared_notes.shaper_ru(tmp_path_factory)  # its .docx shared with two files
+    paths = {"docx": docx} | {ext: write_note(note, out / f"note.{ext}") for ext in ("pdf", "md")}
     return study, note, paths
 
 

@@ -15,6 +15,7 @@ import pytest
 pytest.importorskip("pypandoc")
 docx = pytest.importorskip("docx")
 
+from tests import shared_notes  # noqa: E402
 from tests.note_prose import ascii_subscripts, latin_words, prose  # noqa: E402
 
 from velplan.note import build_note, write_note  # noqa: E402
@@ -31,8 +32,8 @@ def _value(text: str) -> float:
 def notes(tmp_path_factory):
     """The shaper in ru (every part), the V compressor in zh, the triad press in en."""
     out = tmp_path_factory.mktemp("note-content")
-    result = {}
-    for name, lang, delta in (("shaper", "ru", 0.05), ("v-compressor", "zh", None), ("triad-press", "en", None)):
+    result = {"ru": shared_notes.shaper_ru(tmp_path_factory)}  # shared with two files
+    for name, lang, delta in (("v-compressor", "zh", None), ("triad-press", "en", None)):
         study = Study(name, delta=delta)
         note = build_note(study, lang=lang)
         result[lang] = (study, note, write_note(note, out / f"{name}-{lang}.docx"))

@@ -18,18 +18,16 @@ pdfium = pytest.importorskip("pypdfium2")
 
 from docx.oxml.ns import qn  # noqa: E402
 
-from velplan.note import build_note, write_note  # noqa: E402
+from tests import shared_notes  # noqa: E402
 from velplan.note.docx_tables import CELL_PAD_TWIPS, cell_text, text_twips  # noqa: E402
-from velplan.study import Study  # noqa: E402
 
 M = "{http://schemas.openxmlformats.org/officeDocument/2006/math}"
 
 
 @pytest.fixture(scope="module")
 def shaper_ru(tmp_path_factory):
-    out = tmp_path_factory.mktemp("office-ru")
-    note = build_note(Study("shaper", delta=0.05), lang="ru")
-    return note, write_note(note, out / "note.docx")
+    _, note, path = shared_notes.shaper_ru(tmp_path_factory)  # shared with two files
+    return note, path
 
 
 def _body(path):

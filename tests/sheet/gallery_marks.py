@@ -39,6 +39,24 @@ def lang_of(name: str) -> str:
     return LANGS[NAMES.index(name) % 4]
 
 
+#: Sheets that two modules run by one worker (`tests/scheduling.py`) both check, kept for the test
+#: process: (name, kind, lang, fmt) → the sheet. The catalogue gallery (`test_catalogue_gallery.py`,
+#: `_a3.py`) checks every catalogue mechanism's kinematic sheet in Russian; of those whose gallery
+#: language is Russian too, the sheet is built once for both.
+SHARED: dict = {}
+
+
+def shared(name: str, kind: str, lang: str, fmt: str, make):
+    """The sheet `make()` builds, kept in :data:`SHARED` where another module checks it too."""
+    key = (name, kind, lang, fmt)
+    if key in SHARED:
+        return SHARED[key]
+    sheet = make()
+    if kind == "kinematic" and lang == "ru" == lang_of(name) and name in catalogue_names():
+        SHARED[key] = sheet
+    return sheet
+
+
 class GallerySheets(dict):
     """(name, kind) → the sheet in the format `fmt` and the mechanism's language; a sheet the
     mechanism cannot have (a dynamics sheet without masses, a force sheet too large for A3)
@@ -54,7 +72,8 @@ class GallerySheets(dict):
         name, kind = key
         study = self.studies.setdefault(name, velplan.Study(name))
         try:
-            sheet = self.MAKERS[kind](study, lang=lang_of(name), fmt=self.fmt)
+            sheet = shared(name, kind, lang_of(name), self.fmt,
+                           lambda: self.MAKERS[kind](study, lang=lang_of(name), fmt=self.fmt))
         except VelplanError as exc:
             self.refused[key] = str(exc)
             sheet = None

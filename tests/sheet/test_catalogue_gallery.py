@@ -1,14 +1,19 @@
 """Every catalogue mechanism's kinematic sheet, built once at one language (Russian) on A1
 (here) and on A3 (`test_catalogue_gallery_a3.py`, the same checks) and shared by the checks, held to the bars of the bundled sheets: no text over
-text, every text inside the frame, the scheme and the plans filling their zones, the
-kinematic diagrams present, one μv and one μa per sheet; and every title in four languages
-naming the mechanism, never its file key."""
+text, every text inside the frame and every glyph in the bundled font, the scheme and the plans
+filling their zones, the kinematic diagrams present, one μv and one μa per sheet; and every
+title in four languages naming the mechanism, never its file key. The class III ones' A1 sheets
+also through the PNG export and off the thick lines as `test_sheet_quality_ru.py` holds its
+sheets (whose file leaves these out: `quality.in_catalogue_gallery`)."""
 
 import pytest
 import shapely
 
 import velplan
+from tests.sheet import gallery_marks as gm
+from tests.sheet import quality
 from velplan.mechanism.loader import catalogue_names
+from velplan.render.fonts import missing_in_bundled
 from velplan.render.layout import label_box, overlapping_labels
 from velplan.render.scene import Text
 from velplan.sheets.frame import frame_bounds
@@ -36,7 +41,8 @@ class Gallery(dict):
     def __missing__(self, key):
         name, fmt = key
         study = self.studies.setdefault(name, velplan.Study(name))
-        self[key] = sheet = build_sheet(study, fmt=fmt, lang="ru")
+        # built once with the kinematic gallery's where that is Russian too (`gallery_marks.shared`)
+        self[key] = sheet = gm.shared(name, "kinematic", "ru", fmt, lambda: build_sheet(study, fmt=fmt, lang="ru"))
         return sheet
 
 
@@ -80,6 +86,19 @@ def check_no_text_over_text_and_all_inside_the_frame(gallery, fmt):
         assert not pairs, (name, fmt, [(a.text, b.text) for a, b in pairs[:5]])
         outside = [t.text for t in sheet.scene.of_kind(Text) if not frame.contains(label_box(t))]
         assert not outside, (name, fmt, outside)
+        unfound = [t.text for t in sheet.scene.of_kind(Text) if missing_in_bundled(t.text)]
+        assert not unfound, (name, fmt, unfound)  # every glyph in Velplan Sans
+
+
+def test_the_class_iii_sheets_print_and_keep_their_texts_off_the_thick_lines(gallery, tmp_path):
+    """The class III sheets on A1 (left out of `test_sheet_quality_ru.py`, which holds its own
+    so): through the PNG export, and at most four texts crossed by a thick line or a vector."""
+    pytest.importorskip("cairosvg")
+    for name in quality.TRIADS:
+        sheet = gallery[name, "A1"]
+        quality.assert_png(sheet, tmp_path, name, "kinematic")
+        crossed = gm.crossed_texts(sheet.scene)
+        assert len(crossed) <= 4, (name, crossed)
 
 
 @pytest.mark.parametrize("fmt", FORMATS)

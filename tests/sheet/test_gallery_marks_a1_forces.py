@@ -10,7 +10,7 @@ that some sheets fail today holds a ratchet: BOUNDS, the count measured, which m
 import pytest
 
 from tests.sheet import gallery_marks as gm
-from tests.sheet import lever_checks
+from tests.sheet import lever_checks, quality
 
 FMT, KINDS = "A1", ("forces", "dynamics")
 # measured on 27 Nov 2026; each may only go down
@@ -22,13 +22,18 @@ BOUNDS: dict[str, int] = {
 
 @pytest.fixture(scope="module")
 def gallery():
-    """The sheets, built once for this module's checks and the lever's (`lever_checks.py`)."""
+    """The sheets, built once for this module's checks, the lever's (`lever_checks.py`) and those
+    of `quality.py`."""
     return gm.GallerySheets(FMT)
 
 
 @pytest.mark.parametrize("check", gm.CHECKS)
 def test_gallery_sheets_pass_or_hold_their_ratchet(gallery, check):
     gm.check_bounds({check: gallery.found(KINDS)[check]}, BOUNDS)
+
+
+def test_the_bundled_and_class_iii_sheets_hold_the_quality_bars(gallery, tmp_path):
+    quality.check_gallery_sheets(gallery, KINDS, tmp_path)
 
 
 def test_every_lever_is_at_least_the_floor(gallery):

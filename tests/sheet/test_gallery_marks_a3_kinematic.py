@@ -18,6 +18,7 @@ from hypothesis import given, strategies as st
 
 import velplan
 from tests.sheet import gallery_marks as gm
+from tests.sheet import quality
 from velplan.render.scene import Polyline, Text
 from velplan.sheets.layout import MIN_ORDINATE_MM
 from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, drawn_values, round_down
@@ -33,13 +34,19 @@ BOUNDS: dict[str, int] = {
 
 @pytest.fixture(scope="module")
 def gallery():
-    """The A3 kinematic sheets, built once for the ratchets and the diagrams' checks below."""
+    """The A3 kinematic sheets, built once for the ratchets, the diagrams' checks below and
+    those of `quality.py`."""
     return gm.GallerySheets(FMT)
 
 
 @pytest.mark.parametrize("check", gm.CHECKS)
 def test_gallery_sheets_pass_or_hold_their_ratchet(gallery, check):
     gm.check_bounds({check: gallery.found(KINDS)[check]}, BOUNDS)
+
+
+def test_the_bundled_and_class_iii_sheets_hold_the_quality_bars(gallery, tmp_path):
+    quality.check_gallery_sheets(gallery, KINDS, tmp_path)
+
 
 def curves(sheet):
     """The graphical curves of the sheet's diagrams (their thick polylines), sheet mm."""
