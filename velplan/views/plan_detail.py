@@ -130,16 +130,10 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     written under the numeral and the enlargement, ``"I (4:1)"``, above the circle or, with
     `beside`, right of its top: a lower view), cut at a thin circle; the view's origin is the
     pole."""
-    big = res.at_scale(res.scale / factor)
-    full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
+    big, full, centre, r, inside = _enlarged(res, number, region, factor, lang, sizes)
     pole = np.asarray(full.origin)
-    centre = pole + factor * np.array([region[0].real, region[0].imag])
-    r = region[1] * factor
-    window = shapely.Point(centre).buffer(r, quad_segs=32)
-    items = [q for p in full.primitives for q in _clipped(p, window)]
     _, line_layer, text_layer = layer_names(full.meta["kind"], number)
-    letters, placed = _letters_inside(full, items, window)
-    items = [q for q in items if not (isinstance(q, Text) and q.text in letters)] + placed
+    items = list(inside)
     items.append(Circle(tuple(centre), r, line_layer, "thin"))
     x, top = centre[0] - r, centre[1] + r
     if beside:  # right of the circle's top
@@ -152,6 +146,32 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
                            "factor": factor, "region": region})
 
 
+#: The last detail drawn by `_enlarged`: ((its arguments), what it drew), or None.
+_LAST_ENLARGED: list = [None]
+
+
+def _enlarged(res, number: int, region: tuple[complex, float], factor: float, lang: Language, sizes: PlanSizes):
+    """(the plan at μ/`factor`, its view, the circle's centre and radius there, mm, what
+    `detail_view` draws inside it) — the same for a title above the circle and beside it, so
+    kept for the next call with the same arguments (a sheet tries both in turn)."""
+    args = (number, region, factor, lang, sizes)
+    last = _LAST_ENLARGED[0]
+    if last is not None and last[0][0] is res and last[0][1:] == args:
+        return last[1]
+    big = res.at_scale(res.scale / factor)
+    full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
+    pole = np.asarray(full.origin)
+    centre = pole + factor * np.array([region[0].real, region[0].imag])
+    r = region[1] * factor
+    window = shapely.Point(centre).buffer(r, quad_segs=32)
+    items = [q for p in full.primitives for q in _clipped(p, window)]
+    letters, placed = _letters_inside(full, items, window)
+    inside = tuple(q for q in items if not (isinstance(q, Text) and q.text in letters)) + tuple(placed)
+    drawn = (big, full, centre, r, inside)
+    _LAST_ENLARGED[0] = ((res, *args), drawn)
+    return drawn
+
+
 def marked(view: View, region: tuple[complex, float], size_mm: float,
            numeral: str = NUMERAL) -> tuple[View, tuple[float, float]] | None:
     """(the plan `view` with its detail's `region` (`crowd_near_pole`) marked — a thin circle
@@ -162,26 +182,53 @@ def marked(view: View, region: tuple[complex, float], size_mm: float,
     _, line_layer, text_layer = layer_names(kind, number)
     radius_mm = region[1]
     cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
-    taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
-                              + [shapely.LineString([p.start, p.end]) for p in view.primitives
-                                 if isinstance(p, Arrow)]
-                              + [shapely.LineString(p.points) for p in view.primitives  # a line beside
-                                 if isinstance(p, Polyline) and len(p.points) >= 2]).buffer(0.5)  # "II" reads "III"
-    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
-                     text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
-                     "baseline" if math.sin(a) > 0 else "top")
-                for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
-    mark = next((t for t in numerals if not label_box(t).intersects(taken)), numerals[0])
     disk = shapely.Point(cx, cy).buffer(radius_mm)
     if any(label_box(t).intersects(disk) for t in view.primitives
            if isinstance(t, Text) and ("(" in t.text or "=" in t.text or "≈" in t.text)):
         return None  # the circle would cross a text outside the region (a title, a scale, the ≈ 0 list)
+    ink = ([label_box(t) for t in view.primitives if isinstance(t, Text)]
+           + [shapely.LineString([p.start, p.end]) for p in view.primitives if isinstance(p, Arrow)]
+           + [shapely.LineString(p.points) for p in view.primitives  # a line beside "II" reads "III"
+              if isinstance(p, Polyline) and len(p.points) >= 2])
+    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
+                     text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
+                     "baseline" if math.sin(a) > 0 else "top")
+                for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
+    mark = _first_clear(numerals, ink, 0.5)
     items = view.primitives + (Circle((cx, cy), radius_mm, line_layer, "thin"), mark)
     x0, y0, x1, y1 = bounds_of(items)
     dx, dy = max(-x0, 0.0), max(-y0, 0.0)  # the box grows where the circle or the numeral leave it
     return replace(view, primitives=tuple(shift(p, dx, dy) for p in items),
                    origin=(view.origin[0] + dx, view.origin[1] + dy),
                    width_mm=max(view.width_mm, x1) + dx, height_mm=max(view.height_mm, y1) + dy), (dx, dy)
+
+
+#: How far the polygon of a buffer may stand off its exact distance, mm (its arcs are chords —
+#: 2 % of the distance at 8 segments a quarter — and GEOS simplifies the input by 1 % of it).
+_RIM_MM = 0.05
+
+
+def _first_clear(texts: list[Text], ink: list, pad_mm: float) -> Text:
+    """The first of `texts` whose box keeps off ``shapely.union_all(ink).buffer(pad_mm)`` (the
+    first text where none does): decided by each box's exact distance from the ink, the buffer
+    made only where a box stands within :data:`_RIM_MM` of its rim (the same answer; the
+    union's buffer costs tens of milliseconds a plan)."""
+    tree = shapely.STRtree(ink)
+    grown = None
+    for t in texts:
+        box = label_box(t)
+        near = tree.query(box, predicate="dwithin", distance=pad_mm + _RIM_MM)
+        if not len(near):
+            return t
+        with np.errstate(divide="ignore", invalid="ignore"):  # a line of one point repeated
+            nearest = float(shapely.distance(box, tree.geometries[near]).min())
+        if nearest < pad_mm - _RIM_MM:
+            continue
+        if grown is None:
+            grown = shapely.union_all(ink).buffer(pad_mm)
+        if not box.intersects(grown):
+            return t
+    return texts[0]
 
 
 __all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "marked"]
