@@ -22,12 +22,20 @@ from velplan.options import Language
 from velplan.render.scene import Arrow, Bounds, Circle, Polygon, Polyline, Primitive
 
 
+#: Per primitive class, (name, slot descriptor) of each of its fields (made once).
+_SLOTS: dict[type, tuple] = {}
+
+
 def _moved(item: Primitive, **fields) -> Primitive:
     # A validated primitive moved by finite amounts stays valid: copy it field by field
     # instead of re-validating every point (sheets move thousands of them).
-    new = object.__new__(type(item))
-    for name in type(item).__slots__:
-        object.__setattr__(new, name, fields.get(name, getattr(item, name)))
+    cls = type(item)
+    slots = _SLOTS.get(cls)
+    if slots is None:
+        slots = _SLOTS[cls] = tuple((name, getattr(cls, name)) for name in cls.__slots__)
+    new = object.__new__(cls)
+    for name, slot in slots:
+        slot.__set__(new, fields[name] if name in fields else slot.__get__(item, cls))
     return new
 
 
@@ -37,7 +45,7 @@ def shift(item: Primitive, dx: float, dy: float) -> Primitive:
     if not (math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"cannot move a primitive by ({dx}, {dy}) mm")
     if isinstance(item, (Polyline, Polygon)):
-        return _moved(item, points=tuple((x + dx, y + dy) for x, y in item.points))
+        return _moved(item, points=tuple([(x + dx, y + dy) for x, y in item.points]))
     if isinstance(item, Circle):
         return _moved(item, centre=(item.centre[0] + dx, item.centre[1] + dy))
     if isinstance(item, Arrow):
