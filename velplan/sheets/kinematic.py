@@ -33,7 +33,7 @@ from itertools import islice
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
-from typing import Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 import numpy as np
 
@@ -54,11 +54,13 @@ from velplan.sheets.solver import EPS_MM, Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view, least_row_width
-from velplan.views.diagram_compact import Form, compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import (
     MIN_VECTOR_MM, extent_mm, labelled_vectors, least_plan_size, plan_steps, plan_view)
 from velplan.views.table import table_view
+
+if TYPE_CHECKING:  # the compact block's module is loaded where a sheet draws one
+    from velplan.views.diagram_compact import Form
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
 """The plan kinds of the kinematic sheet."""
@@ -197,6 +199,8 @@ class _Drawings:
         study, sizes = self.req.study, self.req.sizes.diagram
         # the compact block is drawn where the sheet is small: its text at the ESKD minimum at least
         sizes = DiagramSizes(max(sizes.title_mm, MIN_TEXT_MM), max(sizes.label_mm, MIN_TEXT_MM))
+        from velplan.views.diagram_compact import compact_diagram_view
+
         return compact_diagram_view(study.diagrams, length_mm=length, min_range_mm=MIN_ORDINATE_MM,
                                     lang=self.req.lang, omega=study.mechanism.crank.omega, form=form,
                                     sizes=sizes)
