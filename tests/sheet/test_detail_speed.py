@@ -87,3 +87,23 @@ def test_a_detail_drawn_again_is_the_one_drawn_afresh():
         assert detail_view(*args, lang="ru", numeral=numeral, beside=beside) == drawn[-1]
     assert drawn[0] == drawn[2] and drawn[1] == drawn[3] and drawn[0] != drawn[1]
     assert placed in drawn[:2]
+
+
+def test_the_least_detail_size_never_exceeds_the_drawn_detail():
+    """`least_detail_size` bounds the detail from below at every enlargement and title place,
+    for the crowded acceleration plans of the jaw crusher and the triad press (a sheet skips
+    drawing a detail whose bound finds no spot)."""
+    for name in ("jaw-crusher", "triad-press"):
+        sheet = build_sheet(velplan.Study(name), fmt="A1", lang="ru")
+        for key, placed in sheet.views.items():
+            if not key.startswith("detail-"):
+                continue
+            meta = placed.view.meta
+            res = sheet.plans[f"plan-{meta['kind']}-{meta['number']}"]
+            for factor in plan_detail.FACTORS:
+                for beside in (False, True):
+                    args = (res, meta["number"], meta["region"], factor)
+                    w, h = plan_detail.least_detail_size(*args, lang="ru", beside=beside)
+                    drawn = detail_view(*args, lang="ru", beside=beside)
+                    assert 0.0 < w <= drawn.width_mm and 0.0 < h <= drawn.height_mm
+                    assert w > drawn.width_mm - 60.0  # the circle and titles are most of it

@@ -135,15 +135,35 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     _, line_layer, text_layer = layer_names(full.meta["kind"], number)
     items = list(inside)
     items.append(Circle(tuple(centre), r, line_layer, "thin"))
-    x, top = centre[0] - r, centre[1] + r
-    if beside:  # right of the circle's top
-        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
-    items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
-                      text_layer, sizes.title_mm))
-    items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
+    items += _titles(big, number, centre, r, factor, numeral, beside, lang, sizes, text_layer)
     return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(pole),
                      meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
                            "factor": factor, "region": region})
+
+
+def _titles(big, number: int, centre, r: float, factor: float, numeral: str, beside: bool, lang: Language,
+            sizes: PlanSizes, text_layer: str) -> list[Text]:
+    """The detail's two title lines, the numeral with its enlargement and the plan's scale,
+    above its circle (centre, radius `r`, mm) or, with `beside`, right of its top."""
+    x, top = centre[0] - r, centre[1] + r
+    if beside:  # right of the circle's top
+        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
+    return [Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
+                 text_layer, sizes.title_mm),
+            Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm)]
+
+
+def least_detail_size(res, number: int, region: tuple[complex, float], factor: float, *,
+                      lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL,
+                      beside: bool = False) -> tuple[float, float]:
+    """A lower bound of the width and height (mm) of `detail_view` with these arguments, known
+    without drawing the plan: the box of its circle and its title lines, padded as the view
+    is (all else it draws only adds to that box), less a micrometre for rounding."""
+    big = res.at_scale(res.scale / factor)
+    r = region[1] * factor
+    x0, y0, x1, y1 = bounds_of([Circle((0.0, 0.0), r, "labels", "thin"),
+                                *_titles(big, number, (0.0, 0.0), r, factor, numeral, beside, lang, sizes, "labels")])
+    return x1 - x0 + 4.0 - 1e-6, y1 - y0 + 4.0 - 1e-6
 
 
 #: The last detail drawn by `_enlarged`: ((its arguments), what it drew), or None.
@@ -231,4 +251,5 @@ def _first_clear(texts: list[Text], ink: list, pad_mm: float) -> Text:
     return texts[0]
 
 
-__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "marked"]
+__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "least_detail_size",
+           "marked"]
