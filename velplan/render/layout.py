@@ -6,6 +6,7 @@ Everything works on estimated boxes in sheet millimetres (see
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from typing import Literal, Sequence
@@ -29,6 +30,16 @@ _EPS = 1e-6
 
 def label_box(text: Text) -> shapely.Polygon:
     """Estimated box of `text` as a shapely polygon, mm (rotated with the text)."""
+    try:
+        return _box_of(text)
+    except TypeError:  # a lettering that cannot be hashed
+        return shapely.Polygon(text_box(text))
+
+
+@functools.lru_cache(maxsize=8192)
+def _box_of(text: Text) -> shapely.Polygon:
+    """`label_box`, remembered: a sheet asks for the same text's box many times, and a
+    polygon costs more to make than a text to hash (shapely's geometries are immutable)."""
     return shapely.Polygon(text_box(text))
 
 

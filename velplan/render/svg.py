@@ -17,6 +17,8 @@ True
 
 from __future__ import annotations
 
+import re
+
 from velplan.render.canvas import render
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import (
@@ -31,6 +33,8 @@ _PAPER = "white"
 # Characters XML 1.0 forbids (C0 controls but tab, LF, CR) become U+FFFD.
 _FORBIDDEN = {code: "\ufffd" for code in range(0x20) if chr(code) not in "\t\n\r"}
 _TEXT_ESCAPES = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", **_FORBIDDEN})
+#: A character `_ATTRIBUTE_ESCAPES` changes (most values, numbers and names, have none).
+_ESCAPED = re.compile(r'[&<>"\x00-\x1f]')
 _ATTRIBUTE_ESCAPES = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;",
                                     "\r": "&#13;", "\n": "&#10;", "\t": "&#09;", **_FORBIDDEN})
 
@@ -42,7 +46,7 @@ def element(name: str, attributes: dict[str, str], content: str = "") -> str:
     >>> element("text", {"x": "1", "aria-label": 'a"b'}, escape_text("R<2"))
     '<text aria-label="a&quot;b" x="1">R&lt;2</text>'
     """
-    marks = "".join(f' {key}="{value.translate(_ATTRIBUTE_ESCAPES)}"'
+    marks = "".join(f' {key}="{value.translate(_ATTRIBUTE_ESCAPES) if _ESCAPED.search(value) else value}"'
                     for key, value in sorted(attributes.items()) if value)
     return f"<{name}{marks}>{content}</{name}>" if content else f"<{name}{marks} />"
 
@@ -73,6 +77,7 @@ class SvgCanvas:
     def __init__(self, style: SheetStyle | None = None, *, precision: int = 3) -> None:
         self.style = style if style is not None else SheetStyle()
         self.precision = precision
+        self._spec = f".{precision}f"
         self._root: dict[str, str] = {}
         self._height = 0.0
         self._groups: list[tuple[dict[str, str], list[str]]] = []
@@ -82,7 +87,7 @@ class SvgCanvas:
     # -- number and coordinate formatting -------------------------------------------
 
     def _num(self, value: float) -> str:
-        text = f"{value:.{self.precision}f}".rstrip("0").rstrip(".")
+        text = format(value, self._spec).rstrip("0").rstrip(".")
         return "0" if text in ("-0", "") else text
 
     def _xy(self, point) -> tuple[str, str]:

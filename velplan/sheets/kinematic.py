@@ -33,7 +33,7 @@ from itertools import islice
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
-from typing import Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 import numpy as np
 
@@ -54,11 +54,13 @@ from velplan.sheets.solver import EPS_MM, Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view, least_row_width
-from velplan.views.diagram_compact import Form, compact_diagram_view
 from velplan.views.mechanism import extent_m, mechanism_view
 from velplan.views.plan import (
     MIN_VECTOR_MM, extent_mm, labelled_vectors, least_plan_size, plan_steps, plan_view)
 from velplan.views.table import table_view
+
+if TYPE_CHECKING:  # the compact block's module is loaded where a sheet draws one
+    from velplan.views.diagram_compact import Form
 
 KINDS: tuple[str, ...] = KINEMATIC_SHEET_KINDS
 """The plan kinds of the kinematic sheet."""
@@ -197,6 +199,8 @@ class _Drawings:
         study, sizes = self.req.study, self.req.sizes.diagram
         # the compact block is drawn where the sheet is small: its text at the ESKD minimum at least
         sizes = DiagramSizes(max(sizes.title_mm, MIN_TEXT_MM), max(sizes.label_mm, MIN_TEXT_MM))
+        from velplan.views.diagram_compact import compact_diagram_view
+
         return compact_diagram_view(study.diagrams, length_mm=length, min_range_mm=MIN_ORDINATE_MM,
                                     lang=self.req.lang, omega=study.mechanism.crank.omega, form=form,
                                     sizes=sizes)
@@ -519,7 +523,7 @@ def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: s
     """Whether the detail of the plan `name` (its `region`, numbered `numeral`) found a spot:
     then it is in `views`, the plan marked (and a plan slid in its column where that made the
     room)."""
-    from velplan.views.plan_detail import FACTORS, detail_view, marked
+    from velplan.views.plan_detail import FACTORS, detail_view, least_detail_size, marked
 
     placed, number = views[name], int(name.rsplit("-", 1)[1])
     if (mark := marked(placed.view, region, req.sizes.plan.label_mm, numeral)) is None:
@@ -529,16 +533,26 @@ def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: s
     if not _free_of(with_mark[name].bounds, {k: v for k, v in views.items() if k != name}, req):
         return False
     for factor, beside in ((f, b) for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt] for b in (False, True)):
+        least = least_detail_size(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
+                                  beside=beside)
+        if all(_spot_for(least, arranged, name, req) is None for arranged in _slid(with_mark, req)):
+            continue  # not drawn: its circle and titles alone find no spot
         detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
                              beside=beside)
         for arranged in _slid(with_mark, req):
-            taken = [v.bounds for v in arranged.values()] + [req.title_block]
-            at = free_spot(detail.width_mm, detail.height_mm, taken, req.area, req.gap, arranged[name].bounds[2:])
+            at = _spot_for((detail.width_mm, detail.height_mm), arranged, name, req)
             if at is not None:
                 views.update(arranged)
                 views[detail.name] = detail.at(*at)
                 return True
     return False
+
+
+def _spot_for(size, views: dict, name: str, req: Request):
+    """A free spot for a w × h mm `size` (a detail of the plan `name`) among the `views`, nearest
+    the plan's upper right corner, or None (`free_spot`)."""
+    taken = [v.bounds for v in views.values()] + [req.title_block]
+    return free_spot(size[0], size[1], taken, req.area, req.gap, views[name].bounds[2:])
 
 
 def _slid(views: dict, req: Request):

@@ -98,12 +98,11 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
         if free_spot(w + 2 * PAD_MM - 1e-6, h + 2 * PAD_MM - 1e-6, taken, area, gap, corner) is None:
             continue
         view = structure_figure(study, lang, *sizes, joints=joints)
-        if overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm), min_area=0.05) \
-                or _crossed(view):
+        at = free_spot(view.width_mm, view.height_mm, taken, area, gap, corner)  # the cheaper test first
+        if at is None or overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm),
+                                            min_area=0.05) or _crossed(view):
             continue
-        at = free_spot(view.width_mm, view.height_mm, taken, area, gap, corner)
-        if at is not None:
-            return view.at(*at)
+        return view.at(*at)
     if required:
         small = structure_figure(study, lang, *FIGURE_SIZES[-1], joints=joints)
         raise ScaleError(f"the structural analysis ({small.width_mm:.0f} × {small.height_mm:.0f} mm with "

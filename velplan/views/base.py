@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from itertools import chain
 from types import MappingProxyType
 from typing import Iterable, Mapping
 
@@ -22,12 +23,20 @@ from velplan.options import Language
 from velplan.render.scene import Arrow, Bounds, Circle, Polygon, Polyline, Primitive
 
 
+#: Per primitive class, (name, slot descriptor) of each of its fields (made once).
+_SLOTS: dict[type, tuple] = {}
+
+
 def _moved(item: Primitive, **fields) -> Primitive:
     # A validated primitive moved by finite amounts stays valid: copy it field by field
     # instead of re-validating every point (sheets move thousands of them).
-    new = object.__new__(type(item))
-    for name in type(item).__slots__:
-        object.__setattr__(new, name, fields.get(name, getattr(item, name)))
+    cls = type(item)
+    slots = _SLOTS.get(cls)
+    if slots is None:
+        slots = _SLOTS[cls] = tuple((name, getattr(cls, name)) for name in cls.__slots__)
+    new = object.__new__(cls)
+    for name, slot in slots:
+        slot.__set__(new, fields[name] if name in fields else slot.__get__(item, cls))
     return new
 
 
@@ -37,7 +46,7 @@ def shift(item: Primitive, dx: float, dy: float) -> Primitive:
     if not (math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"cannot move a primitive by ({dx}, {dy}) mm")
     if isinstance(item, (Polyline, Polygon)):
-        return _moved(item, points=tuple((x + dx, y + dy) for x, y in item.points))
+        return _moved(item, points=tuple([(x + dx, y + dy) for x, y in item.points]))
     if isinstance(item, Circle):
         return _moved(item, centre=(item.centre[0] + dx, item.centre[1] + dy))
     if isinstance(item, Arrow):
@@ -55,7 +64,7 @@ def bounds_of(items: Iterable[Primitive]) -> Bounds:
         else:
             boxes.append(p.bounds)
     if points:
-        xy = np.asarray(points, float)
+        xy = np.fromiter(chain.from_iterable(points), float, 2 * len(points)).reshape(-1, 2)  # ≈ 2× asarray's speed
         boxes.append((*xy.min(axis=0), *xy.max(axis=0)))
     if not boxes:
         raise ValueError("no primitives to take the bounds of")
@@ -382,8 +391,15 @@ def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], i
     drawn = [shapely.LineString([p.start, p.end]) for p in out if isinstance(p, Arrow)]
     drawn += [shapely.LineString(p.points) for p in out if isinstance(p, Polyline)]
     out = list(out)
+    grown: dict = {}  # id of a text → (the text, its box grown by 0.4 mm), made once
     for k in crossed:
-        taken = [label_box(p).buffer(0.4) for j, p in enumerate(out) if isinstance(p, Text) and j != k]
+        taken = []
+        for j, p in enumerate(out):
+            if isinstance(p, Text) and j != k:
+                kept = grown.get(id(p))
+                if kept is None or kept[0] is not p:
+                    kept = grown[id(p)] = (p, label_box(p).buffer(0.4))
+                taken.append(kept[1])
         tick = (items[k].position[0], 0.0)
         (placed,), leaders = place_letters([items[k]], [tick], ticks, [*lines, *drawn], taken=taken,
                                            leader_layer=items[k].layer)

@@ -743,6 +743,7 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
     moved: set[int] = set()
     leaders: list[Polyline] = []
     letter_boxes = shapely.polygons([text_box(x) for x in letters]) if letters else []
+    grown: dict = {}  # id of a text → (the text, its box grown by 0.4 mm)
     for k, (text, where) in enumerate(zip(placed, anchors)):
         if where is None or not np.all(np.isfinite(where[0])):
             continue
@@ -751,7 +752,7 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
         blocked = _leader_blocked(text, where[0], letter_boxes)
         if not hard and not crossing and not blocked:
             continue
-        taken = [label_box(x).buffer(0.4) for x in (*letters, *out[:k], *out[k + 1:])]
+        taken = [_grown_once(x, grown) for x in (*letters, *out[:k], *out[k + 1:])]
         (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin,
                                       soft_mm=SCHEME_SOFT_MM)
         if len(tree.query(label_box(again), predicate="intersects")):
@@ -763,6 +764,14 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
+
+
+def _grown_once(text: Text, grown: dict):
+    """``label_box(text).buffer(0.4)``, made once per text for the calls sharing `grown`."""
+    kept = grown.get(id(text))
+    if kept is None or kept[0] is not text:
+        kept = grown[id(text)] = (text, label_box(text).buffer(0.4))
+    return kept[1]
 
 
 def _through(leader: Polyline, boxes) -> bool:
@@ -993,6 +1002,7 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
     from velplan.render.layout import label_box
 
     out = []
+    grown: list = []  # the numbers' boxes grown by 0.4 mm, made at the first leader
     for before, text in zip(wanted, placed):
         if not text.text.isdigit() or not 1 <= int(text.text) <= len(points):
             continue
@@ -1004,18 +1014,23 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
         box = label_box(text)
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
-            leader = _past_the_others(shapely.LineString([p, near]), text, placed)
+            if not grown:
+                grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.isdigit()]
+            leader = _past_the_others(shapely.LineString([p, near]), text, placed, grown)
             if leader is not None:
                 out.append(Polyline(leader, "labels", "thin"))
     return out
 
 
-def _past_the_others(leader, text: Text, placed) -> tuple | None:
+def _past_the_others(leader, text: Text, placed, grown=None) -> tuple | None:
     """The piece of a number's `leader` (from its point to its box) that runs on from the last
     other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
     line with its point: its leader starts past them, not through them), or None where
-    nothing of it is left."""
-    others = [label_box(x).buffer(0.4) for x in placed if x is not text and x.text.isdigit()]
+    nothing of it is left. `grown`: (number, its box grown by 0.4 mm) of the numbers in
+    `placed`, where already made."""
+    if grown is None:
+        grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.isdigit()]
+    others = [b for x, b in grown if x is not text]
     hit = [b for b in others if b.intersects(leader)]
     if not hit:
         return tuple(leader.coords)

@@ -130,6 +130,54 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     written under the numeral and the enlargement, ``"I (4:1)"``, above the circle or, with
     `beside`, right of its top: a lower view), cut at a thin circle; the view's origin is the
     pole."""
+    big, full, centre, r, inside = _enlarged(res, number, region, factor, lang, sizes)
+    pole = np.asarray(full.origin)
+    _, line_layer, text_layer = layer_names(full.meta["kind"], number)
+    items = list(inside)
+    items.append(Circle(tuple(centre), r, line_layer, "thin"))
+    items += _titles(big, number, centre, r, factor, numeral, beside, lang, sizes, text_layer)
+    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(pole),
+                     meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
+                           "factor": factor, "region": region})
+
+
+def _titles(big, number: int, centre, r: float, factor: float, numeral: str, beside: bool, lang: Language,
+            sizes: PlanSizes, text_layer: str) -> list[Text]:
+    """The detail's two title lines, the numeral with its enlargement and the plan's scale,
+    above its circle (centre, radius `r`, mm) or, with `beside`, right of its top."""
+    x, top = centre[0] - r, centre[1] + r
+    if beside:  # right of the circle's top
+        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
+    return [Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
+                 text_layer, sizes.title_mm),
+            Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm)]
+
+
+def least_detail_size(res, number: int, region: tuple[complex, float], factor: float, *,
+                      lang: Language = "ru", sizes: PlanSizes = PlanSizes(), numeral: str = NUMERAL,
+                      beside: bool = False) -> tuple[float, float]:
+    """A lower bound of the width and height (mm) of `detail_view` with these arguments, known
+    without drawing the plan: the box of its circle and its title lines, padded as the view
+    is (all else it draws only adds to that box), less a micrometre for rounding."""
+    big = res.at_scale(res.scale / factor)
+    r = region[1] * factor
+    x0, y0, x1, y1 = bounds_of([Circle((0.0, 0.0), r, "labels", "thin"),
+                                *_titles(big, number, (0.0, 0.0), r, factor, numeral, beside, lang, sizes, "labels")])
+    return x1 - x0 + 4.0 - 1e-6, y1 - y0 + 4.0 - 1e-6
+
+
+#: The last detail drawn by `_enlarged`: ((its arguments), what it drew), or None.
+_LAST_ENLARGED: list = [None]
+
+
+def _enlarged(res, number: int, region: tuple[complex, float], factor: float, lang: Language, sizes: PlanSizes):
+    """(the plan at μ/`factor`, its view, the circle's centre and radius there, mm, what
+    `detail_view` draws inside it) — the same for a title above the circle and beside it, so
+    kept for the next call with the same arguments (a sheet tries both in turn)."""
+    args = (number, region, factor, lang, sizes)
+    last = _LAST_ENLARGED[0]
+    if last is not None and last[0][0] is res and last[0][1:] == args:
+        return last[1]
     big = res.at_scale(res.scale / factor)
     full = plan_view(big, number, lang=lang, sizes=sizes, title=False)
     pole = np.asarray(full.origin)
@@ -137,19 +185,11 @@ def detail_view(res, number: int, region: tuple[complex, float], factor: float, 
     r = region[1] * factor
     window = shapely.Point(centre).buffer(r, quad_segs=32)
     items = [q for p in full.primitives for q in _clipped(p, window)]
-    _, line_layer, text_layer = layer_names(full.meta["kind"], number)
     letters, placed = _letters_inside(full, items, window)
-    items = [q for q in items if not (isinstance(q, Text) and q.text in letters)] + placed
-    items.append(Circle(tuple(centre), r, line_layer, "thin"))
-    x, top = centre[0] - r, centre[1] + r
-    if beside:  # right of the circle's top
-        x, top = centre[0] + r + 3.0, top - 3.0 - 1.5 * sizes.label_mm
-    items.append(Text((x, top + 3.0 + 1.5 * sizes.label_mm), f"{numeral} ({number_text(factor, lang)}:1)",
-                      text_layer, sizes.title_mm))
-    items.append(Text((x, top + 3.0), plan_title(big, number, lang)[1], text_layer, sizes.label_mm))
-    return make_view(f"detail-{full.meta['kind']}-{number}", items, pad_mm=2.0, origin=tuple(pole),
-                     meta={"kind": full.meta["kind"], "number": number, "scale": big.scale,
-                           "factor": factor, "region": region})
+    inside = tuple(q for q in items if not (isinstance(q, Text) and q.text in letters)) + tuple(placed)
+    drawn = (big, full, centre, r, inside)
+    _LAST_ENLARGED[0] = ((res, *args), drawn)
+    return drawn
 
 
 def marked(view: View, region: tuple[complex, float], size_mm: float,
@@ -162,20 +202,19 @@ def marked(view: View, region: tuple[complex, float], size_mm: float,
     _, line_layer, text_layer = layer_names(kind, number)
     radius_mm = region[1]
     cx, cy = view.origin[0] + region[0].real, view.origin[1] + region[0].imag
-    taken = shapely.union_all([label_box(t) for t in view.primitives if isinstance(t, Text)]
-                              + [shapely.LineString([p.start, p.end]) for p in view.primitives
-                                 if isinstance(p, Arrow)]
-                              + [shapely.LineString(p.points) for p in view.primitives  # a line beside
-                                 if isinstance(p, Polyline) and len(p.points) >= 2]).buffer(0.5)  # "II" reads "III"
-    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
-                     text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
-                     "baseline" if math.sin(a) > 0 else "top")
-                for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
-    mark = next((t for t in numerals if not label_box(t).intersects(taken)), numerals[0])
     disk = shapely.Point(cx, cy).buffer(radius_mm)
     if any(label_box(t).intersects(disk) for t in view.primitives
            if isinstance(t, Text) and ("(" in t.text or "=" in t.text or "≈" in t.text)):
         return None  # the circle would cross a text outside the region (a title, a scale, the ≈ 0 list)
+    ink = ([label_box(t) for t in view.primitives if isinstance(t, Text)]
+           + [shapely.LineString([p.start, p.end]) for p in view.primitives if isinstance(p, Arrow)]
+           + [shapely.LineString(p.points) for p in view.primitives  # a line beside "II" reads "III"
+              if isinstance(p, Polyline) and len(p.points) >= 2])
+    numerals = [Text((cx + (radius_mm + 1.0) * math.cos(a), cy + (radius_mm + 1.0) * math.sin(a)), numeral,
+                     text_layer, size_mm, "start" if math.cos(a) > 0.1 else "end" if math.cos(a) < -0.1 else "middle",
+                     "baseline" if math.sin(a) > 0 else "top")
+                for a in np.radians([45, 135, -45, -135, 90, -90, 0, 180, 30, 60, 120, 150, -30, -60, -120, -150])]
+    mark = _first_clear(numerals, ink, 0.5)
     items = view.primitives + (Circle((cx, cy), radius_mm, line_layer, "thin"), mark)
     x0, y0, x1, y1 = bounds_of(items)
     dx, dy = max(-x0, 0.0), max(-y0, 0.0)  # the box grows where the circle or the numeral leave it
@@ -184,4 +223,33 @@ def marked(view: View, region: tuple[complex, float], size_mm: float,
                    width_mm=max(view.width_mm, x1) + dx, height_mm=max(view.height_mm, y1) + dy), (dx, dy)
 
 
-__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "marked"]
+#: How far the polygon of a buffer may stand off its exact distance, mm (its arcs are chords —
+#: 2 % of the distance at 8 segments a quarter — and GEOS simplifies the input by 1 % of it).
+_RIM_MM = 0.05
+
+
+def _first_clear(texts: list[Text], ink: list, pad_mm: float) -> Text:
+    """The first of `texts` whose box keeps off ``shapely.union_all(ink).buffer(pad_mm)`` (the
+    first text where none does): decided by each box's exact distance from the ink, the buffer
+    made only where a box stands within :data:`_RIM_MM` of its rim (the same answer; the
+    union's buffer costs tens of milliseconds a plan)."""
+    tree = shapely.STRtree(ink)
+    grown = None
+    for t in texts:
+        box = label_box(t)
+        near = tree.query(box, predicate="dwithin", distance=pad_mm + _RIM_MM)
+        if not len(near):
+            return t
+        with np.errstate(divide="ignore", invalid="ignore"):  # a line of one point repeated
+            nearest = float(shapely.distance(box, tree.geometries[near]).min())
+        if nearest < pad_mm - _RIM_MM:
+            continue
+        if grown is None:
+            grown = shapely.union_all(ink).buffer(pad_mm)
+        if not box.intersects(grown):
+            return t
+    return texts[0]
+
+
+__all__ = ["CROWD_COUNT", "CROWD_MM", "FACTORS", "NUMERALS", "crowd_near_pole", "detail_view", "least_detail_size",
+           "marked"]
