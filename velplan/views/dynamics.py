@@ -110,11 +110,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     curve it lies on ("M_{r} ≈ M_{Fc}"). Each curve's name stands where the curve is farthest
     from the other lines, nearer to it than to any other curve, or joined to it by a leader.
     """
-    vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
-    top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
-    low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
-    span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
-    mu = mu or standard_up(span / height_mm)
+    top_v, low_v = _extent(series, base)
+    mu = mu or ordinate_scale(series, base, height_mm)
     series, merged_notes = _merged(series, base, mu, unit_text, lang)
     notes = list(notes) + merged_notes
     mu_phi = cycle / length_mm
@@ -174,6 +171,21 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                                                     "curves": {text: xy for text, xy, _ in named},
                                                     "named": tuple([(text, xy) for text, xy, _ in named]
                                                                    + [(text, np.array([[x, y]])) for x, y, text in dots])})
+
+
+def _extent(series: Sequence[Series], base: float) -> tuple[float, float]:
+    """The highest value of `series` above `base` and the lowest below it (0 at least, at most)."""
+    vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
+    top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
+    low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
+    return top_v, low_v
+
+
+def ordinate_scale(series: Sequence[Series], base: float, height_mm: float) -> float:
+    """The standard ordinate scale (units per mm) that `curve_panel` draws `series` about
+    `base` at to keep their span within `height_mm`."""
+    top_v, low_v = _extent(series, base)
+    return standard_up(max(top_v - low_v, 1e-12 * max(1.0, abs(base))) / height_mm)
 
 
 def _named(items: list, lines: list, named, marks, axes: list, length: float, size: float) -> list:
@@ -252,10 +264,7 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
 
     width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
     own = shapely.LineString(xy)
-    pts = shapely.points(xy)
-    apart = np.full(len(xy), 8.0)
-    for ln in others:
-        apart = np.minimum(apart, shapely.distance(pts, ln))
+    apart = _apart(xy, others, 8.0)
     score = 2.0 * apart + 0.1 * np.abs(xy[:, 1])
     score[(xy[:, 0] < 3.0) | (xy[:, 0] + 1.5 + width > length)] -= 100.0
     field = shapely.STRtree(obstacles) if obstacles else None
@@ -277,6 +286,24 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
     up = min((float(shapely.distance(shapely.Point(px, py + 3.0), ln)) for ln in others), default=np.inf)
     down = min((float(shapely.distance(shapely.Point(px, py - 3.0), ln)) for ln in others), default=np.inf)
     return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline"), None
+
+
+def _apart(xy: np.ndarray, others: list, cap: float) -> np.ndarray:
+    """The distance of each point of `xy` (mm) to the nearest of the `others` lines, at most
+    `cap` mm: each line's segments within `cap` of a point by their boxes measured only (the
+    same point-to-segment distances a whole line's is the least of, so the same numbers)."""
+    pts = shapely.points(xy)
+    apart = np.full(len(xy), cap)
+    near = shapely.box(xy[:, 0] - cap, xy[:, 1] - cap, xy[:, 0] + cap, xy[:, 1] + cap)
+    for ln in others:
+        coords = shapely.get_coordinates(ln)
+        if len(coords) < 3:
+            apart = np.minimum(apart, shapely.distance(pts, ln))
+            continue
+        segments = shapely.linestrings(np.stack([coords[:-1], coords[1:]], axis=1))
+        i, j = shapely.STRtree(segments).query(near)
+        np.minimum.at(apart, i, shapely.distance(pts[i], segments[j]))
+    return apart
 
 
 def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
@@ -675,4 +702,4 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_m
 
 
 __all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "moment_scale", "nice_step",
-           "results_rows", "results_view", "wittenbauer_view"]
+           "ordinate_scale", "results_rows", "results_view", "wittenbauer_view"]
