@@ -256,6 +256,7 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
     dims = d.flywheel.dimensions
     sized = dims is not None
     best = None
+    drawn: dict = {}  # the energy–mass diagrams drawn, by scales: the same in every band
     for share in FLYWHEEL_BANDS if sized else (0.0,):
         placed: dict[str, PlacedView] = {}
         top = band_top
@@ -263,7 +264,7 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
             if sized:
                 top = _place_flywheel(req, placed, beside_table, share)
             region = (beside_table[0], top + g, fx1, fy1)
-            wv, wit = _fit_wittenbauer(d, curves, req.lang, _sizes(req), region, req.fmt, req.study.n)
+            wv, wit = _fit_wittenbauer(d, curves, req.lang, _sizes(req), region, req.fmt, req.study.n, drawn)
         except ScaleError:
             if best is None and share == FLYWHEEL_BANDS[-1]:
                 raise
@@ -392,7 +393,10 @@ def _fit_flywheel(dims, lang, sizes, region) -> View | None:
     return None if found is None else found[1]
 
 
-def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
+def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n, drawn: dict | None = None):
+    """Wittenbauer's diagram at the finest scales that fit `region`, and the diagram as drawn;
+    `drawn`: the drawings already made, by (μJ, μT, numbers), taken from it and added."""
+    drawn = {} if drawn is None else drawn
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     J = c["J_red"] - d.declared
@@ -407,9 +411,12 @@ def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
     mu_J = nice_scale(max(float(J.max()), 1e-12) / max(w - 60.0, 20.0))
     mu_T = nice_scale(max(t_span, 1e-12) / max(h - 50.0, 20.0))
     def draw(mu_J, mu_T, numbers=False):  # sought with the numbers where first put, then placed
-        wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
-        view = wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
-                                lang=lang, sizes=sizes, numbers=numbers)
+        if (mu_J, mu_T, numbers) not in drawn:
+            wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
+            drawn[mu_J, mu_T, numbers] = wittenbauer_view(
+                wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta, lang=lang, sizes=sizes,
+                numbers=numbers), wit
+        view, wit = drawn[mu_J, mu_T, numbers]
         if not numbers and fits(view, w, h):
             return draw(mu_J, mu_T, True)
         return view, wit

@@ -290,8 +290,9 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
 
 def _apart(xy: np.ndarray, others: list, cap: float) -> np.ndarray:
     """The distance of each point of `xy` (mm) to the nearest of the `others` lines, at most
-    `cap` mm: each line's segments within `cap` of a point by their boxes measured only (the
-    same point-to-segment distances a whole line's is the least of, so the same numbers)."""
+    `cap` mm: each line's segments within `cap` of a point by their boxes, and of those the
+    ones that plain arithmetic puts within :data:`_NEAR_TOL` mm of the nearest, measured by
+    shapely (the point-to-segment distances a whole line's is the least of: the same numbers)."""
     pts = shapely.points(xy)
     apart = np.full(len(xy), cap)
     near = shapely.box(xy[:, 0] - cap, xy[:, 1] - cap, xy[:, 0] + cap, xy[:, 1] + cap)
@@ -302,8 +303,26 @@ def _apart(xy: np.ndarray, others: list, cap: float) -> np.ndarray:
             continue
         segments = shapely.linestrings(np.stack([coords[:-1], coords[1:]], axis=1))
         i, j = shapely.STRtree(segments).query(near)
-        np.minimum.at(apart, i, shapely.distance(pts[i], segments[j]))
+        rough = _segment_distance(xy[i], coords[j], coords[j + 1])
+        least = np.full(len(xy), np.inf)
+        np.minimum.at(least, i, rough)
+        keep = (rough <= least[i] + _NEAR_TOL) & (rough < cap + _NEAR_TOL)
+        np.minimum.at(apart, i[keep], shapely.distance(pts[i[keep]], segments[j[keep]]))
     return apart
+
+
+_NEAR_TOL = 1e-6
+"""How far (mm) plain arithmetic's distance from a point to a segment may be from shapely's:
+far more than the round-off of either (≈ 10⁻¹³ mm on a sheet)."""
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The distance of each point `p` (n × 2, mm) to its segment `a`–`b`, mm."""
+    ab = b - a
+    len2 = np.einsum("ij,ij->i", ab, ab)
+    t = np.einsum("ij,ij->i", p - a, ab) / np.where(len2 > 0.0, len2, 1.0)
+    foot = a + np.clip(t, 0.0, 1.0)[:, None] * ab
+    return np.hypot(*(p - foot).T)
 
 
 def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
