@@ -92,3 +92,15 @@ def test_the_sheet_is_the_same_without_the_memos(monkeypatch, name, fmt):
     monkeypatch.setattr(sd, "_fit_wittenbauer", lambda *a: fit_wittenbauer(*a[:7]))  # no memo
     bare = sd.build_dynamics_sheet(study, fmt=fmt, lang="ru").svg()
     assert fast == bare
+
+
+@pytest.mark.parametrize("height", [15.0, 40.0])
+def test_a_measured_panel_has_the_drawings_size_and_meta(height):
+    """A trial only measured (its curves as their boxes' diagonals) is as large as the drawing."""
+    series = [Series(50.0 * np.sin(TRAVEL) - 7.0, "thin", "M_{F}"), Series(60.0 * np.cos(TRAVEL), "thick", "M_{r}")]
+    drawn = curve_panel("moments", TRAVEL, series, height_mm=height, names=False, **ARGS)
+    measured = curve_panel("moments", TRAVEL, series, height_mm=height, names=False, measured=True, **ARGS)
+    assert (measured.width_mm, measured.height_mm) == (drawn.width_mm, drawn.height_mm)
+    for key in ("mu", "mu_phi", "span_mm"):
+        assert measured.meta[key] == drawn.meta[key]
+    assert max(len(p.points) for p in measured.primitives if hasattr(p, "points")) == 2

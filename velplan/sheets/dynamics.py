@@ -76,7 +76,8 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
             mus: dict[str, float] | None = None, names: bool = True, memo: dict | None = None) -> dict[str, View]:
     """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`); ``mus``: the
     panels drawn at a given ordinate scale, only those when given; `names`: with the curves'
-    names (`curve_panel`); `memo`: the panels already drawn by (panel, φ axis length, μ, names)
+    names (`curve_panel`; unnamed, a trial only measured: its curves stand as their boxes);
+    `memo`: the panels already drawn by (panel, φ axis length, μ, names)
     — a panel's drawing depends on `height` only through its μ — taken from it, and added."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
@@ -89,7 +90,7 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
         mu = mus[name] if mus is not None else ordinate_scale(series, args.get("base", 0.0), height)
         key = (name, length, mu, names)
         if key not in memo:
-            memo[key] = curve_panel(name, travel, series, mu=mu, **kw, **args)
+            memo[key] = curve_panel(name, travel, series, mu=mu, measured=not names, **kw, **args)
         return memo[key]
 
     nm, joule = unit("N·m", lang), unit("J", lang)

@@ -74,7 +74,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ", names: bool = True) -> View:
+                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ", names: bool = True,
+                measured: bool = False) -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -104,6 +105,9 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         sought goes without: placing the names is most of its cost).
     mu_symbol : str
         The ordinate scale's symbol (``"μ_{M}"``).
+    measured : bool
+        A trial only measured: each curve stands as the diagonal of its box (the same size,
+        scale and meta as the drawing, without carrying every point of the curves through).
 
     A thin curve that never leaves the φ axis, or another curve, by more than
     :data:`COINCIDE_MM` is not drawn: it is listed under the title as ≈ 0, or named with the
@@ -137,7 +141,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # ordinate ticks at round values of the ordinate, clear of the φ axis's own label
     items += _ordinate_ticks(bottom, top, mu, base, base_label, lang, size)
     # the curves
-    lines, named = [], []
+    lines, named, curves = [], [], []
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -145,7 +149,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         if ok.sum() < 2:
             continue
         xy = np.column_stack([x[ok], (v[ok] - base) / mu])
-        items.append(Polyline(xy, LAYER, s.line))
+        curves.append((Polyline(xy, LAYER, s.line), xy))
+        items.append(curves[-1][0])
         lines.append(shapely.LineString(xy))
         if s.name:
             named.append((s.name, xy, len(lines) - 1))
@@ -153,6 +158,10 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # each curve named where it stands apart from the other lines, the extremes of ω at their dots
     dots = [(t / mu_phi, (v - base) / mu, text) for t, v, text in marks]
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
+    if measured:  # the same bounds: a box's corners are the curve's least and greatest x and y
+        boxes = {id(p): Polyline([tuple(xy.min(axis=0).tolist()), tuple(xy.max(axis=0).tolist())], p.layer, p.line)
+                 for p, xy in curves}
+        items = [boxes.get(id(p), p) for p in items]
     if names:
         items = _named(items, lines, named, dots, axes, L, size)
     else:
