@@ -315,7 +315,8 @@ def _apart(xy: np.ndarray, others: list, cap: float) -> np.ndarray:
         np.minimum.at(least, i, rough)
         keep = (rough <= least[i] + _NEAR_TOL) & (rough < cap + _NEAR_TOL)
         i, j = i[keep], j[keep]
-        exact = shapely.distance(shapely.points(xy[i]), shapely.linestrings(np.stack([coords[j], coords[j + 1]], axis=1)))
+        segments = shapely.linestrings(np.stack([coords[j], coords[j + 1]], axis=1))
+        exact = shapely.distance(shapely.points(xy[i]), segments)
         np.minimum.at(apart, i, exact)
     return apart
 
