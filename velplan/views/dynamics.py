@@ -207,11 +207,12 @@ def _named(items: list, lines: list, named, marks, axes: list, length: float, si
     led: list[Text] = []
     leaders: list = []
     obstacles = lines + axes + _text_boxes(items)
+    written = [label_box(t).buffer(size) for t in items if isinstance(t, Text)]  # the leaders added are no texts
     for text, xy, i in named:
         # a name keeps a letter's height off the numbers and names already written: "4M_{д}" reads as one
         spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
-                                lines + axes + leaders + [label_box(t).buffer(size) for t in items + names + led
-                                                          if isinstance(t, Text)], length, size)
+                                lines + axes + leaders + written + [label_box(t).buffer(size) for t in names + led],
+                                length, size)
         if leader is not None:  # placed for good, with its leader
             led.append(spot)
             items = items + [leader]
