@@ -37,7 +37,8 @@ from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
 from velplan.views.diagram import standard_up
 from velplan.views.dynamics import (
-    DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, results_rows, results_view, wittenbauer_view)
+    DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, ordinate_scale, results_rows, results_view,
+    wittenbauer_view)
 
 PANELS = ("moments", "works", "inertia", "omega")
 """The curve panels, top to bottom."""
@@ -72,16 +73,26 @@ def default_dynamics_title(mech: Mechanism, lang: Language, scale: str) -> Title
 
 
 def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsSizes, positions: int,
-            mus: dict[str, float] | None = None, names: bool = True) -> dict[str, View]:
+            mus: dict[str, float] | None = None, names: bool = True, memo: dict | None = None) -> dict[str, View]:
     """The four curve panels of ``d`` from its curves ``c`` (`Dynamics.curves`); ``mus``: the
     panels drawn at a given ordinate scale, only those when given; `names`: with the curves'
-    names (`curve_panel`)."""
+    names (`curve_panel`; unnamed, a trial only measured: its curves stand as their boxes);
+    `memo`: the panels already drawn by (panel, φ axis length, μ, names)
+    — a panel's drawing depends on `height` only through its μ — taken from it, and added."""
     travel = np.radians(c["travel_deg"])
     cycle = float(travel[-1])
     kw: dict[str, Any] = dict(cycle=cycle, positions=positions, length_mm=length, height_mm=height, lang=lang,
                               sizes=sizes, names=names)
     wanted = PANELS if mus is None else tuple(mus)
-    at = (lambda name: kw) if mus is None else (lambda name: {**kw, "mu": mus[name]})
+    memo = {} if memo is None else memo
+
+    def panel(name: str, series: list[Series], **args) -> View:
+        mu = mus[name] if mus is not None else ordinate_scale(series, args.get("base", 0.0), height)
+        key = (name, length, mu, names)
+        if key not in memo:
+            memo[key] = curve_panel(name, travel, series, mu=mu, measured=not names, **kw, **args)
+        return memo[key]
+
     nm, joule = unit("N·m", lang), unit("J", lang)
     drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
     views: dict[str, View] = {}
@@ -91,28 +102,28 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
         driving = number(d.driving, lang, 5, scale=moment_scale(c["M_red"]))
         drive = f"{m_drv} = {driving} {nm}" if d.run is None and d.periodic is None else m_drv
         moments = [Series(c["M_red"], "thick", m_res), Series(c["M_drive"], "hidden", drive)]
-        views["moments"] = curve_panel("moments", travel, (loads if len(loads) > 1 else []) + moments,
-                                       title=label("reduced_moments", lang), ordinate="M", unit_text=nm,
-                                       mu_symbol=indexed("μ", "M"), **at("moments"))
+        views["moments"] = panel("moments", (loads if len(loads) > 1 else []) + moments,
+                                 title=label("reduced_moments", lang), ordinate="M", unit_text=nm,
+                                 mu_symbol=indexed("μ", "M"))
     if "works" in wanted:
         works = [Series(c["A_resist"], "thin", indexed("A", res)), Series(c["A_sum"], "thick", "ΔT")]
         if np.all(np.isfinite(c["A_drive"])):
             works.insert(0, Series(c["A_drive"], "hidden", indexed("A", drv)))
-        views["works"] = curve_panel("works", travel, works, title=label("works_energy", lang), ordinate="A, ΔT",
-                                     unit_text=joule, mu_symbol=indexed("μ", "A"), **at("works"))
+        views["works"] = panel("works", works, title=label("works_energy", lang), ordinate="A, ΔT",
+                               unit_text=joule, mu_symbol=indexed("μ", "A"))
     if "inertia" in wanted:
-        views["inertia"] = curve_panel(
-            "inertia", travel, [Series(c["J_red"] - d.declared, "thick", indexed("J", "II"))],
+        views["inertia"] = panel(
+            "inertia", [Series(c["J_red"] - d.declared, "thick", indexed("J", "II"))],
             title=label("reduced_inertia", lang), ordinate=indexed("J", "II"), unit_text=unit("kg·m²", lang),
-            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], mu_symbol=indexed("μ", "J"),
-            **at("inertia"))
+            notes=[f"{indexed('J', 'I')} = {_n(d.inertia, lang)} {unit('kg·m²', lang)}"], mu_symbol=indexed("μ", "J"))
     if "omega" in wanted:
-        views["omega"] = _omega_panel(d, c, travel, lang, at("omega"))
+        views["omega"] = panel("omega", **_omega_panel(d, c, lang))
     return views
 
 
-def _omega_panel(d, c, travel, lang: Language, kw: dict[str, Any]) -> View:
-    """The crank's speed over the cycle about ω_m (the run's over its travel about its least)."""
+def _omega_panel(d, c, lang: Language) -> dict[str, Any]:
+    """The crank's speed over the cycle about ω_m (the run's over its travel about its least):
+    the series and the arguments of its `curve_panel`."""
     w = np.abs(c["omega"])
     st = d.steady or d.periodic
     if st is not None:
@@ -123,9 +134,9 @@ def _omega_panel(d, c, travel, lang: Language, kw: dict[str, Any]) -> View:
     else:
         base, marks, base_label = float(np.nanmin(w)), [], ""
         notes = [f"t = {_n(d.run.time, lang)} {unit('s', lang)}"]
-    return curve_panel("omega", travel, [Series(w, "thick", "")], title=label("crank_speed", lang),
-                       ordinate="ω", unit_text=unit("rad/s", lang), base=base, marks=marks,
-                       notes=notes, base_label=base_label, mu_symbol=indexed("μ", "ω"), **kw)
+    return dict(series=[Series(w, "thick", "")], title=label("crank_speed", lang), ordinate="ω",
+                unit_text=unit("rad/s", lang), base=base, marks=marks, notes=notes, base_label=base_label,
+                mu_symbol=indexed("μ", "ω"))
 
 
 def _n(x: float, lang: Language) -> str:
@@ -246,6 +257,7 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
     dims = d.flywheel.dimensions
     sized = dims is not None
     best = None
+    drawn: dict = {}  # the energy–mass diagrams drawn, by scales: the same in every band
     for share in FLYWHEEL_BANDS if sized else (0.0,):
         placed: dict[str, PlacedView] = {}
         top = band_top
@@ -253,7 +265,7 @@ def _flywheel_and_wittenbauer(req: Request, curves, beside_table, band_top: floa
             if sized:
                 top = _place_flywheel(req, placed, beside_table, share)
             region = (beside_table[0], top + g, fx1, fy1)
-            wv, wit = _fit_wittenbauer(d, curves, req.lang, _sizes(req), region, req.fmt, req.study.n)
+            wv, wit = _fit_wittenbauer(d, curves, req.lang, _sizes(req), region, req.fmt, req.study.n, drawn)
         except ScaleError:
             if best is None and share == FLYWHEEL_BANDS[-1]:
                 raise
@@ -294,12 +306,17 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
     `height` mm; ``beside`` = (width, height) mm of the column's bottom part that the title
     block leaves: a column wider than that ends above it."""
     fit = lambda vs: _column_fits(vs, width, height, gap, beside)  # noqa: E731
+    memo: dict = {}  # every panel drawn once, whatever height gave its μ
+
+    def draw(length: float, h: float, names: bool, mus: dict[str, float] | None = None) -> dict[str, View]:
+        return _panels(d, c, lang, length, h, sizes, n, mus, names, memo)
+
     # sought with the panels unnamed, then drawn named; named all along where the names take more room
     for names in (False, True):
-        for length, h, views in _fitting(d, c, lang, sizes, n, width, fit, names):
-            found = _finer_panels(views, lambda mus: _panels(d, c, lang, length, h, sizes, n, mus, names), fit)
+        for length, h, views in _fitting(draw, width, fit, names):
+            found = _finer_panels(views, lambda mus: draw(length, h, names, mus), fit)
             if not names:
-                found = _panels(d, c, lang, length, h, sizes, n, {k: v.meta["mu"] for k, v in found.items()})
+                found = draw(length, h, True, {k: v.meta["mu"] for k, v in found.items()})
             if fit(list(found.values())):
                 return found
             break
@@ -307,19 +324,25 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
 
 
-def _fitting(d, c, lang, sizes, n, width, fit, names: bool):
+def _fitting(draw, width, fit, names: bool):
     """(φ axis length, ordinate height, the panels) of the longest axis, then the tallest
-    ordinates, whose column `fit`s; none where nothing does."""
+    ordinates, whose column `fit`s; none where nothing does. `draw` (length, height, names):
+    the panels. A named panel holds its unnamed drawing and more, so where the unnamed
+    panels do not fit the named ones are not drawn."""
     lengths = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
     heights = (120.0, 100.0, 80.0, 70.0, 60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0)
     for length in lengths:
         if length < MIN_DIAGRAM_MM:
             break
-        low = _panels(d, c, lang, length, heights[-1], sizes, n, names=names)
+        if names and max(v.width_mm for v in draw(length, heights[-1], False).values()) > width:
+            continue
+        low = draw(length, heights[-1], names)
         if max(v.width_mm for v in low.values()) > width:
             continue
         for h in heights:
-            views = low if h == heights[-1] else _panels(d, c, lang, length, h, sizes, n, names=names)
+            if names and h != heights[-1] and not fit(list(draw(length, h, False).values())):
+                continue
+            views = low if h == heights[-1] else draw(length, h, names)
             if fit(list(views.values())):
                 yield length, h, views
                 return
@@ -371,7 +394,10 @@ def _fit_flywheel(dims, lang, sizes, region) -> View | None:
     return None if found is None else found[1]
 
 
-def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
+def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n, drawn: dict | None = None):
+    """Wittenbauer's diagram at the finest scales that fit `region`, and the diagram as drawn;
+    `drawn`: the drawings already made, by (μJ, μT, numbers), taken from it and added."""
+    drawn = {} if drawn is None else drawn
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
     J = c["J_red"] - d.declared
@@ -386,9 +412,12 @@ def _fit_wittenbauer(d, c, lang, sizes, region, fmt, n):
     mu_J = nice_scale(max(float(J.max()), 1e-12) / max(w - 60.0, 20.0))
     mu_T = nice_scale(max(t_span, 1e-12) / max(h - 50.0, 20.0))
     def draw(mu_J, mu_T, numbers=False):  # sought with the numbers where first put, then placed
-        wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
-        view = wittenbauer_view(wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta,
-                                lang=lang, sizes=sizes, numbers=numbers)
+        if (mu_J, mu_T, numbers) not in drawn:
+            wit = d.wittenbauer(mu_J=mu_J, mu_T=mu_T)
+            drawn[mu_J, mu_T, numbers] = wittenbauer_view(
+                wit, J, T, points, omega_mean=d.flywheel.omega_mean, delta=d.flywheel.delta, lang=lang, sizes=sizes,
+                numbers=numbers), wit
+        view, wit = drawn[mu_J, mu_T, numbers]
         if not numbers and fits(view, w, h):
             return draw(mu_J, mu_T, True)
         return view, wit

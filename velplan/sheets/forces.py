@@ -193,11 +193,17 @@ def _fit_sheet(req: Request, fa, draw, chosen, plans, *, table: bool, diagrams: 
     first arrangement of `ARRANGEMENTS` that fits with the tallest diagram of
     `DIAGRAM_SHARES`; the last ScaleError where none does."""
     failure: ScaleError | None = None
+    bands: dict[float, tuple[dict, dict, float]] = {}  # each share's band made once for every arrangement
+    diagram = _diagram_trials(req)
     for modes in ARRANGEMENTS:
         for share in DIAGRAM_SHARES:  # a lower diagram where the drawings above need the room
-            views: dict[str, PlacedView] = {}
-            scales: dict[str, float] = {}
-            band_top = _bottom_band(req, fa, views, scales, table=table, diagrams=diagrams, share=share)
+            if share not in bands:
+                made: tuple[dict, dict] = ({}, {})
+                top = _bottom_band(req, fa, *made, table=table, diagrams=diagrams, share=share, diagram=diagram)
+                bands[share] = (*made, top)
+            views: dict[str, PlacedView] = dict(bands[share][0])
+            scales: dict[str, float] = dict(bands[share][1])
+            band_top = bands[share][2]
             try:
                 return views, scales, _top_views(draw, chosen, band_top, req, plans, modes)
             except ScaleError as exc:
@@ -232,9 +238,10 @@ def _check_regular(fa: ForceAnalysis, chosen) -> None:
 
 
 def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
-                 diagrams: bool | None, share: float = DIAGRAM_SHARES[0]) -> float:
+                 diagrams: bool | None, share: float = DIAGRAM_SHARES[0], diagram: Trials | None = None) -> float:
     """The table of the balancing moments above the title block, the diagram M_b(φ) to their
-    left (`share` of the height, at least); the band's top, mm."""
+    left (`share` of the height, at least; `diagram`: its trial drawings, `_diagram_trials`);
+    the band's top, mm."""
     tview = None
     if table:
         tview = fit_table(lambda size, width: moments_table_view(fa, lang=req.lang, size_mm=size,
@@ -242,23 +249,28 @@ def _bottom_band(req: Request, fa, views: dict, scales: dict, *, table: bool,
                           req, what=f"table of balancing moments ({len(fa.kinematics)} positions)")
     band_top, dview = fill_bottom_band(
         views, req, table_view=tview,
-        fit_diagram=None if diagrams is False else (lambda region: _fit_diagram(req, region)),
+        fit_diagram=None if diagrams is False else (lambda region: _fit_diagram(req, region, diagram)),
         diagram_share=share, required=bool(diagrams), diagram_name="mb-diagram")
     if dview is not None:
         scales["mu_m"] = dview.meta["mu_m"]
     return band_top
 
 
-def _fit_diagram(req: Request, region) -> View:
+def _diagram_trials(req: Request) -> Trials:
+    """The diagram M_b(φ) drawn at (φ axis length, ordinate height) mm, each drawn once
+    whichever region tries it."""
+    sizes = req.sizes.diagram
+    return Trials(lambda length, height: moment_diagram_view(
+        req.study.moment_curve, length_mm=length, height_mm=height, lang=req.lang, label_mm=sizes.label_mm,
+        title_mm=sizes.title_mm))
+
+
+def _fit_diagram(req: Request, region, draw: Trials | None = None) -> View:
     """The diagram M_b(φ) in `region`: the longest φ axis that fits, then the tallest
-    ordinates (at most half the axis)."""
+    ordinates (at most half the axis); `draw`: its trial drawings (`_diagram_trials`)."""
     x0, y0, x1, y1 = region
     w, h = x1 - x0, y1 - y0
-    curve = req.study.moment_curve
-    sizes = req.sizes.diagram
-    draw = Trials(lambda length, height: moment_diagram_view(
-        curve, length_mm=length, height_mm=height, lang=req.lang, label_mm=sizes.label_mm,
-        title_mm=sizes.title_mm))
+    draw = _diagram_trials(req) if draw is None else draw
     lengths = [L for L in (360.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0, 60.0) if L >= MIN_DIAGRAM_MM]
     length = widest_first(lambda L: draw(L, 10.0), lengths, w)[0]
     if length is not None:

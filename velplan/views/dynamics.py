@@ -74,7 +74,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                 positions: int, length_mm: float, height_mm: float, title: str,
                 ordinate: str, unit_text: str, lang: Language, sizes: DynamicsSizes = DynamicsSizes(),
                 base: float = 0.0, notes: Sequence[str] = (), marks: Sequence[tuple[float, float, str]] = (),
-                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ", names: bool = True) -> View:
+                base_label: str = "", mu: float | None = None, mu_symbol: str = "μ", names: bool = True,
+                measured: bool = False) -> View:
     """Curves over the crank's travel, as a diagram of a course sheet.
 
     Parameters
@@ -104,17 +105,17 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         sought goes without: placing the names is most of its cost).
     mu_symbol : str
         The ordinate scale's symbol (``"μ_{M}"``).
+    measured : bool
+        A trial only measured: each curve stands as the diagonal of its box (the same size,
+        scale and meta as the drawing, without carrying every point of the curves through).
 
     A thin curve that never leaves the φ axis, or another curve, by more than
     :data:`COINCIDE_MM` is not drawn: it is listed under the title as ≈ 0, or named with the
     curve it lies on ("M_{r} ≈ M_{Fc}"). Each curve's name stands where the curve is farthest
     from the other lines, nearer to it than to any other curve, or joined to it by a leader.
     """
-    vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
-    top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
-    low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
-    span = max(top_v - low_v, 1e-12 * max(1.0, abs(base)))
-    mu = mu or standard_up(span / height_mm)
+    top_v, low_v = _extent(series, base)
+    mu = mu or ordinate_scale(series, base, height_mm)
     series, merged_notes = _merged(series, base, mu, unit_text, lang)
     notes = list(notes) + merged_notes
     mu_phi = cycle / length_mm
@@ -140,7 +141,7 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # ordinate ticks at round values of the ordinate, clear of the φ axis's own label
     items += _ordinate_ticks(bottom, top, mu, base, base_label, lang, size)
     # the curves
-    lines, named = [], []
+    lines, named, curves = [], [], []
     x = np.asarray(travel, float) / mu_phi
     for s in series:
         v = np.asarray(s.values, float)
@@ -148,7 +149,8 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
         if ok.sum() < 2:
             continue
         xy = np.column_stack([x[ok], (v[ok] - base) / mu])
-        items.append(Polyline(xy, LAYER, s.line))
+        curves.append((Polyline(xy, LAYER, s.line), xy))
+        items.append(curves[-1][0])
         lines.append(shapely.LineString(xy))
         if s.name:
             named.append((s.name, xy, len(lines) - 1))
@@ -156,6 +158,10 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
     # each curve named where it stands apart from the other lines, the extremes of ω at their dots
     dots = [(t / mu_phi, (v - base) / mu, text) for t, v, text in marks]
     items = axis_numbers_clear(items, [np.asarray(ln.coords) for ln in lines])
+    if measured:  # the same bounds: a box's corners are the curve's least and greatest x and y
+        boxes = {id(p): Polyline([tuple(xy.min(axis=0).tolist()), tuple(xy.max(axis=0).tolist())], p.layer, p.line)
+                 for p, xy in curves}
+        items = [boxes.get(id(p), p) for p in items]
     if names:
         items = _named(items, lines, named, dots, axes, L, size)
     else:
@@ -176,6 +182,21 @@ def curve_panel(name: str, travel: np.ndarray, series: Sequence[Series], *, cycl
                                                                    + [(text, np.array([[x, y]])) for x, y, text in dots])})
 
 
+def _extent(series: Sequence[Series], base: float) -> tuple[float, float]:
+    """The highest value of `series` above `base` and the lowest below it (0 at least, at most)."""
+    vals = np.concatenate([np.asarray(s.values, float)[np.isfinite(s.values)] for s in series] or [np.zeros(1)])
+    top_v = max(float(vals.max()) - base, 0.0) if vals.size else 0.0
+    low_v = min(float(vals.min()) - base, 0.0) if vals.size else 0.0
+    return top_v, low_v
+
+
+def ordinate_scale(series: Sequence[Series], base: float, height_mm: float) -> float:
+    """The standard ordinate scale (units per mm) that `curve_panel` draws `series` about
+    `base` at to keep their span within `height_mm`."""
+    top_v, low_v = _extent(series, base)
+    return standard_up(max(top_v - low_v, 1e-12 * max(1.0, abs(base))) / height_mm)
+
+
 def _named(items: list, lines: list, named, marks, axes: list, length: float, size: float) -> list:
     """`items` with the curves' names (`named`: (name, points mm, index in `lines`)) where each
     stands apart (`_name_at`), with their leaders, and the `marks` ((x, y) mm, text): a dot and
@@ -186,11 +207,12 @@ def _named(items: list, lines: list, named, marks, axes: list, length: float, si
     led: list[Text] = []
     leaders: list = []
     obstacles = lines + axes + _text_boxes(items)
+    written = [label_box(t).buffer(size) for t in items if isinstance(t, Text)]  # the leaders added are no texts
     for text, xy, i in named:
         # a name keeps a letter's height off the numbers and names already written: "4M_{д}" reads as one
         spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
-                                lines + axes + leaders + [label_box(t).buffer(size) for t in items + names + led
-                                                          if isinstance(t, Text)], length, size)
+                                lines + axes + leaders + written + [label_box(t).buffer(size) for t in names + led],
+                                length, size)
         if leader is not None:  # placed for good, with its leader
             led.append(spot)
             items = items + [leader]
@@ -252,10 +274,7 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
 
     width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
     own = shapely.LineString(xy)
-    pts = shapely.points(xy)
-    apart = np.full(len(xy), 8.0)
-    for ln in others:
-        apart = np.minimum(apart, shapely.distance(pts, ln))
+    apart = _apart(xy, others, 8.0)
     score = 2.0 * apart + 0.1 * np.abs(xy[:, 1])
     score[(xy[:, 0] < 3.0) | (xy[:, 0] + 1.5 + width > length)] -= 100.0
     field = shapely.STRtree(obstacles) if obstacles else None
@@ -277,6 +296,74 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
     up = min((float(shapely.distance(shapely.Point(px, py + 3.0), ln)) for ln in others), default=np.inf)
     down = min((float(shapely.distance(shapely.Point(px, py - 3.0), ln)) for ln in others), default=np.inf)
     return Text((px + 1.5, py + 1.5 if up >= down else py - 1.5 - size), text, LABELS, size, "start", "baseline"), None
+
+
+def _apart(xy: np.ndarray, others: list, cap: float) -> np.ndarray:
+    """The distance of each point of `xy` (mm) to the nearest of the `others` lines, at most
+    `cap` mm, as shapely measures it: of each line's segments that may be within `cap` of a
+    point (`_near_segments`), those that plain arithmetic puts within :data:`_NEAR_TOL` mm of
+    the nearest are measured by shapely (the point-to-segment distances a whole line's is the
+    least of: the same numbers, for a fraction of the work)."""
+    apart = np.full(len(xy), cap)
+    for ln in others:
+        coords = shapely.get_coordinates(ln)
+        if len(coords) < 3:
+            apart = np.minimum(apart, shapely.distance(shapely.points(xy), ln))
+            continue
+        i, j = _near_segments(xy, coords, cap)
+        rough = _segment_distance(xy[i], coords[j], coords[j + 1])
+        least = np.full(len(xy), np.inf)
+        np.minimum.at(least, i, rough)
+        keep = (rough <= least[i] + _NEAR_TOL) & (rough < cap + _NEAR_TOL)
+        i, j = i[keep], j[keep]
+        segments = shapely.linestrings(np.stack([coords[j], coords[j + 1]], axis=1))
+        exact = shapely.distance(shapely.points(xy[i]), segments)
+        np.minimum.at(apart, i, exact)
+    return apart
+
+
+def _near_segments(xy: np.ndarray, coords: np.ndarray, cap: float) -> tuple[np.ndarray, np.ndarray]:
+    """(point, segment) index pairs holding, for each point of `xy`, every segment of the line
+    through `coords` within `cap` mm of it, and more. A line whose x never decreases (a curve
+    over the travel) gives each point the segments across from it within the distance to the
+    one at its x; another line, those whose boxes come within `cap`."""
+    x = coords[:, 0]
+    if not np.all(x[1:] >= x[:-1]):
+        near = shapely.box(xy[:, 0] - cap, xy[:, 1] - cap, xy[:, 0] + cap, xy[:, 1] + cap)
+        segments = shapely.linestrings(np.stack([coords[:-1], coords[1:]], axis=1))
+        i, j = shapely.STRtree(segments).query(near)
+        return i, j
+    k = np.clip(np.searchsorted(x, xy[:, 0]) - 1, 0, len(x) - 2)
+    reach = np.minimum(_segment_distance(xy, coords[k], coords[k + 1]) + _NEAR_TOL, cap + _NEAR_TOL)
+    lo = np.searchsorted(x[1:], xy[:, 0] - reach, "left")
+    hi = np.searchsorted(x[:-1], xy[:, 0] + reach, "right")
+    # a segment whose heights all lie more than `reach` above or below the point is not within
+    # it: points with no other segment across from them are passed over whole
+    y = coords[:, 1]
+    low, high = np.minimum(y[:-1], y[1:]), np.maximum(y[:-1], y[1:])
+    bounds = np.column_stack([np.minimum(lo, len(low)), np.minimum(hi, len(low))]).ravel()
+    lowest = np.minimum.reduceat(np.append(low, np.inf), bounds)[0::2]
+    highest = np.maximum.reduceat(np.append(high, -np.inf), bounds)[0::2]
+    counts = np.where((hi > lo) & (lowest <= xy[:, 1] + reach) & (highest >= xy[:, 1] - reach), hi - lo, 0)
+    i = np.repeat(np.arange(len(xy)), counts)
+    j = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts - lo, counts)
+    py, r = xy[i, 1], reach[i]
+    near = (low[j] <= py + r) & (high[j] >= py - r)
+    return i[near], j[near]
+
+
+_NEAR_TOL = 1e-6
+"""How far (mm) plain arithmetic's distance from a point to a segment may be from shapely's:
+far more than the round-off of either (≈ 10⁻¹³ mm on a sheet)."""
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The distance of each point `p` (n × 2, mm) to its segment `a`–`b`, mm."""
+    px, py, ax, ay = p[:, 0], p[:, 1], a[:, 0], a[:, 1]
+    abx, aby = b[:, 0] - ax, b[:, 1] - ay
+    len2 = abx * abx + aby * aby
+    t = np.clip(((px - ax) * abx + (py - ay) * aby) / np.where(len2 > 0.0, len2, 1.0), 0.0, 1.0)
+    return np.hypot(px - ax - t * abx, py - ay - t * aby)
 
 
 def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
@@ -675,4 +762,4 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_m
 
 
 __all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "moment_scale", "nice_step",
-           "results_rows", "results_view", "wittenbauer_view"]
+           "ordinate_scale", "results_rows", "results_view", "wittenbauer_view"]
