@@ -25,9 +25,9 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed_thin": 10,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
-    # plan letters (triad-press n₅; triad-rocker n₁, c, "n₁, s₅, g"; stephenson s₅), the scheme's
-    # stephenson D, 4, 7, triad-rocker 1 and yoke-punch-press 1′ (other labels' leaders)
+    "crossed_thin": 3,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    # jaw-crusher's detail letter n₂ (another letter's leader), the scheme's stephenson 7 and
+    # yoke-punch-press 1′ (other labels' leaders)
 }
 
 

@@ -264,15 +264,29 @@ def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_
     the leader off the other letters where it can be; then, crowded all round, off the other
     letters over the fewest lines: its centre and box, or None."""
     found = None
-    for clear_leader in (True, False):
-        if found is None:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, soft_mm,
+    # a leader through another letter reads as that letter's: past the other points by less,
+    # then farther out, before through it
+    none = np.empty((0, 2))
+    for passed, clear_leader, gaps_out in ((others, True, leader_gaps), (none, True, leader_gaps),
+                                           (none, True, _farther(leader_gaps)), (others, False, leader_gaps)):
+        if found is None and gaps_out:
+            found = _choose(p, wanted, half, passed, tree, taken, gaps_out, False, soft, soft_mm,
                             leader=clear_leader)
     for clear_leader in (True, False):
         if found is None:
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,
                             leader=clear_leader)
     return found
+
+
+#: Beyond the last leader gap, the gaps (as its multiples) tried where no leader is clear nearer.
+FARTHER = (1.25, 1.5, 1.8)
+
+
+def _farther(leader_gaps: Sequence[float]) -> tuple[float, ...]:
+    """The gaps beyond `leader_gaps` where a letter whose leader crosses another letter at
+    every nearer place looks for a clear one (:data:`FARTHER` of the last), mm."""
+    return tuple(leader_gaps[-1] * f for f in FARTHER) if len(leader_gaps) else ()
 
 
 def _settle(text, centred, offset, found, led_from, taken, out, leaders, leader_layer) -> None:
@@ -290,3 +304,38 @@ def _settle(text, centred, offset, found, led_from, taken, out, leaders, leader_
         near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
         leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
         taken.append(shapely.LineString(leaders[-1].points).buffer(0.3))
+
+
+#: Gaps tried round a label that a line crosses (`step_aside`), mm: it stays by what it names.
+ASIDE_GAPS_MM = (0.3, 1.0, 1.8, 2.6)
+
+
+def step_aside(texts: Sequence[Text], obstacles, *, taken=(), gaps: Sequence[float] = ASIDE_GAPS_MM) -> list[Text]:
+    """`texts` (placed already: a link's number, ω) with each one whose box meets one of
+    `obstacles` (lines, symbols) moved to the cheapest spot round its place clear of them and
+    of the `taken` boxes and the other texts (its box `gaps` off its old centre, nearest and
+    least turned first); one with no such spot stays. No leader: it stays by what it names.
+
+    >>> import shapely
+    >>> t = Text((0.0, 0.0), "1", "labels", 3.5, "middle", "middle")
+    >>> (moved,) = step_aside([t], [shapely.LineString([(-5, 0), (5, 0)]).buffer(0.4)])
+    >>> label_box(moved).intersects(shapely.LineString([(-5, 0), (5, 0)]).buffer(0.4))
+    False
+    """
+    shapes = [g for g in obstacles if g is not None and not g.is_empty]
+    if not shapes:
+        return list(texts)
+    tree = shapely.STRtree(shapes)
+    out = list(texts)
+    boxes = [label_box(t) for t in out]
+    for k, text in enumerate(out):
+        if text.rotation_deg != 0.0 or not len(tree.query(boxes[k], predicate="intersects")):
+            continue
+        centred, offset, half = _centred(text)
+        p = np.asarray(boxes[k].centroid.coords[0])
+        others = [*taken, *(b.buffer(0.4) for j, b in enumerate(boxes) if j != k)]
+        found = _choose(p, np.array([0.7071, 0.7071]), half, (), tree, others, gaps, False)
+        if found is not None:
+            out[k] = dataclasses.replace(centred, position=tuple((found[0] - offset).tolist()))
+            boxes[k] = label_box(out[k])
+    return out
