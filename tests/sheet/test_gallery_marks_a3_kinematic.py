@@ -25,9 +25,8 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed_thin": 3,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
-    # jaw-crusher's detail letter n₂ (another letter's leader), the scheme's stephenson 7 and
-    # yoke-punch-press 1′ (other labels' leaders)
+    "crossed_thin": 1,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
+    # stephenson's crank number 7, crossed by the leader of link 2's number out of the tangle
 }
 
 

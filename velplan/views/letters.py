@@ -124,12 +124,24 @@ def _leaders_clear(centres, half, point, taken_boxes, others) -> np.ndarray:
     return ok
 
 
+def _leader_inside(centres, half, point, taken_boxes) -> np.ndarray:
+    """How long the leader from `point` to each box (centred at `centres`, half sizes `half`,
+    mm; drawn as `_leaders_clear` takes it) runs inside the `taken` boxes, mm."""
+    p = np.asarray(point, float)
+    ends = np.clip(p, centres - half - 0.4, centres + half + 0.4)
+    segments = shapely.linestrings(np.stack([np.broadcast_to(p, ends.shape), ends], axis=1))
+    i, j = shapely.STRtree(taken_boxes).query(segments, predicate="intersects")
+    inside = shapely.length(shapely.intersection(segments[i], taken_boxes[j]))
+    return np.bincount(i, weights=inside, minlength=len(centres))
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
-            weight: float = SOFT_MM, near: float | None = None, leader: bool = False):
+            weight: float = SOFT_MM, near: float | None = None, leader: bool = False, through: float = 0.0):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
     (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it;
     if `leader`, with its leader clear of the `taken` boxes and the `others` points), each line of `soft` (a tree of
-    thin lines) across it costing `weight` mm: its centre and box, or None. Of equal costs,
+    thin lines) across it costing `weight` mm, each mm of its leader inside the `taken` boxes
+    `through` mm: its centre and box, or None. Of equal costs,
     the first candidate (`_candidates`' order) wins."""
     centres, base = _candidates(point, wanted, half, gaps)
     n = len(centres)
@@ -167,6 +179,9 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
             crossed = soft.query(_boxes(c[ok], half, 0.2), predicate="intersects")[0]
             cost = cost.copy()
             cost[ok] += weight * np.bincount(crossed, minlength=int(ok.sum()))
+        if through and taken_boxes is not None:  # a leader through another letter, the less the better
+            cost = cost.copy()
+            cost[ok] += through * _leader_inside(c[ok], half, point, taken_boxes)
         j = int(np.argmin(np.where(ok, cost, np.inf)))
         if best is None or (cost[j], idx[j]) < (best[0], best[1]):
             best = (float(cost[j]), int(idx[j]), padded[int(ok[:j].sum())])
@@ -271,7 +286,7 @@ def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_
                                            (none, True, _farther(leader_gaps)), (others, False, leader_gaps)):
         if found is None and gaps_out:
             found = _choose(p, wanted, half, passed, tree, taken, gaps_out, False, soft, soft_mm,
-                            leader=clear_leader)
+                            leader=clear_leader, through=0.0 if clear_leader else THROUGH_MM)
     for clear_leader in (True, False):
         if found is None:
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,
@@ -279,6 +294,9 @@ def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_
     return found
 
 
+#: Millimetres of gap a millimetre of a leader inside another letter's box is worth, where
+#: every leader runs through one: the least through it.
+THROUGH_MM = 5.0
 #: Beyond the last leader gap, the gaps (as its multiples) tried where no leader is clear nearer.
 FARTHER = (1.25, 1.5, 1.8)
 

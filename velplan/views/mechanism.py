@@ -477,15 +477,18 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
             {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters], "soft_mm": SCHEME_SOFT_MM})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
-    placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles, thin, placed_letters)
+    out = output_point(mech)
+    marks = (list(shapely.buffer(shapely.points(_finite_rows(mm(kin.position(out)))), POINT_CLEAR_MM / 2))
+             if out is not None and not single else [])  # no number over another position's point
+    placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles + marks, thin,
+                                                         placed_letters)
     leaders += moved_leaders
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
-        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
+        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles + marks),
         {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5),  # not read as one with a letter
          "soft_mm": SCHEME_SOFT_MM})
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
-    out = output_point(mech)
     if not single and out is not None:
         kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
         items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
@@ -527,6 +530,12 @@ def _broken_under_texts(items: list) -> list:
         out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
                 if not part.is_empty and part.length > 0.2]
     return out
+
+
+def _finite_rows(xy) -> np.ndarray:
+    """The rows of the points `xy` (n, 2) with finite coordinates."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    return xy[np.all(np.isfinite(xy), axis=1)]
 
 
 def _grown(texts: list[Text], by_mm: float) -> list:
@@ -1013,9 +1022,9 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
 def _past_the_others(leader, text: Text, placed) -> tuple | None:
     """The piece of a number's `leader` (from its point to its box) that runs on from the last
     other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
-    line with its point: its leader starts past them, not through them), or None where
-    nothing of it is left."""
-    others = [label_box(x).buffer(0.4) for x in placed if x is not text and x.text.isdigit()]
+    line with its point: its leader starts past them, not through them; the other extreme
+    position's "1′" too), or None where nothing of it is left."""
+    others = [label_box(x).buffer(0.4) for x in placed if x is not text and x.text.rstrip("′").isdigit()]
     hit = [b for b in others if b.intersects(leader)]
     if not hit:
         return tuple(leader.coords)
