@@ -622,7 +622,9 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
     for _, corners in geo.plates(t):
-        items += plate_corners(mm(corners))
+        strokes = plate_corners(mm(corners))
+        items += strokes
+        obstacles += _corner_hulls(mm(corners), strokes)  # no letter on a plate's hatched corner
     for s in thick_segments:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
@@ -1137,6 +1139,17 @@ def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: flo
             out.append(Polyline([v + eu * d / math.cos(half), v + ew * d / math.cos(half)],
                                 layer, "thin"))
     return out
+
+
+def _corner_hulls(corners, strokes: list) -> list:
+    """The hull of the strokes (`plate_corners`) in each corner of the triangle `corners` (mm)."""
+    ends = np.array([p.points for p in strokes], float).reshape(-1, 2, 2)
+    if not len(ends):
+        return []
+    mid = ends.mean(axis=1)
+    nearest = np.argmin(np.hypot(*(mid[:, None, :] - np.asarray(corners, float)[None, :, :]).transpose(2, 0, 1)), axis=1)
+    return [shapely.multipoints(ends[nearest == k].reshape(-1, 2)).convex_hull.buffer(0.3)
+            for k in range(len(corners)) if (nearest == k).any()]
 
 
 def _plate_number_at(corners, size: float, points=()):
