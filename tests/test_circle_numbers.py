@@ -18,11 +18,23 @@ POSITIONS = (1, 4, 9)
 
 
 def _diagram(view, con):
-    """The circle diagram's ring, its chords in step order and its numbers, from the figure."""
+    """The circle diagram's ring, its chords in step order and its numbers, from the figure (a
+    chord broken where its number stands on it is drawn again whole from its pieces: each
+    piece runs from a vertex on the ring along the chord)."""
     ring = max((p for p in view.primitives if isinstance(p, Circle) and p.layer == "centres"), key=lambda c: c.radius)
     centre = np.asarray(ring.centre)
-    chords = [p for p in view.primitives if isinstance(p, Polyline) and p.layer == "centres" and len(p.points) == 2
-              and all(abs(np.hypot(*(np.asarray(q) - centre)) - ring.radius) < 1e-6 for q in p.points)]
+    on_ring = lambda q: abs(np.hypot(*(np.asarray(q) - centre)) - ring.radius) < 1e-6  # noqa: E731
+    chords, seen = [], set()
+    for p in view.primitives:
+        if not (isinstance(p, Polyline) and p.layer == "centres" and len(p.points) == 2 and any(map(on_ring, p.points))):
+            continue
+        a, b = (np.asarray(q, float) for q in (p.points if on_ring(p.points[0]) else p.points[::-1]))
+        u = (b - a) / np.hypot(*(b - a))
+        end = a - 2.0 * np.dot(a - centre, u) * u  # the chord's other end on the ring
+        key = frozenset((tuple(np.round(a, 6)), tuple(np.round(end, 6))))
+        if key not in seen:
+            seen.add(key)
+            chords.append(Polyline((tuple(a), tuple(end)), p.layer, p.line))
     assert len(chords) == len(con.steps)
     numbers = {t.text: t for t in view.primitives if isinstance(t, Text) and t.size_mm == 2.5 and t.text.isdigit()
                and np.hypot(*(np.asarray(t.position) - centre)) < ring.radius}

@@ -26,9 +26,9 @@ from velplan.views.diagram_compact import RANGE_SERIES, compact_diagram_view, dr
 FMT, KINDS = "A3", ("kinematic",)
 # measured on 27 Nov 2026; each may only go down
 BOUNDS: dict[str, int] = {
-    "crossed_thin": 10,  # texts crossed by any drawn line, thin ones too (all of "Done when"):
-    # plan letters (triad-press n₅; triad-rocker n₁, c, "n₁, s₅, g"; stephenson s₅), the scheme's
-    # stephenson D, 4, 7, triad-rocker 1 and yoke-punch-press 1′ (other labels' leaders)
+    # crossed_thin 10 → 0 on 27 Nov 2026: a leader keeps off the other letters (farther out, else
+    # through the fewest and least deep), the details' letters keep off their construction lines,
+    # the scheme's labels keep off the output's positions' points
 }
 
 

@@ -22,7 +22,7 @@ from velplan.render.i18n import centres_words as _t
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, digits_down, make_view, number, place_labels, scale_text, shift, subscript
-from velplan.views.letters import LEADER_GAPS_MM, NEAR_MM, place_letters
+from velplan.views.letters import LEADER_GAPS_MM, NEAR_MM, place_letters, step_aside
 from velplan.views.mechanism import MechanismSizes, mechanism_view
 from velplan.views.base import number as _number  # `number` is also the position argument
 
@@ -161,9 +161,11 @@ def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float
         numbers = _chord_numbers(con, at, radius, forced=last)
         radius = radius if numbers is not None else radius * CIRCLE_GROWTH
     items: list[Primitive] = [Circle((0.0, 0.0), radius, LAYER, "thin")]
+    in_order = iter(numbers)  # one a Kennedy step, in the steps' order
     for s in con.steps:
         line = {"joint": "thick", "hinge": "thick", "slider": "thick", "kennedy": "hidden"}.get(s.how, "axis")
-        items.append(Polyline([tuple(at[s.pair[0]]), tuple(at[s.pair[1]])], LAYER, line))
+        items += _broken_at(Polyline([tuple(at[s.pair[0]]), tuple(at[s.pair[1]])], LAYER, line),
+                            next(in_order) if s.how == "kennedy" else None)
     items += numbers
     for k, p in at.items():
         items.append(Circle(tuple(p), VERTEX_MM, LAYER, "thin", "white"))
@@ -174,6 +176,20 @@ def circle_diagram(con: Construction, *, lang: Language = "en", radius_mm: float
     items.append(Text((0.0, -radius - 10.0), _t("found", lang, found, total), "labels", 2.5, "middle"))
     items.append(Text((0.0, radius + 9.0), _t("circle", lang), "labels", size_mm, "middle"))
     return items
+
+
+def _broken_at(chord: Polyline, number: Text | None) -> list[Polyline]:
+    """`chord` broken where its own `number` stands on it (ESKD: a line is broken for the text
+    written on it), :data:`NUMBER_CLEAR_MM` round the number's box; whole where it stands beside."""
+    if number is None:
+        return [chord]
+    line = shapely.LineString(chord.points)
+    hole = label_box(number).buffer(NUMBER_CLEAR_MM)
+    if not line.intersects(hole):
+        return [chord]
+    rest = line.difference(hole)
+    return [replace(chord, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
+            if not part.is_empty and part.length > 0.2]
 
 
 #: The links a circle diagram of the standard radius holds; one of more links starts larger in proportion.
@@ -340,7 +356,7 @@ def _names_placed(items: list, labels: list, joints: dict, at_joint: dict, point
     spots = [points[t.text.split(" (")[0]] for t in own] + [np.asarray(at, float) for _, at in labels]
     named = list(points.values()) + [np.asarray(at, float) for _, at in labels]
     others = [t for t in texts if t not in own]
-    rest = place_labels(others, obstacles, rings=8)
+    rest = step_aside(place_labels(others, obstacles, rings=8), obstacles)  # none left on a line
     items = _leaders_followed(items, others, rest)
     # the names at infinity first: each has one place, the end of its direction line
     texts_of = [*own, *(t for t, _ in labels)]
@@ -349,7 +365,28 @@ def _names_placed(items: list, labels: list, joints: dict, at_joint: dict, point
                                     taken=[label_box(t).buffer(0.4) for t in rest], near_mm=NEAR_MM,
                                     leader_gaps=(*LEADER_GAPS_MM, *FAR_LEADER_GAPS_MM))
     items += [*rest, *placed, *leaders]
-    return items, {k: [tuple(map(float, xy)) for xy in v] for k, v in anchors.items() if v}
+    return _broken_under_texts(items), {k: [tuple(map(float, xy)) for xy in v] for k, v in anchors.items() if v}
+
+
+def _broken_under_texts(items: list) -> list:
+    """`items` with each thin construction line (a Kennedy line) broken where a text had to
+    stand on it (a link's number in a web of lines; ESKD: a line is broken for a text), 0.4 mm
+    round the text's box: the parts outside, in the line's place."""
+    holes = [label_box(t).buffer(0.4) for t in items if isinstance(t, Text)]
+    if not holes:
+        return items
+    tree = shapely.STRtree(holes)
+    out: list = []
+    for p in items:
+        hit = (tree.query(line := shapely.LineString(p.points), predicate="intersects")
+               if isinstance(p, Polyline) and p.layer == LAYER and p.line == "construction" else ())
+        if not len(hit):
+            out.append(p)
+            continue
+        rest = line.difference(shapely.union_all([holes[j] for j in hit]))
+        out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
+                if not part.is_empty and part.length > 0.2]
+    return out
 
 
 def _leaders_followed(items: list, texts: list, moved: list) -> list:

@@ -124,12 +124,33 @@ def _leaders_clear(centres, half, point, taken_boxes, others) -> np.ndarray:
     return ok
 
 
+def _leader_inside(centres, half, point, taken_boxes) -> np.ndarray:
+    """How long the leader from `point` to each box (centred at `centres`, half sizes `half`,
+    mm; drawn as `_leaders_clear` takes it) runs inside the `taken` boxes, mm, a millimetre
+    deeper than :data:`CORE_MM` inside one counted :data:`CORE_WEIGHT` times more (through a
+    letter, not only by it)."""
+    p = np.asarray(point, float)
+    ends = np.clip(p, centres - half - 0.4, centres + half + 0.4)
+    segments = shapely.linestrings(np.stack([np.broadcast_to(p, ends.shape), ends], axis=1))
+    i, j = shapely.STRtree(taken_boxes).query(segments, predicate="intersects")
+    inside = shapely.length(shapely.intersection(segments[i], taken_boxes[j]))
+    inside += CORE_WEIGHT * shapely.length(shapely.intersection(segments[i], shapely.buffer(taken_boxes[j], -CORE_MM)))
+    return np.bincount(i, weights=inside, minlength=len(centres))
+
+
+#: A leader this far inside a taken box (a letter's, padded) runs through the letter itself, mm…
+CORE_MM = 1.0
+#: …and its length there counts this many times more.
+CORE_WEIGHT = 4.0
+
+
 def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, soft=None,
-            weight: float = SOFT_MM, near: float | None = None, leader: bool = False):
+            weight: float = SOFT_MM, near: float | None = None, leader: bool = False, through: float = 0.0):
     """The cheapest candidate centre clear of the obstacles (`tree`) and of the `taken` boxes
     (and, if `need_nearest`, nearer its own point than any other and within `near` mm of it;
     if `leader`, with its leader clear of the `taken` boxes and the `others` points), each line of `soft` (a tree of
-    thin lines) across it costing `weight` mm: its centre and box, or None. Of equal costs,
+    thin lines) across it costing `weight` mm, each mm of its leader inside the `taken` boxes
+    `through` mm: its centre and box, or None. Of equal costs,
     the first candidate (`_candidates`' order) wins."""
     centres, base = _candidates(point, wanted, half, gaps)
     n = len(centres)
@@ -167,6 +188,9 @@ def _choose(point, wanted, half, others, tree, taken, gaps, need_nearest: bool, 
             crossed = soft.query(_boxes(c[ok], half, 0.2), predicate="intersects")[0]
             cost = cost.copy()
             cost[ok] += weight * np.bincount(crossed, minlength=int(ok.sum()))
+        if through and taken_boxes is not None:  # a leader through another letter, the less the better
+            cost = cost.copy()
+            cost[ok] += through * _leader_inside(c[ok], half, point, taken_boxes)
         j = int(np.argmin(np.where(ok, cost, np.inf)))
         if best is None or (cost[j], idx[j]) < (best[0], best[1]):
             best = (float(cost[j]), int(idx[j]), padded[int(ok[:j].sum())])
@@ -264,15 +288,32 @@ def _beyond(p, wanted, half, others, tree, taken, soft, gaps, leader_gaps, soft_
     the leader off the other letters where it can be; then, crowded all round, off the other
     letters over the fewest lines: its centre and box, or None."""
     found = None
-    for clear_leader in (True, False):
-        if found is None:
-            found = _choose(p, wanted, half, others, tree, taken, leader_gaps, False, soft, soft_mm,
-                            leader=clear_leader)
+    # a leader through another letter reads as that letter's: past the other points by less,
+    # then farther out, before through it
+    none = np.empty((0, 2))
+    for passed, clear_leader, gaps_out in ((others, True, leader_gaps), (none, True, leader_gaps),
+                                           (none, True, _farther(leader_gaps)), (others, False, leader_gaps)):
+        if found is None and gaps_out:
+            found = _choose(p, wanted, half, passed, tree, taken, gaps_out, False, soft, soft_mm,
+                            leader=clear_leader, through=0.0 if clear_leader else THROUGH_MM)
     for clear_leader in (True, False):
         if found is None:
             found = _choose(p, wanted, half, others, None, taken, (*gaps, *leader_gaps), False, tree, 20.0,
                             leader=clear_leader)
     return found
+
+
+#: Millimetres of gap a millimetre of a leader inside another letter's box is worth, where
+#: every leader runs through one: the least through it.
+THROUGH_MM = 5.0
+#: Beyond the last leader gap, the gaps (as its multiples) tried where no leader is clear nearer.
+FARTHER = (1.25, 1.5, 1.8)
+
+
+def _farther(leader_gaps: Sequence[float]) -> tuple[float, ...]:
+    """The gaps beyond `leader_gaps` where a letter whose leader crosses another letter at
+    every nearer place looks for a clear one (:data:`FARTHER` of the last), mm."""
+    return tuple(leader_gaps[-1] * f for f in FARTHER) if len(leader_gaps) else ()
 
 
 def _settle(text, centred, offset, found, led_from, taken, out, leaders, leader_layer) -> None:
@@ -290,3 +331,38 @@ def _settle(text, centred, offset, found, led_from, taken, out, leaders, leader_
         near = shapely.shortest_line(label_box(placed).buffer(0.4), shapely.Point(p)).coords[0]
         leaders.append(Polyline(((float(p[0]), float(p[1])), (near[0], near[1])), leader_layer, "thin"))
         taken.append(shapely.LineString(leaders[-1].points).buffer(0.3))
+
+
+#: Gaps tried round a label that a line crosses (`step_aside`), mm: it stays by what it names.
+ASIDE_GAPS_MM = (0.3, 1.0, 1.8, 2.6)
+
+
+def step_aside(texts: Sequence[Text], obstacles, *, taken=(), gaps: Sequence[float] = ASIDE_GAPS_MM) -> list[Text]:
+    """`texts` (placed already: a link's number, ω) with each one whose box meets one of
+    `obstacles` (lines, symbols) moved to the cheapest spot round its place clear of them and
+    of the `taken` boxes and the other texts (its box `gaps` off its old centre, nearest and
+    least turned first); one with no such spot stays. No leader: it stays by what it names.
+
+    >>> import shapely
+    >>> t = Text((0.0, 0.0), "1", "labels", 3.5, "middle", "middle")
+    >>> (moved,) = step_aside([t], [shapely.LineString([(-5, 0), (5, 0)]).buffer(0.4)])
+    >>> label_box(moved).intersects(shapely.LineString([(-5, 0), (5, 0)]).buffer(0.4))
+    False
+    """
+    shapes = [g for g in obstacles if g is not None and not g.is_empty]
+    if not shapes:
+        return list(texts)
+    tree = shapely.STRtree(shapes)
+    out = list(texts)
+    boxes = [label_box(t) for t in out]
+    for k, text in enumerate(out):
+        if text.rotation_deg != 0.0 or not len(tree.query(boxes[k], predicate="intersects")):
+            continue
+        centred, offset, half = _centred(text)
+        p = np.asarray(boxes[k].centroid.coords[0])
+        others = [*taken, *(b.buffer(0.4) for j, b in enumerate(boxes) if j != k)]
+        found = _choose(p, np.array([0.7071, 0.7071]), half, (), tree, others, gaps, False)
+        if found is not None:
+            out[k] = dataclasses.replace(centred, position=tuple((found[0] - offset).tolist()))
+            boxes[k] = label_box(out[k])
+    return out

@@ -477,15 +477,18 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
             {"thin": thin, "taken": [label_box(x).buffer(0.4) for x in placed_letters], "soft_mm": SCHEME_SOFT_MM})
         placed_letters, leaders = placed_letters + numbers, leaders + number_leaders
     placed = place_labels(labels, obstacles, rings=8, taken=placed_letters)
-    placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles, thin, placed_letters)
+    out = output_point(mech)
+    marks = (list(shapely.buffer(shapely.points(_finite_rows(mm(kin.position(out)))), POINT_CLEAR_MM / 2))
+             if out is not None and not single else [])  # no number over another position's point
+    placed, moved, moved_leaders = _labels_off_the_lines(labels, placed, anchors, obstacles + marks, thin,
+                                                         placed_letters)
     leaders += moved_leaders
     # the links' numbers, each nearer its own link's point than another link's
     numbers, number_leaders = yield LetterRequest(
-        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles),
+        ([x for x, _ in links], [at for _, at in links], [at for _, at in links], obstacles + marks),
         {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5),  # not read as one with a letter
          "soft_mm": SCHEME_SOFT_MM})
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
-    out = output_point(mech)
     if not single and out is not None:
         kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
         items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
@@ -527,6 +530,12 @@ def _broken_under_texts(items: list) -> list:
         out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
                 if not part.is_empty and part.length > 0.2]
     return out
+
+
+def _finite_rows(xy) -> np.ndarray:
+    """The rows of the points `xy` (n, 2) with finite coordinates."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    return xy[np.all(np.isfinite(xy), axis=1)]
 
 
 def _grown(texts: list[Text], by_mm: float) -> list:
@@ -613,7 +622,9 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
                        for x in _add_special(items, obstacles, geo, i, mm, label_mm,
                                              "" if i == t else f" ({position_number(i)})")]
     for _, corners in geo.plates(t):
-        items += plate_corners(mm(corners))
+        strokes = plate_corners(mm(corners))
+        items += strokes
+        obstacles += _corner_hulls(mm(corners), strokes)  # no letter on a plate's hatched corner
     for s in thick_segments:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
@@ -1015,7 +1026,7 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
             if not grown:
-                grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.isdigit()]
+                grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.rstrip("′").isdigit()]
             leader = _past_the_others(shapely.LineString([p, near]), text, placed, grown)
             if leader is not None:
                 out.append(Polyline(leader, "labels", "thin"))
@@ -1025,11 +1036,11 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
 def _past_the_others(leader, text: Text, placed, grown=None) -> tuple | None:
     """The piece of a number's `leader` (from its point to its box) that runs on from the last
     other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
-    line with its point: its leader starts past them, not through them), or None where
-    nothing of it is left. `grown`: (number, its box grown by 0.4 mm) of the numbers in
-    `placed`, where already made."""
+    line with its point: its leader starts past them, not through them; the other extreme
+    position's "1′" too), or None where nothing of it is left. `grown`: (number, its box grown
+    by 0.4 mm) of the numbers in `placed`, where already made."""
     if grown is None:
-        grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.isdigit()]
+        grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.rstrip("′").isdigit()]
     others = [b for x, b in grown if x is not text]
     hit = [b for b in others if b.intersects(leader)]
     if not hit:
@@ -1143,6 +1154,17 @@ def plate_corners(corners, *, reach_mm: float = PLATE_CORNER_MM, spacing_mm: flo
             out.append(Polyline([v + eu * d / math.cos(half), v + ew * d / math.cos(half)],
                                 layer, "thin"))
     return out
+
+
+def _corner_hulls(corners, strokes: list) -> list:
+    """The hull of the strokes (`plate_corners`) in each corner of the triangle `corners` (mm)."""
+    ends = np.array([p.points for p in strokes], float).reshape(-1, 2, 2)
+    if not len(ends):
+        return []
+    mid = ends.mean(axis=1)
+    nearest = np.argmin(np.hypot(*(mid[:, None, :] - np.asarray(corners, float)[None, :, :]).transpose(2, 0, 1)), axis=1)
+    return [shapely.multipoints(ends[nearest == k].reshape(-1, 2)).convex_hull.buffer(0.3)
+            for k in range(len(corners)) if (nearest == k).any()]
 
 
 def _plate_number_at(corners, size: float, points=()):

@@ -30,10 +30,6 @@ CROWD_MM = 15.0
 CROWD_COUNT = 3
 #: Enlargements of a detail (ГОСТ 2.302), the largest first.
 FACTORS: tuple[float, ...] = (5.0, 4.0, 2.5, 2.0)
-#: Millimetres of gap a thin line across a letter of a detail is worth: more than any clear
-#: spot round its image costs (a detail is drawn for its crowd, and a line through a letter
-#: there reads as part of it), as the scheme's (`mechanism.SCHEME_SOFT_MM`).
-DETAIL_SOFT_MM = 10.0
 #: The numerals of a sheet's details, in turn.
 NUMERALS: tuple[str, ...] = ("I", "II", "III", "IV", "V", "VI", "VII", "VIII")
 NUMERAL = NUMERALS[0]
@@ -110,14 +106,14 @@ def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon)
         return set(), []
     names = {t.text for t in letters}
     points = [xy for xys in at.values() for xy in xys if window.contains(shapely.Point(xy))]
+    # every line is hard, the thin construction lines too (as the plan's own letters keep off
+    # them): a letter crosses one only where no spot, with a leader or without, is clear
     hard = [shapely.LineString([p.start, p.end]) for p in items if isinstance(p, Arrow)]
-    hard += [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line != "thin"]
+    hard += [shapely.LineString(p.points) for p in items if isinstance(p, Polyline)]
     hard += [shapely.Point(p.centre).buffer(p.radius + 0.3) for p in items if isinstance(p, Circle)]
     hard.append(window.envelope.buffer(30.0).difference(window))  # the letters stay inside the circle
-    thin = [shapely.LineString(p.points) for p in items if isinstance(p, Polyline) and p.line == "thin"]
     others = [label_box(t).buffer(0.4) for t in items if isinstance(t, Text) and t.text not in names]
-    placed, leaders = place_letters(letters, anchors, points, hard, thin=thin, taken=others,
-                                    leader_layer=letters[0].layer, soft_mm=DETAIL_SOFT_MM)
+    placed, leaders = place_letters(letters, anchors, points, hard, taken=others, leader_layer=letters[0].layer)
     out: list[Primitive] = [t for t in placed if window.contains(label_box(t))]
     return names, out + [ld for ld in leaders if window.contains(shapely.Point(ld.points[1]))]
 

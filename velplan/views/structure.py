@@ -23,6 +23,7 @@ from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
 from velplan.views.base import subscript
+from velplan.views.letters import step_aside
 
 PANEL_MM = 70.0
 """Width the widest panel is drawn at, mm."""
@@ -256,9 +257,10 @@ def _draw(panel: _Panel, place) -> list:
             letters.append((c, name, sides.get(tuple(c), _away(c, shapes))))
     letters += [(place(at), name, _away(place(at), shapes)) for name, at in panel.marks]
     centre = np.mean([p for pts in shapes.values() for p in pts], axis=0)
-    for k, pts in shapes.items():
-        if pts and k != GROUND:
-            out.append(_link_number(k, pts, centre, panel, place))
+    numbers = [_link_number(k, pts, centre, panel, place) for k, pts in shapes.items() if pts and k != GROUND]
+    # a number a line crosses (another link's outline past a block) steps aside, off the ink
+    ink = [g.buffer(0.3) for g in map(_outline, out) if g is not None]
+    out += step_aside(numbers, ink, taken=[label_box(t).buffer(0.4) for t in out if isinstance(t, Text)])
     return out + _clear_letters(out, letters, panel.text_mm)
 
 
