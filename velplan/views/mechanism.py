@@ -1233,7 +1233,8 @@ def _special_construction(geo: _Geometry, t: int, mm, size: float, suffix: str =
                 u = (j - start) / max(np.hypot(*(j - start)), 1e-12)
             off = abs(float(u[0] * (k - start)[1] - u[1] * (k - start)[0]))
             lines.append((off, start, j))
-        lines.sort(key=lambda x: x[0])
+        tie = 1e-9 * span  # leads through the point to round-off keep their order, whichever engine solved
+        lines.sort(key=lambda x: x[0] if x[0] > tie else 0.0)
         for _, start, j in lines[:2]:
             ends = [mm(start), mm(j), mm(k)]
             direction = ends[2] - ends[0]
