@@ -37,7 +37,7 @@ from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
 from velplan.views.diagram import standard_up
 from velplan.views.dynamics import (
-    DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, results_rows, results_view, wittenbauer_view)
+    DynamicsSizes, Series, constant_moment, curve_panel, flywheel_view, moment_scale, results_rows, results_view, wittenbauer_view)
 
 PANELS = ("moments", "works", "inertia", "omega")
 """The curve panels, top to bottom."""
@@ -83,7 +83,7 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
     wanted = PANELS if mus is None else tuple(mus)
     at = (lambda name: kw) if mus is None else (lambda name: {**kw, "mu": mus[name]})
     nm, joule = unit("N·m", lang), unit("J", lang)
-    drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
+    _, drv, res = constant_moment(d, lang)  # an engine's constant moment resists: M_с, its loads' M_д
     views: dict[str, View] = {}
     if "moments" in wanted:
         loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
