@@ -347,7 +347,7 @@ def axis_numbers_clear(items: list, curves) -> list:
     if not lines:
         return items
     field = shapely.STRtree(lines)
-    texts = [(p, label_box(p)) for p in items if isinstance(p, Text)]  # every text, as written
+    texts = None  # the other texts' boxes, as written (a tree), and those of the numbers moved
     out = []
     for p in items:
         if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0:
@@ -356,10 +356,14 @@ def axis_numbers_clear(items: list, curves) -> list:
             if abs(p.position[0]) < 1e-9:  # under the origin: beside the ordinate axis instead
                 p = _moved(p, position=(0.8, p.position[1]), anchor="start")
             if len(field.query(label_box(p), predicate="intersects")):
-                others = [b for q, b in texts if q is not item] + [label_box(q) for q in out if isinstance(q, Text)]
-                p = next((q for q in _number_tries(p, tick, label_box)
-                          if not len(field.query(label_box(q), predicate="intersects"))
-                          and not any(label_box(q).intersects(b) for b in others)), p)
+                if texts is None:
+                    written = [q for q in items if isinstance(q, Text)]
+                    texts = (written, shapely.STRtree([label_box(q) for q in written]), [])
+                p = next((q for q, box in _number_tries(p, tick, label_box)
+                          if not len(field.query(box, predicate="intersects"))
+                          and not any(texts[0][j] is not item for j in texts[1].query(box, predicate="intersects"))
+                          and not any(box.intersects(b) for b in texts[2])), p)
+                texts[2].append(label_box(p))
         out.append(p)
     numbers = [k for k, p in enumerate(items)
                if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0]
@@ -368,11 +372,11 @@ def axis_numbers_clear(items: list, curves) -> list:
 
 
 def _number_tries(p, tick, box_of) -> list:
-    """The spots a position number `p` hung under the φ axis tries when a curve crosses it,
-    nearest its `tick` (a segment across the axis) first and none farther than
-    :data:`NUMBER_REACH` of its height: mirrored above the axis; beside the tick (a number
-    under its tick only), just under or over the axis; a little farther below or above;
-    narrowed (`MIN_WIDTH_FACTOR`), below or above, then a text height farther."""
+    """(text, its box by `box_of`) of the spots a position number `p` hung under the φ axis
+    tries when a curve crosses it, nearest its `tick` (a segment across the axis) first and
+    none farther than :data:`NUMBER_REACH` of its height: mirrored above the axis; beside the
+    tick (a number under its tick only), just under or over the axis; a little farther below or
+    above; narrowed (`MIN_WIDTH_FACTOR`), below or above, then a text height farther."""
     from velplan.render.shapes import DESCENDER_DEPTH, MIN_WIDTH_FACTOR
 
     x, y = p.position
@@ -389,8 +393,9 @@ def _number_tries(p, tick, box_of) -> list:
         tries += [_moved(up, position=(x + side * 0.6, 0.4 + DESCENDER_DEPTH * h), anchor=anchor)
                   for side, anchor in ((-1.0, "end"), (1.0, "start"))]
     reach = NUMBER_REACH * h
-    near = [(box_of(q).distance(tick), k, q) for k, q in enumerate(tries)]
-    return [q for d, _, q in sorted(near, key=lambda t: (t[0], t[1])) if d <= reach]
+    boxes = [box_of(q) for q in tries]
+    near = [(box.distance(tick), k) for k, box in enumerate(boxes)]
+    return [(tries[k], boxes[k]) for d, k in sorted(near) if d <= reach]
 
 
 def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], items: list, lines: list) -> list:
@@ -618,15 +623,16 @@ def upright_offsets(texts: list) -> np.ndarray:
     """The offsets (x0, y0, x1, y1) of `_spot_boxes` for upright texts, shape (n, 4): the box of
     `text_box` enlarged as `_enlarged_box` enlarges it, the same operations in the same order
     on all at once (``text_origin`` and the turn by 0 of `rotate` written out)."""
-    from velplan.render.shapes import DESCENDER_DEPTH, text_extent
+    from velplan.render.shapes import text_depth, text_extent
 
     size = np.array([t.size_mm for t in texts], float)
     width = np.array([text_extent(t.text, t.size_mm)[0] for t in texts], float)
+    below, above = np.array([text_depth(t.text, t.size_mm) for t in texts], float).reshape(-1, 2).T
     x, y = np.array([t.position for t in texts], float).reshape(-1, 2).T
     drop = np.array([_DROP[t.baseline] for t in texts], float) * size
     lx0 = -width * np.array([_SHARE[t.anchor] for t in texts], float)
-    ly0 = -DESCENDER_DEPTH * size
+    ly0 = -below
     ox, oy = x - drop * -0.0, y - drop * 1.0  # x − drop·(−sin 0), y − drop·cos 0
     sx = [x + ((ox + ((c - 0.0) + 0.0)) - x) * 1.25 for c in (lx0, lx0 + width)]
-    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, size)]
+    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, above)]
     return np.column_stack([np.minimum(*sx) - x, np.minimum(*sy) - y, np.maximum(*sx) - x, np.maximum(*sy) - y])
