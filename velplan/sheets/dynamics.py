@@ -297,11 +297,14 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
     # sought with the panels unnamed, then drawn named; named all along where the names take more room
     for names in (False, True):
         for length, h, views in _fitting(d, c, lang, sizes, n, width, fit, names):
-            found = _finer_panels(views, lambda mus: _panels(d, c, lang, length, h, sizes, n, mus, names), fit)
-            if not names:
-                found = _panels(d, c, lang, length, h, sizes, n, {k: v.meta["mu"] for k, v in found.items()})
-            if fit(list(found.values())):
-                return found
+            finer = _finer_panels(views, lambda mus: _panels(d, c, lang, length, h, sizes, n, mus, names), fit)
+            # drawn named at the finer scales, else at the scales found (the names take a little more
+            # room: the search named all along is the last resort, and the costliest)
+            for found in ([finer, views] if not names else [finer]):
+                if not names:
+                    found = _panels(d, c, lang, length, h, sizes, n, {k: v.meta["mu"] for k, v in found.items()})
+                if fit(list(found.values())):
+                    return found
             break
     raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
