@@ -13,6 +13,7 @@ from velplan.note.formulas import txt
 from velplan.note.model import Equation, Para
 from velplan.note.text import p
 from velplan.views.base import fixed, number
+from velplan.views.dynamics import constant_moment
 
 
 def travels(d, phi) -> np.ndarray:
@@ -97,25 +98,13 @@ def worked_position(note, d, k: int) -> None:
         values = "".join((" - " if v < 0 else (" + " if k else "")) + txt(number(abs(v), lang))
                          for k, (_, v) in enumerate(parts)).strip()
         total = float(red.resisting[0])
-        note.add(Equation(r"M_{c} = " + " + ".join(rf"M_{{{_load(name, lang)}}}" for name, _ in parts)
+        own = r"M_{c}" if constant_moment(d, "en")[0] == "driving_moment" else r"M_{d}"  # an engine's loads drive
+        note.add(Equation(own + " = " + " + ".join(rf"M_{{{_load(name, lang)}}}" for name, _ in parts)
                           + " = " + values + rf" = {'-' if total < 0 else ''}{txt(number(abs(total), lang))}\ {nm}"))
 
 
 def _load(name: str, lang: str) -> str:
     return {"gravity": r"G"}.get(name, r"\text{" + name.replace("_", " ") + "}")
-
-
-_SUB = {"c": ("c", "с", "о", "c")}
-
-
-def _sym(base: str, sub: str, lang: str) -> str:
-    """A plain-text symbol of a table head (no underscore): ``Mс``, ``Aд``, ``ΔTI``."""
-    from velplan.note.text import LANG_INDEX
-    from velplan.render.i18n import label
-
-    if sub == "d":
-        return base + label("symbol_drive", lang)
-    return base + (_SUB[sub][LANG_INDEX[lang]] if sub in _SUB else sub)
 
 
 def by_position_tables(note, d) -> None:
@@ -137,12 +126,11 @@ def by_position_tables(note, d) -> None:
         return [number(float(v), lang, digits) if abs(v) > 1e-9 * top else "0" for v in x]
 
     note.add(Para.of(p("dyn_tables", lang)))
-    note.table(p("dyn_table_j", lang), [label_pos(lang), "φ, °", f"J, {kgm2}",
-                                        f"{_sym('M', 'c', lang)}, {nm}", f"{_sym('M', 'd', lang)}, {nm}"],
+    _, drv, res = constant_moment(d, lang)  # an engine's constant moment resists: Mс, its loads' Mд
+    note.table(p("dyn_table_j", lang), [label_pos(lang), "φ, °", f"J, {kgm2}", f"M{res}, {nm}", f"M{drv}, {nm}"],
                list(zip(pos, [fixed(v, lang, 1) for v in tab["phi_deg"]], col(tab["J_red"]), col(tab["M_red"]),
                         col(tab["M_drive"]))), key="dynamics-reduced")
-    note.table(p("dyn_table_t", lang), [label_pos(lang), f"{_sym('A', 'd', lang)}, {jj}",
-                                         f"{_sym('A', 'c', lang)}, {jj}", f"ΔT, {jj}", f"ΔTII, {jj}",
+    note.table(p("dyn_table_t", lang), [label_pos(lang), f"A{drv}, {jj}", f"A{res}, {jj}", f"ΔT, {jj}", f"ΔTII, {jj}",
                                          f"ΔTI, {jj}"],
                list(zip(pos, col(tab.get("A_drive", np.zeros_like(works))), col(tab["A_resist"]), col(works),
                         col(t2), col(t1))), key="dynamics-works")

@@ -127,6 +127,7 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
                                "Результаты динамического анализа",
                                "Результати динамічного аналізу", "动力学分析结果"),
     "driving_moment": _entry("Driving moment", "Движущий момент", "Рушійний момент", "驱动力矩"),
+    "resisting_moment": _entry("Moment of resistance", "Момент сопротивления", "Момент опору", "阻力矩"),
     "mean_speed": _entry("Mean angular velocity", "Средняя угловая скорость",
                          "Середня кутова швидкість", "平均角速度"),
     "delta_required": _entry("δ required", "δ заданный", "δ заданий", "δ 许用值"),

@@ -25,7 +25,7 @@ from typing import Iterable, Iterator, Literal, Union, get_args
 import numpy as np
 
 from velplan.errors import VelplanError
-from velplan.render.shapes import DESCENDER_DEPTH, MIN_WIDTH_FACTOR, text_box, text_extent
+from velplan.render.shapes import MIN_WIDTH_FACTOR, text_box, text_depth, text_extent
 from velplan.render.style import LINE_TYPES, LineType
 
 Point = tuple[float, float]
@@ -307,8 +307,8 @@ class Text:
             width = text_extent(self.text, self.size_mm)[0] * self.width_factor
             lx = -width * _ANCHOR[self.anchor]
             y = self.position[1] - _DROP[self.baseline] * self.size_mm
-            return (self.position[0] + lx, y + -DESCENDER_DEPTH * self.size_mm,
-                    self.position[0] + (lx + width), y + self.size_mm)
+            below, above = text_depth(self.text, self.size_mm)
+            return (self.position[0] + lx, y + -below, self.position[0] + (lx + width), y + above)
         return _box(text_box(self))
 
 

@@ -354,6 +354,28 @@ def _extent(text: str, size_mm: float) -> tuple[float, float]:
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
 
 
+#: Letters that reach below the baseline (Latin, Cyrillic, Greek): a subscript holding one reaches
+#: its own descender line, one without stays on its baseline.
+DESCENDING = frozenset("gjpqyдруфцщзДЦЩβγζημξρφχψ,;()")
+
+
+@functools.lru_cache(maxsize=8192)
+def text_depth(text: str, size_mm: float) -> tuple[float, float]:
+    """How far a one-line text reaches below and above its baseline, mm, as drawn: from the
+    descender line (:data:`DESCENDER_DEPTH` of the height) to the capital line, and farther
+    where a subscript, dropped :data:`SUBSCRIPT_DROP` of the height, has a descending letter:
+    it reaches its own descender line ("M_{Fg}": its g; "M_{д}").
+
+    >>> text_depth("G₅", 2.5), text_depth("M_{Fg}", 2.5)
+    ((0.625, 2.5), (1.25, 2.5))
+    """
+    below, above = DESCENDER_DEPTH * size_mm, size_mm
+    for plain, script in _characters(text):
+        if script == "sub" and plain in DESCENDING:
+            below = max(below, SUBSCRIPT_DROP * size_mm + DESCENDER_DEPTH * script_size(size_mm))
+    return below, above
+
+
 def text_origin(text: Lettering) -> np.ndarray:
     """Point on the alphabetic baseline where a backend anchors `text`, mm.
 
@@ -367,18 +389,20 @@ def text_origin(text: Lettering) -> np.ndarray:
 
 
 def text_box(text: Lettering) -> np.ndarray:
-    """Corners of the estimated box of `text`, shape (4, 2), mm, counter-clockwise."""
+    """Corners of the estimated box of `text`, shape (4, 2), mm, counter-clockwise: its width
+    (`text_extent`) by its reach below and above the baseline (`text_depth`)."""
     width = text_extent(text.text, text.size_mm)[0] * text.width_factor
     x0 = -width * {"start": 0.0, "middle": 0.5, "end": 1.0}[text.anchor]
-    y0 = -DESCENDER_DEPTH * text.size_mm
+    below, top = text_depth(text.text, text.size_mm)
+    y0 = -below
     if text.rotation_deg == 0.0:  # upright: the same numbers in plain arithmetic, without arrays
         ox = float(text.position[0])
         oy = float(text.position[1]) - {"baseline": 0.0, "middle": 0.5, "top": 1.0}[text.baseline] * text.size_mm
         x1 = x0 + width
-        return np.array([[ox + x0, oy + y0], [ox + x1, oy + y0], [ox + x1, oy + text.size_mm],
-                         [ox + x0, oy + text.size_mm]])
+        return np.array([[ox + x0, oy + y0], [ox + x1, oy + y0], [ox + x1, oy + top],
+                         [ox + x0, oy + top]])
     local = np.array([[x0, y0], [x0 + width, y0],
-                      [x0 + width, text.size_mm], [x0, text.size_mm]])
+                      [x0 + width, top], [x0, top]])
     return text_origin(text) + rotate(local, text.rotation_deg)
 
 

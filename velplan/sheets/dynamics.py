@@ -37,8 +37,8 @@ from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, indexed, number, ratio_text, scale_mark, unit
 from velplan.views.diagram import standard_up
 from velplan.views.dynamics import (
-    DynamicsSizes, Series, curve_panel, flywheel_view, moment_scale, ordinate_scale, results_rows, results_view,
-    wittenbauer_view)
+    DynamicsSizes, Series, constant_moment, curve_panel, flywheel_view, moment_scale, ordinate_scale,
+    results_rows, results_view, wittenbauer_view)
 
 PANELS = ("moments", "works", "inertia", "omega")
 """The curve panels, top to bottom."""
@@ -94,7 +94,7 @@ def _panels(d, c, lang: Language, length: float, height: float, sizes: DynamicsS
         return memo[key]
 
     nm, joule = unit("N·m", lang), unit("J", lang)
-    drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
+    _, drv, res = constant_moment(d, lang)  # an engine's constant moment resists: M_с, its loads' M_д
     views: dict[str, View] = {}
     if "moments" in wanted:
         loads = [Series(c[f"M_{k}"], "thin", indexed("M", k if k != "gravity" else "G")) for k in d.profile.labels]
@@ -314,11 +314,14 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
     # sought with the panels unnamed, then drawn named; named all along where the names take more room
     for names in (False, True):
         for length, h, views in _fitting(draw, width, fit, names):
-            found = _finer_panels(views, lambda mus: draw(length, h, names, mus), fit)
-            if not names:
-                found = draw(length, h, True, {k: v.meta["mu"] for k, v in found.items()})
-            if fit(list(found.values())):
-                return found
+            finer = _finer_panels(views, lambda mus: draw(length, h, names, mus), fit)
+            # drawn named at the finer scales, else at the scales found (the names take a little more
+            # room: the search named all along is the last resort, and the costliest)
+            for found in ([finer, views] if not names else [finer]):
+                if not names:
+                    found = draw(length, h, True, {k: v.meta["mu"] for k, v in found.items()})
+                if fit(list(found.values())):
+                    return found
             break
     raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
                      f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")

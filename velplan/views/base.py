@@ -332,47 +332,79 @@ def scale_mark(mu_l: float, lang: Language) -> str:
     return f"{'М' if lang in ('ru', 'uk') else 'M'} {ratio_text(mu_l, lang)}"
 
 
+#: A position number moved off a curve stays within this many of its heights of its tick (the
+#: box's distance from the tick's segment): farther it floats, and it is placed round its tick
+#: with every text and line of the view instead (`_numbers_by_their_ticks`).
+NUMBER_REACH = 1.2
+
+
 def axis_numbers_clear(items: list, curves) -> list:
     """Position numbers hung under a φ axis (``baseline="top"``) kept clear: the one under the
-    origin moves beside the ordinate axis, and one that a curve crosses moves above the axis,
-    mirrored about it, or else a little farther below or above, under its tick, or, crossed
-    there too, narrowed (`MIN_WIDTH_FACTOR`), below, else above, then a text height farther
-    from the axis, where that clears it; one that no such spot clears goes to the nearest
-    spot round its tick clear of the curves, the axes and the other texts where its own tick
-    stays the nearest (`_numbers_by_their_ticks`). ``curves`` are polylines' points in the
-    same mm. Other primitives pass unchanged."""
+    origin moves beside the ordinate axis, and one that a curve crosses moves to the nearest
+    spot by its tick that no curve crosses (`_number_tries`: above the axis, mirrored; beside
+    its tick, under or over the axis; a little farther below or above; narrowed,
+    `MIN_WIDTH_FACTOR`), within :data:`NUMBER_REACH` of its height of the tick; one that no such
+    spot clears goes to the nearest spot round its tick clear of the curves, the axes and the
+    other texts where its own tick stays the nearest (`_numbers_by_their_ticks`). ``curves``
+    are polylines' points in the same mm. Other primitives pass unchanged."""
     import shapely
 
     from velplan.render.layout import label_box
     from velplan.render.scene import Text
-    from velplan.render.shapes import MIN_WIDTH_FACTOR
 
     lines = [shapely.LineString(c) for c in curves if len(c) >= 2]
     if not lines:
         return items
     field = shapely.STRtree(lines)
+    texts = None  # the other texts' boxes, as written (a tree), and those of the numbers moved
     out = []
     for p in items:
         if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0:
+            item = p
+            tick = shapely.LineString([(p.position[0], -1.0), (p.position[0], 1.0)])
             if abs(p.position[0]) < 1e-9:  # under the origin: beside the ordinate axis instead
                 p = _moved(p, position=(0.8, p.position[1]), anchor="start")
             if len(field.query(label_box(p), predicate="intersects")):
-                # above the axis, mirrored; else a little farther below or above, under its tick;
-                # else narrowed, below or above, then a text height farther from the axis
-                x, y = p.position
-                up = _moved(p, position=(x, -y), baseline="baseline")
-                steps = [0.5 * p.size_mm * k for k in (1, 2, 3)]
-                narrow = [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
-                tries = ([up] + [_moved(p, position=(x, y - d)) for d in steps]
-                         + [_moved(up, position=(x, -y + d)) for d in steps] + narrow
-                         + [_moved(q, position=(q.position[0], q.position[1] + s * q.size_mm))
-                            for q, s in zip(narrow, (-1.0, 1.0))])
-                p = next((q for q in tries if not len(field.query(label_box(q), predicate="intersects"))), p)
+                if texts is None:
+                    written = [q for q in items if isinstance(q, Text)]
+                    texts = (written, shapely.STRtree([label_box(q) for q in written]), [])
+                p = next((q for q, box in _number_tries(p, tick, label_box)
+                          if not len(field.query(box, predicate="intersects"))
+                          and not any(texts[0][j] is not item for j in texts[1].query(box, predicate="intersects"))
+                          and not any(box.intersects(b) for b in texts[2])), p)
+                texts[2].append(label_box(p))
         out.append(p)
     numbers = [k for k, p in enumerate(items)
                if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0]
     crossed = [k for k in numbers if len(field.query(label_box(out[k]), predicate="intersects"))]
     return _numbers_by_their_ticks(out, crossed, numbers, items, lines) if crossed else out
+
+
+def _number_tries(p, tick, box_of) -> list:
+    """(text, its box by `box_of`) of the spots a position number `p` hung under the φ axis
+    tries when a curve crosses it, nearest its `tick` (a segment across the axis) first and
+    none farther than :data:`NUMBER_REACH` of its height: mirrored above the axis; beside the
+    tick (a number under its tick only), just under or over the axis; a little farther below or
+    above; narrowed (`MIN_WIDTH_FACTOR`), below or above, then a text height farther."""
+    from velplan.render.shapes import DESCENDER_DEPTH, MIN_WIDTH_FACTOR
+
+    x, y = p.position
+    h = p.size_mm
+    up = _moved(p, position=(x, -y), baseline="baseline")
+    steps = [0.5 * h * k for k in (1, 2, 3)]
+    narrow = [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
+    tries = ([up] + [_moved(p, position=(x, y - d)) for d in steps]
+             + [_moved(up, position=(x, -y + d)) for d in steps] + narrow
+             + [_moved(q, position=(q.position[0], q.position[1] + s * h)) for q, s in zip(narrow, (-1.0, 1.0))])
+    if p.anchor == "middle":  # clear of the tick by 0.6 mm and of the axis by 0.4 mm
+        tries += [_moved(p, position=(x + side * 0.6, -0.4), anchor=anchor)
+                  for side, anchor in ((-1.0, "end"), (1.0, "start"))]
+        tries += [_moved(up, position=(x + side * 0.6, 0.4 + DESCENDER_DEPTH * h), anchor=anchor)
+                  for side, anchor in ((-1.0, "end"), (1.0, "start"))]
+    reach = NUMBER_REACH * h
+    boxes = [box_of(q) for q in tries]
+    near = [(box.distance(tick), k) for k, box in enumerate(boxes)]
+    return [(tries[k], boxes[k]) for d, k in sorted(near) if d <= reach]
 
 
 def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], items: list, lines: list) -> list:
@@ -607,15 +639,16 @@ def upright_offsets(texts: list) -> np.ndarray:
     """The offsets (x0, y0, x1, y1) of `_spot_boxes` for upright texts, shape (n, 4): the box of
     `text_box` enlarged as `_enlarged_box` enlarges it, the same operations in the same order
     on all at once (``text_origin`` and the turn by 0 of `rotate` written out)."""
-    from velplan.render.shapes import DESCENDER_DEPTH, text_extent
+    from velplan.render.shapes import text_depth, text_extent
 
     size = np.array([t.size_mm for t in texts], float)
     width = np.array([text_extent(t.text, t.size_mm)[0] for t in texts], float)
+    below, above = np.array([text_depth(t.text, t.size_mm) for t in texts], float).reshape(-1, 2).T
     x, y = np.array([t.position for t in texts], float).reshape(-1, 2).T
     drop = np.array([_DROP[t.baseline] for t in texts], float) * size
     lx0 = -width * np.array([_SHARE[t.anchor] for t in texts], float)
-    ly0 = -DESCENDER_DEPTH * size
+    ly0 = -below
     ox, oy = x - drop * -0.0, y - drop * 1.0  # x − drop·(−sin 0), y − drop·cos 0
     sx = [x + ((ox + ((c - 0.0) + 0.0)) - x) * 1.25 for c in (lx0, lx0 + width)]
-    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, size)]
+    sy = [y + ((oy + ((c - 0.0) + 0.0)) - y) * 1.1 for c in (ly0, above)]
     return np.column_stack([np.minimum(*sx) - x, np.minimum(*sy) - y, np.maximum(*sx) - x, np.maximum(*sy) - y])

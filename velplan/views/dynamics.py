@@ -207,12 +207,14 @@ def _named(items: list, lines: list, named, marks, axes: list, length: float, si
     led: list[Text] = []
     leaders: list = []
     obstacles = lines + axes + _text_boxes(items)
-    written = [label_box(t).buffer(size) for t in items if isinstance(t, Text)]  # the leaders added are no texts
+    written_boxes = [label_box(t) for t in items if isinstance(t, Text)]  # the leaders added are no texts
+    written = [b.buffer(size) for b in written_boxes]
     for text, xy, i in named:
         # a name keeps a letter's height off the numbers and names already written: "4M_{д}" reads as one
+        new = [label_box(t) for t in names + led if isinstance(t, Text)]
         spot, leader = _name_at(text, xy, [ln for j, ln in enumerate(lines) if j != i] + axes[:1],
-                                lines + axes + leaders + written + [label_box(t).buffer(size) for t in names + led],
-                                length, size)
+                                lines + axes + leaders + written + [b.buffer(size) for b in new], length, size,
+                                written_boxes + new)
         if leader is not None:  # placed for good, with its leader
             led.append(spot)
             items = items + [leader]
@@ -264,13 +266,14 @@ def _merged(series: Sequence[Series], base: float, mu: float, unit_text: str,
 
 
 def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: float,
-             size: float) -> tuple[Text, Polyline | None]:
+             size: float, texts: Sequence = ()) -> tuple[Text, Polyline | None]:
     """The name `text` of the curve `xy` (mm) beside a point where the curve stands apart (up to
     8 mm) from the `others` lines and far from the φ axis: of those points, best first, the
     first where the name, above or below the curve, meets none of the `obstacles` (lines and
     text boxes), stays within the axis's `length` and is nearer the curve than the `others`;
     else a little away with a leader (`_led_name`), else beside the best point, on the side away
-    from the nearest other line; the name and its leader (or None)."""
+    from the nearest other line; the name and its leader (or None). A leader crosses none of
+    the `texts` (boxes)."""
 
     width = float(np.ptp(np.asarray(label_box(Text((0.0, 0.0), text, LABELS, size)).exterior.coords)[:, 0]))
     own = shapely.LineString(xy)
@@ -289,7 +292,7 @@ def _name_at(text: str, xy: np.ndarray, others: list, obstacles: list, length: f
             d = box.distance(own)
             if d <= 3.0 and all(box.distance(ln) > d for ln in others):
                 return cand, None
-    led = _led_name(text, xy, order, others, field, size)
+    led = _led_name(text, xy, order, others, field, size, texts)
     if led is not None:
         return led
     px, py = (float(c) for c in xy[int(order[0])])
@@ -366,11 +369,12 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray
     return np.hypot(px - ax - t * abx, py - ay - t * aby)
 
 
-def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float):
+def _led_name(text: str, xy: np.ndarray, order, others: list, field, size: float, texts: Sequence = ()):
     """The name `text` of the curve `xy` a little away from it, on a clear spot, joined to the
     curve's point (of `order`, best first) by a thin leader that crosses no other curve
-    (`others`, the φ axis last) nor a text: (the name, its leader), or None."""
-    curves = shapely.STRtree(others[:-1]) if len(others) > 1 else None
+    (`others`, the φ axis last) nor a text of `texts` (boxes): (the name, its leader), or None."""
+    crossed = list(others[:-1]) + [b.buffer(0.3) for b in texts]
+    curves = shapely.STRtree(crossed) if crossed else None
     for j in order[:: max(1, len(order) // 120)][:60]:
         px, py = (float(c) for c in xy[j])
         for r in (4.0, 6.0, 8.0, 10.0, 12.0):
@@ -675,7 +679,7 @@ def error_rows(d, lang: Language, marked: bool = False) -> list[tuple[str, str, 
     (`velplan.dynamics.Dynamics.errors`); ``marked``: symbols' indices marked ``_{…}`` (drawn)."""
     e = d.errors
     name = label("estimated_error", lang)
-    keys = (("driving_moment", indexed("M", label("symbol_drive", lang), marked), "N·m"),
+    keys = (("driving_moment", indexed("M", constant_moment(d, lang)[1], marked), "N·m"),
             ("flywheel_exact", indexed("J", "I", marked), "kg·m²"),
             ("omega", "ω", "rad/s"), ("time", "t", "s"))
     return [(f"{name}: {sym}", bound(e[k], lang), unit(u, lang)) for k, sym, u in keys
@@ -688,6 +692,17 @@ def results_rows(d, w, lang: Language, errors: bool = True, marked: bool = False
     indices marked ``_{…}`` (ω_{max}), as a drawing sets them, else written on the line (ωmax)."""
     rows = _result_rows(d, w, lang, marked)
     return rows + (error_rows(d, lang, marked) if errors else [])
+
+
+def constant_moment(d, lang: Language) -> tuple[str, str, str]:
+    """(the constant moment's name key, its index, the loads' reduced moment's index) in
+    `lang`: the constant moment drives a machine whose loads resist (``d.driving`` ≥ 0: M_д
+    against M_с); it resists an engine whose loads — the gas forces — drive (``d.driving`` < 0:
+    M_с against M_д), as the course names them."""
+    drv, res = label("symbol_drive", lang), label("symbol_resist", lang)
+    if d.driving < 0.0 and d.run is None and d.periodic is None:
+        return "resisting_moment", res, drv
+    return "driving_moment", drv, res
 
 
 def moment_scale(resisting) -> float:
@@ -715,7 +730,8 @@ def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str
                 (j_one, number(d.inertia, lang, 5), unit("kg·m²", lang))]
     rows = []
     if d.periodic is None:
-        rows.append((label("driving_moment", lang) + " " + indexed("M", label("symbol_drive", lang), marked),
+        key, index, _ = constant_moment(d, lang)
+        rows.append((label(key, lang) + " " + indexed("M", index, marked),
                      number(d.driving, lang, 5, scale=moment_scale(d.curves(72)["M_red"])), unit("N·m", lang)))
     st = d.steady or d.periodic
     if st is not None:
@@ -761,5 +777,5 @@ def results_view(rows: Sequence[tuple[str, str, str]], *, lang: Language, size_m
                                                            "width_factor": width_factor})
 
 
-__all__ = ["DynamicsSizes", "Series", "bound", "curve_panel", "error_rows", "flywheel_view", "moment_scale", "nice_step",
-           "ordinate_scale", "results_rows", "results_view", "wittenbauer_view"]
+__all__ = ["DynamicsSizes", "Series", "bound", "constant_moment", "curve_panel", "error_rows", "flywheel_view",
+           "moment_scale", "nice_step", "ordinate_scale", "results_rows", "results_view", "wittenbauer_view"]

@@ -20,7 +20,7 @@ from velplan.options import Language
 from velplan.plans.table import TransferTable, quantity_label
 from velplan.render.i18n import label
 from velplan.render.scene import Polygon, Polyline, Primitive, Text
-from velplan.render.shapes import text_extent
+from velplan.render.shapes import DESCENDER_DEPTH, text_depth, text_extent
 from velplan.views.base import View, digits_down, fixed, make_view, row_decimals, subscript, unit
 
 _ROW_PITCH = 2.0  # row height over text height
@@ -78,25 +78,24 @@ def grid_table(grid: list[list[str | None]], size_mm: float, *,
     widths = [max(_cell_width(r[c], size_mm, numbers, width_factor) for r in grid) + 2 * _PAD
               for c in range(n + 1)]
     widths[1:] = [max(widths[1:])] * n  # equal value columns
-    row_h = (_ROW_PITCH if width_factor == 1.0 else _NARROW_ROW_PITCH) * size_mm
-    total_w, total_h = sum(widths), row_h * len(grid)
+    heights, lifts = _rows(grid, size_mm, width_factor)
+    total_w, total_h = sum(widths), float(sum(heights))
+    tops = total_h - np.concatenate([[0.0], np.cumsum(heights)])  # tops[r]: row r's top, tops[-1] = 0
     items: list[Primitive] = []
     xs = np.concatenate([[0.0], np.cumsum(widths)])
     for r in range(1, len(grid)):
-        y = total_h - r * row_h
+        y = tops[r]
         items.append(Polyline([(0.0, y), (total_w, y)], "table", "thick" if r == 1 else "thin"))
     for c, x in enumerate(xs[1:-1], start=1):
         # the rule left of column c, broken where a merged cell spans it
         open_rows = [r for r, row in enumerate(grid) if row[c] is not None]
         for run in np.split(np.asarray(open_rows), np.flatnonzero(np.diff(open_rows) > 1) + 1):
             if run.size:
-                items.append(Polyline([(x, total_h - (run[-1] + 1) * row_h), (x, total_h - run[0] * row_h)],
-                                      "table", "thin"))
+                items.append(Polyline([(x, tops[run[-1] + 1]), (x, tops[run[0]])], "table", "thin"))
     items.append(Polygon([(0.0, 0.0), (total_w, 0.0), (total_w, total_h), (0.0, total_h)],
                          "table", "thick"))
-    lift = 0.0 if width_factor == 1.0 else _NARROW_LIFT * size_mm
     for r, row in enumerate(grid):
-        y = total_h - (r + 0.5) * row_h + lift
+        y = (tops[r] + tops[r + 1]) / 2 + lifts[r]
         for first, last in _spans(row):
             text = row[first]
             if first == 0:
@@ -106,6 +105,32 @@ def grid_table(grid: list[list[str | None]], size_mm: float, *,
                 items.append(Text(((xs[first] + xs[last + 1]) / 2, y), text, "table", size_mm,
                                   "middle", "middle", 0.0, width_factor))
     return items, total_w, total_h
+
+
+#: The least gap between a cell's text, as far as it reaches (`text_depth`), and its rules, as a
+#: fraction of the text height.
+_CLEAR = 0.1
+
+
+def _rows(grid: list[list[str | None]], size_mm: float, width_factor: float) -> tuple[list[float], list[float]]:
+    """(height, lift of the text's middle off the row's middle) of each row of `grid`, mm: the
+    rows of `grid_table`'s pitch, the text raised as a narrowed table raises it; a row whose text
+    reaches farther (a subscript's descender, a raised exponent: `text_depth`) taller, as much
+    as it needs to keep :data:`_CLEAR` of the height to both rules, its text centred on its reach."""
+    h = size_mm
+    pitch, lift = (_ROW_PITCH, 0.0) if width_factor == 1.0 else (_NARROW_ROW_PITCH, _NARROW_LIFT * h)
+    heights, lifts = [], []
+    for row in grid:
+        reach = [text_depth(t, h) for t in row if t]
+        below = max((b for b, _ in reach), default=DESCENDER_DEPTH * h)
+        above = max((a for _, a in reach), default=h)
+        if below <= DESCENDER_DEPTH * h + 1e-9 and above <= h + 1e-9:
+            heights.append(pitch * h)
+            lifts.append(lift)
+            continue
+        heights.append(max(pitch * h, below + above + 2 * _CLEAR * h))
+        lifts.append(0.5 * h - 0.5 * (above - below))  # the capitals' middle over the reach's middle
+    return heights, lifts
 
 
 def table_title(text: str, size_mm: float, table_w: float, table_h: float, width_factor: float = 1.0) -> Text:

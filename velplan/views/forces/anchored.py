@@ -21,7 +21,7 @@ import shapely
 
 from velplan.render.layout import label_box
 from velplan.render.scene import Polyline, Text
-from velplan.render.shapes import DESCENDER_DEPTH, text_extent
+from velplan.render.shapes import text_depth, text_extent
 
 #: A label farther than this from what it names does not read as its label, mm.
 REACH_MM = 6.0
@@ -190,13 +190,14 @@ def _upright_boxes(text: Text, xy: np.ndarray) -> np.ndarray:
     same numbers computed as `text_box` computes them."""
     width = text_extent(text.text, text.size_mm)[0] * text.width_factor
     x0 = -width * _ANCHOR_SHARE[text.anchor]
-    x1, y0 = x0 + width, -DESCENDER_DEPTH * text.size_mm
+    below, top = text_depth(text.text, text.size_mm)
+    x1, y0 = x0 + width, -below
     ox, oy = xy[:, 0], xy[:, 1] - _DROP_SHARE[text.baseline] * text.size_mm
     corners = np.empty((len(xy), 4, 2))
     corners[:, 0, 0] = corners[:, 3, 0] = ox + x0
     corners[:, 1, 0] = corners[:, 2, 0] = ox + x1
     corners[:, 0, 1] = corners[:, 1, 1] = oy + y0
-    corners[:, 2, 1] = corners[:, 3, 1] = oy + text.size_mm
+    corners[:, 2, 1] = corners[:, 3, 1] = oy + top
     return shapely.polygons(corners)
 
 

@@ -49,13 +49,14 @@ def moment_diagram_view(curve: MomentCurve, *, length_mm: float = 240.0,
     ok = np.isfinite(mom)
     xy = np.column_stack([curve.turn[ok] / mu_phi, mom[ok] / mu_m])
     items.append(Polyline(xy, LAYER, "thick"))
-    items = axis_numbers_clear(items, [xy])
-    for k, v in enumerate(at):
-        if np.isfinite(v):
-            items.append(Circle((k * length_mm / n, float(v) / mu_m), 0.6, LAYER, "thin", "solid"))
     mean = curve.mean
     if np.isfinite(mean):
         items += _mean_line(mean / mu_m, mean, length_mm, lang, label_mm)
+    # the numbers kept clear of every line drawn over the axis: the curve and the mean's line
+    items = axis_numbers_clear(items, [xy] + [p.points for p in items if isinstance(p, Polyline) and p.line == "axis"])
+    for k, v in enumerate(at):
+        if np.isfinite(v):
+            items.append(Circle((k * length_mm / n, float(v) / mu_m), 0.6, LAYER, "thin", "solid"))
     y = top + 8.0 + 1.6 * label_mm
     items.append(Text((0.0, y + 1.8 * label_mm), label("balancing_moment_diagram", lang),
                       TEXT_LAYER, title_mm))
