@@ -277,11 +277,28 @@ def _characters(text: str):
     or "super"."""
     at = 0
     for m in _MARKED_INDEX.finditer(text):
-        yield from (script_of(c) for c in text[at:m.start()])
+        yield from _unmarked(text[at:m.start()])
         script = "sub" if m.group(1) == "_" else "super"
         yield from ((script_of(c)[0], script) for c in m.group(2))
         at = m.end()
-    yield from (script_of(c) for c in text[at:])
+    yield from _unmarked(text[at:])
+
+
+def _unmarked(text: str) -> list[tuple[str, str]]:
+    """(plain character, script) of each character of `text` (no marked index): a run of
+    superscripts with one drawn shifted (``⁻¹⁴``: "⁴" and "⁻" are) is drawn shifted whole, so
+    that "¹" does not keep the font's own smaller glyph beside them."""
+    out = [script_of(c) for c in text]
+    run: list[int] = []
+    for i, c in enumerate(text + " "):
+        if i < len(text) and unicodedata.decomposition(c).startswith("<super>"):
+            run.append(i)
+            continue
+        if any(out[j][1] == "super" for j in run):
+            for j in run:
+                out[j] = (script_of(text[j])[0] if out[j][1] else unicodedata.normalize("NFKC", text[j]), "super")
+        run = []
+    return out
 
 
 def plain_text(text: str) -> str:
