@@ -385,14 +385,16 @@ def _number_tries(p, tick, box_of) -> list:
     tries when a curve crosses it, nearest its `tick` (a segment across the axis) first and
     none farther than :data:`NUMBER_REACH` of its height: mirrored above the axis; beside the
     tick (a number under its tick only), just under or over the axis; a little farther below or
-    above; narrowed (`MIN_WIDTH_FACTOR`), below or above, then a text height farther."""
+    above; narrowed (`MIN_WIDTH_FACTOR`, a number of two digits), below or above, then a text
+    height farther."""
     from velplan.render.shapes import DESCENDER_DEPTH, MIN_WIDTH_FACTOR
 
     x, y = p.position
     h = p.size_mm
     up = _moved(p, position=(x, -y), baseline="baseline")
     steps = [0.5 * h * k for k in (1, 2, 3)]
-    narrow = [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)]
+    # narrowed: a number of two digits only (one narrowed digit reads as a misprint beside the others)
+    narrow = [_moved(q, width_factor=MIN_WIDTH_FACTOR) for q in (p, up)] if len(p.text) > 1 else []
     tries = ([up] + [_moved(p, position=(x, y - d)) for d in steps]
              + [_moved(up, position=(x, -y + d)) for d in steps] + narrow
              + [_moved(q, position=(q.position[0], q.position[1] + s * h)) for q, s in zip(narrow, (-1.0, 1.0))])
