@@ -24,3 +24,17 @@ def test_the_exponent_is_measured_as_drawn():
     # "10⁻¹⁴" is as wide as "10" and the raised "−14"; "¹" no longer counts as a full-size glyph
     whole = text_extent("10⁻¹⁴", 5.0)[0]
     assert whole == pytest.approx(text_extent("10^{−14}", 5.0)[0])
+
+
+def test_a_raised_exponent_is_reached_and_its_table_row_keeps_it_off_the_rules():
+    from velplan.render.shapes import SUPERSCRIPT_RISE, script_size, text_depth
+    from velplan.views.table import grid_table
+
+    h = 2.5
+    assert text_depth("±4·10⁻¹⁴", h)[1] == pytest.approx(SUPERSCRIPT_RISE * h + script_size(h))
+    items, _, total = grid_table([["a", "b"], ["c", "±4·10⁻¹⁴"]], h, width_factor=0.75)
+    rule = max(p.points[0][1] for p in items if type(p).__name__ == "Polyline")  # the row's top rule
+    text = next(p for p in items if getattr(p, "text", "") == "±4·10⁻¹⁴")
+    from velplan.render.shapes import text_origin
+    top = text_origin(text)[1] + text_depth(text.text, h)[1]
+    assert top < rule - 0.05 * h  # the exponent keeps off the rule above it

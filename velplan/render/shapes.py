@@ -390,6 +390,8 @@ def text_depth(text: str, size_mm: float) -> tuple[float, float]:
     for plain, script in _characters(text):
         if script == "sub" and plain in DESCENDING:
             below = max(below, SUBSCRIPT_DROP * size_mm + DESCENDER_DEPTH * script_size(size_mm))
+        elif script == "super":
+            above = max(above, SUPERSCRIPT_RISE * size_mm + script_size(size_mm))
     return below, above
 
 
