@@ -40,7 +40,7 @@ def label_box(text: Text) -> shapely.Polygon:
 def _box_of(text: Text) -> shapely.Polygon:
     """`label_box`, remembered: a sheet asks for the same text's box many times, and a
     polygon costs more to make than a text to hash (shapely's geometries are immutable)."""
-    return shapely.Polygon(text_box(text))
+    return shapely.polygons(text_box(text))  # the same ring as shapely.Polygon's, made from the array at once
 
 
 def overlapping_labels(scene: Scene, *, layers: Sequence[str] | None = None,

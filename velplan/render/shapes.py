@@ -209,21 +209,16 @@ def hatch_segments(outline, spacing: float, angle_deg: float = 45.0) -> np.ndarr
     offsets = corners @ normal
     reach = float(np.max(np.abs(corners @ along))) + 1.0
     first, last = math.ceil(offsets.min() / spacing), math.floor(offsets.max() / spacing)
-    ends = []
-    for k in range(first, last + 1):
-        centre = normal * k * spacing
-        ends.append([centre - along * reach, centre + along * reach])
-    segments = []
-    if ends:  # every line clipped in one call (the same intersections, line by line)
-        for part in shapely.intersection(area, shapely.linestrings(np.array(ends))):
-            segments.extend(_line_parts(part))
-    return np.array(segments).reshape(-1, 2, 2)
-
-
-def _line_parts(geometry) -> list[np.ndarray]:
-    parts = getattr(geometry, "geoms", [geometry])
-    return [np.asarray(p.coords)[[0, -1]] for p in parts
-            if isinstance(p, shapely.LineString) and not p.is_empty and p.length > 1e-9]
+    if last < first:
+        return np.empty((0, 2, 2))
+    centres = (normal * np.arange(first, last + 1, dtype=float)[:, None]) * spacing  # as normal * k * spacing
+    ends = np.stack([centres - along * reach, centres + along * reach], axis=1)
+    # every line clipped in one call (the same intersections, line by line), then the ends of
+    # each straight piece of what is left, in order
+    parts = shapely.get_parts(shapely.intersection(area, shapely.linestrings(ends)))
+    parts = parts[(shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts) & (shapely.length(parts) > 1e-9)]
+    return np.stack([shapely.get_coordinates(shapely.get_point(parts, 0)),
+                     shapely.get_coordinates(shapely.get_point(parts, -1))], axis=1).reshape(-1, 2, 2)
 
 
 def is_wide_char(char: str) -> bool:

@@ -94,7 +94,13 @@ class SvgCanvas:
         return self._num(float(point[0])), self._num(self._height - float(point[1]))
 
     def _points(self, points) -> str:
-        return " ".join("{},{}".format(*self._xy(p)) for p in points)
+        # `_xy` of each point, inlined: a sheet writes tens of thousands of coordinates
+        spec, height, parts = self._spec, self._height, []
+        for p in points:
+            x = format(float(p[0]), spec).rstrip("0").rstrip(".")
+            y = format(height - float(p[1]), spec).rstrip("0").rstrip(".")
+            parts.append(f"{'0' if x in ('-0', '') else x},{'0' if y in ('-0', '') else y}")
+        return " ".join(parts)
 
     def _path(self, segments) -> str:
         return " ".join("M{},{} L{},{}".format(*self._xy(a), *self._xy(b))

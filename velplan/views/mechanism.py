@@ -14,7 +14,7 @@ the title and the scale).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, Callable, Generator, NamedTuple, Sequence
 
 import numpy as np
@@ -33,7 +33,7 @@ from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
     slider_block, straight_guide)
 from velplan.views.base import (
-    View, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
+    View, _moved, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
 from velplan.views.letters import place_letters
 
 #: Slider block length and width, mm.
@@ -515,20 +515,37 @@ def _broken_under_texts(items: list) -> list:
     if not texts:
         return items
     holes = _grown(texts, BREAK_MM)
-    tree = shapely.STRtree(holes)
+    thin = [k for k, p in enumerate(items)
+            if isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS]
+    lines = np.array(_lines([items[k].points for k in thin]), dtype=object)
+    crossed, hole = shapely.STRtree(holes).query(lines, predicate="intersects")  # by line, in one call
+    if not len(crossed):
+        return items
+    starts = np.flatnonzero(np.r_[True, crossed[1:] != crossed[:-1]])
+    hit = crossed[starts]
+    rests = shapely.difference(lines[hit], [shapely.union_all([holes[j] for j in group])
+                                            for group in np.split(hole, starts[1:])])
+    pieces = dict(zip((thin[i] for i in hit.tolist()), _kept_parts(rests)))
     out: list = []
-    for p in items:
-        if not (isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS):
+    for k, p in enumerate(items):
+        if k in pieces:
+            out += [_moved(p, points=run) for run in pieces[k]]
+        else:
             out.append(p)
-            continue
-        line = shapely.LineString(p.points)
-        hit = tree.query(line, predicate="intersects")
-        if not len(hit):
-            out.append(p)
-            continue
-        rest = line.difference(shapely.union_all([holes[j] for j in hit]))
-        out += [replace(p, points=tuple(part.coords)) for part in getattr(rest, "geoms", [rest])
-                if not part.is_empty and part.length > 0.2]
+    return out
+
+
+def _kept_parts(lines) -> list[list]:
+    """Per geometry of `lines` (what is left of each broken line), the point runs of its parts
+    longer than 0.2 mm, as tuples of (x, y) mm."""
+    parts, of = shapely.get_parts(lines, return_index=True)
+    keep = ~shapely.is_empty(parts) & (shapely.length(parts) > 0.2)
+    parts, of = parts[keep], of[keep]
+    xy, at = shapely.get_coordinates(parts, return_index=True)
+    runs = np.split(xy, np.flatnonzero(np.diff(at)) + 1) if len(xy) else []
+    out: list[list] = [[] for _ in lines]
+    for i, run in zip(of.tolist(), runs):
+        out[i].append(tuple(map(tuple, run.tolist())))
     return out
 
 

@@ -196,7 +196,7 @@ def least_extent(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en"
     drawings = sum(float(s[0]) * mu for s in spans) + gap * (len(panels) - 1)
     captions = sum(max(text_extent(c, text_mm)[0] for c in p.caption) for p in panels)
     width = max(drawings, captions + 2 * text_mm * (len(panels) - 1))
-    height = (max(float(s[1]) * mu for s in spans) + (2.2 + DESCENDER_DEPTH) * text_mm  # to the captions' foot
+    height = (_least_drawing_height(panels, spans, mu) + (2.2 + DESCENDER_DEPTH) * text_mm  # to the captions' foot
               + max(len(p.caption) - 1 for p in panels) * line)
     if title:
         st = structure(mech)
@@ -206,6 +206,30 @@ def least_extent(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en"
                     text_extent(label("structural_analysis", lang), title_mm)[0])
         height += 1.7 * text_mm + 2.3 * title_mm  # to the heading's top
     return width, height
+
+
+def _least_drawing_height(panels: list[_Panel], spans, mu: float) -> float:
+    """A lower bound of the height (mm) from the lowest to the highest drawn box of the panels,
+    each centred on the tallest one's points as `structure_view` draws them: their points,
+    and round them what `_draw` surely draws — a joint's circle and an outer pair's ring, a
+    block's corners and an outer block's ring, a guide's ends."""
+    tallest = max(float(s[1]) * mu for s in spans)
+    top, bottom = -math.inf, math.inf
+    for panel, span in zip(panels, spans):
+        pts = panel.points()
+        shift = (tallest - float(span[1]) * mu) / 2 - float(pts[:, 1].min()) * mu  # from the common base
+        reach = [(float(y), 0.0) for y in pts[:, 1]]
+        reach += [(float(at[1]), RING_MM if outer else JOINT_RADIUS_MM) for _, at, outer in panel.joints]
+        for at, angle, outer in panel.blocks:
+            a = math.radians(angle)
+            corner = (BLOCK_MM[0] * abs(math.sin(a)) + BLOCK_MM[1] * abs(math.cos(a))) / 2
+            reach.append((float(at[1]), max(corner, 0.75 * BLOCK_MM[0]) if outer else corner))
+        reach += [(float(at[1]), BLOCK_MM[0] * 1.8 * abs(math.sin(math.radians(angle))))
+                  for at, angle, _ in panel.guides]
+        for y, r in reach:
+            r = max(r - 1e-9, 0.0)  # round-off: never above what is drawn
+            top, bottom = max(top, y * mu + shift + r), min(bottom, y * mu + shift - r)
+    return max(top - bottom, tallest)
 
 
 def _scale(spans, panel_mm: float) -> float:
