@@ -117,7 +117,7 @@ def _symbols(text: str) -> list:
         elif m.group("mu"):
             tex = r"\mu_{" + m.group("mu") + "}"
         elif m.group("ext"):
-            tex = _GREEK[m.group("ext")] + r"_{\text{" + m.group("ext_i") + "}}"
+            tex = _GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
         elif m.group("rate"):
             tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i") + "}"
         else:
