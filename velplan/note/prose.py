@@ -47,7 +47,7 @@ def sym_tex(sym: Sym) -> str:
         return _symbol(sym.text)
     if sym.kind == "rate":
         return _GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
-    return "–".join(chain(part).replace("π", r"\pi ") for part in sym.text.split("–"))
+    return "{–}".join(chain(part).replace("π", r"\pi ") for part in sym.text.split("–"))  # x–x: no spaces
 
 
 def sentence_parts(piece, lang: str = "en") -> list:
