@@ -138,10 +138,12 @@ def test_sentences_print_as_before_and_keep_their_symbols():
         "Both lines pass through the pole: V_K3 = 0, K3 is the instant centre of velocities of link 3."
 
 
-def test_plan_text_output_in_russian_reads_as_before():
+def test_plan_text_output_in_russian_reads_right():
     out = subprocess.run([sys.executable, "-m", "velplan", "plan", "shaper", "--position", "3", "--lang", "ru"],
                          capture_output=True, text=True, check=True).stdout
-    assert "3. Через точку a проводим прямую ∥ O3A (направление V_A4A)." in out
-    assert "1. Выбираем полюс p; изображения неподвижных точек O3, O2 совпадают с полюсом." in out
-    assert "bs5 = 20,7 мм (bf · BS5/BF = bf · 0,5)" in out
+    # the names' digits as Unicode subscripts (as on the step figures), a vector's index after "_"
+    assert "3. Через точку a проводим прямую ∥ O₃A (направление V_A4A)." in out
+    assert "1. Выбираем полюс p; изображения неподвижных точек O₃, O₂ совпадают с полюсом." in out
+    assert "bs₅ = 20,7 мм (bf · BS₅/BF = bf · 0,5)" in out
+    assert "2. Из точки p откладываем отрезок pa = " in out and "⊥ O₂A в сторону ω₂ (V_A = 1,345 м/с)" in out
     assert "$" not in out and "{" not in out and "Sym(" not in out

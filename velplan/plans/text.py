@@ -239,6 +239,22 @@ def rate(letter: str, link: str) -> Sym:
     return Sym(f"{letter}{link}", "rate")
 
 
+_DOWN = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def terminal(sentence: str) -> str:
+    """``sentence`` as a terminal prints it: the digits of the point, image and segment names
+    and of ω, ε that it marks as Unicode subscripts (``O₃A``, ``pa₄``, ``ω₂``); a vector keeps
+    its index after "_" (``V_A4A``), numbers stay as they are.
+
+    >>> terminal(text("Through ", pts("a4"), " ∥ ", pts("O3A"), " (", vector("V_A4A"), ") 2 ", rate("ω", "2")))
+    'Through a₄ ∥ O₃A (V_A4A) 2 ω₂'
+    """
+    parts = sentence.parts if isinstance(sentence, Sentence) else (sentence,)
+    return "".join(x.text.translate(_DOWN) if isinstance(x, Sym) and x.kind != "vector" else str(x)
+                   for x in parts)
+
+
 _FORMATTER = string.Formatter()
 
 
