@@ -161,6 +161,7 @@ class Parallel:
         return ctx.memo(self, lambda: cis(ctx.theta(self.link) + self.angle))
 
     def text(self, lang: Language) -> str:
+        along: T.Sentence | T.Sym
         if self.along == "slot":
             along = T.phrase("slot", lang)
         elif self.along.startswith("guide:"):

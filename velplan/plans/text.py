@@ -204,7 +204,7 @@ class Sentence(str):
         out.parts = tuple(flat)
         return out
 
-    def __add__(self, other) -> "Sentence":  # type: ignore[override]
+    def __add__(self, other) -> "Sentence":
         return text(self, other)
 
     def __radd__(self, other) -> "Sentence":
