@@ -38,7 +38,7 @@ def _italic(run) -> bool:
     return rpr.find(f"{M}nor") is None and (sty is None or sty.get(f"{M}val") != "p")
 
 
-@pytest.fixture(scope="module", params=["en", "ru"])
+@pytest.fixture(scope="module", params=["en", "ru", "uk", "zh"])
 def note(request, tmp_path_factory):
     """(lang, the paragraphs of the shaper's note: [(prose text, [equation texts], [equations])])."""
     pytest.importorskip("pypandoc")
@@ -58,8 +58,8 @@ def note(request, tmp_path_factory):
     return lang, paras
 
 
-STEP = {"en": "Step", "ru": "Шаг"}
-LINE = {"en": "Through", "ru": "Через точку"}
+STEP = {"en": "Step", "ru": "Шаг", "uk": "Крок", "zh": "第"}
+LINE = {"en": "Through", "ru": "Через точку", "uk": "Через точку", "zh": "作直线"}
 
 
 def _steps(lang, paras):
@@ -78,7 +78,9 @@ def test_a_line_step_sets_its_point_link_and_vector_as_symbols(note):
     assert all(_italic(r) for r in maths[0].iter(f"{M}r"))
     # no point name, link or vector is left in the plain text of the sentence
     words = {"en": r"Step \d+\. Through +draw a line ∥ +\(direction of \)\.",
-             "ru": r"Шаг \d+\. Через точку +проводим прямую ∥ +\(направление \)\."}
+             "ru": r"Шаг \d+\. Через точку +проводим прямую ∥ +\(направление \)\.",
+             "uk": r"Крок \d+\. Через точку +проводимо пряму ∥ +\(напрям \)\.",
+             "zh": r"第 \d+ 步。 *过 +作直线 ∥ +（ *的方向）。"}
     assert re.fullmatch(words[lang], prose), prose
 
 
@@ -92,6 +94,7 @@ def test_no_step_sentence_leaves_a_symbol_in_plain_text(note):
                           "lay", "off", "from", "in", "sense", "Through", "draw", "a", "line", "direction", "The", "two",
                           "lines", "meet", "sine", "their", "angle", "By", "similarity", "link", "place", "towards",
                           "along", "turned", "mm", "m", "s", "does", "not", "turn", "image", "coincides", "with"}}
+        allowed["zh"] = {"mm", "m", "s"}  # units a zh note writes in Latin letters
         assert set(words) <= allowed.get(lang, set()), (prose, set(words) - allowed.get(lang, set()))
         assert not any("_" in t and "_{" not in t for t in texts)
 
@@ -101,7 +104,8 @@ def test_the_pole_and_plan_segments_are_symbols(note):
     steps = _steps(lang, paras)
     found = {t for _, texts, _, _ in steps for t in texts}
     assert {"p", "π", "pa", "πa", "pa_{4}", "ak_{1}", "πn_{1}", "FB", "x–x", "ω_{2}", "ω_{4}"} <= found
-    assert ("V_{rel}" if lang == "en" else "V_{отн}") in found
+    rel = {"en": "V_{rel}", "ru": "V_{отн}", "uk": "V_{відн}"}.get(lang)  # zh says it in words
+    assert rel is None or rel in found
 
 
 def test_tangential_reactions_set_tau_as_an_index(note):

@@ -1,7 +1,9 @@
 """Prose with the course's typeset symbols: the sentences of the plans and of the note carry
 symbols as the sheets print them in plain text (``V_A4``, ``aⁿ_AO2``, ``ω2``, ``O3A``,
 ``pa4``, ``μv``); here each becomes an inline formula, so no underscore and no letter with a
-plain digit for its index reaches the page. ``$…$`` in a phrase is TeX already."""
+plain digit for its index reaches the page. ``$…$`` in a phrase is TeX already. The sentences
+of the plans' steps mark their symbols themselves (`velplan.plans.text.Sym`): those are set
+from the mark (`sym_tex`), not guessed from the text."""
 
 from __future__ import annotations
 

@@ -1,4 +1,9 @@
-"""Sentences of the worked solution in en, ru, uk and zh, and number formatting per language."""
+"""Sentences of the worked solution in en, ru, uk and zh, and number formatting per language.
+
+A sentence (`phrase`) is a plain string, as every text output prints it, that keeps the symbols
+its caller marked (`Sym`: point names, plan segments, vectors, ω and ε) in its ``parts``; each
+output sets them in its own notation from the one mark: the note as formulas
+(`velplan.note.prose`), a terminal with Unicode subscripts (`terminal`)."""
 
 from __future__ import annotations
 
