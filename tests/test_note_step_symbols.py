@@ -80,7 +80,7 @@ def test_a_line_step_sets_its_point_link_and_vector_as_symbols(note):
     words = {"en": r"Step \d+\. Through +draw a line ∥ +\(direction of \)\.",
              "ru": r"Шаг \d+\. Через точку +проводим прямую ∥ +\(направление \)\.",
              "uk": r"Крок \d+\. Через точку +проводимо пряму ∥ +\(напрям \)\.",
-             "zh": r"第 \d+ 步。 *过 +作直线 ∥ +（ *的方向）。"}
+             "zh": r"第 \d+\s步。 *过 +作直线 ∥ +（ *的方向）。"}
     assert re.fullmatch(words[lang], prose), prose
 
 
