@@ -130,7 +130,8 @@ def test_psi_max_is_set_with_its_index(tmp_path):
     assert data
     parts = para_parts(data[0], "ru")
     assert any(getattr(x, "tex", "") == r"\psi_{max}" for x in parts)
-    assert not any(isinstance(x, str) and "ψ" in x for x in parts)
+    assert any(getattr(x, "tex", "") == r"\theta" for x in parts)  # "θ = 1,564°" beside it
+    assert not any(isinstance(x, str) and ("ψ" in x or "θ" in x) for x in parts)
 
 
 def test_sentences_print_as_before_and_keep_their_symbols():

@@ -22,6 +22,7 @@ TOKEN = re.compile(
     rf"|(?<![{_NOT_WORD}])μ(?P<mu>[vlaF])(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>\d+)(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<ext>[ψωφ])(?P<ext_i>max|min)(?![{_NOT_WORD}])"
+    rf"|(?<![{_NOT_WORD}])(?P<greek>[θφδψωε])(?= = )"
     rf"|(?<![{_NOT_WORD}])(?P<pts>[A-Za-zπ][A-Za-zπ]*\d[A-Za-z0-9π]*)(?![{_NOT_WORD}])")
 LETTERS = re.compile(rf"(?<![{_NOT_WORD}])(Δ?)([A-Za-z][A-Za-z₀-₉]*)(?![{_NOT_WORD}])")
 INDEXED = re.compile(r"(?<![A-Za-z0-9_])([A-Za-z][A-Za-z₀-₉]*[₀-₉][A-Za-z₀-₉]*)"
@@ -31,7 +32,7 @@ en, where a word may be English, what stands left of " = " (lBF, Fc, H, n)."""
 UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi", "ψ": r"\psi"}
+_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta", "δ": r"\delta"}
 
 
 def _symbol(sym: str) -> str:
@@ -120,6 +121,8 @@ def _symbols(text: str) -> list:
             tex = r"\mu_{" + m.group("mu") + "}"
         elif m.group("ext"):
             tex = _GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
+        elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
+            tex = _GREEK[m.group("greek")]
         elif m.group("rate"):
             tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i") + "}"
         else:
