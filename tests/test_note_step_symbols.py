@@ -123,7 +123,7 @@ def test_psi_max_is_set_with_its_index(tmp_path):
     pytest.importorskip("pypandoc")
     from velplan.note import build_note
     from velplan.note.markdown import para_parts
-    from velplan.note.model import Para
+    from velplan.note.model import Math, Para
 
     note = build_note("four-bar", lang="ru")
     data = [b for b in note.blocks if isinstance(b, Para) and "ψmax" in "".join(map(str, b.parts))]
@@ -132,6 +132,8 @@ def test_psi_max_is_set_with_its_index(tmp_path):
     assert any(getattr(x, "tex", "") == r"\psi_{max}" for x in parts)
     assert any(getattr(x, "tex", "") == r"\theta" for x in parts)  # "θ = 1,564°" beside it
     assert not any(isinstance(x, str) and ("ψ" in x or "θ" in x) for x in parts)
+    crank = [b for b in note.blocks if isinstance(b, Para) and "".join(map(str, b.parts)).startswith("ω₁ = ")]
+    assert crank and para_parts(crank[0], "ru")[0] == Math(r"\omega_{1}")  # the crank's ω₁ of the data
 
 
 def test_sentences_print_as_before_and_keep_their_symbols():

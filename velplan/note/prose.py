@@ -20,7 +20,7 @@ TOKEN = re.compile(
     r"\$(?P<tex>[^$]+)\$"
     rf"|(?<![{_NOT_WORD}])(?P<sym>[A-Za-zΦΣ][ⁿᵗᵏʳτ]?_[A-Za-zА-Яа-яΦ0-9]+)(?P<sq>²?)"
     rf"|(?<![{_NOT_WORD}])μ(?P<mu>[vlaF])(?![{_NOT_WORD}])"
-    rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>\d+)(?![{_NOT_WORD}])"
+    rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>[0-9₀-₉]+)(?![{_NOT_WORD}₀-₉])"
     rf"|(?<![{_NOT_WORD}])(?P<ext>[ψωφ])(?P<ext_i>max|min)(?![{_NOT_WORD}])"
     rf"|(?<![{_NOT_WORD}])(?P<greek>[θφδψωε])(?= = )"
     rf"|(?<![{_NOT_WORD}])(?P<pts>[A-Za-zπ][A-Za-zπ]*\d[A-Za-z0-9π]*)(?![{_NOT_WORD}])")
@@ -124,7 +124,7 @@ def _symbols(text: str) -> list:
         elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
             tex = _GREEK[m.group("greek")]
         elif m.group("rate"):
-            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i") + "}"
+            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i").translate(_SUB) + "}"
         else:
             tex = chain(m.group("pts")).replace("π", r"\pi ")
         if m.start() > at:
