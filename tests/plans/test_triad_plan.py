@@ -234,7 +234,7 @@ def test_parallel_lead_lines_are_reported():
 
 def test_cli_draws_the_triad(tmp_path, capsys):
     assert main(["plan", "triad-rocker", "--position", "3", "--lang", "ru"]) == 0
-    assert "Особая точка Ассура K3 звена 3" in capsys.readouterr().out
+    assert "Особая точка Ассура K₃ звена 3" in capsys.readouterr().out
     assert main(["plan", "triad-rocker", "--position", "3", "--kind", "acceleration", "--format", "json"]) == 0
     assert main(["steps", "triad-rocker", "--position", "3", "-o", str(tmp_path / "steps")]) == 0
     assert len(list((tmp_path / "steps").glob("step-v-*.svg"))) >= 8

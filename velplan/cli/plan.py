@@ -157,7 +157,7 @@ def plan_text(res: PlanResult, doc: dict, lang: Language) -> str:
     head = (f"{doc['mechanism']}: {title}{where}, φ = {angle}°, "
             f"μ{k} = {T.num(res.scale, lang)} {T.unit('μ' + k, lang)}, {T.phrase('mode_' + res.mode, lang)}")
     lines = [head, ""]
-    lines += [f"{n}. {s}" for n, s in enumerate(res.describe(lang=lang), 1)]
+    lines += [f"{n}. {T.terminal(s)}" for n, s in enumerate(res.describe(lang=lang), 1)]
     lines.append("")
     key = "accelerations" if k == "a" else "velocities"
     ground = dict(res.plan.mechanism.ground)

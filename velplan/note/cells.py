@@ -7,7 +7,8 @@ from __future__ import annotations
 import re
 
 _SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
-_WORD = re.compile(r"[A-Za-zА-Яа-яЁёΔΦωεφψ0-9₀-₉]+")
+_WORD = re.compile(r"[A-Za-zА-Яа-яЁёΔΦωεφψ0-9₀-₉]+(?P<mark>τ(?![\w]))?")
+"""A word of a cell; a force's tangential component carries τ after its index (R₄₅τ)."""
 SYMBOL = re.compile(r"^(?P<delta>Δ?)(?P<head>[A-Za-zΦωεφψ])(?P<index>[A-Za-zА-Яа-яΦ0-9₀-₉]+)$")
 """A symbol and its index, one word: a Latin or Greek letter, then what is written below it."""
 LOWER_HEADS = frozenset("avlm")
@@ -41,14 +42,20 @@ def split_symbol(word: str) -> tuple[str, str] | None:
 
 
 def cell_markdown(cell: str, escape) -> str:
-    """``cell`` in pandoc Markdown, each symbol's index as a subscript ``~…~``; ``escape``
-    makes plain text safe in Markdown."""
+    """``cell`` in pandoc Markdown, each symbol's index as a subscript ``~…~`` and a force's
+    τ as a superscript ``^…^``; ``escape`` makes plain text safe in Markdown.
+
+    >>> cell_markdown("R₄₅τ", str), cell_markdown("R₀₄", str), cell_markdown("VA₄", str)
+    ('R~45~^τ^', 'R~04~', 'V~A4~')
+    """
     out, at = [], 0
     for m in _WORD.finditer(cell):
-        found = split_symbol(m.group(0))
-        if found is None:
+        mark = m.group("mark") or ""
+        found = split_symbol(m.group(0)[:len(m.group(0)) - len(mark)])
+        if found is None or (mark and not found[1].isdigit()):
             continue
-        out.append(escape(cell[at:m.start()]) + escape(found[0]) + "~" + escape(found[1]) + "~")
+        out.append(escape(cell[at:m.start()]) + escape(found[0]) + "~" + escape(found[1]) + "~"
+                   + (f"^{escape(mark)}^" if mark else ""))
         at = m.end()
     out.append(escape(cell[at:]))
     return "".join(out)

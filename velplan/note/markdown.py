@@ -41,9 +41,9 @@ def to_markdown(note, target: str, images: dict[str, str], *, placeholder: str |
 
 def para_parts(b: Para, lang: str) -> list:
     """A paragraph's plain pieces and its `Math`, each symbol of its text a formula."""
-    from velplan.note.prose import prose_parts
+    from velplan.note.prose import sentence_parts
 
-    return [y for x in b.parts for y in ((x,) if isinstance(x, Math) else prose_parts(x, lang))]
+    return [y for x in b.parts for y in ((x,) if isinstance(x, Math) else sentence_parts(x, lang))]
 
 
 def _block(b, note, target: str, images: dict[str, str], placeholder: str | None = None) -> str:

@@ -1,7 +1,9 @@
 """Prose with the course's typeset symbols: the sentences of the plans and of the note carry
 symbols as the sheets print them in plain text (``V_A4``, ``aⁿ_AO2``, ``ω2``, ``O3A``,
 ``pa4``, ``μv``); here each becomes an inline formula, so no underscore and no letter with a
-plain digit for its index reaches the page. ``$…$`` in a phrase is TeX already."""
+plain digit for its index reaches the page. ``$…$`` in a phrase is TeX already. The sentences
+of the plans' steps mark their symbols themselves (`velplan.plans.text.Sym`): those are set
+from the mark (`sym_tex`), not guessed from the text."""
 
 from __future__ import annotations
 
@@ -9,6 +11,7 @@ import re
 
 from velplan.note.blocks import Math
 from velplan.note.formulas import chain, symbol
+from velplan.plans.text import Sentence, Sym
 
 _SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
@@ -17,7 +20,9 @@ TOKEN = re.compile(
     r"\$(?P<tex>[^$]+)\$"
     rf"|(?<![{_NOT_WORD}])(?P<sym>[A-Za-zΦΣ][ⁿᵗᵏʳτ]?_[A-Za-zА-Яа-яΦ0-9]+)(?P<sq>²?)"
     rf"|(?<![{_NOT_WORD}])μ(?P<mu>[vlaF])(?![{_NOT_WORD}])"
-    rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>\d+)(?![{_NOT_WORD}])"
+    rf"|(?<![{_NOT_WORD}])(?P<rate>[ωεφ])(?P<rate_i>[0-9₀-₉]+)(?![{_NOT_WORD}₀-₉])"
+    rf"|(?<![{_NOT_WORD}])(?P<ext>[ψωφ])(?P<ext_i>max|min)(?![{_NOT_WORD}])"
+    rf"|(?<![{_NOT_WORD}])(?P<greek>[θφδψωε])(?= = )"
     rf"|(?<![{_NOT_WORD}])(?P<pts>[A-Za-zπ][A-Za-zπ]*\d[A-Za-z0-9π]*)(?![{_NOT_WORD}])")
 LETTERS = re.compile(rf"(?<![{_NOT_WORD}])(Δ?)([A-Za-z][A-Za-z₀-₉]*)(?![{_NOT_WORD}])")
 INDEXED = re.compile(r"(?<![A-Za-z0-9_])([A-Za-z][A-Za-z₀-₉]*[₀-₉][A-Za-z₀-₉]*)"
@@ -27,14 +32,36 @@ en, where a word may be English, what stands left of " = " (lBF, Fc, H, n)."""
 UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi"}
+_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta", "δ": r"\delta"}
 
 
 def _symbol(sym: str) -> str:
     head, _, sub = sym.partition("_")
-    if re.fullmatch(r"[А-Яа-я]+", sub):  # a word index (V_отн, M_ур): upright text
+    if re.fullmatch(r"[А-Яа-я]+|[a-z]{3,}", sub):  # a word index (V_отн, V_rel, M_ур): upright text
         return symbol(head) + r"_{\text{" + sub + "}}"
     return symbol(sym)
+
+
+def sym_tex(sym: Sym) -> str:
+    """TeX of a symbol the plans' sentences mark (`velplan.plans.text.Sym`): point and image
+    names italic with their digits as subscripts (``O3A`` → O₃A, ``pa4``, ``π``, ``x–x``), a
+    vector's index below its letter (``V_A4A``, ``aⁿ_AO2``, ``V_отн``), ω or ε with its link."""
+    if sym.kind == "vector":
+        return _symbol(sym.text)
+    if sym.kind == "rate":
+        return _GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
+    return "{–}".join(chain(part).replace("π", r"\pi ") for part in sym.text.split("–"))  # x–x: no spaces
+
+
+def sentence_parts(piece, lang: str = "en") -> list:
+    """A piece of a paragraph in plain pieces and `Math`: a sentence of the plans
+    (`velplan.plans.text.Sentence`) keeps the symbols it marks, each a formula, and its
+    plain text is read as `prose_parts` reads any text."""
+    if isinstance(piece, Sym):
+        return [Math(sym_tex(piece))]
+    if isinstance(piece, Sentence):
+        return [y for x in piece.parts for y in sentence_parts(x, lang)]
+    return prose_parts(piece, lang)
 
 
 def prose_parts(text: str, lang: str = "en") -> list:
@@ -92,8 +119,12 @@ def _symbols(text: str) -> list:
             tex = _symbol(m.group("sym")) + ("^{2}" if m.group("sq") else "")
         elif m.group("mu"):
             tex = r"\mu_{" + m.group("mu") + "}"
+        elif m.group("ext"):
+            tex = _GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
+        elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
+            tex = _GREEK[m.group("greek")]
         elif m.group("rate"):
-            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i") + "}"
+            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i").translate(_SUB) + "}"
         else:
             tex = chain(m.group("pts")).replace("π", r"\pi ")
         if m.start() > at:

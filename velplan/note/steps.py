@@ -85,7 +85,9 @@ def _direction(d, lang: str = "en") -> str:
         return r"\perp " + chain(d.a + d.b)
     if d.along.startswith("guide:"):  # a link's guide, in words as the step's sentence says it
         return r"\parallel " + txt(T.phrase("guide", lang, d.along.split(":", 1)[1]))
-    return r"\parallel " + (chain(d.along) if "–" not in d.along else txt(d.along))
+    from velplan.note.prose import sym_tex
+
+    return r"\parallel " + sym_tex(T.pts(d.along))  # as the step's sentence sets it (x–x, O3B)
 
 
 def _line(res, step, i, lang):

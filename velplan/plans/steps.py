@@ -41,7 +41,8 @@ class Rotation:
         return f"V_{self.point}"
 
     def direction_text(self, lang: Language) -> str:
-        return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ω{self.link}")
+        return T.phrase("perp", lang, T.pts(T.seg(self.centre, self.point))) + T.phrase("sense_of", lang,
+                                                                                         T.rate("ω", self.link))
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,8 @@ class Normal:
         return f"aⁿ_{self.name or self.point}{self.centre}"
 
     def direction_text(self, lang: Language) -> str:
-        return T.phrase("along_to", lang, T.seg(self.point, self.centre), self.point, self.centre)
+        return T.phrase("along_to", lang, T.pts(T.seg(self.point, self.centre)), T.pts(self.point),
+                        T.pts(self.centre))
 
 
 @dataclass(frozen=True)
@@ -90,7 +92,8 @@ class Tangential:
         return f"aᵗ_{self.point}{self.centre}"
 
     def direction_text(self, lang: Language) -> str:
-        return T.phrase("perp", lang, T.seg(self.centre, self.point)) + T.phrase("sense_of", lang, f"ε{self.link}")
+        return T.phrase("perp", lang, T.pts(T.seg(self.centre, self.point))) + T.phrase("sense_of", lang,
+                                                                                         T.rate("ε", self.link))
 
 
 @dataclass(frozen=True)
@@ -117,7 +120,7 @@ class Coriolis:
         return f"aᵏ_{self.name}"
 
     def direction_text(self, lang: Language) -> str:
-        return T.phrase("coriolis_dir", lang, f"ω{self.frame.link}")
+        return T.phrase("coriolis_dir", lang, T.rate("ω", self.frame.link), T.vector(T.phrase("v_rel", lang)))
 
 
 # -- directions of construction lines -------------------------------------------------------------
@@ -140,7 +143,7 @@ class Perpendicular:
         return d * 1j
 
     def text(self, lang: Language) -> str:
-        return T.phrase("perp", lang, T.seg(self.a, self.b))
+        return T.phrase("perp", lang, T.pts(T.seg(self.a, self.b)))
 
 
 @dataclass(frozen=True)
@@ -158,12 +161,13 @@ class Parallel:
         return ctx.memo(self, lambda: cis(ctx.theta(self.link) + self.angle))
 
     def text(self, lang: Language) -> str:
+        along: T.Sentence | T.Sym
         if self.along == "slot":
             along = T.phrase("slot", lang)
         elif self.along.startswith("guide:"):
             along = T.phrase("guide", lang, self.along[6:])
         else:
-            along = self.along
+            along = T.pts(self.along)
         return T.phrase("parallel", lang, along)
 
 
@@ -185,7 +189,7 @@ class Pole:
         return np.zeros(ctx.n, dtype=complex)
 
     def describe(self, ctx, vals, i, lang) -> str:
-        return T.phrase("pole", lang, self.label, ", ".join(self.points))
+        return T.phrase("pole", lang, T.pts(self.label), T.joined(", ", map(T.pts, self.points)))
 
 
 @dataclass(frozen=True)
@@ -211,8 +215,9 @@ class LayOff:
         z = vals[self.target][i] - vals[self.origin][i]
         value = abs(z) * ctx.mu[self.vector.plan]
         return T.phrase(
-            "lay_off", lang, T.label_of(self.origin), T.label_of(self.origin) + self.label, T.mm(abs(z), lang),
-            self.vector.direction_text(lang), self.vector.symbol(), T.num(value, lang), T.unit(self.vector.plan, lang),
+            "lay_off", lang, T.pts(T.label_of(self.origin)), T.pts(T.label_of(self.origin) + self.label),
+            T.mm(abs(z), lang), self.vector.direction_text(lang), T.vector(self.vector.symbol()), T.num(value, lang),
+            T.unit(self.vector.plan, lang),
         )
 
 
@@ -234,7 +239,8 @@ class Line:
         return vals[self.through], ctx.drafting.direction(self.direction.unit(ctx))
 
     def describe(self, ctx, vals, i, lang) -> str:
-        return T.phrase("line", lang, T.label_of(self.through), self.direction.text(lang), self.component)
+        return T.phrase("line", lang, T.pts(T.label_of(self.through)), self.direction.text(lang),
+                        T.vector(self.component))
 
 
 @dataclass(frozen=True)
@@ -273,8 +279,8 @@ class Intersect:
         for line in self.lines:
             step = ctx.plan_steps[line]
             length = abs(vals[self.target][i] - vals[step.through][i])
-            segs.append(f"{T.label_of(step.through)}{self.label} = {T.mm(length, lang)}")
-        return T.phrase("intersect", lang, self.label, "; ".join(segs), T.num(cond, lang, 3))
+            segs.append(T.text(T.pts(T.label_of(step.through) + self.label), f" = {T.mm(length, lang)}"))
+        return T.phrase("intersect", lang, T.pts(self.label), T.joined("; ", segs), T.num(cond, lang, 3))
 
 
 @dataclass(frozen=True)
@@ -322,13 +328,14 @@ class Similar:
 
     def describe(self, ctx, vals, i, lang) -> str:
         if self.base is None:
-            return T.phrase("same_image", lang, self.label, self.link, T.label_of(self.anchor_image))
+            return T.phrase("same_image", lang, T.pts(self.label), self.link, T.pts(T.label_of(self.anchor_image)))
         f = self.base
         length = abs(vals[self.target][i] - vals[self.anchor_image][i])
         ratio = abs(ctx.pos(self.point)[i] - ctx.pos(self.anchor)[i]) / abs(ctx.pos(f.p2)[i] - ctx.pos(f.p1)[i])
         return T.phrase(
-            "similar", lang, self.label, self.link, T.label_of(self.anchor_image) + self.label, T.mm(length, lang),
-            T.label_of(f.img1) + T.label_of(f.img2), T.seg(self.anchor, self.point) + "/" + T.seg(f.p1, f.p2),
+            "similar", lang, T.pts(self.label), self.link, T.pts(T.label_of(self.anchor_image) + self.label),
+            T.mm(length, lang), T.pts(T.label_of(f.img1) + T.label_of(f.img2)),
+            T.text(T.pts(T.seg(self.anchor, self.point)), "/", T.pts(T.seg(f.p1, f.p2))),
             T.num(ratio, lang, 4),
         )
 

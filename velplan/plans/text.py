@@ -1,8 +1,15 @@
-"""Sentences of the worked solution in en, ru, uk and zh, and number formatting per language."""
+"""Sentences of the worked solution in en, ru, uk and zh, and number formatting per language.
+
+A sentence (`phrase`) is a plain string, as every text output prints it, that keeps the symbols
+its caller marked (`Sym`: point names, plan segments, vectors, ω and ε) in its ``parts``; each
+output sets them in its own notation from the one mark: the note as formulas
+(`velplan.note.prose`), a terminal with Unicode subscripts (`terminal`)."""
 
 from __future__ import annotations
 
 import math
+import string
+from dataclasses import dataclass
 from typing import cast
 
 from velplan.errors import VelplanError
@@ -105,15 +112,16 @@ _PHRASES: dict[str, dict[str, str]] = {
         "zh": "{0} 即构件 {2} 的阿苏尔特殊点 {1} 的影像。",
     },
     "triad_centre": {
-        "en": "Both lines pass through the pole: V_{0} = 0, {0} is the instant centre of velocities of link {1}.",
-        "ru": "Обе прямые проходят через полюс: V_{0} = 0, {0} — мгновенный центр скоростей звена {1}.",
-        "uk": "Обидві прямі проходять через полюс: V_{0} = 0, {0} — миттєвий центр швидкостей ланки {1}.",
-        "zh": "两直线均过极点：V_{0} = 0，{0} 为构件 {1} 的速度瞬心。",
+        "en": "Both lines pass through the pole: {2} = 0, {0} is the instant centre of velocities of link {1}.",
+        "ru": "Обе прямые проходят через полюс: {2} = 0, {0} — мгновенный центр скоростей звена {1}.",
+        "uk": "Обидві прямі проходять через полюс: {2} = 0, {0} — миттєвий центр швидкостей ланки {1}.",
+        "zh": "两直线均过极点：{2} = 0，{0} 为构件 {1} 的速度瞬心。",
     },
+    "v_rel": {"en": "V_rel", "ru": "V_отн", "uk": "V_відн", "zh": "V_rel"},
     "coriolis_dir": {
-        "en": "along V_rel turned 90° in the sense of {0}",
-        "ru": "по V_отн, повёрнутой на 90° в сторону {0}",
-        "uk": "за V_відн, поверненою на 90° у бік {0}",
+        "en": "along {1} turned 90° in the sense of {0}",
+        "ru": "по {1}, повёрнутой на 90° в сторону {0}",
+        "uk": "за {1}, поверненою на 90° у бік {0}",
         "zh": "沿相对速度按 {0} 转向转 90°",
     },
 }
@@ -155,8 +163,117 @@ def check_lang(lang: str) -> Language:
     return cast(Language, lang)
 
 
-def phrase(key: str, lang: Language, *args) -> str:
-    return _PHRASES[key][check_lang(lang)].format(*args)
+@dataclass(frozen=True)
+class Sym:
+    """A symbol in a sentence, marked so that each output sets it in its own notation: ``text``
+    is what every plain-text output prints (``O3A``, ``pa4``, ``π``, ``x–x``, ``V_A4A``,
+    ``aⁿ_AO2``, ``ω2``); ``kind`` says how it is built: ``"points"`` (point or image names side
+    by side: a point, a link's line, a segment of a plan), ``"vector"`` (a letter, its mark and
+    its index after "_"), ``"rate"`` (ω or ε and its link). The note sets it as a formula
+    (`velplan.note.prose.sym_tex`)."""
+
+    text: str
+    kind: str = "points"
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __format__(self, spec: str) -> str:
+        return format(self.text, spec)
+
+
+class Sentence(str):
+    """Text of a sentence as every plain-text output prints it (a ``str``) that keeps its
+    ``parts``: plain strings and the `Sym` in it, in order.
+
+    >>> s = text("Through ", Sym("a"), " draw ", Sym("O3A"))
+    >>> s, s.parts
+    ('Through a draw O3A', ('Through ', Sym(text='a', kind='points'), ' draw ', Sym(text='O3A', kind='points')))
+    """
+
+    parts: tuple
+
+    def __new__(cls, parts) -> "Sentence":
+        flat: list = []
+        for piece in parts:
+            for x in (piece.parts if isinstance(piece, Sentence) else (piece,)):
+                if not isinstance(x, Sym):
+                    x = str(x)
+                    if not x:
+                        continue
+                    if flat and isinstance(flat[-1], str):
+                        flat[-1] += x
+                        continue
+                flat.append(x)
+        out = super().__new__(cls, "".join(str(x) for x in flat))
+        out.parts = tuple(flat)
+        return out
+
+    def __add__(self, other) -> "Sentence":
+        return text(self, other)
+
+    def __radd__(self, other) -> "Sentence":
+        return text(other, self)
+
+
+def text(*pieces) -> Sentence:
+    """Pieces (str, `Sym`, `Sentence`) written one after another, their symbols kept."""
+    return Sentence(pieces)
+
+
+def joined(sep: str, pieces) -> Sentence:
+    """``pieces`` with ``sep`` between them (``", ".join`` keeping the symbols)."""
+    out: list = []
+    for k, x in enumerate(pieces):
+        out += [sep, x] if k else [x]
+    return Sentence(out)
+
+
+def pts(name: str) -> Sym:
+    """Point or image names side by side (``a``, ``pa4``, ``O3A``, ``x–x``) as a symbol."""
+    return Sym(name, "points")
+
+
+def vector(sym: str) -> Sym:
+    """A component or vector symbol (``V_A4A``, ``aⁿ_AO2``, ``V_отн``) as a symbol."""
+    return Sym(sym, "vector")
+
+
+def rate(letter: str, link: str) -> Sym:
+    """ω or ε of ``link`` (``ω2``) as a symbol."""
+    return Sym(f"{letter}{link}", "rate")
+
+
+_DOWN = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def terminal(sentence: str) -> str:
+    """``sentence`` as a terminal prints it: the digits of the point, image and segment names
+    and of ω, ε that it marks as Unicode subscripts (``O₃A``, ``pa₄``, ``ω₂``); a vector keeps
+    its index after "_" (``V_A4A``), numbers stay as they are.
+
+    >>> terminal(text("Through ", pts("a4"), " ∥ ", pts("O3A"), " (", vector("V_A4A"), ") 2 ", rate("ω", "2")))
+    'Through a₄ ∥ O₃A (V_A4A) 2 ω₂'
+    """
+    parts = sentence.parts if isinstance(sentence, Sentence) else (sentence,)
+    return "".join(x.text.translate(_DOWN) if isinstance(x, Sym) and x.kind != "vector" else str(x)
+                   for x in parts)
+
+
+_FORMATTER = string.Formatter()
+
+
+def phrase(key: str, lang: Language, *args) -> Sentence:
+    """The sentence ``key`` in ``lang`` with ``args`` in its fields; a plain string whose
+    ``parts`` keep each `Sym` argument a symbol (nested sentences spliced in)."""
+    out: list = []
+    for literal, field, spec, conv in _FORMATTER.parse(_PHRASES[key][check_lang(lang)]):
+        out.append(literal)
+        if field is not None:
+            value = args[int(field)]
+            out.append(value if isinstance(value, (Sym, Sentence)) or not (spec or conv)
+                       else _FORMATTER.format_field(_FORMATTER.convert_field(value, conv), spec or ""))
+    return Sentence(out)
 
 
 def num(x: float, lang: Language, digits: int = 4) -> str:

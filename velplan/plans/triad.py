@@ -31,7 +31,7 @@ from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Paral
 
 def _join(lang: Language, *sentences: str | None) -> str:
     """Sentences one after another (no space after a full stop in Chinese)."""
-    return ("" if lang == "zh" else " ").join(x for x in sentences if x is not None)
+    return T.joined("" if lang == "zh" else " ", [x for x in sentences if x is not None])
 
 
 # -- steps that say what they do in the triad ------------------------------------------------------
@@ -64,10 +64,10 @@ class Said:
         out = [_special(lang, *self.intro)] if self.intro else []
         if self.joint:
             eq = self.equation.replace("{}", self.known.text(lang)) if self.known else self.equation
-            out.append(T.phrase("triad_joint", lang, self.point, self.base, self.lead, eq))
+            out.append(T.phrase("triad_joint", lang, T.pts(self.point), self.base, self.lead, eq))
         else:
-            out.append(T.phrase("triad_block" if self.block else "triad_lead", lang, self.point, self.base, self.lead,
-                                self.equation, self.direction.text(lang), self.block))
+            out.append(T.phrase("triad_block" if self.block else "triad_lead", lang, T.pts(self.point), self.base,
+                                self.lead, self.equation, self.direction.text(lang), T.pts(self.block)))
         return _join(lang, *out, "")
 
 
@@ -104,8 +104,9 @@ class SpecialIntersect(Intersect):
 
     def describe(self, ctx, vals, i, lang) -> str:
         return _join(lang, super().describe(ctx, vals, i, lang),
-                     T.phrase("triad_image", lang, self.label, self.special, self.base),
-                     T.phrase("triad_centre", lang, self.special, self.base) if self.centre else None)
+                     T.phrase("triad_image", lang, T.pts(self.label), T.pts(self.special), self.base),
+                     T.phrase("triad_centre", lang, T.pts(self.special), self.base, T.vector("V_" + self.special))
+                     if self.centre else None)
 
 
 # -- the construction ------------------------------------------------------------------------------
@@ -115,10 +116,10 @@ def _special(lang: str, point: str, base: str, li: str, lj: str, ji: str, jj: st
     """The sentence naming Assur's special point: the crossing of two leads' lines, a block
     lead's line being the normal to its guide through its joint."""
     if not (ji or jj):
-        return T.phrase("triad_special", lang, point, base, li, lj)
-    lines = [T.phrase("triad_normal", lang, lk, jk) if jk else T.phrase("triad_line", lang, lk)
+        return T.phrase("triad_special", lang, T.pts(point), base, li, lj)
+    lines = [T.phrase("triad_normal", lang, lk, T.pts(jk)) if jk else T.phrase("triad_line", lang, lk)
              for lk, jk in ((li, ji), (lj, jj))]
-    return T.phrase("triad_special_of", lang, point, base, *lines)
+    return T.phrase("triad_special_of", lang, T.pts(point), base, *lines)
 
 
 def _sum(*terms: str | None) -> str:
