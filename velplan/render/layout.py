@@ -17,7 +17,7 @@ from shapely.geometry.base import BaseGeometry
 
 from velplan.errors import ScaleError
 from velplan.render.scene import Bounds, Scene, Text
-from velplan.render.shapes import DESCENDER_DEPTH, MIN_INDEX_MM, MIN_WIDTH_FACTOR, text_box, text_extent
+from velplan.render.shapes import DESCENDER_DEPTH, MIN_INDEX_MM, MIN_WIDTH_FACTOR, text_box, text_depth, text_extent
 from velplan.render.style import ESKD_TEXT_HEIGHTS
 
 __all__ = ["text_extent", "label_box", "overlapping_labels", "place_views",
@@ -197,7 +197,19 @@ def _lines_in(text: str, room_w: float, room_h: float, size: float) -> list[str]
     if first > room_h + _EPS:
         return None
     most = int((room_h - first + _EPS) // (LINE_PITCH * size)) + 1
-    return _wrap(text, room_w, size, most)
+    lines = _wrap(text, room_w, size, most)
+    if lines is not None and first + sum(_pitches(lines, size)) > room_h + _EPS:
+        return None  # a raised index took a line's room
+    return lines
+
+
+def _pitches(lines: list[str], size: float) -> list[float]:
+    """The baseline-to-baseline distance of each line after the first, mm: :data:`LINE_PITCH`
+    of the height, more where a raised index ("aᵗ") would reach the line above's descenders
+    (`text_depth`): the gap between them kept as plain lines keep it."""
+    gap = (LINE_PITCH - 1.0 - DESCENDER_DEPTH) * size
+    return [max(LINE_PITCH * size, text_depth(a, size)[0] + text_depth(b, size)[1] + gap)
+            for a, b in zip(lines, lines[1:])]
 
 
 #: Rendered Latin and Cyrillic run up to ~10 % wider than `text_extent`'s estimate: a cell
@@ -240,6 +252,7 @@ def glued_words(text: str) -> list[str]:
 def _cell_lines(lines, cell, layer, size, anchor, padding, width_factor=1.0) -> tuple[Text, ...]:
     x = cell[0] + padding if anchor == "start" else (cell[0] + cell[2]) / 2
     centre = (cell[1] + cell[3]) / 2
-    offsets = (np.arange(len(lines)) - (len(lines) - 1) / 2) * LINE_PITCH * size
+    down = np.concatenate([[0.0], np.cumsum(_pitches(list(lines), size))])
+    offsets = down - down[-1] / 2
     return tuple(Text((x, centre - dy), line, layer, size, anchor, "middle", 0.0, float(width_factor))
                  for line, dy in zip(lines, offsets))

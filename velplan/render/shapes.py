@@ -386,8 +386,16 @@ def text_depth(text: str, size_mm: float) -> tuple[float, float]:
         if script == "sub" and plain in DESCENDING:
             below = max(below, SUBSCRIPT_DROP * size_mm + DESCENDER_DEPTH * script_size(size_mm))
         elif script == "super":
-            above = max(above, SUPERSCRIPT_RISE * size_mm + script_size(size_mm))
+            low = plain in SHORT  # a raised "n" reaches its x-height, a raised "1" its capital line
+            above = max(above, SUPERSCRIPT_RISE * size_mm + (X_HEIGHT if low else 1.0) * script_size(size_mm))
     return below, above
+
+
+#: Lowercase letters that reach no higher than the x-height (:data:`X_HEIGHT` of the capitals'):
+#: a raised one ("aⁿ") reaches less high than a raised digit or capital.
+SHORT = frozenset("acemnorsuvwxzταεικνοπστυωабвгежзиклмнопрстухцчшщъыьэюя")
+#: The x-height of the drawing fonts as a share of their capital height (DejaVu Sans: 0.75).
+X_HEIGHT = 0.75
 
 
 def text_origin(text: Lettering) -> np.ndarray:

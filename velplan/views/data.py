@@ -10,7 +10,7 @@ import math
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
-from velplan.views.base import View, digits_down, make_view, number, subscript, unit
+from velplan.views.base import ROUND_OFF, View, digits_down, make_view, number, subscript, unit
 
 
 def _l(a: str, b: str) -> str:
@@ -55,12 +55,23 @@ def data_lines(study, lang: Language) -> list[str]:
     if st is not None:
         sym = "H" if st.quantity.startswith("slide") or st.quantity.startswith("point") else "ψmax"
         value = number(st.H, lang) + " " + (m if sym == "H" else unit("rad", lang))
-        lines.append(f"{sym} = {value}; θ = {number(math.degrees(st.theta), lang)}°; "
+        lines.append(f"{sym} = {value}; θ = {number(math.degrees(st.theta), lang, scale=180.0)}°; "
                      f"K = {number(st.K, lang)}")
-        lines.append(f"{label('extreme_positions', lang)}: φ = {number(math.degrees(st.start.phi) % 360, lang)}°, "
-                     f"{number(math.degrees(st.end.phi) % 360, lang)}° ({label('working_stroke', lang)} "
+        lines.append(f"{label('extreme_positions', lang)}: φ = {number(_turn_degrees(st.start.phi), lang)}°, "
+                     f"{number(_turn_degrees(st.end.phi), lang)}° ({label('working_stroke', lang)} "
                      f"{number(math.degrees(st.theta) + 180.0, lang)}°)")
     return lines
+
+
+def _turn_degrees(phi: float) -> float:
+    """The crank angle `phi` (rad) in degrees within [0, 360), one within round-off
+    (`velplan.views.base.ROUND_OFF` of a turn) of 0 or 360 as 0 (not "1,018·10⁻¹³" nor "360").
+
+    >>> _turn_degrees(1.776e-15), _turn_degrees(-1.776e-15), _turn_degrees(3.141592653589793)
+    (0.0, 0.0, 180.0)
+    """
+    d = math.degrees(phi) % 360.0
+    return 0.0 if min(d, 360.0 - d) <= ROUND_OFF * 360.0 else d
 
 
 def data_view(study, *, lang: Language, size_mm: float = 2.5, title_mm: float = 3.5,
