@@ -9,8 +9,6 @@ is compared with the page on which the PDF carries that heading."""
 from __future__ import annotations
 
 import re
-import shutil
-import subprocess
 
 import pytest
 
@@ -20,6 +18,7 @@ pdfium = pytest.importorskip("pypdfium2")
 
 from docx.oxml.ns import qn  # noqa: E402
 
+from tests import office  # noqa: E402
 from velplan.note import build_note, write_note  # noqa: E402
 from velplan.study import Study  # noqa: E402
 
@@ -70,29 +69,12 @@ def test_each_entry_is_a_pageref_to_its_heading(notes):
             assert headings.get(mark) == text, (mark, text)
 
 
-def _soffice() -> str:
-    exe = shutil.which("soffice") or shutil.which("libreoffice")
-    if exe is None:
-        pytest.skip("LibreOffice (soffice) is not installed: install Debian's libreoffice-writer-nogui "
-                    "to compare the contents page with the pages LibreOffice prints the headings on")
-    return exe
-
-
 @pytest.fixture(scope="module")
 def printed(notes, tmp_path_factory):
     """The text of each page of each note as LibreOffice prints it."""
-    exe = _soffice()
-    out = tmp_path_factory.mktemp("contents-pdf")
-    run = subprocess.run([exe, f"-env:UserInstallation={(out / 'profile').as_uri()}", "--headless",
-                          "--convert-to", "pdf", "--outdir", str(out), *map(str, notes.values())],
-                         capture_output=True, text=True, timeout=600)
-    pages = {}
-    for key, path in notes.items():
-        pdf = out / (path.stem + ".pdf")
-        assert pdf.exists(), run.stderr
-        doc = pdfium.PdfDocument(str(pdf))
-        pages[key] = [doc[k].get_textpage().get_text_range().replace("\r\n", "\n") for k in range(len(doc))]
-    return pages
+    exe = office.soffice("to compare the contents page with the pages LibreOffice prints the headings on")
+    pages = office.printed_pages(exe, list(notes.values()), tmp_path_factory.mktemp("contents-pdf"))
+    return {key: pages[path] for key, path in notes.items()}
 
 
 def _lines(page: str) -> list[str]:

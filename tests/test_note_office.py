@@ -6,8 +6,6 @@ converted to PDF headless: a filled contents page and no number broken across li
 from __future__ import annotations
 
 import re
-import shutil
-import subprocess
 import zipfile
 
 import pytest
@@ -18,7 +16,7 @@ pdfium = pytest.importorskip("pypdfium2")
 
 from docx.oxml.ns import qn  # noqa: E402
 
-from tests import shared_notes  # noqa: E402
+from tests import office, shared_notes  # noqa: E402
 from velplan.note.docx_tables import CELL_PAD_TWIPS, cell_text, text_twips  # noqa: E402
 
 M = "{http://schemas.openxmlformats.org/officeDocument/2006/math}"
@@ -101,26 +99,11 @@ def test_headings_black_roman_numerals_upright_equations_body_size(shaper_ru):
     assert sizes == {body_size}
 
 
-def _soffice() -> str:
-    exe = shutil.which("soffice") or shutil.which("libreoffice")
-    if exe is None:
-        pytest.skip("LibreOffice (soffice) is not installed: install Debian's libreoffice-writer-nogui "
-                    "(.ci/run does) to check the .docx as an office program lays it out")
-    return exe
-
-
 @pytest.fixture(scope="module")
 def office_pdf(shaper_ru, tmp_path_factory):
-    exe = _soffice()
+    exe = office.soffice("to check the .docx as an office program lays it out")
     _, path = shaper_ru
-    out = tmp_path_factory.mktemp("office-pdf")
-    profile = (out / "profile").as_uri()
-    run = subprocess.run([exe, f"-env:UserInstallation={profile}", "--headless", "--convert-to", "pdf",
-                          "--outdir", str(out), str(path)], capture_output=True, text=True, timeout=600)
-    pdf = out / "note.pdf"
-    assert pdf.exists(), run.stderr
-    doc = pdfium.PdfDocument(str(pdf))
-    return [doc[k].get_textpage().get_text_range().replace("\r\n", "\n") for k in range(len(doc))]
+    return office.printed_pages(exe, [path], tmp_path_factory.mktemp("office-pdf"))[path]
 
 
 def test_libreoffice_shows_a_filled_contents_page(office_pdf):
