@@ -409,6 +409,17 @@ def _number_tries(p, tick, box_of) -> list:
     return [(tries[k], boxes[k]) for d, k in sorted(near) if d <= reach]
 
 
+def grown_once(text, grown: dict):
+    """``label_box(text).buffer(0.4)`` (a placed text's keep-off area), made once per text for
+    the calls sharing `grown` (id of a text → (the text, its area))."""
+    from velplan.render.layout import label_box
+
+    kept = grown.get(id(text))
+    if kept is None or kept[0] is not text:
+        kept = grown[id(text)] = (text, label_box(text).buffer(0.4))
+    return kept[1]
+
+
 def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], items: list, lines: list) -> list:
     """`out` with its position numbers at the indices `crossed` (texts a curve of `lines`
     crosses) placed by `place_letters` round their ticks on the φ axis (the tick of a number
@@ -417,7 +428,6 @@ def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], i
     any other, else beyond them with a thin leader."""
     import shapely
 
-    from velplan.render.layout import label_box
     from velplan.render.scene import Text
     from velplan.views.letters import place_letters
 
@@ -430,10 +440,7 @@ def _numbers_by_their_ticks(out: list, crossed: list[int], numbers: list[int], i
         taken = []
         for j, p in enumerate(out):
             if isinstance(p, Text) and j != k:
-                kept = grown.get(id(p))
-                if kept is None or kept[0] is not p:
-                    kept = grown[id(p)] = (p, label_box(p).buffer(0.4))
-                taken.append(kept[1])
+                taken.append(grown_once(p, grown))
         tick = (items[k].position[0], 0.0)
         (placed,), leaders = place_letters([items[k]], [tick], ticks, [*lines, *drawn], taken=taken,
                                            leader_layer=items[k].layer)

@@ -33,7 +33,8 @@ from velplan.render.symbols import (
     JOINT_RADIUS_MM, centre_of_mass_sign, fixed_pivot, link, revolute_joint, rotation_arrow,
     slider_block, straight_guide)
 from velplan.views.base import (
-    View, _moved, bounds_of, digits_down, free_direction, make_view, place_labels, scale_mark, scale_text, subscript)
+    View, _moved, bounds_of, digits_down, free_direction, grown_once, make_view, place_labels, scale_mark, scale_text,
+    subscript)
 from velplan.views.letters import place_letters
 
 #: Slider block length and width, mm.
@@ -780,7 +781,7 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
         blocked = _leader_blocked(text, where[0], letter_boxes)
         if not hard and not crossing and not blocked:
             continue
-        taken = [_grown_once(x, grown) for x in (*letters, *out[:k], *out[k + 1:])]
+        taken = [grown_once(x, grown) for x in (*letters, *out[:k], *out[k + 1:])]
         (again,), led = place_letters([wanted[k]], [where[0]], where[1], shapes, taken=taken, thin=thin,
                                       soft_mm=SCHEME_SOFT_MM)
         if len(tree.query(label_box(again), predicate="intersects")):
@@ -792,14 +793,6 @@ def _labels_off_the_lines(wanted: list[Text], placed, anchors: list, obstacles: 
         out[k], leaders = again, leaders + led
         moved.add(k)
     return tuple(out), moved, leaders
-
-
-def _grown_once(text: Text, grown: dict):
-    """``label_box(text).buffer(0.4)``, made once per text for the calls sharing `grown`."""
-    kept = grown.get(id(text))
-    if kept is None or kept[0] is not text:
-        kept = grown[id(text)] = (text, label_box(text).buffer(0.4))
-    return kept[1]
 
 
 def _through(leader: Polyline, boxes) -> bool:
@@ -1044,20 +1037,18 @@ def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
             if not grown:
                 grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.rstrip("′").isdigit()]
-            leader = _past_the_others(shapely.LineString([p, near]), text, placed, grown)
+            leader = _past_the_others(shapely.LineString([p, near]), text, grown)
             if leader is not None:
                 out.append(Polyline(leader, "labels", "thin"))
     return out
 
 
-def _past_the_others(leader, text: Text, placed, grown=None) -> tuple | None:
+def _past_the_others(leader, text: Text, grown: list) -> tuple | None:
     """The piece of a number's `leader` (from its point to its box) that runs on from the last
     other number it passes (a number stepped out of a crowd stands beyond its neighbours' in
     line with its point: its leader starts past them, not through them; the other extreme
     position's "1′" too), or None where nothing of it is left. `grown`: (number, its box grown
-    by 0.4 mm) of the numbers in `placed`, where already made."""
-    if grown is None:
-        grown = [(x, label_box(x).buffer(0.4)) for x in placed if x.text.rstrip("′").isdigit()]
+    by 0.4 mm) of the placed numbers."""
     others = [b for x, b in grown if x is not text]
     hit = [b for b in others if b.intersects(leader)]
     if not hit:
