@@ -290,8 +290,8 @@ def _unmarked(text: str) -> list[tuple[str, str]]:
             run.append(i)
             continue
         if any(out[j][1] == "super" for j in run):
-            for j in run:
-                out[j] = (script_of(text[j])[0] if out[j][1] else unicodedata.normalize("NFKC", text[j]), "super")
+            for j in run:  # every superscript's plain form is its compatibility form ("¹" → "1", "⁻" → "−")
+                out[j] = (unicodedata.normalize("NFKC", text[j]), "super")
         run = []
     return out
 
@@ -376,10 +376,12 @@ def text_depth(text: str, size_mm: float) -> tuple[float, float]:
     """How far a one-line text reaches below and above its baseline, mm, as drawn: from the
     descender line (:data:`DESCENDER_DEPTH` of the height) to the capital line, and farther
     where a subscript, dropped :data:`SUBSCRIPT_DROP` of the height, has a descending letter:
-    it reaches its own descender line ("M_{Fg}": its g; "M_{д}").
+    it reaches its own descender line ("M_{Fg}": its g; "M_{д}"); and where a superscript,
+    raised :data:`SUPERSCRIPT_RISE`, reaches its own capital line (its x-height for a short
+    lowercase letter: "aⁿ").
 
-    >>> text_depth("G₅", 2.5), text_depth("M_{Fg}", 2.5)
-    ((0.625, 2.5), (1.25, 2.5))
+    >>> text_depth("G₅", 2.5), text_depth("M_{Fg}", 2.5), text_depth("10⁻⁵", 2.5)
+    ((0.625, 2.5), (1.25, 2.5), (0.625, 3.625))
     """
     below, above = DESCENDER_DEPTH * size_mm, size_mm
     for plain, script in _characters(text):
