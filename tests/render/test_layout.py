@@ -9,10 +9,10 @@ from velplan.sheets.frame import free_area
 
 
 def test_overlap_found_for_overlapping_pair_only():
-    a = Text((100, 100), "VA", "labels", 5.0)       # box x 100…107
+    a = Text((100, 100), "VA", "labels", 5.0)       # box x 100…108.54
     b = Text((105, 102), "VB", "labels", 5.0)       # overlaps a
     c = Text((200, 100), "VC", "labels", 5.0)       # far away
-    d = Text((107, 100), "VD", "labels", 5.0)       # touches c? no: touches a's right edge
+    d = Text((108.55, 100), "VD", "labels", 5.0)    # touches a's right edge, overlaps b
     scene = Scene((a, Circle((0, 0), 1, "mechanism"), b, c, d))
     assert overlapping_labels(scene) == [(a, b), (b, d)]
 
