@@ -5,13 +5,14 @@ fonts a sheet's Latin, Greek and Cyrillic text is drawn with — the bundled Vel
 PNG and PDF export fall back on) and DejaVu Sans Condensed (the first family an SVG sheet
 names, ``fonts-dejavu-core``'s ``DejaVuSansCondensed.ttf``) — and writes, for every narrow
 character the bundled font has in the blocks velplan prints from, the wider of the two
-advances in thousandths of an em, so that a label measured with the table is never narrower
+advances in thousandths of an em, rounded up, so that a label measured with the table is never narrower
 than it is drawn in either font. A missing font file is skipped with a warning.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import unicodedata
 from pathlib import Path
@@ -64,7 +65,7 @@ def table(fonts: list[Path]) -> dict[int, list[str]]:
             if (cp not in measured[0] or unicodedata.category(char).startswith("C")
                     or unicodedata.east_asian_width(char) in ("W", "F")):
                 continue
-            width = round(1000 * max(m[cp] for m in measured if cp in m))
+            width = math.ceil(1000 * max(m[cp] for m in measured if cp in m) - 1e-9)  # never narrower
             by_width.setdefault(width, []).append(char)
     return dict(sorted(by_width.items()))
 
