@@ -312,7 +312,8 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
     def draw(length: float, h: float, names: bool, mus: dict[str, float] | None = None) -> dict[str, View]:
         return _panels(d, c, lang, length, h, sizes, n, mus, names, memo)
 
-    first, lengths = None, AXIS_LENGTHS
+    first = None
+    lengths: tuple[float, ...] = AXIS_LENGTHS
     while (found := _fit_from(draw, width, fit, lengths)) is not None:
         length, views = found
         if min(v.meta["span_mm"] for v in views.values()) >= LEAST_PANEL_MM:
