@@ -5,14 +5,15 @@ from velplan.errors import ScaleError
 from velplan.render.layout import (
     fit_text, label_box, overlapping_labels, place_views)
 from velplan.render.scene import Circle, Scene, Text
+from velplan.render.shapes import text_extent
 from velplan.sheets.frame import free_area
 
 
 def test_overlap_found_for_overlapping_pair_only():
-    a = Text((100, 100), "VA", "labels", 5.0)       # box x 100…107
+    a = Text((100, 100), "VA", "labels", 5.0)       # box x 100…108.56
     b = Text((105, 102), "VB", "labels", 5.0)       # overlaps a
     c = Text((200, 100), "VC", "labels", 5.0)       # far away
-    d = Text((107, 100), "VD", "labels", 5.0)       # touches c? no: touches a's right edge
+    d = Text((100 + text_extent("VA", 5.0)[0], 100), "VD", "labels", 5.0)  # touches a, overlaps b
     scene = Scene((a, Circle((0, 0), 1, "mechanism"), b, c, d))
     assert overlapping_labels(scene) == [(a, b), (b, d)]
 

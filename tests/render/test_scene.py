@@ -65,11 +65,13 @@ def test_bounds_of_missing_layer_lists_present_layers():
 
 
 def test_text_bounds_follow_anchor():
-    # 3 characters at 5 mm: 3 * 0.7 * 5 = 10.5 mm wide.
+    # "abc" at 5 mm: the fonts' advances (0.563 + 0.589 + 0.55 em, DejaVu Sans Condensed and
+    # Velplan Sans at their widest), the em 5/0.72 mm: 11.74 mm wide.
+    width = (0.563 + 0.618 + 0.51) * 5.0 / 0.72
     start = Text((100, 50), "abc", "labels", 5.0, "start")
     end = Text((100, 50), "abc", "labels", 5.0, "end")
-    assert start.bounds[0] == pytest.approx(100.0) and start.bounds[2] == pytest.approx(110.5)
-    assert end.bounds[0] == pytest.approx(89.5) and end.bounds[2] == pytest.approx(100.0)
+    assert start.bounds[0] == pytest.approx(100.0) and start.bounds[2] == pytest.approx(100 + width, abs=0.01)
+    assert end.bounds[0] == pytest.approx(100 - width, abs=0.01) and end.bounds[2] == pytest.approx(100.0)
     assert start.bounds[3] == pytest.approx(55.0)
 
 

@@ -59,9 +59,10 @@ def test_hatch_segments_stay_inside_and_are_spaced():
 
 
 def test_text_extent_latin_and_cjk():
-    assert text_extent("ab", 5.0) == pytest.approx((7.0, 6.25))
+    # the fonts' advances in ems (DejaVu Sans Condensed), the em h/0.72
+    assert text_extent("ab", 5.0) == pytest.approx(((0.563 + 0.618) * 5.0 / 0.72, 6.25), abs=0.01)
     assert text_extent("速度", 5.0)[0] == pytest.approx(10.0)
-    assert text_extent("План", 2.5)[0] == pytest.approx(7.0)
+    assert text_extent("План", 2.5)[0] == pytest.approx((0.721 + 0.593 + 0.629 + 0.563) * 2.5 / 0.72, abs=0.01)
 
 
 def test_text_origin_and_box_for_baselines_and_rotation():
@@ -70,7 +71,8 @@ def test_text_origin_and_box_for_baselines_and_rotation():
     turned = Text((10, 10), "AB", "labels", 4.0, "start", "top", 90.0)
     assert text_origin(turned) == pytest.approx([14.0, 10.0])
     box = text_box(Text((0, 0), "AB", "labels", 4.0, "middle"))
-    assert box[:, 0].min() == pytest.approx(-2.8) and box[:, 0].max() == pytest.approx(2.8)
+    half = (0.615 + 0.657) * 4.0 / 0.72 / 2  # "AB": 0.615 + 0.657 em, the em 4/0.72 mm
+    assert box[:, 0].min() == pytest.approx(-half, abs=0.01) and box[:, 0].max() == pytest.approx(half, abs=0.01)
     assert box[:, 1].min() == pytest.approx(-1.0) and box[:, 1].max() == pytest.approx(4.0)
 
 

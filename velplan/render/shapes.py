@@ -16,11 +16,17 @@ from typing import TYPE_CHECKING, NamedTuple, Protocol
 import numpy as np
 import shapely
 
+from velplan.render.sans_widths import WIDTHS as _SANS_WIDTHS
+
 if TYPE_CHECKING:
     from velplan.render.style import LineType, SheetStyle
 
-#: Estimated advance of a Latin/Cyrillic character, as a fraction of the text height.
+#: Estimated advance of a Latin/Cyrillic character the drawing fonts' table
+#: (:mod:`velplan.render.sans_widths`) lacks, as a fraction of the text height.
 NARROW_CHAR_WIDTH = 0.7
+#: Em size of the sheet fonts over their capital height: SVG sizes text by the em, and a text
+#: of height h is set at h/0.72 (:class:`velplan.render.style.SheetStyle`, Latin faces).
+EM_PER_CAP = 1 / 0.72
 #: Estimated advance of a CJK (full-width) character, as a fraction of the text height.
 WIDE_CHAR_WIDTH = 1.0
 #: Depth of descenders below the baseline, as a fraction of the text height.
@@ -349,7 +355,9 @@ def text_extent(text: str, size_mm: float) -> tuple[float, float]:
     Returns
     -------
     (float, float)
-        Width ≈ 0.7·h per Latin/Cyrillic character and 1.0·h per CJK character, an index
+        Width: each Latin/Greek/Cyrillic character's advance in the drawing fonts
+        (:mod:`velplan.render.sans_widths`, the em set at :data:`EM_PER_CAP`·h: "5" 0.79·h,
+        "G" 0.97·h, "Ж" 1.35·h), 0.7·h for one they lack, 1.0·h per CJK character, an index
         ("₅", "ⁿ") counted at its :func:`script_size`, as backends draw it;
         height from the descender line to the capital line, 1.25·h.
     """
@@ -361,9 +369,16 @@ def _extent(text: str, size_mm: float) -> tuple[float, float]:
     """`text_extent`, remembered: a sheet measures the same labels in many trials."""
     units, index = 0.0, script_size(size_mm) / size_mm if size_mm > 0 else SCRIPT_SCALE
     for plain, script in _characters(text):
-        width = WIDE_CHAR_WIDTH if is_wide_char(plain) else NARROW_CHAR_WIDTH
+        width = WIDE_CHAR_WIDTH if is_wide_char(plain) else _char_width(plain)
         units += width * (index if script else 1.0)
     return units * size_mm, (1.0 + DESCENDER_DEPTH) * size_mm
+
+
+def _char_width(char: str) -> float:
+    """Advance of a narrow character as a fraction of the text height: the drawing fonts'
+    (:mod:`velplan.render.sans_widths`), else :data:`NARROW_CHAR_WIDTH`."""
+    em = _SANS_WIDTHS.get(char)
+    return NARROW_CHAR_WIDTH if em is None else em * EM_PER_CAP
 
 
 #: Letters that reach below the baseline (Latin, Cyrillic, Greek): a subscript holding one reaches

@@ -28,8 +28,9 @@ ESKD_TEXT_HEIGHTS: tuple[float, ...] = (1.8, 2.5, 3.5, 5.0, 7.0, 10.0, 14.0, 20.
 #: Smallest text height ESKD allows, mm.
 MIN_TEXT_HEIGHT_MM = 1.8
 
-# Narrow faces first: ESKD letters are about 0.6·h wide, and the layout estimates 0.7·h
-# per character; a normal-width sans runs ~20 % wider than that in Cyrillic.
+# Narrow faces first: ESKD letters are about 0.6·h wide; the layout measures each character
+# at the wider of DejaVu Sans Condensed's and Velplan Sans's advances (render/sans_widths.py),
+# and a normal-width sans runs ~10 % wider than that.
 _LATIN_FONTS = ("DejaVu Sans Condensed", "Liberation Sans Narrow", "Arial Narrow",
                 "DejaVu Sans", "Arial", "sans-serif")
 # An installed CJK face first, else the bundled Velplan Sans (which PNG and PDF sheets and

@@ -304,16 +304,34 @@ def _place_flywheel(req: Request, views: dict, region, share: float) -> float:
 def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0.0)) -> dict[str, View]:
     """The four panels at the longest φ axis, then the tallest ordinates, that fit `width` ×
     `height` mm; ``beside`` = (width, height) mm of the column's bottom part that the title
-    block leaves: a column wider than that ends above it."""
+    block leaves: a column wider than that ends above it. A shorter axis is taken where the
+    longest leaves a panel's ordinates under :data:`LEAST_PANEL_MM` and the shorter does not."""
     fit = lambda vs: _column_fits(vs, width, height, gap, beside)  # noqa: E731
     memo: dict = {}  # every panel drawn once, whatever height gave its μ
 
     def draw(length: float, h: float, names: bool, mus: dict[str, float] | None = None) -> dict[str, View]:
         return _panels(d, c, lang, length, h, sizes, n, mus, names, memo)
 
+    first = None
+    lengths: tuple[float, ...] = AXIS_LENGTHS
+    while (found := _fit_from(draw, width, fit, lengths)) is not None:
+        length, views = found
+        if min(v.meta["span_mm"] for v in views.values()) >= LEAST_PANEL_MM:
+            return views
+        first = first or views
+        lengths = tuple(x for x in lengths if x < length)
+    if first is not None:
+        return first
+    raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
+                     f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+
+
+def _fit_from(draw, width, fit, lengths) -> tuple[float, dict[str, View]] | None:
+    """(φ axis length, the named panels) of the longest of `lengths`, then the tallest ordinates,
+    that fit; None where none does."""
     # sought with the panels unnamed, then drawn named; named all along where the names take more room
     for names in (False, True):
-        for length, h, views in _fitting(draw, width, fit, names):
+        for length, h, views in _fitting(draw, width, fit, names, lengths):
             finer = _finer_panels(views, lambda mus: draw(length, h, names, mus), fit)
             # drawn named at the finer scales, else at the scales found (the names take a little more
             # room: the search named all along is the last resort, and the costliest)
@@ -321,18 +339,23 @@ def _fit_panels(d, c, lang, sizes, n, width, height, gap, fmt, beside=(np.inf, 0
                 if not names:
                     found = draw(length, h, True, {k: v.meta["mu"] for k, v in found.items()})
                 if fit(list(found.values())):
-                    return found
+                    return length, found
             break
-    raise ScaleError(f"the dynamics diagrams do not fit {fmt} ({width:.0f} × {height:.0f} mm) with a φ axis "
-                     f"of at least {MIN_DIAGRAM_MM:.0f} mm; use a larger --format")
+    return None
 
 
-def _fitting(draw, width, fit, names: bool):
+#: The least ordinate range of a curve panel, mm, that a shorter φ axis is not traded for: the four
+#: panels share one column, and each keeps at least this much.
+LEAST_PANEL_MM = 20.0
+#: The φ axis lengths tried, mm, the longest first.
+AXIS_LENGTHS = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
+
+
+def _fitting(draw, width, fit, names: bool, lengths=AXIS_LENGTHS):
     """(φ axis length, ordinate height, the panels) of the longest axis, then the tallest
     ordinates, whose column `fit`s; none where nothing does. `draw` (length, height, names):
     the panels. A named panel holds its unnamed drawing and more, so where the unnamed
     panels do not fit the named ones are not drawn."""
-    lengths = (360.0, 300.0, 240.0, 180.0, 144.0, 120.0, 90.0, 72.0)
     heights = (120.0, 100.0, 80.0, 70.0, 60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0)
     for length in lengths:
         if length < MIN_DIAGRAM_MM:

@@ -357,6 +357,8 @@ def axis_numbers_clear(items: list, curves) -> list:
         return items
     field = shapely.STRtree(lines)
     texts = None  # the other texts' boxes, as written (a tree), and those of the numbers moved
+    ticks = shapely.points([(q.position[0], 0.0) for q in items if isinstance(q, Text) and q.baseline == "top"
+                            and q.text.isdigit() and q.position[1] < 0])
     out = []
     for p in items:
         if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0:
@@ -371,13 +373,24 @@ def axis_numbers_clear(items: list, curves) -> list:
                 p = next((q for q, box in _number_tries(p, tick, label_box)
                           if not len(field.query(box, predicate="intersects"))
                           and not any(texts[0][j] is not item for j in texts[1].query(box, predicate="intersects"))
-                          and not any(box.intersects(b) for b in texts[2])), p)
+                          and not any(box.intersects(b) for b in texts[2])
+                          and _own_tick_nearest(box, item.position[0], ticks)), p)
                 texts[2].append(label_box(p))
         out.append(p)
     numbers = [k for k, p in enumerate(items)
                if isinstance(p, Text) and p.baseline == "top" and p.text.isdigit() and p.position[1] < 0]
     crossed = [k for k in numbers if len(field.query(label_box(out[k]), predicate="intersects"))]
     return _numbers_by_their_ticks(out, crossed, numbers, items, lines) if crossed else out
+
+
+def _own_tick_nearest(box, x: float, ticks) -> bool:
+    """Whether the tick at `x` on the φ axis is nearer to a number's `box` than any other of the
+    `ticks` (points): a number two digits wide beside its tick may reach over the next one."""
+    import shapely
+
+    d = shapely.distance(box, ticks)
+    own = np.abs(shapely.get_x(ticks) - x) < 1e-9
+    return not own.any() or d[own].min() < d[~own].min(initial=np.inf)
 
 
 def _number_tries(p, tick, box_of) -> list:

@@ -230,8 +230,15 @@ def _named(items: list, lines: list, named, marks, axes: list, length: float, si
                           "baseline"))
         anchors.append(shapely.Point(px, py))
         kinds.append("mark")
-    return items + led + place_anchored(names, anchors, kinds, obstacles + leaders + [label_box(t) for t in led],
+    # the lines as drawn strokes (`place_anchored` counts one entering a box as through its letters)
+    strokes = [o.buffer(STROKE_MM) if o.geom_type == "LineString" else o for o in obstacles + leaders]
+    return items + led + place_anchored(names, anchors, kinds, strokes + [label_box(t) for t in led],
                                         leader_layer=LABELS)
+
+
+#: The half-width, mm, a curve or axis is kept off as when a name is moved clear of it: a line
+#: grazing a name's box over a millimetre or more reads as crossing it.
+STROKE_MM = 0.45
 
 
 #: A thin curve within this of the φ axis, or of another curve, all along reads as that line, mm.

@@ -8,7 +8,7 @@ stands a little farther out, clear, and a thin leader joins it to its point.
 >>> texts = [Text((3.0, 0.0), "A", "t", 3.5), Text((3.0, 0.0), "B", "t", 3.5)]
 >>> placed, leaders = place_letters(texts, points, points)
 >>> [round(label_box(t).distance(shapely.Point(p)), 1) for t, p in zip(placed, points)]
-[1.0, 1.0]
+[1.0, 1.2]
 >>> [label_box(t).distance(shapely.Point(p)) < label_box(t).distance(shapely.Point(q))
 ...  for t, p, q in zip(placed, points, points[::-1])]
 [True, True]

@@ -86,11 +86,29 @@ def place_anchored(texts, anchors, kinds, obstacles=(), *, rings: int = 6,
             best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer)
         best = best or (_best_upright if text.rotation_deg == 0.0 else _best_each)(
             text, _spots(text, rings), anchors[i], anchors[mates], tree, taken, reach)
-        if leader_layer is not None and best[0] >= 100.0:
+        if leader_layer is not None and (best[0] >= 100.0 or _run_through(best[2], tree, shapes)):
             best = _led(text, anchors[i], rings, tree, taken, leaders, leader_layer) or best
         out.append(best[1])
         placed.append(best[2].buffer(GAP_MM))
     return out + leaders
+
+
+#: A line inside a label's box over this length (mm) runs through the label, by its edge or not.
+THROUGH_MM = 1.0
+
+
+def _run_through(box, tree, shapes) -> bool:
+    """Whether a line kept off by a band of `shapes` (in `tree`) runs inside `box` over
+    :data:`THROUGH_MM`: a label it grazes that far reads as crossed, though the edge's cost in
+    `_stage_costs` let it stand there when nothing within reach was clear."""
+    if tree is None:
+        return False
+    for j in tree.query(box, predicate="intersects").tolist():
+        g = shapes[j]
+        width = 2.0 * g.area / max(g.length, 1e-9)  # a band round a line: its width, about
+        if 0.0 < width < 2.0 and g.intersection(box).area / width > THROUGH_MM:
+            return True
+    return False
 
 
 def _shrunk(taken, j: int):
@@ -206,13 +224,13 @@ _DROP_SHARE = {"baseline": 0.0, "middle": 0.5, "top": 1.0}
 
 
 def _led(text: Text, anchor, rings: int, tree, taken, leaders: list, layer: str):
-    """The first clear place for `text` beyond `rings` rings whose leader from `anchor`
-    crosses no placed label and no drawn line (else the one whose leader crosses the fewest
-    lines), its leader appended to `leaders` and kept off by the later labels:
-    (0, label, box), or None."""
+    """The first clear place for `text` beyond `rings` rings (out to three times as far) whose
+    leader from `anchor` crosses no placed label and no drawn line (else the one whose leader
+    crosses the fewest lines), its leader appended to `leaders` and kept off by the later
+    labels: (0, label, box), or None."""
     placed = taken[0]
     best = None
-    spots = _spots(text, 2 * rings)[1 + 12 * rings:]
+    spots = _spots(text, 3 * rings)[1 + 12 * rings:]
     boxes = (_upright_boxes(text, np.array(spots, float)) if text.rotation_deg == 0.0
              else np.array([label_box(dataclasses.replace(text, position=p)) for p in spots], dtype=object))
     clear = np.ones(len(spots), bool)  # off the lines and the placed labels, found at once
