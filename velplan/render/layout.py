@@ -16,7 +16,7 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 from velplan.errors import ScaleError
-from velplan.render.scene import Bounds, Scene, Text
+from velplan.render.scene import Arrow, Bounds, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import DESCENDER_DEPTH, MIN_INDEX_MM, MIN_WIDTH_FACTOR, text_box, text_depth, text_extent
 from velplan.render.style import ESKD_TEXT_HEIGHTS
 
@@ -70,6 +70,34 @@ def overlapping_labels(scene: Scene, *, layers: Sequence[str] | None = None,
             if j > i and box.intersection(boxes[j]).area > min_area:
                 pairs.append((texts[i], texts[j]))
     return pairs
+
+
+def crossed_letters(primitives, *, through_mm: float = 1.0) -> list[Text]:
+    """The texts among `primitives` that a drawn line, outline or vector runs through over
+    `through_mm` mm (inside the text's box), a text's own leader (a two-point thin line ending
+    at its box) excepted: a letter read through a line."""
+    lines, leaders = [], []
+    for p in primitives:
+        if isinstance(p, Polyline) and len(p.points) > 1:
+            lines.append(shapely.LineString(p.points))
+            leaders.append(p.line == "thin" and len(p.points) == 2)
+        elif isinstance(p, Arrow) and p.length > 0:
+            lines.append(shapely.LineString([p.start, p.end]))
+            leaders.append(False)
+        elif isinstance(p, Polygon):
+            lines.append(shapely.LinearRing(p.points))
+            leaders.append(False)
+    if not lines:
+        return []
+    tree, out = shapely.STRtree(lines), []
+    for t in (p for p in primitives if isinstance(p, Text)):
+        box = label_box(t)
+        own_end = box.buffer(0.6)
+        if any(not (leaders[j] and own_end.contains(shapely.Point(lines[j].coords[-1])))
+               and lines[j].intersection(box).length > through_mm
+               for j in tree.query(box, predicate="intersects")):
+            out.append(t)
+    return out
 
 
 def place_views(sizes: Sequence[tuple[float, float]], area: BaseGeometry, *,

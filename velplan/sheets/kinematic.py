@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from functools import partial
 from itertools import islice
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Mapping, Sequence
@@ -43,10 +43,11 @@ from velplan.mechanism.model import Mechanism
 from velplan.options import Format, FrameStyle, KINEMATIC_SHEET_KINDS, Language, PlanKind, SheetKind
 from velplan.plans import standard_scale
 from velplan.plans.engine import PlanResult
+from velplan.render.layout import crossed_letters
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo
 from velplan.sheets.layout import (
-    GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM, free_spot, write_outputs)
+    GOOD_PLAN_MM, MIN_CRANK_MM, MIN_DIAGRAM_MM, MIN_ORDINATE_MM, MIN_PLAN_MM, free_spot, ink_boxes, write_outputs)
 from velplan.sheets.skeleton import (
     NARROWER_TABLE, ComposedSheet, Request, check_plan_positions, compose, fill_bottom_band, fit_table,
     sheet_request, sheet_text, title_with_scale)
@@ -257,8 +258,9 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
         stays legible at it (`legible_at`); otherwise each states its own.
     structure : bool or None
         Draw the structural analysis (`velplan.sheets.structure`) where free space is left
-        for it legibly (None, the default); the same but raise ScaleError where there is none
-        (True); leave it out (False).
+        for it legibly once the enlarged details of crowded plans have theirs (None, the
+        default: legibility first); before the details, raising ScaleError where there is no
+        room (True); leave it out (False).
 
     Raises
     ------
@@ -295,9 +297,11 @@ def build_sheet(mech: Study | Mechanism | str | Path, *, n: int = 12, plans: Seq
     index = {name: int(name.rsplit("-", 1)[1]) - 1 for name in results}  # its position in the plan's
     if data:
         _place_notes(req, views, {name: (res, index[name] + 1) for name, res in results.items()}, band_top)
-    if structure is not False:
-        _place_structure(req, views, required=bool(structure))
-    _place_details(req, views, results)  # in the room left: a sheet loses nothing to them
+    if structure:  # asked for: before the details, which take the room left
+        _place_structure(req, views, required=True)
+    _place_details(req, views, results)
+    if structure is None:  # by default legibility first: the figure where the details leave room
+        _place_structure(req, views, required=False)
     info = title_with_scale(info, lambda s: default_title(mech, lang, fmt, s, req.frame_style),
                             ratio_text(mview.mu, lang))
     return _sheet(req, views, info, mview.mu, (results, index, chosen), dict(cells) | {"mechanism": scheme_zone},
@@ -502,27 +506,33 @@ def _place_details(req: Request, views: dict, results) -> None:
     it; where the crowd's region is too large for any enlargement or spot, the tighter crowd
     within `CROWD_MM` of the pole, then two thirds of it; none where no spot is free or the
     mark leaves the plan's room. A plan may slide up or down into the free room of its column
-    to make the room (`_slid`)."""
+    to make the room (`_slid`). A plan that finds no spot so gets its detail in the empty room
+    inside the plan of positions, clear of its lines and letters (`ink_boxes`), where there is one."""
     from velplan.views.plan_detail import CROWD_MM, NUMERALS, crowd_near_pole
 
     numerals = iter(NUMERALS)
     numeral = next(numerals)
     done: set[str] = set()
-    for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):  # every plan's whole crowd before a tighter one
-        for name, res in sorted(results.items()):
-            if name in done:
-                continue
-            number = int(name.rsplit("-", 1)[1])
-            region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
-            if region is not None and _detail_placed(req, views, name, res, region, numeral):
-                numeral = next(numerals, numeral)
-                done.add(name)
+    for inside in (None, "mechanism"):  # then, for a plan still without, in the scheme's empty room
+        if inside is not None:
+            if done >= set(results):
+                break
+            inside = (inside, ink_boxes(views[inside]))
+        for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):  # every plan's whole crowd before a tighter one
+            for name, res in sorted(results.items()):
+                if name in done:
+                    continue
+                number = int(name.rsplit("-", 1)[1])
+                region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
+                if region is not None and _detail_placed(req, views, name, res, region, numeral, inside):
+                    numeral = next(numerals, numeral)
+                    done.add(name)
 
 
-def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str) -> bool:
+def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: str, inside) -> bool:
     """Whether the detail of the plan `name` (its `region`, numbered `numeral`) found a spot:
     then it is in `views`, the plan marked (and a plan slid in its column where that made the
-    room)."""
+    room); `inside`, a view's name and its `ink_boxes`, lends that view's empty room."""
     from velplan.views.plan_detail import FACTORS, detail_view, least_detail_size, marked
 
     placed, number = views[name], int(name.rsplit("-", 1)[1])
@@ -535,24 +545,30 @@ def _detail_placed(req: Request, views: dict, name: str, res, region, numeral: s
     for factor, beside in ((f, b) for f in FACTORS if region[1] * f <= DETAIL_MM[req.fmt] for b in (False, True)):
         least = least_detail_size(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
                                   beside=beside)
-        if all(_spot_for(least, arranged, name, req) is None for arranged in _slid(with_mark, req)):
+        if all(_spot_for(least, arranged, name, req, inside) is None for arranged in _slid(with_mark, req)):
             continue  # not drawn: its circle and titles alone find no spot
         detail = detail_view(res, number, region, factor, lang=req.lang, sizes=req.sizes.plan, numeral=numeral,
                              beside=beside)
+        if crossed_letters(detail.primitives):
+            continue  # its crowd read through its own lines: no clearer than the plan itself
         for arranged in _slid(with_mark, req):
-            at = _spot_for((detail.width_mm, detail.height_mm), arranged, name, req)
+            at = _spot_for((detail.width_mm, detail.height_mm), arranged, name, req, inside)
             if at is not None:
                 views.update(arranged)
+                if inside is not None:  # a guest of the view whose empty room it takes
+                    detail = replace(detail, meta=MappingProxyType(dict(detail.meta) | {"inside": inside[0]}))
                 views[detail.name] = detail.at(*at)
                 return True
     return False
 
 
-def _spot_for(size, views: dict, name: str, req: Request):
+def _spot_for(size, views: dict, name: str, req: Request, inside=None):
     """A free spot for a w × h mm `size` (a detail of the plan `name`) among the `views`, nearest
-    the plan's upper right corner, or None (`free_spot`)."""
-    taken = [v.bounds for v in views.values()] + [req.title_block]
-    return free_spot(size[0], size[1], taken, req.area, req.gap, views[name].bounds[2:])
+    the plan's upper right corner, or None (`free_spot`); with `inside`, a view's name and its
+    `ink_boxes`, within that view's empty room too."""
+    key, ink = inside or (None, [])
+    taken = [v.bounds for k, v in views.items() if k != key] + [req.title_block] + ink
+    return free_spot(size[0], size[1], taken, req.area, req.gap, views[name].bounds[2:], square=bool(ink))
 
 
 def _slid(views: dict, req: Request):

@@ -16,6 +16,8 @@ import shapely
 
 from velplan.errors import ScaleError, VelplanError, deprecated
 from velplan.sheets.frame import free_area, frame_bounds, title_block_bounds
+from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
+from velplan.render.shapes import circle_outline, text_box
 from velplan.views.base import PlacedView
 from velplan.views.diagram import DiagramSizes
 from velplan.views.mechanism import MechanismSizes
@@ -116,6 +118,12 @@ def check_layout(views: Mapping[str, PlacedView], fmt: str, frame_style: str) ->
     names = sorted(boxes)
     for i, a in enumerate(names):
         for b in names[i + 1:]:
+            guest, host = (a, b) if views[a].view.meta.get("inside") == b else (b, a)
+            if views[guest].view.meta.get("inside") == host:  # in the host's empty room: clear of its ink
+                if _on_ink(views[guest].bounds, ink_boxes(views[host])):
+                    raise ScaleError(f"the {guest} view lies on the drawing of the {host} view on {fmt}; "
+                                     f"use a larger --format")
+                continue
             if boxes[a].intersection(boxes[b]).area > 1e-6:
                 raise ScaleError(f"the {a} and {b} views overlap on {fmt}; use a larger "
                                  f"--format or fewer --plans")
@@ -127,14 +135,25 @@ def _grid_span(grid: np.ndarray, lo: float, hi: float) -> tuple[int, int]:
             min(int(np.searchsorted(grid, hi, side="right")) + 1, len(grid)))
 
 
-def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[float, float] | None:
+def _on_ink(box, ink) -> bool:
+    """Whether the `box` (sheet mm) overlaps one of the boxes `ink`."""
+    b = np.asarray(ink, float).reshape(-1, 4)
+    return bool(np.any((b[:, 0] < box[2]) & (box[0] < b[:, 2]) & (b[:, 1] < box[3]) & (box[1] < b[:, 3])))
+
+
+def free_spot(w: float, h: float, taken, region, gap: float, near, *,
+              square: bool = False) -> tuple[float, float] | None:
     """The lower left corner (sheet mm) of a free w × h mm box in ``region`` (x0, y0, x1, y1),
     at least ``gap`` mm from every box of ``taken``, on a 5 mm grid: the one whose upper left
-    corner is nearest the point ``near``; None when there is none."""
+    corner is nearest the point ``near``; None when there is none. With ``square`` the gap is
+    kept along x or along y (a box grown by it, its corners square): one pass over thousands of
+    boxes (`ink_boxes`)."""
     x0, y0, x1, y1 = region
     if w > x1 - x0 or h > y1 - y0:
         return None
     gx, gy = np.arange(x0, x1 - w + 1e-9, 5.0), np.arange(y0, y1 - h + 1e-9, 5.0)
+    if square:
+        return _nearest(_free_square(gx, gy, w, h, taken, gap), gx, gy, h, near)
     free = np.ones((len(gy), len(gx)), bool)
     for bx0, by0, bx1, by1 in taken:  # free: farther than `gap` from the box
         # only corners within `gap` of the box along both axes can be too near: that block
@@ -150,9 +169,62 @@ def free_spot(w: float, h: float, taken, region, gap: float, near) -> tuple[floa
         dx = np.maximum(np.maximum(bx0 - (bx + w), bx - bx1), 0.0)
         dy = np.maximum(np.maximum(by0 - (by + h), by - by1), 0.0)
         free[j0:j1, i0:i1] &= np.hypot(dx[None, :], dy[:, None]) > gap
+    return _nearest(free, gx, gy, h, near)
+
+
+def _nearest(free: np.ndarray, gx: np.ndarray, gy: np.ndarray, h: float, near) -> tuple[float, float] | None:
+    """The free grid corner (lower left) whose upper left corner is nearest ``near``, or None."""
     k = np.flatnonzero(free)
     if not k.size:
         return None
     xs, ys = gx[k % len(gx)], gy[k // len(gx)]
     best = int(np.argmin(np.hypot(xs - near[0], ys + h - near[1])))
     return float(xs[best]), float(ys[best])
+
+
+def _free_square(gx: np.ndarray, gy: np.ndarray, w: float, h: float, taken, gap: float) -> np.ndarray:
+    """Which lower left grid corners of a w × h box leave every box of ``taken`` grown by ``gap``
+    unmet: each box blocks a block of corners, summed at once in a difference array."""
+    b = np.asarray(taken, float).reshape(-1, 4)
+    b = b[~np.isnan(b).any(axis=1)]
+    i0 = np.searchsorted(gx, b[:, 0] - gap - w, side="right")  # the first corner x > x0 - gap - w
+    i1 = np.searchsorted(gx, b[:, 2] + gap, side="left")  # the first corner x ≥ x1 + gap
+    j0 = np.searchsorted(gy, b[:, 1] - gap - h, side="right")
+    j1 = np.searchsorted(gy, b[:, 3] + gap, side="left")
+    hit = (i0 < i1) & (j0 < j1)
+    diff = np.zeros((len(gy) + 1, len(gx) + 1), np.int32)
+    for rows, cols, sign in ((j0, i0, 1), (j0, i1, -1), (j1, i0, -1), (j1, i1, 1)):
+        np.add.at(diff, (rows[hit], cols[hit]), sign)
+    return diff.cumsum(axis=0).cumsum(axis=1)[:-1, :-1] == 0
+
+
+#: Longest piece of a drawn line taken as one box when a view's empty room is looked into, mm.
+INK_PIECE_MM = 4.0
+
+
+def ink_boxes(placed: PlacedView, piece_mm: float = INK_PIECE_MM) -> list[tuple[float, float, float, float]]:
+    """Boxes (sheet mm) that cover what `placed` draws: its lines, outlines and vectors cut into
+    pieces of at most `piece_mm`, and its texts' boxes; a box clear of them all lies in the
+    view's empty room (the inside of a tall mechanism's plan of positions)."""
+    chains, boxes = [], []
+    for p in placed.primitives:
+        if isinstance(p, Text):
+            x, y = text_box(p).T
+            boxes.append((x.min(), y.min(), x.max(), y.max()))
+        elif isinstance(p, (Polyline, Polygon)):
+            pts = np.asarray(p.points, float)
+            chains.append(np.vstack([pts, pts[:1]]) if isinstance(p, Polygon) else pts)
+        elif isinstance(p, Circle):
+            chains.append(circle_outline(p.centre, p.radius, segments=36))
+        elif isinstance(p, Arrow):
+            chains.append(np.array([p.start, p.end], float))
+    if chains:
+        a = np.concatenate([c[:-1] for c in chains])
+        b = np.concatenate([c[1:] for c in chains])
+        n = np.maximum(np.ceil(np.hypot(*(b - a).T) / piece_mm), 1).astype(int)
+        k = np.repeat(np.arange(len(a)), n)
+        t = (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)) / n[k]
+        lo, hi = a[k] + (b - a)[k] * t[:, None], a[k] + (b - a)[k] * (t + 1.0 / n[k])[:, None]
+        cut = np.hstack([np.minimum(lo, hi), np.maximum(lo, hi)])
+        boxes += [tuple(r) for r in np.unique(np.round(cut, 1), axis=0)]
+    return boxes
