@@ -4,23 +4,24 @@ from __future__ import annotations
 
 import re
 
+from velplan.notation import MINUS, plain_digits
+
 _GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
           "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
 _MARKS = {"ⁿ": "n", "ᵗ": "t", "ᵏ": "k", "ʳ": "r", "τ": r"\tau", "n": "n", "t": "t", "⊥": r"\perp", "∥": r"\parallel"}
-_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
 def txt(s: str) -> str:
     """A piece of text (a number as printed, a unit) inside a formula, upright."""
-    s = s.translate(_SUB).replace("\\", "").replace("{", "").replace("}", "")
-    s = re.sub(r"^-(?=\d)", "−", s)  # a negative number: the minus sign, not a hyphen
+    s = plain_digits(s).replace("\\", "").replace("{", "").replace("}", "")
+    s = re.sub(r"^-(?=\d)", MINUS, s)  # a negative number: the minus sign, not a hyphen
     return r"\text{" + s + "}"
 
 
 def name(point: str) -> str:
     """A point or image name with its digits as a subscript: ``A4`` → ``A_{4}``, ``O2`` →
     ``O_{2}``, ``s4`` → ``s_{4}``, ``π`` → ``\\pi``."""
-    point = point.translate(_SUB)
+    point = plain_digits(point)
     head = re.match(r"^(\D*)(\d*)(.*)$", point)
     base, digits, rest = head.groups()
     base = "".join(_GREEK.get(c, c) + (" " if c in _GREEK and base.index(c) < len(base) - 1 else "")
@@ -31,7 +32,7 @@ def name(point: str) -> str:
 
 def chain(points: str) -> str:
     """Several point names written together (``O3A``, ``A4O3``): each with its subscript."""
-    parts = re.findall(r"[^\d]\d*", points.translate(_SUB))
+    parts = re.findall(r"[^\d]\d*", plain_digits(points))
     return "".join("{" + name(p) + "}" for p in parts)
 
 

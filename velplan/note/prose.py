@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import re
 
+from velplan.notation import plain_digits
 from velplan.note.blocks import Math
 from velplan.note.formulas import chain, symbol
 from velplan.plans.text import Sentence, Sym
-
-_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 _NOT_WORD = r"A-Za-z0-9_"
 TOKEN = re.compile(
@@ -100,7 +99,7 @@ def _letters(delta: str, word: str) -> str:
     elif len(word) == 1:
         tex = word
     elif word[0].isupper() or word[0] in "lme" or re.fullmatch(r"[a-z][₀-₉]+", word):
-        rest = word[1:].translate(_SUB)
+        rest = plain_digits(word[1:])
         rest_letters = rest.lstrip("0123456789")
         digits = rest[:len(rest) - len(rest_letters)]
         tex = word[0] + "_{" + digits + (chain(rest_letters) if rest_letters else "") + "}"  # lO₂A, JS₄, m₄
@@ -124,7 +123,7 @@ def _symbols(text: str) -> list:
         elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
             tex = _GREEK[m.group("greek")]
         elif m.group("rate"):
-            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i").translate(_SUB) + "}"
+            tex = _GREEK[m.group("rate")] + "_{" + plain_digits(m.group("rate_i")) + "}"
         else:
             tex = chain(m.group("pts")).replace("π", r"\pi ")
         if m.start() > at:

@@ -13,6 +13,7 @@ import shapely
 
 from velplan.analysis.numbering import position_index
 from velplan.forces.agreement import ForceAnalysis
+from velplan.notation import MINUS
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
@@ -337,7 +338,7 @@ def _results(fa: ForceAnalysis, group: str, number: int, lang: Language) -> list
         rhs = ""
         if e.terms:
             total = " + ".join(force_text(t) for t in e.terms)
-            rhs = ("−" + (f"({total})" if len(e.terms) > 1 else total)) if e.negated else total
+            rhs = (MINUS + (f"({total})" if len(e.terms) > 1 else total)) if e.negated else total
             rhs += " = "
         results.append(f"{force_text(e.label)} = {rhs}{_num(e.value, lang)} {newton(lang)}")
     if group == "crank":
