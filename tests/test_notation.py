@@ -160,3 +160,11 @@ def test_a_triads_equations_are_vectors_side_by_side():
     vectors = [x.text for x in s.parts if isinstance(x, Sym) and x.kind == "vector"]
     assert vectors[:5] == ["V_C", "V_K3", "V_CK3", "V_E", "V_CE"]
     assert "v_{C} = v_{K3} + v_{CK3} = v_{E} + v_{CE}" in readable(s)
+
+
+def test_the_page_names_the_cranks_rate_by_its_link():
+    from velplan.html.page import page_html
+    study = velplan.Study("shaper")
+    assert study.mechanism.crank.link == "2"
+    page = page_html(study, "en")
+    assert f"· ω₂ = {N.number(abs(study.mechanism.crank.omega), 'en')} rad/s" in page and "ω₁" not in page
