@@ -13,7 +13,6 @@ import shapely
 
 from velplan.analysis.numbering import position_index
 from velplan.forces.agreement import ForceAnalysis
-from velplan.notation import MINUS
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
@@ -21,7 +20,7 @@ from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.render.shapes import text_extent
 from velplan.render.style import SheetStyle
 from velplan.views.base import View, bounds_of, make_view, unit
-from velplan.views.base import number as _num
+from velplan.notation import MINUS, number as _num
 from velplan.views.forces.anchored import kept_leader
 from velplan.views.forces.arrows import arrow_obstacle
 from velplan.views.forces.common import (
