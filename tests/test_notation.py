@@ -168,3 +168,15 @@ def test_the_page_names_the_cranks_rate_by_its_link():
     assert study.mechanism.crank.link == "2"
     page = page_html(study, "en")
     assert f"· ω₂ = {N.number(abs(study.mechanism.crank.omega), 'en')} rad/s" in page and "ω₁" not in page
+
+
+@pytest.mark.parametrize("name", ["shaper", "triad-rocker", "stephenson-six-bar"])
+def test_a_centres_sentence_marks_its_centres_and_joints(name):
+    for lang in ("en", "zh"):
+        for s in velplan.Study(name).centres(4).describe(lang):
+            assert isinstance(s, Sentence)
+            plain = "".join(x for x in s.parts if isinstance(x, str))
+            assert not re.search(r"(?<![A-Za-z])(P\d|[A-Z]\d)", plain), s  # every centre and joint is a symbol
+            marks = [x.text for x in s.parts if isinstance(x, Sym)]
+            assert marks and all(re.fullmatch(r"P[0-9,]+|[A-Z][0-9]*", m) for m in marks), marks
+            assert readable(s) == readable(str(s))

@@ -264,8 +264,18 @@ _FORMATTER = string.Formatter()
 def phrase(key: str, lang: Language, *args) -> Sentence:
     """The sentence ``key`` in ``lang`` with ``args`` in its fields; a plain string whose
     ``parts`` keep each `Sym` argument a symbol (nested sentences spliced in)."""
+    return formatted(_PHRASES[key][check_lang(lang)], *args)
+
+
+def formatted(template: str, *args) -> Sentence:
+    """``template`` (``str.format`` fields ``{0}``, ``{1:.3g}``) with ``args`` in its fields, each
+    `Sym` or `Sentence` argument kept a symbol in the sentence's ``parts``.
+
+    >>> formatted("{0} lies on {1} ({2:.2f})", pts("P13"), text(pts("P12"), "–", pts("P23")), 0.5).parts
+    (Sym(text='P13', kind='points'), ' lies on ', Sym(text='P12', kind='points'), '–', Sym(text='P23', kind='points'), ' (0.50)')
+    """
     out: list = []
-    for literal, field, spec, conv in _FORMATTER.parse(_PHRASES[key][check_lang(lang)]):
+    for literal, field, spec, conv in _FORMATTER.parse(template):
         out.append(literal)
         if field is not None:
             value = args[int(field)]
