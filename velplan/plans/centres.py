@@ -555,8 +555,8 @@ def sentence(s: CentreStep, con: Construction, lang: Language) -> T.Sentence:
     elif s.how == "kennedy":
         k, m = s.via
         (a1, b1), (a2, b2) = s.lines[0].through, s.lines[1].through
-        ends = tuple(T.pts(centre_name(e)) for e in (a1, b1, a2, b2))
-        ends = tuple(T.text(e, "–") if n in (0, 2) else e for n, e in enumerate(ends))
+        p1, q1, p2, q2 = (T.pts(centre_name(e)) for e in (a1, b1, a2, b2))
+        ends = (T.text(p1, "–"), q1, T.text(p2, "–"), q2)
         if s.infinite:
             deg = math.degrees(math.atan2(s.direction.imag, s.direction.real))
             text = ph("kennedy_far", name, *ends, T.num(deg, lang))

@@ -132,7 +132,7 @@ def _equation(*sides: str | T.Sentence) -> T.Sentence:
     return T.joined(" = ", [side if isinstance(side, T.Sentence) else T.vector(side) for side in sides])
 
 
-def _filled(sentence: T.Sentence, value: T.Sentence) -> T.Sentence:
+def _filled(sentence: T.Sentence, value: str) -> T.Sentence:
     """``sentence`` with ``value`` in place of its "{}", its symbols kept."""
     parts: list = []
     for x in sentence.parts:
