@@ -6,8 +6,9 @@ import re
 
 from velplan.notation import MINUS, plain_digits
 
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
-          "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
+GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
+         "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
+"""TeX of each Greek letter of the course's symbols (the note's formulas and its prose alike)."""
 _MARKS = {"ⁿ": "n", "ᵗ": "t", "ᵏ": "k", "ʳ": "r", "τ": r"\tau", "n": "n", "t": "t", "⊥": r"\perp", "∥": r"\parallel"}
 
 
@@ -24,7 +25,7 @@ def name(point: str) -> str:
     point = plain_digits(point)
     head = re.match(r"^(\D*)(\d*)(.*)$", point)
     base, digits, rest = head.groups()
-    base = "".join(_GREEK.get(c, c) + (" " if c in _GREEK and base.index(c) < len(base) - 1 else "")
+    base = "".join(GREEK.get(c, c) + (" " if c in GREEK and base.index(c) < len(base) - 1 else "")
                    for c in base)
     out = base + (f"_{{{digits}}}" if digits else "")
     return out + (name(rest) if rest else "")
@@ -47,7 +48,7 @@ def symbol(sym: str) -> str:
     mark = ""
     if len(head) > 1 and head[1:] in _MARKS:
         head, mark = head[0], _MARKS[head[1:]]
-    head = _GREEK.get(head, head)
+    head = GREEK.get(head, head)
     out = head
     if mark:
         out += "^{" + mark + "}"
@@ -72,7 +73,7 @@ def force(label: str) -> str:
     if not m:
         return txt(label)
     mom, base, digits, mark = m.groups()
-    base = _GREEK.get(base, base)
+    base = GREEK.get(base, base)
     head = ("M_{" + base + "_{" + digits + "}}") if mom else base
     out = head if mom else base + (f"_{{{digits}}}" if digits else "")
     if mark:

@@ -11,7 +11,7 @@ import re
 
 from velplan.notation import plain_digits
 from velplan.note.blocks import Math
-from velplan.note.formulas import chain, symbol
+from velplan.note.formulas import GREEK, chain, symbol
 from velplan.plans.text import Sentence, Sym
 
 _NOT_WORD = r"A-Za-z0-9_"
@@ -31,7 +31,6 @@ en, where a word may be English, what stands left of " = " (lBF, Fc, H, n)."""
 UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta", "δ": r"\delta"}
 
 
 def _symbol(sym: str) -> str:
@@ -48,7 +47,7 @@ def sym_tex(sym: Sym) -> str:
     if sym.kind == "vector":
         return _symbol(sym.text)
     if sym.kind == "rate":
-        return _GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
+        return GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
     return "{–}".join(chain(part).replace("π", r"\pi ") for part in sym.text.split("–"))  # x–x: no spaces
 
 
@@ -119,11 +118,11 @@ def _symbols(text: str) -> list:
         elif m.group("mu"):
             tex = r"\mu_{" + m.group("mu") + "}"
         elif m.group("ext"):
-            tex = _GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
+            tex = GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
         elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
-            tex = _GREEK[m.group("greek")]
+            tex = GREEK[m.group("greek")]
         elif m.group("rate"):
-            tex = _GREEK[m.group("rate")] + "_{" + plain_digits(m.group("rate_i")) + "}"
+            tex = GREEK[m.group("rate")] + "_{" + plain_digits(m.group("rate_i")) + "}"
         else:
             tex = chain(m.group("pts")).replace("π", r"\pi ")
         if m.start() > at:
