@@ -15,7 +15,7 @@ PACKAGE = Path(velplan.__file__).resolve().parent
 
 #: Layer of each top-level part of the package, lowest first. Imports may go down or sideways.
 LAYERS = {
-    "errors": 0, "io": 0, "xlsx": 0, "options": 0, "__version__": 0,
+    "errors": 0, "io": 0, "xlsx": 0, "options": 0, "notation": 0, "__version__": 0,
     "mechanism": 1, "examples": 1,
     "analysis": 2,
     "plans": 3,
@@ -29,7 +29,7 @@ LAYERS = {
     "__init__": 10, "__main__": 10, "drawings": 10,
 }
 #: The drawing layers may not reach into the domain below the results they draw.
-RENDER_MAY_IMPORT = {"errors", "io", "options", "render"}
+RENDER_MAY_IMPORT = {"errors", "io", "options", "notation", "render"}
 
 
 def _part(module: str) -> str:

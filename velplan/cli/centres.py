@@ -14,6 +14,7 @@ from velplan.analysis.solver import length_scale
 from velplan.analysis.numbering import position_index, position_number
 from velplan.cli.common import add_mechanism, default_language, emit, parse_angles, positive_int
 from velplan.errors import VelplanError
+from velplan.notation import localized, superscript
 from velplan.options import Language
 from velplan.plans import EXACT, Drafting
 from velplan.plans.centres import Construction, centre_name, velocities_by_centres
@@ -127,9 +128,9 @@ def _draw(args, study: Study, con: Construction, number: int | None) -> None:
 
 
 def _num(text: str, lang: str) -> str:
-    """A formatted number in the language: decimal comma in ru and uk, the minus "−"."""
-    text = text.replace("-", "−") if lang != "en" else text
-    return text.replace(".", ",") if lang in ("ru", "uk") else text
+    """A formatted number in the language: decimal comma in ru and uk, the minus "−" (en keeps
+    the hyphen of a terminal's text)."""
+    return localized(text, lang) if lang != "en" else text
 
 
 def _cell(x: float, width: int = 12, spec: str = ".6g", scale: float = 0.0, lang: str = "en") -> str:
@@ -140,12 +141,8 @@ def _cell(x: float, width: int = 12, spec: str = ".6g", scale: float = 0.0, lang
     text = format(x, spec)
     if spec.endswith("e") and lang != "en":  # a power of ten as written by hand: 1,11·10⁻¹⁶
         mantissa, _, power = text.partition("e")
-        exponent = ("⁻" if int(power) < 0 else "") + str(abs(int(power))).translate(_POWER)
-        text = "0" if x == 0 else f"{mantissa}·10{exponent}"
+        text = "0" if x == 0 else f"{mantissa}·10{superscript(str(int(power)))}"
     return f" {_num(text, lang):>{width - 1}}"
-
-
-_POWER = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def _direction(d: complex, lang: str = "en") -> str:

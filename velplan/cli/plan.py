@@ -147,7 +147,7 @@ def plan_text(res: PlanResult, doc: dict, lang: Language) -> str:
     """The plan as text, every word and number in ``lang`` (decimal comma in ru and uk)."""
     from velplan.plans import text as T
     from velplan.render.i18n import label
-    from velplan.views.base import digits_down
+    from velplan.notation import digits_down
 
     k = "a" if res.kind == "acceleration" else "v"
     title = label(f"{res.kind}_plan", lang)

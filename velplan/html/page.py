@@ -14,6 +14,7 @@ from pathlib import Path
 
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
+from velplan.notation import digits_down
 from velplan.options import Language
 from velplan.plans.drafting import Drafting
 from velplan.render.i18n import LANGUAGES, label
@@ -93,8 +94,8 @@ def page_html(study: Study, lang: Language = "en", *, scale_v: float | None = No
     mech = study.mechanism
     e = html.escape
     words = data["words"]
-    omega1 = f"ω₁ = {number(abs(mech.crank.omega), lang)} {unit('rad/s', lang)}"
-    sub = f"{mech.name_in(lang)} · {data['n']} {word('positions', lang)} · {omega1}"
+    omega = f"ω{digits_down(mech.crank.link)} = {number(abs(mech.crank.omega), lang)} {unit('rad/s', lang)}"
+    sub = f"{mech.name_in(lang)} · {data['n']} {word('positions', lang)} · {omega}"
     note = word("drafting_note", lang).format(mm=number(drafting.length_mm, lang),
                                               deg=number(drafting.angle_deg, lang))
     payload = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False).replace("<", "\\u003c")

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import re
 
-_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+from velplan.notation import plain_digits
+
 _WORD = re.compile(r"[A-Za-zА-Яа-яЁёΔΦωεφψ0-9₀-₉]+(?P<mark>τ(?![\w]))?")
 """A word of a cell; a force's tangential component carries τ after its index (R₄₅τ)."""
 SYMBOL = re.compile(r"^(?P<delta>Δ?)(?P<head>[A-Za-zΦωεφψ])(?P<index>[A-Za-zА-Яа-яΦ0-9₀-₉]+)$")
@@ -33,12 +34,12 @@ def split_symbol(word: str) -> tuple[str, str] | None:
         return None
     digits = any(c.isdigit() for c in index)
     cyrillic = bool(re.fullmatch(r"[А-Яа-яЁё]{1,3}", index))
-    capitals = index.translate(_SUB).strip("0123456789").isupper() or index.strip("Φ") == ""
+    capitals = plain_digits(index).strip("0123456789").isupper() or index.strip("Φ") == ""
     if not (digits or cyrillic or capitals or index in WORD_INDICES):
         return None
     if head.isascii() and head.islower() and not (digits or capitals):
         return None
-    return m.group("delta") + head, index.translate(_SUB)
+    return m.group("delta") + head, plain_digits(index)
 
 
 def cell_markdown(cell: str, escape) -> str:

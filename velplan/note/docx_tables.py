@@ -9,6 +9,7 @@ import unicodedata
 from docx.oxml import OxmlElement
 from docx.oxml.ns import qn
 
+from velplan.notation import SUBSCRIPT_DIGITS
 from velplan.note.docx_layout import CELL_PAD_TWIPS, LOOKS, TEXT_WIDTH_TWIPS
 
 SMALLEST = 16
@@ -31,7 +32,7 @@ def em(c: str) -> float:
         return 0.69
     if unicodedata.east_asian_width(c) in "WF":
         return 1.0
-    if c in "₀₁₂₃₄₅₆₇₈₉ⁿᵗ²³":
+    if c in SUBSCRIPT_DIGITS or c in "ⁿᵗ²³":
         return 0.35
     if c.isupper():
         return 0.72

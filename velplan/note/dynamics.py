@@ -10,7 +10,7 @@ from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import p
 from velplan.render.i18n import label
 from velplan.views.base import number, unit
-from velplan.render.shapes import unicode_text
+from velplan.notation import unicode_text
 from velplan.views.dynamics import results_rows
 
 PANELS = (("moments", "reduced_moments"), ("works", "works_energy"), ("inertia", "reduced_inertia"),

@@ -12,7 +12,7 @@ import numpy as np
 from velplan.note.formulas import txt
 from velplan.note.model import Equation, Para
 from velplan.note.text import p
-from velplan.views.base import fixed, number
+from velplan.notation import fixed, number
 from velplan.views.dynamics import constant_moment
 
 

@@ -11,7 +11,7 @@ from velplan.note.dynamics_worked import motor_name
 from velplan.note.formulas import txt
 from velplan.note.model import Heading, Math, Para
 from velplan.note.text import LANG_INDEX, balancing, mechanism_of, p, roman
-from velplan.views.base import number
+from velplan.notation import number
 
 REFERENCES = {
     "ru": ("Артоболевский И. И. Теория механизмов и машин. — М.: Наука, 1988. — 640 с.",

@@ -12,8 +12,7 @@ from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
-from velplan.views.base import fixed
-from velplan.views.base import number as _num
+from velplan.notation import fixed, number as _num
 from velplan.views.forces import force_text, moment_decimals, newton, newton_metre, slug
 
 

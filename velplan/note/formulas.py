@@ -4,26 +4,28 @@ from __future__ import annotations
 
 import re
 
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
-          "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
+from velplan.notation import MINUS, plain_digits
+
+GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
+         "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
+"""TeX of each Greek letter of the course's symbols (the note's formulas and its prose alike)."""
 _MARKS = {"ⁿ": "n", "ᵗ": "t", "ᵏ": "k", "ʳ": "r", "τ": r"\tau", "n": "n", "t": "t", "⊥": r"\perp", "∥": r"\parallel"}
-_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
 def txt(s: str) -> str:
     """A piece of text (a number as printed, a unit) inside a formula, upright."""
-    s = s.translate(_SUB).replace("\\", "").replace("{", "").replace("}", "")
-    s = re.sub(r"^-(?=\d)", "−", s)  # a negative number: the minus sign, not a hyphen
+    s = plain_digits(s).replace("\\", "").replace("{", "").replace("}", "")
+    s = re.sub(r"^-(?=\d)", MINUS, s)  # a negative number: the minus sign, not a hyphen
     return r"\text{" + s + "}"
 
 
 def name(point: str) -> str:
     """A point or image name with its digits as a subscript: ``A4`` → ``A_{4}``, ``O2`` →
     ``O_{2}``, ``s4`` → ``s_{4}``, ``π`` → ``\\pi``."""
-    point = point.translate(_SUB)
+    point = plain_digits(point)
     head = re.match(r"^(\D*)(\d*)(.*)$", point)
     base, digits, rest = head.groups()
-    base = "".join(_GREEK.get(c, c) + (" " if c in _GREEK and base.index(c) < len(base) - 1 else "")
+    base = "".join(GREEK.get(c, c) + (" " if c in GREEK and base.index(c) < len(base) - 1 else "")
                    for c in base)
     out = base + (f"_{{{digits}}}" if digits else "")
     return out + (name(rest) if rest else "")
@@ -31,7 +33,7 @@ def name(point: str) -> str:
 
 def chain(points: str) -> str:
     """Several point names written together (``O3A``, ``A4O3``): each with its subscript."""
-    parts = re.findall(r"[^\d]\d*", points.translate(_SUB))
+    parts = re.findall(r"[^\d]\d*", plain_digits(points))
     return "".join("{" + name(p) + "}" for p in parts)
 
 
@@ -46,7 +48,7 @@ def symbol(sym: str) -> str:
     mark = ""
     if len(head) > 1 and head[1:] in _MARKS:
         head, mark = head[0], _MARKS[head[1:]]
-    head = _GREEK.get(head, head)
+    head = GREEK.get(head, head)
     out = head
     if mark:
         out += "^{" + mark + "}"
@@ -71,7 +73,7 @@ def force(label: str) -> str:
     if not m:
         return txt(label)
     mom, base, digits, mark = m.groups()
-    base = _GREEK.get(base, base)
+    base = GREEK.get(base, base)
     head = ("M_{" + base + "_{" + digits + "}}") if mom else base
     out = head if mom else base + (f"_{{{digits}}}" if digits else "")
     if mark:

@@ -7,8 +7,7 @@ from __future__ import annotations
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Para
 from velplan.note.text import balancing, p
-from velplan.views.base import fixed
-from velplan.views.base import number as _num
+from velplan.notation import fixed, number as _num
 from velplan.views.forces import force_text, newton
 from velplan.views.forces.lever import lever_balance
 

@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import re
 
+from velplan.notation import plain_digits
 from velplan.note.blocks import Math
-from velplan.note.formulas import chain, symbol
+from velplan.note.formulas import GREEK, chain, symbol
 from velplan.plans.text import Sentence, Sym
-
-_SUB = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 _NOT_WORD = r"A-Za-z0-9_"
 TOKEN = re.compile(
@@ -32,7 +31,6 @@ en, where a word may be English, what stands left of " = " (lBF, Fc, H, n)."""
 UNIT_AFTER_NUMBER = re.compile(r"(\d) (?=[^\W\d_]|[(%°])")
 UNITS = frozenset({"m", "mm", "s", "N", "kg", "rad", "min", "rpm", "W", "kW", "J", "Hz", "deg"})
 """Units a zh note writes in Latin letters (ru/uk write theirs in Cyrillic)."""
-_GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta", "δ": r"\delta"}
 
 
 def _symbol(sym: str) -> str:
@@ -49,7 +47,7 @@ def sym_tex(sym: Sym) -> str:
     if sym.kind == "vector":
         return _symbol(sym.text)
     if sym.kind == "rate":
-        return _GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
+        return GREEK[sym.text[0]] + "_{" + sym.text[1:] + "}"
     return "{–}".join(chain(part).replace("π", r"\pi ") for part in sym.text.split("–"))  # x–x: no spaces
 
 
@@ -100,7 +98,7 @@ def _letters(delta: str, word: str) -> str:
     elif len(word) == 1:
         tex = word
     elif word[0].isupper() or word[0] in "lme" or re.fullmatch(r"[a-z][₀-₉]+", word):
-        rest = word[1:].translate(_SUB)
+        rest = plain_digits(word[1:])
         rest_letters = rest.lstrip("0123456789")
         digits = rest[:len(rest) - len(rest_letters)]
         tex = word[0] + "_{" + digits + (chain(rest_letters) if rest_letters else "") + "}"  # lO₂A, JS₄, m₄
@@ -120,11 +118,11 @@ def _symbols(text: str) -> list:
         elif m.group("mu"):
             tex = r"\mu_{" + m.group("mu") + "}"
         elif m.group("ext"):
-            tex = _GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
+            tex = GREEK[m.group("ext")] + "_{" + m.group("ext_i") + "}"  # as the note's formulas: ψ_{max}
         elif m.group("greek"):  # θ = 1,564°: the symbol as in the formulas
-            tex = _GREEK[m.group("greek")]
+            tex = GREEK[m.group("greek")]
         elif m.group("rate"):
-            tex = _GREEK[m.group("rate")] + "_{" + m.group("rate_i").translate(_SUB) + "}"
+            tex = GREEK[m.group("rate")] + "_{" + plain_digits(m.group("rate_i")) + "}"
         else:
             tex = chain(m.group("pts")).replace("π", r"\pi ")
         if m.start() > at:

@@ -13,7 +13,7 @@ from velplan.note.formulas import chain, name, seg, symbol, txt, vec
 from velplan.options import Language
 from velplan.plans import text as T
 from velplan.plans.steps import Coriolis, Intersect, LayOff, Line, Normal, Perpendicular, Pole, Rotation, Similar
-from velplan.views.base import number
+from velplan.notation import number
 
 
 def num(x: float, lang: Language) -> str:

@@ -130,7 +130,7 @@ class Construction:
         return tuple(s for s in self.steps if s.how == "unreached")
 
     def describe(self, lang: Language = "en") -> list[str]:
-        """One sentence per step, in ``lang`` (en, ru, uk, zh)."""
+        """One sentence per step, in ``lang`` (en, ru, uk, zh), its centres and joints marked."""
         return [sentence(s, self, lang) for s in self.steps]
 
 
@@ -541,21 +541,22 @@ def centre_name(pair: tuple[str, str]) -> str:
     return f"P{a}{b}" if len(a) == 1 and len(b) == 1 else f"P{a},{b}"
 
 
-def sentence(s: CentreStep, con: Construction, lang: Language) -> str:
-    """The worked-solution sentence of step ``s`` in ``lang``."""
+def sentence(s: CentreStep, con: Construction, lang: Language) -> T.Sentence:
+    """The worked-solution sentence of step ``s`` in ``lang``, its centres and joints marked
+    (`velplan.plans.text.Sym`)."""
     lang = T.check_lang(lang)
-    name = centre_name(s.pair)
-    ph = lambda key, *a: _PHRASES[key][lang].format(*a)  # noqa: E731
+    name = T.pts(centre_name(s.pair))
+    ph = lambda key, *a: T.formatted(_PHRASES[key][lang], *a)  # noqa: E731
     if s.how in ("joint", "hinge"):
-        text = ph(s.how, s.via[0], s.pair[0], s.pair[1], name)
+        text = ph(s.how, T.pts(s.via[0]), s.pair[0], s.pair[1], name)
     elif s.how == "slider":
         deg = round(math.degrees(math.atan2(s.direction.imag, s.direction.real)), 6) + 0.0  # no −0, no 1e-15
         text = ph("slider", T.num(deg, lang), *(s.via[1:] if len(s.via) == 3 else s.pair), name)
     elif s.how == "kennedy":
         k, m = s.via
         (a1, b1), (a2, b2) = s.lines[0].through, s.lines[1].through
-        ends = (centre_name(a1), centre_name(b1), centre_name(a2), centre_name(b2))
-        ends = tuple(e + "–" if n in (0, 2) else e for n, e in enumerate(ends))
+        p1, q1, p2, q2 = (T.pts(centre_name(e)) for e in (a1, b1, a2, b2))
+        ends = (T.text(p1, "–"), q1, T.text(p2, "–"), q2)
         if s.infinite:
             deg = math.degrees(math.atan2(s.direction.imag, s.direction.real))
             text = ph("kennedy_far", name, *ends, T.num(deg, lang))

@@ -21,6 +21,7 @@ import numpy as np
 from velplan.analysis.numbering import position_number
 from velplan.mechanism.model import GROUND, Mechanism
 from velplan.mechanism.structure import coincident_points, pairs
+from velplan.notation import plain_digits, plain_text
 from velplan.plans.engine import PlanResult
 
 
@@ -92,10 +93,7 @@ def quantity_label(row: str, crank: str) -> str:
 def quantity_name(row: str, crank: str) -> str:
     """The name of table row `row` as one line of plain text (the key's quantity column, what a
     reader copies off the sheet): `quantity_label` without its index marks, ``"vA/ω2"``."""
-    return re.sub(r"_\{([^{}]*)\}", r"\1", quantity_label(row, crank))
-
-
-_SUB_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+    return plain_text(quantity_label(row, crank))
 
 
 def _spellings(row: str, crank: str) -> set[str]:
@@ -113,7 +111,7 @@ def parse_quantity(text: str, rows, crank: str) -> str | None:
     """The row of `rows` (``"V_A"``, ``"w_3"`` …) that `text` names, or None: the sheet's
     typeset or plain name, its ASCII spellings (`_spellings`), spaces and ``_{…}`` marks
     ignored, subscript digits read as digits."""
-    key = re.sub(r"_\{([^{}]*)\}", r"\1", "".join(text.split())).translate(_SUB_DIGITS)
+    key = plain_digits(plain_text("".join(text.split())))
     for row in rows:
         if key in _spellings(row, crank):
             return row

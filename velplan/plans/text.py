@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import cast
 
 from velplan.errors import VelplanError
+from velplan.notation import MINUS, decimal, digits_down
 from velplan.options import Language
 
 LANGS = ("en", "ru", "uk", "zh")
@@ -244,9 +245,6 @@ def rate(letter: str, link: str) -> Sym:
     return Sym(f"{letter}{link}", "rate")
 
 
-_DOWN = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
 def terminal(sentence: str) -> str:
     """``sentence`` as a terminal prints it: the digits of the point, image and segment names
     and of ω, ε that it marks as Unicode subscripts (``O₃A``, ``pa₄``, ``ω₂``); a vector keeps
@@ -256,7 +254,7 @@ def terminal(sentence: str) -> str:
     'Through a₄ ∥ O₃A (V_A4A) 2 ω₂'
     """
     parts = sentence.parts if isinstance(sentence, Sentence) else (sentence,)
-    return "".join(x.text.translate(_DOWN) if isinstance(x, Sym) and x.kind != "vector" else str(x)
+    return "".join(digits_down(x.text) if isinstance(x, Sym) and x.kind != "vector" else str(x)
                    for x in parts)
 
 
@@ -266,8 +264,18 @@ _FORMATTER = string.Formatter()
 def phrase(key: str, lang: Language, *args) -> Sentence:
     """The sentence ``key`` in ``lang`` with ``args`` in its fields; a plain string whose
     ``parts`` keep each `Sym` argument a symbol (nested sentences spliced in)."""
+    return formatted(_PHRASES[key][check_lang(lang)], *args)
+
+
+def formatted(template: str, *args) -> Sentence:
+    """``template`` (``str.format`` fields ``{0}``, ``{1:.3g}``) with ``args`` in its fields, each
+    `Sym` or `Sentence` argument kept a symbol in the sentence's ``parts``.
+
+    >>> formatted("{0} lies on {1} ({2:.2f})", pts("P13"), text(pts("P12"), "–", pts("P23")), 0.5).parts
+    (Sym(text='P13', kind='points'), ' lies on ', Sym(text='P12', kind='points'), '–', Sym(text='P23', kind='points'), ' (0.50)')
+    """
     out: list = []
-    for literal, field, spec, conv in _FORMATTER.parse(_PHRASES[key][check_lang(lang)]):
+    for literal, field, spec, conv in _FORMATTER.parse(template):
         out.append(literal)
         if field is not None:
             value = args[int(field)]
@@ -280,22 +288,20 @@ def num(x: float, lang: Language, digits: int = 4) -> str:
     """A number to ``digits`` significant figures, with a decimal comma in ru and uk."""
     if not math.isfinite(x):
         return "—"
-    s = f"{x:.{digits}g}" if abs(x) >= 1e-3 or x == 0 else f"{x:.3e}"
-    return s.replace(".", ",") if lang in ("ru", "uk") else s
+    return decimal(f"{x:.{digits}g}" if abs(x) >= 1e-3 or x == 0 else f"{x:.3e}", lang)
 
 
 def signed(x: float, lang: Language, digits: int = 6) -> str:
     """`num` with the sign always written, the minus as "−" (U+2212)."""
     text = num(abs(x), lang, digits)
-    return text if not math.isfinite(x) or x == 0 else ("−" if x < 0 else "+") + text
+    return text if not math.isfinite(x) or x == 0 else (MINUS if x < 0 else "+") + text
 
 
 def mm(x: float, lang: Language) -> str:
     """A length on the drawing, mm to 0.1 mm."""
     if not math.isfinite(x):
         return "—"
-    s = f"{x:.1f}"
-    return (s.replace(".", ",") if lang in ("ru", "uk") else s) + " " + _UNITS["mm"][lang]
+    return decimal(f"{x:.1f}", lang) + " " + _UNITS["mm"][lang]
 
 
 def unit(plan: str, lang: Language) -> str:

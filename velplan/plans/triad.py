@@ -48,7 +48,7 @@ class Said:
     the equation's unknown terms."""
 
     point: str
-    equation: str
+    equation: T.Sentence
     base: str
     lead: str
     direction: Perpendicular | Parallel
@@ -63,7 +63,7 @@ class Said:
         """The sentences said before the step's own (ending in a separator)."""
         out = [_special(lang, *self.intro)] if self.intro else []
         if self.joint:
-            eq = self.equation.replace("{}", self.known.text(lang)) if self.known else self.equation
+            eq = _filled(self.equation, self.known.text(lang)) if self.known else self.equation
             out.append(T.phrase("triad_joint", lang, T.pts(self.point), self.base, self.lead, eq))
         else:
             out.append(T.phrase("triad_block" if self.block else "triad_lead", lang, T.pts(self.point), self.base,
@@ -122,8 +122,23 @@ def _special(lang: str, point: str, base: str, li: str, lj: str, ji: str, jj: st
     return T.phrase("triad_special_of", lang, T.pts(point), base, *lines)
 
 
-def _sum(*terms: str | None) -> str:
-    return " + ".join(t for t in terms if t)
+def _sum(*terms: str | None) -> T.Sentence:
+    """Vectors added: each of ``terms`` (``V_JP``, ``aⁿ_JP``) marked a vector, None left out."""
+    return T.joined(" + ", [T.vector(t) for t in terms if t])
+
+
+def _equation(*sides: str | T.Sentence) -> T.Sentence:
+    """A vector equation: its sides (a vector's symbol, or a `_sum`) joined by " = "."""
+    return T.joined(" = ", [side if isinstance(side, T.Sentence) else T.vector(side) for side in sides])
+
+
+def _filled(sentence: T.Sentence, value: str) -> T.Sentence:
+    """``sentence`` with ``value`` in place of its "{}", its symbols kept."""
+    parts: list = []
+    for x in sentence.parts:
+        for n, piece in enumerate(x.split("{}") if isinstance(x, str) else [x]):
+            parts += [value, piece] if n else [piece]
+    return T.text(*parts)
 
 
 class TriadPlan:
@@ -168,7 +183,7 @@ class TriadPlan:
             return Parallel(lead.guide.link, lead.guide.angle, guide_text(lead.guide, lead.guide.link))
         return Perpendicular(J, lead.joint)
 
-    def _say(self, k: int, equation: str, *, intro: bool = False, joint: bool = False) -> Said:
+    def _say(self, k: int, equation: T.Sentence, *, intro: bool = False, joint: bool = False) -> Said:
         g = self.g
         known = self._direction(k) if joint and "{}" in equation else None
         block = g.joints[k] if g.leads[k].slider and not joint else ""
@@ -198,14 +213,14 @@ class TriadPlan:
         if lead.slider:
             through = self._guide_point(b.v, k)
             gname, moving = self._guide_name(k), lead.guide.link != GROUND
-            eq = f"V_{S} = " + _sum(f"V_{gname}" if moving else None, f"V_{J}{gname}" if moving else f"V_{J}",
-                                    f"V_{S}{J}")
+            eq = _equation(f"V_{S}", _sum(f"V_{gname}" if moving else None, f"V_{J}{gname}" if moving else f"V_{J}",
+                                          f"V_{S}{J}"))
             comp = f"V_{S}{gname}" if moving else f"V_{S}"
         else:
             P = lead.joint
             fixed = self._fixed(b.v, P)
             through = b.v.images[P]
-            eq = f"V_{S} = " + _sum(f"V_{P}", f"V_{J}{P}", f"V_{S}{J}")  # V_P = 0 on the frame, as written
+            eq = _equation(f"V_{S}", _sum(f"V_{P}", f"V_{J}{P}", f"V_{S}{J}"))  # V_P = 0 on the frame, as written
             comp = f"V_{S}" if fixed else f"V_{S}{P}"
         return self._line(b.v, through, self._direction(k), comp, self._say(k, eq, intro=intro))
 
@@ -216,14 +231,15 @@ class TriadPlan:
         if lead.slider:
             through = self._guide_point(b.v, k)
             gname, moving = self._guide_name(k), lead.guide.link != GROUND
-            other = f"V_{gname} + V_{J}{gname}" if moving else None
+            other = _sum(f"V_{gname}", f"V_{J}{gname}") if moving else None
             comp = f"V_{J}{gname}" if moving else f"V_{J}"
         else:
             P = lead.joint
             through, fixed = b.v.images[P], self._fixed(b.v, P)
             other = _sum(f"V_{P}", f"V_{J}{P}")  # v_C = v_E + v_CE, v_E = 0 on the frame
             comp = f"V_{J}" if fixed else f"V_{J}{P}"
-        eq = f"V_{J} = V_{S} + V_{J}{S}" + (f" = {other}" if other else f", V_{J} {{}}")
+        eq = _equation(f"V_{J}", _sum(f"V_{S}", f"V_{J}{S}"), *([other] if other else []))
+        eq = eq if other else T.text(eq, ", ", T.vector(f"V_{J}"), " {}")
         L1 = self._line(b.v, s_v, Perpendicular(J, S), f"V_{J}{S}", self._say(k, eq, joint=True))
         return L1, self._line(b.v, through, self._direction(k), comp)
 
@@ -261,8 +277,8 @@ class TriadPlan:
             start = self._guide_point(b.a, k)
             gname, moving = self._guide_name(k), lead.guide.link != GROUND
             frame = b.v.rotor.get(lead.guide.link) if moving else None
-            eq = f"a_{S} = " + _sum(f"a_{gname}" if moving else None, f"aᵏ_{J}" if frame is not None else None,
-                                    f"aʳ_{J}", f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
+            eq = _equation(f"a_{S}", _sum(f"a_{gname}" if moving else None, f"aᵏ_{J}" if frame is not None else None,
+                                          f"aʳ_{J}", f"aⁿ_{S}{J}", f"aᵗ_{S}{J}"))
             said = self._say(k, eq, intro=intro)
             if frame is not None:
                 c = b.aux("k")
@@ -273,8 +289,7 @@ class TriadPlan:
             comp = f"aʳ_{S}{J}"
         else:
             P = lead.joint
-            eq = f"a_{S} = " + _sum(f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}",
-                                    f"aⁿ_{S}{J}", f"aᵗ_{S}{J}")
+            eq = _equation(f"a_{S}", _sum(f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}", f"aⁿ_{S}{J}", f"aᵗ_{S}{J}"))
             start = self._normal(b.a.images[P], lead.link, J, P, self._say(k, eq, intro=intro))
             start = self._normal(start, g.base, S, J)
             comp = f"aᵗ_{S}{P}"
@@ -290,7 +305,7 @@ class TriadPlan:
         else:
             P = lead.joint
             other = _sum(f"a_{P}", f"aⁿ_{J}{P}", f"aᵗ_{J}{P}")
-        eq = f"a_{J} = a_{S} + aⁿ_{J}{S} + aᵗ_{J}{S} = {other}"
+        eq = _equation(f"a_{J}", _sum(f"a_{S}", f"aⁿ_{J}{S}", f"aᵗ_{J}{S}"), other)
         start = self._normal(s_a, g.base, J, S, self._say(k, eq, joint=True))
         L1 = self._line(b.a, start, Perpendicular(J, S), f"aᵗ_{J}{S}")
         if lead.slider:

@@ -49,10 +49,11 @@ from typing import Mapping
 import numpy as np
 
 from velplan.errors import VelplanError
+from velplan.notation import unicode_text
 from velplan.render.canvas import render
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import (
-    arrow_shape, arrow_size, circle_outline, hatch_segments, stroke_for, unicode_text)
+    arrow_shape, arrow_size, circle_outline, hatch_segments, stroke_for)
 from velplan.render.style import LINE_TYPES, SheetStyle
 
 #: DXF version written: AutoCAD R2013 (AC1027).

@@ -17,12 +17,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from velplan.notation import plain_text
 from velplan.render.canvas import render
 from velplan.render.fonts import GENERIC_FAMILIES, candidate_families, register_with_matplotlib
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import (
     Stroke, arrow_shape, arrow_size, circle_outline, hatch_segments, hatch_stroke,
-    plain_text, stroke_for, text_origin)
+    stroke_for, text_origin)
 from velplan.render.style import SheetStyle
 
 if TYPE_CHECKING:

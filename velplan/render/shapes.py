@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import functools
 import math
-import re
 import unicodedata
 from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
 import shapely
 
+from velplan.notation import MARKED_INDEX, plain_text, unicode_text  # noqa: F401  (plain_text, unicode_text: named here too)
 from velplan.render.sans_widths import WIDTHS as _SANS_WIDTHS
 
 if TYPE_CHECKING:
@@ -267,17 +267,11 @@ def script_of(char: str) -> tuple[str, str]:
     return char, ""
 
 
-_MARKED_INDEX = re.compile(r"([_^])\{([^{}]*)\}")
-"""A whole index written out: ``v_{BA}`` is v with the subscript "BA" (letters have no
-Unicode subscript forms), ``10^{−12}`` ten with the superscript "−12"; digits and
-superscripts outside the marks stay as in the rest of the text."""
-
-
 def _characters(text: str):
     """(plain character, script) of every drawn character of `text`, marked indices as "sub"
     or "super"."""
     at = 0
-    for m in _MARKED_INDEX.finditer(text):
+    for m in MARKED_INDEX.finditer(text):
         yield from _unmarked(text[at:m.start()])
         script = "sub" if m.group(1) == "_" else "super"
         yield from ((script_of(c)[0], script) for c in m.group(2))
@@ -300,24 +294,6 @@ def _unmarked(text: str) -> list[tuple[str, str]]:
                 out[j] = (unicodedata.normalize("NFKC", text[j]), "super")
         run = []
     return out
-
-
-def plain_text(text: str) -> str:
-    """`text` without the ``_{…}``, ``^{…}`` marks of whole indices (``v_{BA}`` → ``vBA``):
-    what a backend that draws one plain string writes."""
-    return _MARKED_INDEX.sub(lambda m: m.group(2), text)
-
-
-_SUPERSCRIPTS = str.maketrans("0123456789−-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁻⁺")
-_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
-def unicode_text(text: str) -> str:
-    """`text` for plain text (a note, a page): a marked superscript in Unicode superscripts
-    (``10^{−12}`` → ``10⁻¹²``), a marked subscript's digits as subscripts (``ω_{m}`` → ``ωm``,
-    ``v_{A4}`` → ``vA₄``)."""
-    return _MARKED_INDEX.sub(lambda m: m.group(2).translate(_SUPERSCRIPTS if m.group(1) == "^" else _SUBSCRIPTS),
-                             text)
 
 
 def text_runs(text: str) -> tuple[TextRun, ...]:

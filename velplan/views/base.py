@@ -5,8 +5,9 @@ coordinates — model units divided by the view's scale, or plain mm — and :fu
 moves the result so that its box starts at (0, 0). Placing a view on the sheet is one more
 translation; scale and placement stay out of the geometry, as DESIGN.md asks.
 
-Also here: number and label formatting shared by the views (decimal comma in ru and uk,
-subscript digits in point names, scale labels in the sheet's language).
+Also here: label formatting shared by the views (scale labels and units in the sheet's
+language); the notation itself (subscript digits, the minus sign, numbers to significant
+figures) is `velplan.notation`'s, named here too.
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
+from velplan.notation import (  # noqa: F401  (named here too for the views that import them from here)
+    MINUS, POWER_BELOW, POWER_FROM, ROUND_OFF, decimal, digits_down, fixed, indexed, number, power_of_ten, subscript)
 from velplan.options import Language
 from velplan.render.scene import Arrow, Bounds, Circle, Polygon, Polyline, Primitive
 
@@ -156,100 +159,6 @@ def make_view(name: str, items: Iterable[Primitive], *, pad_mm: float = 2.0,
 
 # -- text helpers ---------------------------------------------------------------------------
 
-_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
-def digits_down(text: str) -> str:
-    """Every digit as a subscript: ``"2"`` → ``"₂"`` (ω₂, μ₁)."""
-    return text.translate(_SUB)
-
-
-def subscript(name: str) -> str:
-    """Trailing digits of a point name as subscripts: ``"O2"`` → ``"O₂"``, ``"a4"`` → ``"a₄"``."""
-    head = name.rstrip("0123456789")
-    return head + name[len(head):].translate(_SUB) if head else name
-
-
-MINUS = "\u2212"
-"""The minus sign of printed numbers ("−", not the hyphen "-")."""
-
-_SUPER = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
-
-#: Magnitudes below the first or from the second are written with a power of ten (·10⁻⁵).
-POWER_BELOW, POWER_FROM = 1e-4, 1e7
-
-
-def _signs(text: str, lang: Language) -> str:
-    """The decimal sign of `lang` (a comma in ru and uk) and the minus sign in a number's text."""
-    text = text.replace("-", MINUS)
-    return text.replace(".", ",") if lang in ("ru", "uk") else text
-
-
-def _significant(x: float, digits: int) -> str:
-    """`x` to `digits` significant figures in positional notation, trailing zeros dropped."""
-    if x == 0:
-        return "0"
-    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
-    text = f"{x:.{decimals}f}"
-    if "." in text:
-        text = text.rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
-
-
-def power_of_ten(x: float, lang: Language, digits: int = 4) -> str:
-    """`x` as mantissa·10ⁿ (``"1,25·10⁻¹⁴"``; ``"10⁻⁵"`` for a mantissa of 1), `digits`
-    significant figures in the mantissa."""
-    if not math.isfinite(x) or x == 0:
-        return number(x, lang, digits)
-    k = math.floor(math.log10(abs(x)))
-    mantissa = float(f"{x / 10.0**k:.{digits - 1}f}")
-    if abs(mantissa) >= 10.0:
-        mantissa, k = mantissa / 10.0, k + 1
-    power = "10" + str(k).translate(_SUPER)
-    if abs(mantissa) == 1.0:
-        return (MINUS if mantissa < 0 else "") + power
-    return _signs(_significant(mantissa, digits), lang) + "·" + power
-
-
-def indexed(base: str, index: str, marked: bool = True) -> str:
-    """A symbol with its index below the line: ``indexed("ω", "max")`` → ``"ω_{max}"`` (the
-    ``_{…}`` mark the drawings set as a subscript); ``marked=False`` writes ``"ωmax"`` (for text
-    that is not drawn)."""
-    return f"{base}_{{{index}}}" if marked and index else f"{base}{index}"
-
-
-ROUND_OFF = 1e-10
-"""A value within this fraction of its quantity's scale is zero to round-off (a driving
-moment of a cycle whose loads do no work: 7.97·10⁻¹⁶ N·m beside moments of 8 N·m)."""
-
-
-def number(x: float, lang: Language, digits: int = 4, scale: float | None = None) -> str:
-    """`x` to `digits` significant figures, decimal comma in ru and uk, the minus sign "−";
-    a power of ten (`power_of_ten`) below `POWER_BELOW` or from `POWER_FROM`, never "e-14".
-    ``scale``: the magnitude of the quantity (its largest value over the cycle); an `x`
-    within `ROUND_OFF` of it prints as 0.
-
-    >>> number(7.97e-16, "ru", 5, scale=8.5), number(7.97e-16, "ru", 5), number(0.5, "en", scale=8.5)
-    ('0', '7,97·10⁻¹⁶', '0.5')
-    """
-    if not math.isfinite(x):
-        return "—"
-    if scale is not None and abs(x) <= ROUND_OFF * abs(scale):
-        x = 0.0
-    if x != 0 and not POWER_BELOW <= abs(float(f"{x:.{digits}g}")) < POWER_FROM:
-        return power_of_ten(x, lang, digits)
-    return _signs(_significant(x, digits), lang)
-
-
-def fixed(x: float, lang: Language, decimals: int = 3) -> str:
-    """`x` with a fixed number of decimals (a table cell), decimal comma in ru and uk, "−"."""
-    if not math.isfinite(x):
-        return "—"
-    text = f"{x:.{decimals}f}"
-    if float(text) == 0:
-        text = f"{0:.{decimals}f}"
-    return _signs(text, lang)
-
 
 def row_decimals(values, digits: int = 3) -> int:
     """Decimals that give the largest magnitude of `values` `digits` significant figures (every
@@ -318,13 +227,10 @@ def eskd_scales() -> tuple[float, ...]:
 def ratio_text(mu_l: float, lang: Language = "ru") -> str:
     """The ESKD scale of μl (m/mm) as written in the title block: ``0.0025`` → ``"1:2,5"``
     (a decimal comma in ru and uk, a point otherwise)."""
-    comma = lang in ("ru", "uk")
     for a, b in ESKD_RATIOS:
         if math.isclose(0.001 * b / a, mu_l, rel_tol=1e-9):
-            text = f"{a:g}:{b:g}"
-            return text.replace(".", ",") if comma else text
-    text = f"1:{1000 * mu_l:g}"
-    return text.replace(".", ",") if comma else text
+            return decimal(f"{a:g}:{b:g}", lang)
+    return decimal(f"1:{1000 * mu_l:g}", lang)
 
 
 def scale_mark(mu_l: float, lang: Language) -> str:

@@ -135,7 +135,7 @@ def _markers(con: Construction, to_mm, box, size: float, lang: Language) -> tupl
             far = abs(s.point)  # a coordinate within round-off of the other's size is 0
             xy = (f"({number(s.point.real, lang, 4, scale=far)}; {number(s.point.imag, lang, 4, scale=far)}) "
                   f"{_t('metre', lang)}")
-            notes.append(f"{name} = {xy.replace('-', '−')}: {_t('off', lang)}")
+            notes.append(f"{name} = {xy}: {_t('off', lang)}")  # `number` writes the minus sign
     labels += [(Text((at[0] + 1.5, at[1] + 1.2), ", ".join(names), "labels", size), at) for at, names in spots]
     return items, labels, notes, joints
 

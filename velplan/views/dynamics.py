@@ -18,6 +18,7 @@ import numpy as np
 import shapely
 
 from velplan.analysis.numbering import position_number
+from velplan.notation import MINUS
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.layout import label_box
@@ -759,10 +760,10 @@ def _result_rows(d, w, lang: Language, marked: bool) -> list[tuple[str, str, str
         if w is not None:
             err = 100.0 * (w.inertia_drawn - fly.exact) / fly.exact
             rows.append((f"{j_one} ({label('method_wittenbauer_drawn', lang)})",
-                         f"{number(w.inertia_drawn, lang, 6)} ({'+' if err >= 0 else '−'}{number(abs(err), lang, 2)} %)",
+                         f"{number(w.inertia_drawn, lang, 6)} ({'+' if err >= 0 else MINUS}{number(abs(err), lang, 2)} %)",
                          kgm2))
         rows += [(f"{j_one} ({label('method_mertsalov', lang)})",
-                  f"{number(fly.mertsalov, lang, 6)} ({'+' if fly.mertsalov_difference >= 0 else '−'}"
+                  f"{number(fly.mertsalov, lang, 6)} ({'+' if fly.mertsalov_difference >= 0 else MINUS}"
                   f"{number(abs(100 * fly.mertsalov_difference), lang, 3)} %)", kgm2),
                  (label("declared_inertia", lang), number(fly.declared, lang, 5), kgm2),
                  (label("flywheel_added", lang), number(fly.added, lang, 6) if fly.added > 0 else label("no_flywheel", lang),

@@ -21,7 +21,7 @@ from velplan.options import Language
 from velplan.render.layout import label_box
 from velplan.render.scene import Arrow, Circle, Polyline, Primitive, Text
 from velplan.views.base import View, bounds_of, make_view, shift
-from velplan.views.base import number as number_text
+from velplan.notation import number as number_text
 from velplan.views.plan import PlanSizes, layer_names, plan_title, plan_view
 
 #: Images within this distance of the pole, mm at the plan's scale, make up its crowd.
@@ -89,7 +89,7 @@ def _letters_inside(full: View, items: list[Primitive], window: shapely.Polygon)
     (the plan placed them for the whole plan: cut at the window, some would stand out of it, or
     nearer another image). One that finds no room inside is left out."""
     from velplan.plans.text import label_of
-    from velplan.views.base import subscript
+    from velplan.notation import subscript
     from velplan.views.letters import place_letters
 
     at: dict[str, list[np.ndarray]] = {}

@@ -29,8 +29,9 @@ from velplan.views.mechanism import MechanismSizes, extent_m, mechanism_view
 from velplan.views.plan import (
     image_letters, plan_steps, plan_title, plan_view)
 from velplan.render.scene import Arrow, Polygon, Polyline, Scene, Text
-from velplan.plans.text import label_of
-from velplan.views.base import digits_down, eskd_scales, shift, subscript
+from velplan.notation import digits_down, indexed, subscript
+from velplan.plans.text import Sentence, Sym, label_of
+from velplan.views.base import eskd_scales, shift
 
 _MARGIN = 10.0
 _SENTENCE_H = 26.0
@@ -127,7 +128,15 @@ def readable(sentence: str) -> str:
     """A worked-solution sentence as it is written by hand: ``V_A4A`` → ``v_{A4A}`` (v with
     the whole index "A4A" below), ``aⁿ_A4O3`` → ``aⁿ_{A4O3}``, ``O3A`` → ``O₃A``, ``ak1`` →
     ``ak₁`` (velocities in lowercase v; the digits of point, image and link names outside a
-    symbol's index as subscripts)."""
+    symbol's index as subscripts). A `Sentence` sets exactly the symbols it marks (`written`);
+    plain text has its symbols found by their look.
+
+    >>> from velplan.plans.text import pts, rate, text, vector
+    >>> readable(text(pts("K3"), " lies on it, so ", vector("V_K3"), " = ", vector("V_BA"), " + ", vector("V_K3B")))
+    'K₃ lies on it, so v_{K3} = v_{BA} + v_{K3B}'
+    """
+    if isinstance(sentence, Sentence):
+        return "".join(written(x) if isinstance(x, Sym) else x for x in sentence.parts)
     parts = _SYMBOL.split(sentence)  # text, (letter, mark, index), text, …
     out = [_INDEX.sub(lambda m: digits_down(m.group(1)), parts[0])]
     for k in range(1, len(parts), 4):
@@ -135,6 +144,20 @@ def readable(sentence: str) -> str:
         out.append(("v" if letter == "V" else letter) + mark + "_{" + index + "}")
         out.append(_INDEX.sub(lambda m: digits_down(m.group(1)), rest))
     return "".join(out)
+
+
+def written(sym: Sym) -> str:
+    """A symbol a sentence marks, as the drawings set it: a vector's letter (v for V) and mark
+    with its whole index below, the digits of point names and of ω, ε as subscripts.
+
+    >>> from velplan.plans.text import pts, rate, vector
+    >>> written(vector("aⁿ_K3B")), written(vector("V_отн")), written(pts("O3A")), written(rate("ω", "1"))
+    ('aⁿ_{K3B}', 'v_{отн}', 'O₃A', 'ω₁')
+    """
+    if sym.kind != "vector":
+        return digits_down(sym.text)
+    head, _, index = sym.text.partition("_")
+    return indexed("v" + head[1:] if head.startswith("V") else head, index)
 
 
 def partial_plan(res, position: int, k: int, *, full, drawings, lang: Language) -> list:

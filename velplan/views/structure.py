@@ -22,7 +22,7 @@ from velplan.render.layout import label_box
 from velplan.render.scene import Circle, Polygon, Polyline, Scene, Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 from velplan.render.symbols import JOINT_RADIUS_MM, fixed_pivot, link, revolute_joint, slider_block, straight_guide
-from velplan.views.base import subscript
+from velplan.notation import subscript
 from velplan.views.letters import step_aside
 
 PANEL_MM = 70.0

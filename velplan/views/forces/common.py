@@ -12,7 +12,7 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.views.base import bounds_of, digits_down
-from velplan.views.base import number as _num
+from velplan.notation import number as _num
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Circle, Polyline, Primitive, Text
 from velplan.views.base import View, axis_numbers_clear, make_view, scale_text, unit
-from velplan.views.base import number as _num
+from velplan.notation import number as _num
 from velplan.views.diagram import phi_axes
 from velplan.views.forces.common import newton_metre
 

@@ -19,7 +19,7 @@ from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_extent
 from velplan.views.base import View, bounds_of, fixed, make_view, scale_text, subscript
 from velplan.views.forces.anchored import place_anchored
-from velplan.views.base import number as _num
+from velplan.notation import number as _num
 from velplan.views.forces.arrows import arrow_obstacle, place_arrows
 from velplan.views.forces.common import (
     ForceSizes, Sketch, anchor_of, away_from_lines, force_text, lever_layers, newton,

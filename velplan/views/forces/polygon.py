@@ -20,7 +20,7 @@ from velplan.render.scene import Arrow, Circle, Polyline, Text
 from velplan.render.shapes import text_extent
 from velplan.render.style import SheetStyle
 from velplan.views.base import View, bounds_of, make_view, unit
-from velplan.views.base import number as _num
+from velplan.notation import MINUS, number as _num
 from velplan.views.forces.anchored import kept_leader
 from velplan.views.forces.arrows import arrow_obstacle
 from velplan.views.forces.common import (
@@ -337,7 +337,7 @@ def _results(fa: ForceAnalysis, group: str, number: int, lang: Language) -> list
         rhs = ""
         if e.terms:
             total = " + ".join(force_text(t) for t in e.terms)
-            rhs = ("−" + (f"({total})" if len(e.terms) > 1 else total)) if e.negated else total
+            rhs = (MINUS + (f"({total})" if len(e.terms) > 1 else total)) if e.negated else total
             rhs += " = "
         results.append(f"{force_text(e.label)} = {rhs}{_num(e.value, lang)} {newton(lang)}")
     if group == "crank":
