@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 import sys
-from time import perf_counter
 from typing import Iterable, Literal
 
 import numpy as np
@@ -101,7 +100,6 @@ def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, eng
         kin = _solve_compiled(prep, phi, w1, e1, order, on_failure, engine, mech)
         if kin is not None:
             return kin
-    began = perf_counter()
     w1o, e1o = (w1 if order >= 1 else 0.0), (e1 if order >= 2 else 0.0)
     n = phi.shape[0]
     # cache-sized blocks solved straight into preallocated outputs (their layout known from an
@@ -119,8 +117,8 @@ def _solve_scalar_rate(prep: Prepared, mech, phi, w1, e1, order, on_failure, eng
         out.write(st, conditions, where)
     out.shift(prep.shift)
     kin = out.kinematics(mech, phi, w1, e1, st)
-    if engine == "auto":  # time the compiled engine could have saved
-        _NUMPY_SECONDS[0] += perf_counter() - began
+    if engine == "auto":  # time the compiled engine could have saved, as modelled
+        _NUMPY_SECONDS[0] += NUMPY_COST[0] + NUMPY_COST[1] * len(prep.items) * n
     return kin
 
 
@@ -151,8 +149,13 @@ def _crank_rate(value, what: str, n: int):
 AUTO_COMPILED = 2_000_000
 """From this many angles one ``engine="auto"`` call loads the compiled engine (≈ 0.35 s: numba's
 import and the kernel from its disk cache; it saves ≈ 0.4 µs per angle)."""
+NUMPY_COST = (5e-5, 2e-7)
+"""A numpy solve's cost as modelled, s: per call, and per angle and group (this 2-core machine,
+`benchmarks/bench_small.py`: four-bar 12 angles ≈ 45 µs; 10⁵ angles ≈ 0.5 µs each)."""
 _NUMPY_SECONDS = [0.0]
-"""Time this process's ``engine="auto"`` calls have spent in the numpy engine, s."""
+"""Time this process's ``engine="auto"`` calls have spent in the numpy engine, s, as modelled by
+`NUMPY_COST` — not measured, so that which engine solves (and the last bits of what is printed)
+does not depend on the machine's load."""
 _AUTO_ON = [False]
 
 

@@ -167,7 +167,9 @@ def _beside(a, b, drawn, centre) -> tuple[np.ndarray, np.ndarray]:
             continue  # at an angle (10° from a neighbour, 1° from another), or apart
         other = float(((c + d) / 2 - a) @ n)
         off = other if abs(other) > 0.05 else -float(((a + b) / 2 - centre) @ n)
-        side = -1.0 if off > 0 else 1.0  # away from the other, else from the centre
+        # away from the other, else from the centre; where the centre lies on the line too (a
+        # polygon of two opposite vectors), to the left of a → b, not where round-off says
+        side = -1.0 if off > 0.05 else 1.0
         return a + side * OFFSET_MM * n, b + side * OFFSET_MM * n
     return a, b
 
