@@ -513,18 +513,19 @@ def _place_details(req: Request, views: dict, results) -> None:
     numerals = iter(NUMERALS)
     numeral = next(numerals)
     done: set[str] = set()
-    for inside in (None, "mechanism"):  # then, for a plan still without, in the scheme's empty room
-        if inside is not None:
-            if done >= set(results):
-                break
-            inside = (inside, ink_boxes(views[inside]))
+    inside = None
+    for host in (None, "mechanism"):  # then, for a plan still without, in the scheme's empty room
         for reach in (None, CROWD_MM, 2.0 / 3.0 * CROWD_MM):  # every plan's whole crowd before a tighter one
             for name, res in sorted(results.items()):
                 if name in done:
                     continue
                 number = int(name.rsplit("-", 1)[1])
                 region = crowd_near_pole(views[name].view.meta["images"], max(extent_mm(res, number)), reach)
-                if region is not None and _detail_placed(req, views, name, res, region, numeral, inside):
+                if region is None:
+                    continue
+                if host is not None and inside is None:  # the scheme's ink, once, where it is asked
+                    inside = (host, ink_boxes(views[host]))
+                if _detail_placed(req, views, name, res, region, numeral, inside):
                     numeral = next(numerals, numeral)
                     done.add(name)
 
