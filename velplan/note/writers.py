@@ -2,7 +2,7 @@
 fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font), .html
 (pandoc, MathML, one self-contained file) and .md (figures in a folder beside it). Every file
 is written whole or not at all. Pandoc runs in the background while the figures are
-rasterised."""
+rasterised (`velplan.note.pixels`: by Typst, in a thread of this process)."""
 
 from __future__ import annotations
 
@@ -18,7 +18,6 @@ from velplan.io import write_atomic
 from velplan.note.blocks import Figure
 from velplan.note.markdown import to_markdown
 from velplan.note.pandoc import INSTALL, Pandoc, installed
-from velplan.render.export import shared_fonts
 FORMATS = {".docx": "docx", ".pdf": "pdf", ".html": "html", ".htm": "html", ".md": "md"}
 FONT_DIR = Path(__file__).resolve().parent.parent / "fonts"
 
@@ -48,10 +47,10 @@ def _module(name: str):
         raise VelplanError(f"the note needs {name.split('.')[0]} ({exc}); install it with `{INSTALL}`") from None
 
 
-NEEDS = {"docx": ("cairosvg", "pypandoc", "docx"), "pdf": ("cairosvg", "pypandoc", "typst"),
-         "html": ("cairosvg", "pypandoc"), "md": ("cairosvg",)}
-"""The modules each format needs (cairosvg draws the figures, pypandoc brings pandoc), checked
-before a note is built."""
+NEEDS = {"docx": ("typst", "pypandoc", "docx"), "pdf": ("typst", "pypandoc"),
+         "html": ("typst", "pypandoc"), "md": ("typst",)}
+"""The modules each format needs (typst draws the figures' pixels and typesets the .pdf,
+pypandoc brings pandoc), checked before a note is built."""
 
 
 def require(kind: str) -> None:
@@ -86,12 +85,39 @@ def _figures(note) -> list:
 
 def _png_files(note, tmp: Path) -> dict[str, str]:
     """Each figure's PNG written into ``tmp``: figure name → file name."""
-    images = {}
-    with shared_fonts():
-        for fig in _figures(note):
-            images[fig.name] = f"{fig.name}.png"
-            (tmp / images[fig.name]).write_bytes(fig.png)
+    from velplan.note.figures import pictures_png
+
+    figs = _figures(note)
+    images = {fig.name: f"{fig.name}.png" for fig in figs}
+    for fig, png in zip(figs, pictures_png([fig.picture for fig in figs])):
+        (tmp / images[fig.name]).write_bytes(png)
     return images
+
+
+class _Rasterising:
+    """The note's PNGs made in a thread (Typst lets go of the interpreter while it draws)."""
+
+    def __init__(self, pictures):
+        import threading
+
+        self._pngs, self._error = None, None
+        self._thread = threading.Thread(target=self._run, args=(pictures,), daemon=True)
+        self._thread.start()
+
+    def _run(self, pictures) -> None:
+        from velplan.note.figures import pictures_png
+
+        try:
+            self._pngs = pictures_png(pictures)
+        except BaseException as exc:  # raised again in the caller's thread
+            self._error = exc
+
+    def result(self) -> list[bytes]:
+        """The PNGs (waits for them); the thread's error raised here."""
+        self._thread.join()
+        if self._error is not None:
+            raise self._error
+        return self._pngs
 
 
 def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
@@ -113,10 +139,9 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
                  ["--number-sections"])
     math = FormulaRun(wanted, tmp / "math") if wanted else None
     try:
-        docx = _module("docx")  # imported while pandoc runs (and the figures' helper, if any, ends)
+        drawing = _Rasterising([fig.picture for fig in _figures(note)])
+        docx = _module("docx")  # imported while pandoc runs and the figures are drawn
         from velplan.note.docx_figures import add_png_fallbacks
-        with shared_fonts():
-            pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
         raw = run.result()
         doc = docx.Document(io.BytesIO(raw))
         if math is not None and not put_formulas(doc, wanted, math.equations()):
@@ -135,7 +160,7 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
     doc.core_properties.title = note.title
     _layout(doc, note.lang)
     _update_fields_on_open(docx, doc.settings.element)
-    add_png_fallbacks(doc, pngs)
+    add_png_fallbacks(doc, list(zip((svgs[fig.name] for fig in _figures(note)), drawing.result())))
     out = io.BytesIO()
     doc.save(out)
     return out.getvalue()
