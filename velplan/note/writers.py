@@ -1,8 +1,9 @@
 """Writing the note: .docx (pandoc, formulas as Word equations, figures as SVG with a PNG
-fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font), .html
-(pandoc, MathML, one self-contained file) and .md (figures in a folder beside it). Every file
-is written whole or not at all. Pandoc runs in the background while the figures are
-rasterised (`velplan.note.pixels`: by Typst, in a thread of this process)."""
+fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font, its
+figures drawn from their SVGs as vector drawings), .html (pandoc, MathML, one self-contained
+file) and .md (figures in a folder beside it). Every file is written whole or not at all.
+Pandoc runs in the background while the figures are rasterised (`velplan.note.pixels`: by
+Typst, in a thread of this process)."""
 
 from __future__ import annotations
 
@@ -200,10 +201,15 @@ def _update_fields_on_open(docx, settings) -> None:
 
 
 def _pdf(note, tmp: Path, path: Path) -> bytes:
-    images = {fig.name: f"{fig.name}.png" for fig in _figures(note)}
+    """The note typeset by Typst, its figures drawn from their SVGs (vector, in the texts'
+    own faces as `velplan.note.pixels` gives them)."""
+    from velplan.note.pixels import for_typst
+
+    images = {fig.name: f"{fig.name}.svg" for fig in _figures(note)}
     run = Pandoc(to_markdown(note, "typst", images), "typst", tmp)  # it names the figures' files only
     try:
-        _png_files(note, tmp)
+        for fig in _figures(note):
+            (tmp / images[fig.name]).write_text(for_typst(fig.svg), encoding="utf-8")
         body = run.result().decode("utf-8")
     finally:
         run.cancel()
@@ -213,8 +219,8 @@ def _pdf(note, tmp: Path, path: Path) -> bytes:
     (tmp / "note.typ").write_text(source, encoding="utf-8")
     typst = _module("typst")
     try:
-        return typst.compile(str(tmp / "note.typ"), root=str(tmp), font_paths=[str(FONT_DIR)],
-                             ignore_system_fonts=True)
+        # the installed fonts too: the figures' texts in the faces their SVG names, as in their PNGs
+        return typst.compile(str(tmp / "note.typ"), root=str(tmp), font_paths=[str(FONT_DIR)])
     except Exception as exc:  # typst raises its own error type with the diagnostics
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise VelplanError(f"typst could not typeset the note: {first}") from None
