@@ -88,3 +88,23 @@ def test_a_figure_typst_cannot_draw_is_one_line():
         pngs([Picture('<svg xmlns="http://www.w3.org/2000/svg" width="20mm" height="10mm"><line', 150.0)])
     with pytest.raises(VelplanError, match=r"^cannot rasterise a figure: its SVG does not state"):
         pngs([Picture('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100"/>', 150.0)])
+
+
+def test_a_failed_docx_leaves_no_figures_behind(monkeypatch, tmp_path):
+    import tempfile
+
+    from velplan.note import pandoc, write_note
+
+    note = build_note("four-bar", n=4, parts=["kinematics"], lang="en", plans=[2])
+    work = tmp_path / "tmp"
+    work.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(work))
+    monkeypatch.setattr("velplan.note.figures._MADE", {})  # the figures drawn again, in the thread
+
+    def fail(self):
+        raise VelplanError("pandoc could not write the note (docx): no")
+
+    monkeypatch.setattr(pandoc.Pandoc, "result", fail)
+    with pytest.raises(VelplanError, match="^pandoc could not write the note"):
+        write_note(note, tmp_path / "n.docx")
+    assert not (tmp_path / "n.docx").exists() and list(work.iterdir()) == []  # the thread's files gone too

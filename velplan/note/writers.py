@@ -115,10 +115,14 @@ class _Rasterising:
 
     def result(self) -> list[bytes]:
         """The PNGs (waits for them); the thread's error raised here."""
-        self._thread.join()
+        self.join()
         if self._error is not None:
             raise self._error
         return self._pngs
+
+    def join(self) -> None:
+        """Wait for the thread (its temporary files removed by it, not left at exit)."""
+        self._thread.join()
 
 
 def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
@@ -139,32 +143,42 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
     run = Pandoc(to_markdown(note, "docx", images, placeholder=PLACEHOLDER if wanted else None), "docx", tmp,
                  ["--number-sections"])
     math = FormulaRun(wanted, tmp / "math") if wanted else None
+    drawing = None
     try:
         drawing = _Rasterising([fig.picture for fig in _figures(note)])
         docx = _module("docx")  # imported while pandoc runs and the figures are drawn
-        from velplan.note.docx_figures import add_png_fallbacks
         raw = run.result()
         doc = docx.Document(io.BytesIO(raw))
         if math is not None and not put_formulas(doc, wanted, math.equations()):
             # a formula pandoc reads otherwise on its own: the whole note converted as one
             doc = docx.Document(io.BytesIO(_pandoc(to_markdown(note, "docx", images), "docx", tmp,
                                                    ["--number-sections"])))
+        _course_note(docx, doc, note)
+        from velplan.note.docx_figures import add_png_fallbacks
+
+        add_png_fallbacks(doc, list(zip((svgs[fig.name] for fig in _figures(note)), drawing.result())))
     finally:
         run.cancel()
         if math is not None:
             math.cancel()
+        if drawing is not None:
+            drawing.join()  # where anything failed: its temporary files gone before the process ends
+    out = io.BytesIO()
+    doc.save(out)
+    return out.getvalue()
+
+
+def _course_note(docx, doc, note) -> None:
+    """A4 pages with a course note's margins (GOST 2.105), its title, its layout, and the
+    contents filled in when Word opens it."""
     mm = docx.shared.Mm
-    for section in doc.sections:  # A4 with the margins of a course note (GOST 2.105)
+    for section in doc.sections:
         section.page_width, section.page_height = mm(210), mm(297)
         section.left_margin, section.right_margin = mm(25), mm(15)
         section.top_margin = section.bottom_margin = mm(20)
     doc.core_properties.title = note.title
     _layout(doc, note.lang)
     _update_fields_on_open(docx, doc.settings.element)
-    add_png_fallbacks(doc, list(zip((svgs[fig.name] for fig in _figures(note)), drawing.result())))
-    out = io.BytesIO()
-    doc.save(out)
-    return out.getvalue()
 
 
 def _layout(doc, lang: str) -> None:
