@@ -19,6 +19,7 @@ pdfium_raw = pytest.importorskip("pypdfium2.raw")
 from tests import shared_notes  # noqa: E402
 from velplan.cli import main  # noqa: E402
 from velplan.note import build_note, write_note  # noqa: E402
+from velplan.note.blocks import Figure  # noqa: E402
 from velplan.note.formulas import force  # noqa: E402
 from velplan.note.text import p  # noqa: E402
 from velplan.study import Study  # noqa: E402
@@ -103,8 +104,16 @@ def test_pdf_pages_figures_and_margins(ru, tmp_path):
     _, note, paths = ru
     pdf = pdfium.PdfDocument(str(paths["pdf"]))
     assert len(pdf) >= 10
-    images = sum(len(list(page.get_objects(filter=[pdfium_raw.FPDF_PAGEOBJ_IMAGE]))) for page in pdf)
-    assert images >= note.figures >= 15
+    # every figure drawn, as a vector drawing: its lettering is text of the page its caption is on
+    pages = [page.get_textpage().get_text_range().replace("\r\n", "\n") for page in pdf]
+    figures = [b for b in note.blocks if isinstance(b, Figure)]
+    assert len(figures) == note.figures >= 15
+    for k, fig in enumerate(figures, 1):
+        on = [t for t in pages if re.search(rf"{p('figure', note.lang)} {k} — ", t)]
+        words = {w for w in re.findall(r">([^<>]{4,})<", fig.svg) if not w.isspace()}
+        assert len(on) == 1 and words, fig.name
+        found = [w for w in words if re.sub(r"\s+", "", w) in re.sub(r"\s+", "", on[0])]
+        assert len(found) >= 0.8 * len(words), (fig.name, sorted(words - set(found)))
     for k, page in enumerate(pdf):
         w, h = page.get_size()
         text = page.get_textpage()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-pytest.importorskip("cairosvg")
+pytest.importorskip("typst")
 
 from velplan.note.figures import LETTER_MM, TEXT_WIDTH_MM, for_page, views_png  # noqa: E402
 from velplan.render.scene import Polyline, Text  # noqa: E402

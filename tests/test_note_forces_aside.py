@@ -86,7 +86,7 @@ def test_the_command_writes_the_same_docx_with_both_helpers(monkeypatch, tmp_pat
 
     def document(name, free):
         monkeypatch.setattr(raster, "core_free", lambda: free)
-        figures._png.cache_clear()
+        figures._MADE.clear()
         assert main(["note", "slider-press", "--positions", "6", "--lang", "uk", "-o", str(tmp_path / name)]) == 0
         z = zipfile.ZipFile(tmp_path / name)
         return {n: z.read(n) for n in z.namelist() if n != "docProps/core.xml"}

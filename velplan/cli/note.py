@@ -41,7 +41,6 @@ def run_note(args) -> int:
     from velplan.cli.sheet import parse_plans
     from velplan.note import build_note, note_format, write_note
     from velplan.note.forces_aside import building_aside
-    from velplan.note.raster import rasterise_aside
     from velplan.note.writers import require
     from velplan.study import Study
 
@@ -58,8 +57,8 @@ def run_note(args) -> int:
         raise VelplanError("--parts: give at least one of kinematics, forces, dynamics")
     study = Study(args.mechanism, n=args.positions, delta=args.delta)
     fields = {k: getattr(args, k) for k, _ in FIELDS if getattr(args, k)}
-    # the figures' PNGs made by a second process, and the part on forces by a third, while the note is built
-    with rasterise_aside(), building_aside():
+    # the part on forces built by a second process while this one builds the rest
+    with building_aside():
         note = build_note(study, plans=parse_plans(args.plans, args.positions), parts=parts, lang=args.lang,
                           fmt=args.format, fields=fields)
         write_note(note, out)

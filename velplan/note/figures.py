@@ -1,10 +1,9 @@
 """Figures of the note: the sheets' own views, drawn side by side as one SVG for the page, and
-rasterised to PNG at print resolution through the sheets' PNG export (cairosvg, with the
-bundled font) only when a format asks for pixels."""
+rasterised to PNG at print resolution (`velplan.note.pixels`, all of a note's figures in one
+run) only when a format asks for pixels."""
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, replace
 
 from velplan.note.page_text import boxed, settle
@@ -38,23 +37,28 @@ class Picture:
     dpi: float
 
     def png(self) -> bytes:
-        """The PNG (grey where the drawing has no colour), made once."""
-        return _png(self.svg, self.dpi)
+        """The PNG, made once (`pictures_png`)."""
+        return pictures_png([self])[0]
 
 
-ASIDE = None
-"""The helper process that rasterises figures as they are drawn, while one is running
-(`velplan.note.raster.rasterise_aside`)."""
+_MADE: dict[tuple[str, float], bytes] = {}
+"""The PNGs made lately, (SVG, dpi) → PNG: the last `_KEPT` of them."""
+_KEPT = 64
 
 
-@functools.lru_cache(maxsize=64)
-def _png(svg: str, dpi: float) -> bytes:
-    made = ASIDE.png(svg, dpi) if ASIDE is not None else None
-    if made is not None:
-        return made
-    from velplan.render.export import svg_to_png
+def pictures_png(pictures) -> list[bytes]:
+    """The PNG of each `Picture`, those not made lately made together in one run
+    (`velplan.note.pixels.pngs`)."""
+    from velplan.note import pixels
 
-    return svg_to_png(svg, dpi=dpi, grey=True)
+    keys = [(p.svg, float(p.dpi)) for p in pictures]
+    wanted = [k for k in dict.fromkeys(keys) if k not in _MADE]
+    made = dict(zip(wanted, pixels.pngs([Picture(*k) for k in wanted]))) if wanted else {}
+    out = [made[k] if k in made else _MADE[k] for k in keys]
+    _MADE.update(made)
+    for old in list(_MADE)[:max(0, len(_MADE) - _KEPT)]:
+        del _MADE[old]
+    return out
 
 
 def views_png(views, style, *, dpi: float = DPI) -> tuple[bytes, float]:
@@ -68,10 +72,7 @@ def views_figure(views, style, *, dpi: float = DPI) -> tuple[Picture, float]:
     (`page_scene`), and the width (mm) it takes on the page: its size on the sheet, or less
     to fit the text width and `FIGURE_HEIGHT_MM`; its PNG prints at ``dpi``."""
     scene, shrink = page_scene(views)
-    svg = to_svg(scene, style)
-    if ASIDE is not None:
-        ASIDE.submit(svg, dpi * shrink)
-    return Picture(svg, dpi * shrink), scene.width_mm * shrink
+    return Picture(to_svg(scene, style), dpi * shrink), scene.width_mm * shrink
 
 
 def page_scene(views) -> tuple[Scene, float]:

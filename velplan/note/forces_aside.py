@@ -76,7 +76,6 @@ class ForcesAside:
             return False
         blocks, note.figures, note.tables = pickle.loads(data)
         note.add(*blocks)
-        _hand_to_rasteriser(blocks)
         return True
 
     def close(self) -> None:
@@ -96,12 +95,10 @@ class ForcesAside:
 def _serve(ask: int, told: int, study, positions, fmt, lang) -> None:
     """In the fork: the force sheet, then the part once the counts arrive (nothing written where
     anything fails: the parent then writes the part itself)."""
-    from velplan.note import figures
     from velplan.note.build import _force_sheet
     from velplan.note.forces import forces_section
     from velplan.note.model import Note
 
-    figures.ASIDE = None  # the figures' helper is the parent's: it hands them on itself
     try:
         sheet = _force_sheet(study, positions, fmt, lang)
     except Exception:  # the parent meets it again and reports it
@@ -119,13 +116,3 @@ def _serve(ask: int, told: int, study, positions, fmt, lang) -> None:
     with open(told, "wb") as out:
         out.write(data)
 
-
-def _hand_to_rasteriser(blocks) -> None:
-    """The part's figures handed to the figures' helper, as if drawn here."""
-    from velplan.note import figures
-    from velplan.note.blocks import Figure
-
-    if figures.ASIDE is not None:
-        for b in blocks:
-            if isinstance(b, Figure):
-                figures.ASIDE.submit(b.picture.svg, b.picture.dpi)

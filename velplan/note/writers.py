@@ -1,8 +1,9 @@
 """Writing the note: .docx (pandoc, formulas as Word equations, figures as SVG with a PNG
-fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font), .html
-(pandoc, MathML, one self-contained file) and .md (figures in a folder beside it). Every file
-is written whole or not at all. Pandoc runs in the background while the figures are
-rasterised."""
+fallback), .pdf (pandoc → Typst, typeset by the Typst compiler with the bundled font, its
+figures drawn from their SVGs as vector drawings), .html (pandoc, MathML, one self-contained
+file) and .md (figures in a folder beside it). Every file is written whole or not at all.
+Pandoc runs in the background while the figures are rasterised (`velplan.note.pixels`: by
+Typst, in a thread of this process)."""
 
 from __future__ import annotations
 
@@ -18,7 +19,6 @@ from velplan.io import write_atomic
 from velplan.note.blocks import Figure
 from velplan.note.markdown import to_markdown
 from velplan.note.pandoc import INSTALL, Pandoc, installed
-from velplan.render.export import shared_fonts
 FORMATS = {".docx": "docx", ".pdf": "pdf", ".html": "html", ".htm": "html", ".md": "md"}
 FONT_DIR = Path(__file__).resolve().parent.parent / "fonts"
 
@@ -48,10 +48,10 @@ def _module(name: str):
         raise VelplanError(f"the note needs {name.split('.')[0]} ({exc}); install it with `{INSTALL}`") from None
 
 
-NEEDS = {"docx": ("cairosvg", "pypandoc", "docx"), "pdf": ("cairosvg", "pypandoc", "typst"),
-         "html": ("cairosvg", "pypandoc"), "md": ("cairosvg",)}
-"""The modules each format needs (cairosvg draws the figures, pypandoc brings pandoc), checked
-before a note is built."""
+NEEDS = {"docx": ("typst", "pypandoc", "docx"), "pdf": ("typst", "pypandoc"),
+         "html": ("typst", "pypandoc"), "md": ("typst",)}
+"""The modules each format needs (typst draws the figures' pixels and typesets the .pdf,
+pypandoc brings pandoc), checked before a note is built."""
 
 
 def require(kind: str) -> None:
@@ -86,12 +86,43 @@ def _figures(note) -> list:
 
 def _png_files(note, tmp: Path) -> dict[str, str]:
     """Each figure's PNG written into ``tmp``: figure name → file name."""
-    images = {}
-    with shared_fonts():
-        for fig in _figures(note):
-            images[fig.name] = f"{fig.name}.png"
-            (tmp / images[fig.name]).write_bytes(fig.png)
+    from velplan.note.figures import pictures_png
+
+    figs = _figures(note)
+    images = {fig.name: f"{fig.name}.png" for fig in figs}
+    for fig, png in zip(figs, pictures_png([fig.picture for fig in figs])):
+        (tmp / images[fig.name]).write_bytes(png)
     return images
+
+
+class _Rasterising:
+    """The note's PNGs made in a thread (Typst lets go of the interpreter while it draws)."""
+
+    def __init__(self, pictures):
+        import threading
+
+        self._pngs, self._error = None, None
+        self._thread = threading.Thread(target=self._run, args=(pictures,), daemon=True)
+        self._thread.start()
+
+    def _run(self, pictures) -> None:
+        from velplan.note.figures import pictures_png
+
+        try:
+            self._pngs = pictures_png(pictures)
+        except BaseException as exc:  # raised again in the caller's thread
+            self._error = exc
+
+    def result(self) -> list[bytes]:
+        """The PNGs (waits for them); the thread's error raised here."""
+        self.join()
+        if self._error is not None:
+            raise self._error
+        return self._pngs
+
+    def join(self) -> None:
+        """Wait for the thread (its temporary files removed by it, not left at exit)."""
+        self._thread.join()
 
 
 def _pandoc(source: str, to: str, tmp: Path, extra=()) -> bytes:
@@ -112,33 +143,42 @@ def _docx(note, tmp: Path, path: Path) -> bytes:
     run = Pandoc(to_markdown(note, "docx", images, placeholder=PLACEHOLDER if wanted else None), "docx", tmp,
                  ["--number-sections"])
     math = FormulaRun(wanted, tmp / "math") if wanted else None
+    drawing = None
     try:
-        docx = _module("docx")  # imported while pandoc runs (and the figures' helper, if any, ends)
-        from velplan.note.docx_figures import add_png_fallbacks
-        with shared_fonts():
-            pngs = [(svgs[fig.name], fig.png) for fig in _figures(note)]
+        drawing = _Rasterising([fig.picture for fig in _figures(note)])
+        docx = _module("docx")  # imported while pandoc runs and the figures are drawn
         raw = run.result()
         doc = docx.Document(io.BytesIO(raw))
         if math is not None and not put_formulas(doc, wanted, math.equations()):
             # a formula pandoc reads otherwise on its own: the whole note converted as one
             doc = docx.Document(io.BytesIO(_pandoc(to_markdown(note, "docx", images), "docx", tmp,
                                                    ["--number-sections"])))
+        _course_note(docx, doc, note)
+        from velplan.note.docx_figures import add_png_fallbacks
+
+        add_png_fallbacks(doc, list(zip((svgs[fig.name] for fig in _figures(note)), drawing.result())))
     finally:
         run.cancel()
         if math is not None:
             math.cancel()
+        if drawing is not None:
+            drawing.join()  # where anything failed: its temporary files gone before the process ends
+    out = io.BytesIO()
+    doc.save(out)
+    return out.getvalue()
+
+
+def _course_note(docx, doc, note) -> None:
+    """A4 pages with a course note's margins (GOST 2.105), its title, its layout, and the
+    contents filled in when Word opens it."""
     mm = docx.shared.Mm
-    for section in doc.sections:  # A4 with the margins of a course note (GOST 2.105)
+    for section in doc.sections:
         section.page_width, section.page_height = mm(210), mm(297)
         section.left_margin, section.right_margin = mm(25), mm(15)
         section.top_margin = section.bottom_margin = mm(20)
     doc.core_properties.title = note.title
     _layout(doc, note.lang)
     _update_fields_on_open(docx, doc.settings.element)
-    add_png_fallbacks(doc, pngs)
-    out = io.BytesIO()
-    doc.save(out)
-    return out.getvalue()
 
 
 def _layout(doc, lang: str) -> None:
@@ -175,10 +215,15 @@ def _update_fields_on_open(docx, settings) -> None:
 
 
 def _pdf(note, tmp: Path, path: Path) -> bytes:
-    images = {fig.name: f"{fig.name}.png" for fig in _figures(note)}
+    """The note typeset by Typst, its figures drawn from their SVGs (vector, in the texts'
+    own faces as `velplan.note.pixels` gives them)."""
+    from velplan.note.pixels import for_typst
+
+    images = {fig.name: f"{fig.name}.svg" for fig in _figures(note)}
     run = Pandoc(to_markdown(note, "typst", images), "typst", tmp)  # it names the figures' files only
     try:
-        _png_files(note, tmp)
+        for fig in _figures(note):
+            (tmp / images[fig.name]).write_text(for_typst(fig.svg), encoding="utf-8")
         body = run.result().decode("utf-8")
     finally:
         run.cancel()
@@ -188,8 +233,8 @@ def _pdf(note, tmp: Path, path: Path) -> bytes:
     (tmp / "note.typ").write_text(source, encoding="utf-8")
     typst = _module("typst")
     try:
-        return typst.compile(str(tmp / "note.typ"), root=str(tmp), font_paths=[str(FONT_DIR)],
-                             ignore_system_fonts=True)
+        # the installed fonts too: the figures' texts in the faces their SVG names, as in their PNGs
+        return typst.compile(str(tmp / "note.typ"), root=str(tmp), font_paths=[str(FONT_DIR)])
     except Exception as exc:  # typst raises its own error type with the diagnostics
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise VelplanError(f"typst could not typeset the note: {first}") from None
