@@ -43,8 +43,8 @@ def test_the_numbers_written_are_the_force_analysis(case):
     assert view.meta["balancing_force"] == pytest.approx(fb, rel=1e-12)
     assert view.meta["percent"] == pytest.approx(float(fa.lever_difference_percent[i]), abs=1e-9)
     texts = " ".join(p.text for p in view.primitives if hasattr(p, "text"))
-    assert f"Fb = {number(abs(fb), 'en')} N" in texts
-    assert f"Mb = {number(mb, 'en')} N·m (lever)" in texts
+    assert f"F_{{b}} = {number(abs(fb), 'en')} N" in texts  # indices set below the line
+    assert f"M_{{b}} = {number(mb, 'en')} N·m (lever)" in texts
 
 
 def test_the_forces_drawn_are_the_lever_forces_at_the_drawing_scale(case):

@@ -156,7 +156,7 @@ def test_curved_arrows_turn_the_way_the_moments_do(name, force_sheets, force_can
             r, d = np.asarray(a.start) - c, np.asarray(a.end) - np.asarray(a.start)
             assert np.sign(r[0] * d[1] - r[1] * d[0]) == np.sign(value), (view_name, label)
             seen.add(label)
-    assert "Mур" in seen
+    assert "M_{ур}" in seen  # M with its index ур set below the line
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -180,7 +180,7 @@ def test_lever_balance_written_equals_kinetostatics_to_the_printed_digits(name, 
                                                                           force_canvases):
     sheet, canvas = force_sheets[name], force_canvases[name]
     text = force_sheet_text(sheet)
-    written = re.findall(r"^Mур = (\S+) Н·м \(рычаг\) / (\S+) Н·м \(кинетостатика\), "
+    written = re.findall(r"^M_\{ур\} = (\S+) Н·м \(рычаг\) / (\S+) Н·м \(кинетостатика\), "
                          r"Δ = (\S+) %$", text, flags=re.M)
     assert len(written) == len(sheet.positions)
     mb = sheet.analysis.kinetostatics.balancing_moment
@@ -191,9 +191,9 @@ def test_lever_balance_written_equals_kinetostatics_to_the_printed_digits(name, 
     rows = {}
     for t in canvas.texts("table"):
         rows.setdefault(round(t.position[1], 3), []).append(t.text)
-    body = [r for r in rows.values() if r[0].startswith("Mур (")]
-    assert [r[0] for r in body] == ["Mур (кинетостатика)", "Mур (рычаг)",
-                                    "Mур (метод мощностей)"]
+    body = [r for r in rows.values() if r[0].startswith("M_{ур} (")]
+    assert [r[0] for r in body] == ["M_{ур} (кинетостатика)", "M_{ур} (рычаг)",
+                                    "M_{ур} (метод мощностей)"]
     assert body[0][1:] == body[1][1:] == body[2][1:] and len(body[0]) == 13
 
 

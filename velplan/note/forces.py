@@ -12,7 +12,7 @@ from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
-from velplan.notation import fixed, number as _num
+from velplan.notation import fixed, number as _num, plain_text
 from velplan.views.forces import force_text, moment_decimals, newton, newton_metre, slug
 
 
@@ -108,7 +108,7 @@ def _moments(note, sheet) -> None:
     fa = sheet.analysis
     moments = fa.balancing_moments
     decimals = moment_decimals(moments["kinetostatics"])
-    mb = label("symbol_balancing_moment", lang)
+    mb = plain_text(label("symbol_balancing_moment", lang))  # Mур: the table's cells set its index
     note.add(Heading(p("sec_moments", lang), 2), Para.of(p("moments_text", lang, sheet.mechanism.crank.link)))
     head = [label("position_short", lang), "φ, °"] + [f"{mb} ({label('method_' + key, lang)})"
                                                      for key in ("kinetostatics", "lever", "power")]

@@ -103,8 +103,8 @@ _LABELS: Mapping[str, Mapping[str, str]] = MappingProxyType({
                                        "Диаграмма уравновешивающего момента",
                                        "Діаграма зрівноважувального моменту", "平衡力矩线图"),
     "mean": _entry("mean", "среднее", "середнє", "平均值"),
-    "symbol_balancing_moment": _entry("Mb", "Mур", "Mзр", "Mb"),
-    "symbol_balancing_force": _entry("Fb", "Fур", "Fзр", "Fb"),
+    "symbol_balancing_moment": _entry("M_{b}", "M_{ур}", "M_{зр}", "M_{b}"),
+    "symbol_balancing_force": _entry("F_{b}", "F_{ур}", "F_{зр}", "F_{b}"),
     "unit_newton": _entry("N", "Н", "Н", "N"),
     "unit_newton_metre": _entry("N·m", "Н·м", "Н·м", "N·m"),
     # The dynamics sheet (velplan.sheets.dynamics).
