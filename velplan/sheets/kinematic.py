@@ -156,6 +156,7 @@ class _Drawings:
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.steps = Trials(self._steps)
+        self.least_plan = Trials(self._least_plan)  # a plan's construction and title alone, mm
         self.diagrams = Trials(self._diagrams)
         self.compact = Trials(self._compact)
 
@@ -191,9 +192,12 @@ class _Drawings:
     def plan_fits(self, kind: PlanKind, number: int, mu: float, w: float, h: float) -> bool:
         """Whether the plan at μ may fit w × h mm: False where its construction and title
         alone (`least_plan_size`) exceed it, found without drawing its letters."""
-        res, steps = self.steps(kind, number, mu)
-        lw, lh = least_plan_size(res, number, steps, lang=self.req.lang, sizes=self.req.sizes.plan)
+        lw, lh = self.least_plan(kind, number, mu)
         return lw <= w + EPS_MM and lh <= h + EPS_MM
+
+    def _least_plan(self, kind: PlanKind, number: int, mu: float) -> tuple[float, float]:
+        res, steps = self.steps(kind, number, mu)
+        return least_plan_size(res, number, steps, lang=self.req.lang, sizes=self.req.sizes.plan)
 
     def _diagrams(self, arrangement: Arrangement, length: float, height: float) -> View:
         study = self.req.study
@@ -1025,23 +1029,33 @@ def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
 def _score_bound(study: Study, chosen, kinds, region, gap: float, vector_bound=None) -> float:
     """An upper bound of `_fit_plans`' score in `region` (mm), found without drawing: for
     each grid shape, the least over its plans of the longest vector at the first scale
-    `_fit_one` may try in its cell (``vector_bound(plan, number, cw, ch)``, `_vector_bound` by
-    default); the largest of them over the shapes."""
-    vector_bound = vector_bound or _vector_bound
-    x0, y0, x1, y1 = region
-    W, H = x1 - x0, y1 - y0
+    `_fit_one` may try in its cell (`_vector_bound`); the largest of them over the shapes.
+    With ``vector_bound(plan, number, cw, ch)``, a tighter bound of that vector, the shapes
+    whose plain bound may raise the result are bounded by it instead."""
     bound = 0.0
-    for rows, cols, order in _grid_shapes(chosen, kinds):
-        cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
-        if cw <= 0 or ch <= 0:
-            continue
-        worst = math.inf
-        for kind, number in order:
-            worst = min(worst, vector_bound(study.plan(kind), number, cw, ch))
-            if worst <= bound:
-                break
+    for shape in _grid_shapes(chosen, kinds):
+        worst = _shape_bound(study, shape, region, gap, _vector_bound, bound)
+        if vector_bound is not None and worst > bound:
+            worst = _shape_bound(study, shape, region, gap, vector_bound, bound)
         bound = max(bound, worst)
     return bound
+
+
+def _shape_bound(study: Study, shape, region, gap: float, vector_bound, floor: float) -> float:
+    """The least ``vector_bound(plan, number, cw, ch)`` (mm) over the plans of the grid
+    `shape` (rows, columns, plans) in `region`, or any value not above `floor` once it is
+    known to fall there; 0 where the cells have no room."""
+    rows, cols, order = shape
+    x0, y0, x1, y1 = region
+    cw, ch = (x1 - x0 - gap * (cols - 1)) / cols, (y1 - y0 - gap * (rows - 1)) / rows
+    if cw <= 0 or ch <= 0:
+        return 0.0
+    worst = math.inf
+    for kind, number in order:
+        worst = min(worst, vector_bound(study.plan(kind), number, cw, ch))
+        if worst <= floor:
+            break
+    return worst
 
 
 def _vector_bound(res0: PlanResult, number: int, cw: float, ch: float) -> float:
