@@ -314,6 +314,7 @@ def unicode_text(text: str) -> str:
                              text)
 
 
+@functools.lru_cache(maxsize=4096)  # a sheet writes the same few labels over and over
 def text_runs(text: str) -> tuple[TextRun, ...]:
     """Split `text` into runs of one script each; a text without indices is one run.
 
