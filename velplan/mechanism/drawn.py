@@ -21,7 +21,7 @@ from itertools import combinations
 from typing import Any
 
 from velplan.errors import MechanismError
-from velplan.mechanism.fields import finite, no_unknown, optional_name
+from velplan.mechanism.fields import finite, fresh_name, no_unknown, optional_name
 from velplan.mechanism.model import GROUND
 
 FRAME_NAMES = (GROUND, "ground")
@@ -205,15 +205,6 @@ def check_held(chain: Chain, crank: str) -> None:
     if alone:
         raise MechanismError(f"link{'s' if len(alone) > 1 else ''} held by one joint alone: {', '.join(alone)}; "
                              "every moving link but the crank needs two pairs at least (check the joints' links)")
-
-
-def fresh_name(stem: str, taken: set[str]) -> str:
-    """``stem``, or ``stem`` with the first number from 2 that makes it none of ``taken``."""
-    name, k = stem, 1
-    while name in taken:
-        k += 1
-        name = f"{stem}{k}"
-    return name
 
 
 def links_text(links) -> str:

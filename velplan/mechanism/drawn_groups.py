@@ -12,7 +12,7 @@ from typing import Any
 from velplan.errors import MechanismError
 from velplan.mechanism.drawn import (CRANK_KEYS, TOLERANCE, Chain, GroupPair, Joint, check_held, check_joints, decompose,
                                      drawing_size, group_pairs, links_text, parse_joints)
-from velplan.mechanism.fields import no_unknown
+from velplan.mechanism.fields import degrees_of, no_unknown
 from velplan.mechanism.model import GROUND
 
 
@@ -77,12 +77,6 @@ class Builder:
     def frame(self, link: str, origin: complex, toward: complex | float) -> None:
         angle = toward if isinstance(toward, float) else cmath.phase(toward - origin)
         self.frames[link] = (origin, angle)
-
-
-def degrees_of(angle: float) -> float:
-    """An angle in degrees in (−180, 180]."""
-    d = math.degrees(math.remainder(angle, 2 * math.pi))
-    return 180.0 if d == -180.0 else d
 
 
 def _sign(x: float, what: str) -> int:

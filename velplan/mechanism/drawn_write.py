@@ -5,8 +5,7 @@ from __future__ import annotations
 
 from typing import Mapping
 
-from velplan.mechanism.drawn import fresh_name
-from velplan.mechanism.drawn_groups import degrees_of
+from velplan.mechanism.fields import degrees_of, fresh_name
 from velplan.mechanism.model import GROUND, PRP, RPP, RPR, RRP, RRR, Triad, kind_entry
 
 

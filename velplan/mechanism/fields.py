@@ -42,3 +42,18 @@ def no_unknown(t: dict, allowed: set[str], where: str) -> None:
 def optional_name(t: dict, key: str) -> str | None:
     v = t.get(key)
     return None if v in (None, "") else str(v)
+
+
+def fresh_name(stem: str, taken: set[str]) -> str:
+    """``stem``, or ``stem`` with the first number from 2 that makes it none of ``taken``."""
+    name, k = stem, 1
+    while name in taken:
+        k += 1
+        name = f"{stem}{k}"
+    return name
+
+
+def degrees_of(angle: float) -> float:
+    """An angle in degrees in (−180, 180]."""
+    d = math.degrees(math.remainder(angle, 2 * math.pi))
+    return 180.0 if d == -180.0 else d

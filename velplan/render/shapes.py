@@ -296,6 +296,7 @@ def _unmarked(text: str) -> list[tuple[str, str]]:
     return out
 
 
+@functools.lru_cache(maxsize=4096)  # a sheet writes the same few labels over and over
 def text_runs(text: str) -> tuple[TextRun, ...]:
     """Split `text` into runs of one script each; a text without indices is one run.
 

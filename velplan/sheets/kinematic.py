@@ -55,7 +55,7 @@ from velplan.sheets.solver import EPS_MM, Trials, fits, largest_fitting
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, eskd_scales, ratio_text
 from velplan.views.diagram import Arrangement, DiagramSizes, diagram_view, least_row_width
-from velplan.views.mechanism import extent_m, mechanism_view
+from velplan.views.mechanism import extent_m, least_scheme_size, mechanism_view
 from velplan.views.plan import (
     MIN_VECTOR_MM, extent_mm, labelled_vectors, least_plan_size, plan_steps, plan_view)
 from velplan.views.table import table_view
@@ -157,6 +157,7 @@ class _Drawings:
         self.scheme = Trials(self._scheme)
         self.plan = Trials(self._plan)
         self.steps = Trials(self._steps)
+        self.least_plan = Trials(self._least_plan)  # a plan's construction and title alone, mm
         self.diagrams = Trials(self._diagrams)
         self.compact = Trials(self._compact)
 
@@ -165,6 +166,12 @@ class _Drawings:
         return mechanism_view(study.mechanism, mu_l=mu, n=study.n, thick=self.thick, lang=req.lang,
                               sizes=req.sizes.mechanism, kin=study.kinematics, fine=self.fine,
                               extreme=study.other_extreme, bold=self.bold, special=self.chosen, plans=self.chosen)
+
+    def least_scheme(self, mu: float) -> tuple[float, float]:
+        """A lower bound of the size of ``scheme(mu)``, mm (`least_scheme_size`), without drawing it."""
+        study, req = self.req.study, self.req
+        return least_scheme_size(study.mechanism, study.kinematics, mu_l=mu, thick=self.thick,
+                                 sizes=req.sizes.mechanism)
 
     def _steps(self, kind: PlanKind, number: int, mu: float):
         res = self.req.study.plan(kind).at_scale(mu)
@@ -186,9 +193,12 @@ class _Drawings:
     def plan_fits(self, kind: PlanKind, number: int, mu: float, w: float, h: float) -> bool:
         """Whether the plan at μ may fit w × h mm: False where its construction and title
         alone (`least_plan_size`) exceed it, found without drawing its letters."""
-        res, steps = self.steps(kind, number, mu)
-        lw, lh = least_plan_size(res, number, steps, lang=self.req.lang, sizes=self.req.sizes.plan)
+        lw, lh = self.least_plan(kind, number, mu)
         return lw <= w + EPS_MM and lh <= h + EPS_MM
+
+    def _least_plan(self, kind: PlanKind, number: int, mu: float) -> tuple[float, float]:
+        res, steps = self.steps(kind, number, mu)
+        return least_plan_size(res, number, steps, lang=self.req.lang, sizes=self.req.sizes.plan)
 
     def _diagrams(self, arrangement: Arrangement, length: float, height: float) -> View:
         study = self.req.study
@@ -446,8 +456,9 @@ def _pairing(req: Request, draw: _Drawings, attempts, kinds, zone, floor: float,
     """(the best (score, scheme, fitted plans, positions) or None, the first ScaleError) of
     the schemes in `zone` (at its upper left) filling at least `least` of it with the plans
     of the first of the `attempts` that fits, the plans above `floor` (mm)."""
-    fx0, _, fx1, fy1 = req.area
-    g = req.gap
+    ahead = _past_a_hopeless_scheme(req, draw, attempts[0], kinds, zone, floor, least)
+    if ahead is not None:
+        return ahead, failure
     best = None
     for attempt in attempts:
         if best is not None:
@@ -455,26 +466,60 @@ def _pairing(req: Request, draw: _Drawings, attempts, kinds, zone, floor: float,
         for mview in _mechanism_candidates(req, draw, zone):
             if _zone_share(mview, zone) < least:
                 continue
-            # the plans go to the right of the scheme, or below it across the sheet
-            regions = [(fx0 + mview.width_mm + g, floor + g, fx1, fy1),
-                       (fx0, floor + g, fx1, fy1 - mview.height_mm - g)]
-            good = False
-            for region in regions:
-                if region[2] - region[0] < 40 or region[3] - region[1] < 40:
-                    continue
-                if best is not None and _cannot_change(best[0], good, req, attempt, kinds, region):
-                    continue
-                try:
-                    score, fitted = _fit_plans(req, draw, attempt, kinds, region)
-                except ScaleError as exc:
-                    failure = failure or exc
-                    continue
-                if best is None or score > best[0]:
-                    best = (score, mview, fitted, attempt)
-                good = good or score >= GOOD_PLAN_MM[req.fmt]
+            best, good, failure = _plans_beside(req, draw, mview, attempt, kinds, floor, best, failure)
             if good:
                 return best, failure
     return best, failure
+
+
+def _plans_beside(req: Request, draw: _Drawings, mview: View, attempt, kinds, floor: float, best, failure):
+    """(best, whether the plans of `attempt` beside the scheme `mview` are good, the first
+    ScaleError): the plans fitted right of the scheme, or below it across the sheet, where
+    they may beat `best` (score, scheme, fitted plans, positions) or make the scheme good."""
+    good = False
+    for region in _plan_regions(req, mview.width_mm, mview.height_mm, floor):
+        if best is not None and _cannot_change(best[0], good, req, attempt, kinds, region):
+            continue
+        try:
+            score, fitted = _fit_plans(req, draw, attempt, kinds, region)
+        except ScaleError as exc:
+            failure = failure or exc
+            continue
+        if best is None or score > best[0]:
+            best = (score, mview, fitted, attempt)
+        good = good or score >= GOOD_PLAN_MM[req.fmt]
+    return best, good, failure
+
+
+def _plan_regions(req: Request, width: float, height: float, floor: float) -> list[tuple]:
+    """The plans' regions beside a scheme of width × height mm at the upper left, above
+    `floor` (mm): right of it, and below it across the sheet, each at least 40 mm each way."""
+    fx0, _, fx1, fy1 = req.area
+    g = req.gap
+    regions = [(fx0 + width + g, floor + g, fx1, fy1), (fx0, floor + g, fx1, fy1 - height - g)]
+    return [r for r in regions if not (r[2] - r[0] < 40 or r[3] - r[1] < 40)]
+
+
+def _past_a_hopeless_scheme(req: Request, draw: _Drawings, attempt, kinds, zone, floor: float, least: float):
+    """`_pairing`'s best of `attempt` found without drawing the largest scheme that may fit
+    `zone` where it cannot be chosen: at its least size (`least_scheme_size`) its plans can
+    score no more than a bound (`_score_bound`) short of good, and the next scheme's plans are
+    good and score more than that bound. None where that is not so (every scheme is tried)."""
+    scales = _scheme_scales(req, draw, zone)
+    first = next(scales, None)
+    if first is None:
+        return None
+    vector_bound = partial(_drawn_vector_bound, draw, MIN_PLAN_MM[req.fmt])
+    bound = max((_score_bound(req.study, attempt, kinds, region, req.gap, vector_bound)
+                 for region in _plan_regions(req, *draw.least_scheme(first), floor)), default=0.0)
+    if bound >= GOOD_PLAN_MM[req.fmt]:
+        return None
+    for mview in _fitting(draw, scales, zone):  # the next scheme that fits: the first chosen can be
+        if _zone_share(mview, zone) < least:
+            return None
+        best, good, _ = _plans_beside(req, draw, mview, attempt, kinds, floor, None, None)
+        return best if good and best[0] > bound else None
+    return None
 
 
 def _cannot_change(best: float, good: bool, req: Request, chosen, kinds, region) -> bool:
@@ -928,28 +973,45 @@ def _compact_diagrams(req: Request, draw: _Drawings, views):
 
 def _mechanism_candidates(req: Request, draw: _Drawings, zone, count: int = 3):
     """Up to `count` schemes at successive ESKD scales that fit `zone`, the largest first."""
+    found = 0
+    for view in _fitting(draw, _scheme_scales(req, draw, zone), zone):
+        yield view
+        found += 1
+        if found >= count:
+            return
+    if found:
+        return
+    x0, y0, x1, y1 = zone
+    raise ScaleError(f"the scheme of {req.mechanism.name} does not fit {req.fmt} ({x1 - x0:.0f} × {y1 - y0:.0f} mm "
+                     f"free) at any ESKD scale with a crank of at least {MIN_CRANK_MM:.0f} mm; "
+                     f"use a larger --format")
+
+
+def _scheme_scales(req: Request, draw: _Drawings, zone):
+    """The ESKD scales, the largest drawing first, whose scheme may fit `zone`: its extent and
+    its least size (`least_scheme_size`) do, and its crank is at least `MIN_CRANK_MM` long."""
     study = req.study
     mech = study.mechanism
     x0, y0, x1, y1 = zone
     w, h = x1 - x0, y1 - y0
     wx, wy = extent_m(mech, study.kinematics, draw.fine)
-    found = 0
     for mu in eskd_scales():
         if wx / mu > w or wy / mu > h:
             continue
         if mech.crank.length / mu < MIN_CRANK_MM:
-            break
+            return
+        lw, lh = draw.least_scheme(mu)
+        if lw <= w + EPS_MM and lh <= h + EPS_MM:
+            yield mu
+
+
+def _fitting(draw: _Drawings, scales, zone):
+    """The schemes drawn at `scales` (an iterator, consumed as they are drawn) that fit `zone`."""
+    x0, y0, x1, y1 = zone
+    for mu in scales:
         view = draw.scheme(mu)
-        if fits(view, w, h):
+        if fits(view, x1 - x0, y1 - y0):
             yield view
-            found += 1
-            if found >= count:
-                return
-    if found:
-        return
-    raise ScaleError(f"the scheme of {mech.name} does not fit {req.fmt} ({w:.0f} × {h:.0f} mm free) "
-                     f"at any ESKD scale with a crank of at least {MIN_CRANK_MM:.0f} mm; "
-                     f"use a larger --format")
 
 
 def _grid_shapes(chosen, kinds) -> list[tuple[int, int, tuple]]:
@@ -981,24 +1043,36 @@ def _promise(study: Study, shape, W: float, H: float, gap: float) -> float:
     return worst
 
 
-def _score_bound(study: Study, chosen, kinds, region, gap: float) -> float:
+def _score_bound(study: Study, chosen, kinds, region, gap: float, vector_bound=None) -> float:
     """An upper bound of `_fit_plans`' score in `region` (mm), found without drawing: for
     each grid shape, the least over its plans of the longest vector at the first scale
-    `_fit_one` may try in its cell (`_vector_bound`); the largest of them over the shapes."""
-    x0, y0, x1, y1 = region
-    W, H = x1 - x0, y1 - y0
+    `_fit_one` may try in its cell (`_vector_bound`); the largest of them over the shapes.
+    With ``vector_bound(plan, number, cw, ch)``, a tighter bound of that vector, the shapes
+    whose plain bound may raise the result are bounded by it instead."""
     bound = 0.0
-    for rows, cols, order in _grid_shapes(chosen, kinds):
-        cw, ch = (W - gap * (cols - 1)) / cols, (H - gap * (rows - 1)) / rows
-        if cw <= 0 or ch <= 0:
-            continue
-        worst = math.inf
-        for kind, number in order:
-            worst = min(worst, _vector_bound(study.plan(kind), number, cw, ch))
-            if worst <= bound:
-                break
+    for shape in _grid_shapes(chosen, kinds):
+        worst = _shape_bound(study, shape, region, gap, _vector_bound, bound)
+        if vector_bound is not None and worst > bound:
+            worst = _shape_bound(study, shape, region, gap, vector_bound, bound)
         bound = max(bound, worst)
     return bound
+
+
+def _shape_bound(study: Study, shape, region, gap: float, vector_bound, floor: float) -> float:
+    """The least ``vector_bound(plan, number, cw, ch)`` (mm) over the plans of the grid
+    `shape` (rows, columns, plans) in `region`, or any value not above `floor` once it is
+    known to fall there; 0 where the cells have no room."""
+    rows, cols, order = shape
+    x0, y0, x1, y1 = region
+    cw, ch = (x1 - x0 - gap * (cols - 1)) / cols, (y1 - y0 - gap * (rows - 1)) / rows
+    if cw <= 0 or ch <= 0:
+        return 0.0
+    worst = math.inf
+    for kind, number in order:
+        worst = min(worst, vector_bound(study.plan(kind), number, cw, ch))
+        if worst <= floor:
+            break
+    return worst
 
 
 def _vector_bound(res0: PlanResult, number: int, cw: float, ch: float) -> float:
@@ -1079,24 +1153,45 @@ def _fit_one(res0: PlanResult, number: int, draw: _Drawings, cw: float, ch: floa
     """(result, view, longest vector mm) of the plan of position ``number`` at the smallest
     standard μ that fits a cell of cw × ch mm, or None: ten scales at most are drawn, none
     whose longest vector is under `least` mm."""
-    i = number - 1
-    ew, eh = extent_mm(res0, number)
-    room_w, room_h = cw - 2 * 12.0, ch - 2 * 12.0 - 14.0
-    if room_w <= 0 or room_h <= 0:
+    tried = _scales_tried(res0, number, cw, ch, least)
+    if tried is None:
         return None
-    peak = _peak(res0, i)
-    # start a little below the estimate: labels rarely need the whole margin
-    estimate = res0.scale * max(ew / room_w, eh / room_h, 1e-9)
-    # the images alone must fit the cell (its margins are for the letters): a scale at
-    # which they do not is passed over undrawn; ten scales are drawn at most
-    scales = islice((mu for mu in _legible(_standard_from(estimate / 1.6), peak, least)
-                     if ew * res0.scale / mu <= cw and eh * res0.scale / mu <= ch - 14.0), 10)
+    peak, scales = tried
     found = largest_fitting(lambda mu: draw.plan(res0.kind, number, mu)[1], scales, cw, ch,
                             skip=lambda mu: not draw.plan_fits(res0.kind, number, mu, cw, ch))
     if found is None:
         return None
     mu, view = found
     return draw.plan(res0.kind, number, mu)[0], view, peak / mu
+
+
+def _scales_tried(res0: PlanResult, number: int, cw: float, ch: float, least: float):
+    """(the plan's longest vector in its units, the scales `_fit_one` tries in a cw × ch mm
+    cell, the largest drawing first), or None where the cell leaves no room."""
+    ew, eh = extent_mm(res0, number)
+    room_w, room_h = cw - 2 * 12.0, ch - 2 * 12.0 - 14.0
+    if room_w <= 0 or room_h <= 0:
+        return None
+    peak = _peak(res0, number - 1)
+    # start a little below the estimate: labels rarely need the whole margin
+    estimate = res0.scale * max(ew / room_w, eh / room_h, 1e-9)
+    # the images alone must fit the cell (its margins are for the letters): a scale at
+    # which they do not is passed over undrawn; ten scales are drawn at most
+    return peak, islice((mu for mu in _legible(_standard_from(estimate / 1.6), peak, least)
+                         if ew * res0.scale / mu <= cw and eh * res0.scale / mu <= ch - 14.0), 10)
+
+
+def _drawn_vector_bound(draw: _Drawings, least: float, res0: PlanResult, number: int, cw: float,
+                        ch: float) -> float:
+    """The longest vector (mm) of the plan of position ``number`` at the first scale `_fit_one`
+    tries in a cw × ch mm cell whose construction and title alone fit (`_Drawings.plan_fits`):
+    no plan it fits there is longer; 0 where it fits none. Tighter than `_vector_bound`, and
+    found without drawing a plan."""
+    tried = _scales_tried(res0, number, cw, ch, least)
+    if tried is None:
+        return 0.0
+    peak, scales = tried
+    return next((peak / mu for mu in scales if draw.plan_fits(res0.kind, number, mu, cw, ch)), 0.0)
 
 
 def _legible(scales, peak: float, least: float):

@@ -23,7 +23,7 @@ from velplan.render.scene import Arrow, Polyline, Scene, Text
 from velplan.sheets.layout import free_spot
 from velplan.study import Study
 from velplan.views.base import PlacedView, View, make_view
-from velplan.views.structure import figure_scale, least_extent, structure_view
+from velplan.views.structure import FigureLayout, figure_layout, figure_scale, least_extent
 
 #: (widest panel, letters, heading) of the figure, mm, the largest first; the letters never
 #: under 2.5 mm (ESKD's smallest legible height on a sheet).
@@ -52,14 +52,15 @@ def _drawn_pose(study: Study):
 
 
 def structure_figure(study: Study, lang: str, panel_mm: float, text_mm: float, title_mm: float,
-                     joints: list | None = None) -> View:
+                     joints: list | None = None, layout: FigureLayout | None = None) -> View:
     """The figure as the sheet's view ``"structure"``: its widest panel ``panel_mm`` wide,
     letters ``text_mm`` and heading ``title_mm`` high, mm; its ``meta`` gives ``text_mm`` and
-    ``crank_mm``, the crank's length as drawn, mm. ``joints``: the drawn joints, if known."""
+    ``crank_mm``, the crank's length as drawn, mm. ``joints``: the drawn joints, if known;
+    ``layout``: the figure's `figure_layout` with these arguments, if made."""
     joints = _joints(study) if joints is None else joints
     crank = study.mechanism.crank.length * figure_scale(study.mechanism, joints, panel_mm)
-    scene = structure_view(study.mechanism, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm,
-                           title_mm=title_mm)
+    scene = (layout or figure_layout(study.mechanism, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm,
+                                     title_mm=title_mm)).scene()
     return make_view("structure", scene.primitives, pad_mm=PAD_MM, meta={"text_mm": text_mm, "crank_mm": crank})
 
 
@@ -97,7 +98,12 @@ def place_structure(study: Study, lang: str, views: dict[str, PlacedView], area,
         w, h = least_extent(mech, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm, title_mm=title_mm)
         if free_spot(w + 2 * PAD_MM - 1e-6, h + 2 * PAD_MM - 1e-6, taken, area, gap, corner) is None:
             continue
-        view = structure_figure(study, lang, *sizes, joints=joints)
+        # its texts placed round the panels' boxes (each panel drawn once): they alone find no spot
+        layout = figure_layout(mech, joints, lang=lang, panel_mm=panel_mm, text_mm=text_mm, title_mm=title_mm)
+        w, h = layout.text_extent()
+        if free_spot(w + 2 * PAD_MM - 1e-6, h + 2 * PAD_MM - 1e-6, taken, area, gap, corner) is None:
+            continue
+        view = structure_figure(study, lang, *sizes, joints=joints, layout=layout)
         at = free_spot(view.width_mm, view.height_mm, taken, area, gap, corner)  # the cheaper test first
         if at is None or overlapping_labels(Scene(view.primitives, view.width_mm, view.height_mm),
                                             min_area=0.05) or _crossed(view):

@@ -497,8 +497,31 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
     items = _broken_under_texts(items)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
-    return make_view("mechanism", items, pad_mm=2.0, mu=mu_l, origin=(0.0, 0.0),
+    return make_view("mechanism", items, pad_mm=SCHEME_PAD_MM, mu=mu_l, origin=(0.0, 0.0),
                      meta={"positions": kin.phi, "thick": thick, "n": n})
+
+
+#: Margin of a scheme's view round what it draws, mm.
+SCHEME_PAD_MM = 2.0
+
+
+def least_scheme_size(mech: Mechanism, kin: Kinematics, *, mu_l: float, thick: int = 1,
+                      sizes: MechanismSizes = MechanismSizes(), title: bool = True) -> tuple[float, float]:
+    """A lower bound of the width and height (mm) of the box of `mechanism_view` (not
+    ``single``) with these arguments, found without drawing: the lines of the positions other
+    than the thick one (a line is broken only within `BREAK_MM` of a text's box, and the box
+    counts), the view's margin, and the title's lines above everything. A sheet passes over a
+    scale whose bound fits nowhere, or leaves the plans no chance, undrawn."""
+    t = position_index(thick, len(kin))
+    geo = _Geometry(mech, kin)
+    ends = [(s.a, s.b) for i in range(len(kin)) if i != t and kin.valid[i] for s in geo.segments(i)]
+    xy = np.array([e for a, b in ends if np.any(a != b) for e in (a, b)], float).reshape(-1, 2) / mu_l
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    above = 4.0 + 2.6 * sizes.title_mm if title else 0.0  # the title's capital line over the top
+    if not len(xy):
+        return 2 * SCHEME_PAD_MM, 2 * SCHEME_PAD_MM + above
+    span = np.maximum(np.ptp(xy, axis=0) - 2 * BREAK_MM, 0.0)
+    return float(span[0]) + 2 * SCHEME_PAD_MM - 1e-6, float(span[1]) + 2 * SCHEME_PAD_MM + above - 1e-6
 
 
 #: The thin lines a scheme's text interrupts (ESKD: a line is broken where a text must stand

@@ -10,7 +10,7 @@ with its links, each sliding pair with its guide's direction), so it never solve
 from __future__ import annotations
 
 import math
-from typing import Mapping, Sequence
+from typing import Mapping, NamedTuple, Sequence
 
 import numpy as np
 import shapely
@@ -124,13 +124,44 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
     ``title``: with its heading, W and the formula of structure above it; ``panel_mm``: the
     width of its widest panel, mm; ``text_mm``, ``title_mm``: its letters' and heading's
     height, mm."""
+    return figure_layout(mech, joints, lang=lang, title=title, panel_mm=panel_mm, text_mm=text_mm,
+                         title_mm=title_mm).scene()
+
+
+class FigureLayout(NamedTuple):
+    """`structure_view`'s figure before its panels are drawn in place: each panel's map from
+    metres to the figure's mm (``places``), and the texts and the legend round them, placed."""
+
+    panels: list
+    places: list
+    texts: list  # the captions, the heading and the formula, to be lifted with the drawings
+    lift: float  # mm, the whole figure moved up so that its lowest text stands on the margin
+    legend: list  # the outer pairs' key, lifted
+    height_mm: float
+
+    def scene(self) -> Scene:
+        """The figure: every panel drawn at its place, then the texts and the legend."""
+        items = [p for panel, place in zip(self.panels, self.places) for p in _draw(panel, place)] + self.texts
+        items = [_moved(p, self.lift) for p in items] + self.legend
+        return Scene(tuple(items), width_mm=max(_bounds(items)[2] + MARGIN_MM, 120.0), height_mm=self.height_mm)
+
+    def text_extent(self) -> tuple[float, float]:
+        """Width and height (mm) of the box of the texts and the legend alone: a lower bound of
+        the figure's box, known before its panels are drawn in place."""
+        x0, y0, x1, y1 = _bounds([_moved(p, self.lift) for p in self.texts] + self.legend)
+        return x1 - x0, y1 - y0
+
+
+def figure_layout(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True,
+                  panel_mm: float = PANEL_MM, text_mm: float = TEXT_MM, title_mm: float = TITLE_MM) -> FigureLayout:
+    """`structure_view`'s layout (the same arguments): each panel drawn once where it is first
+    put, for its box; the panels side by side by their boxes, the texts and legend round them."""
     panels = _panels(mech, joints, lang, text_mm)
     spans = [np.ptp(p.points(), axis=0) for p in panels]
     mu = _scale(spans, panel_mm)
     gap, line = GAP_MM * panel_mm / PANEL_MM, text_mm * 1.6
     heights = [float(s[1]) * mu for s in spans]
     tallest = max(heights)
-    items: list = []
     base = MARGIN_MM + 4 * line + 8.0
     low, high = base, base
     sized = []  # per panel: its shift, drawn box, half its drawing's and its captions' widths
@@ -140,6 +171,7 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
         box = _bounds(_draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift))
         captions = max(text_extent(c, text_mm)[0] for c in panel.caption)
         sized.append((shift, box, (box[2] - box[0]) / 2, captions / 2))
+    places = []
     for i, (panel, (shift, box, half, caption)) in enumerate(zip(panels, sized)):
         if i:  # drawings `gap` apart, captions two letters apart, whichever needs more
             before = sized[i - 1]
@@ -147,14 +179,13 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
         else:
             x = MARGIN_MM + max(half, caption)
         shift = shift + (x - (box[0] + box[2]) / 2, 0.0)
-        items += _draw(panel, lambda p, shift=shift: np.asarray(p, float) * mu + shift)
+        places.append(lambda p, shift=shift: np.asarray(p, float) * mu + shift)
         panel.centre, low, high = x, min(low, box[1]), max(high, box[3])
         right = x + max(half, caption)
     x = right + gap
     below = 1.7 * text_mm  # from the lowest drawing to the first caption's middle
-    for panel in panels:
-        for k, text in enumerate(panel.caption):
-            items.append(Text((panel.centre, low - below - k * line), text, "labels", text_mm, "middle", "middle"))
+    texts = [Text((panel.centre, low - below - k * line), text, "labels", text_mm, "middle", "middle")
+             for panel in panels for k, text in enumerate(panel.caption)]
     width = x - gap + MARGIN_MM
     st = structure(mech)
     top = high + 1.7 * text_mm
@@ -167,18 +198,18 @@ def structure_view(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "e
         heading = label("structural_analysis", lang)
         formula = (f"{st.formula()};  {label('structure_formula', lang)}: "
                    f"{st.structure_formula(mech.crank.link)}")
-        items += [Text((MARGIN_MM, top + 1.3 * title_mm), heading, "labels", title_mm),
+        texts += [Text((MARGIN_MM, top + 1.3 * title_mm), heading, "labels", title_mm),
                   Text((MARGIN_MM, top), formula, "labels", text_mm)]
         right = max(width - MARGIN_MM, MARGIN_MM + text_extent(formula, text_mm)[0]) - text_mm  # slack for wide fonts
         if MARGIN_MM + text_extent(heading, title_mm)[0] + 2 * text_mm + key_w <= right:
             legend = np.array([right - key_w + ring, top + 1.3 * title_mm + title_mm / 2])  # beside the heading
         top += 1.3 * title_mm + title_mm
     shift_up = MARGIN_MM - min(lowest, legend[1] - ring)
-    items = [_moved(p, shift_up) for p in items]
     legend = legend + (0.0, shift_up)
-    items += [Circle(legend, ring, "labels", "hidden"),
-              Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")]
-    return Scene(tuple(items), width_mm=max(_bounds(items)[2] + MARGIN_MM, 120.0), height_mm=top + shift_up + MARGIN_MM)
+    return FigureLayout(panels, places, texts, shift_up,
+                        [Circle(legend, ring, "labels", "hidden"),
+                         Text(legend + (ring + 0.6 * text_mm, 0.0), key, "labels", text_mm, "start", "middle")],
+                        top + shift_up + MARGIN_MM)
 
 
 def least_extent(mech: Mechanism, joints: Sequence[Mapping], *, lang: str = "en", title: bool = True,
