@@ -46,8 +46,9 @@ def register(sub) -> None:
                         "always (an error if they do not fit), never")
     p.add_argument("--structure", choices=("auto", "yes", "no"), default="auto",
                    help="the structural analysis (initial mechanism and Assur groups drawn apart) "
-                        "on the kinematic sheet: where free space is left for it (auto, the "
-                        "default), always (an error where there is none), never")
+                        "on the kinematic sheet: where free space is left for it once the enlarged "
+                        "details of crowded plans have theirs (auto, the default), always, before the "
+                        "details (an error where there is none), never")
     p.add_argument("--no-table", action="store_true",
                    help="leave out the table of transfer functions")
     p.add_argument("--scale-per-plan", action="store_true",

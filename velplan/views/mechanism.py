@@ -508,8 +508,8 @@ SCHEME_PAD_MM = 2.0
 def least_scheme_size(mech: Mechanism, kin: Kinematics, *, mu_l: float, thick: int = 1,
                       sizes: MechanismSizes = MechanismSizes(), title: bool = True) -> tuple[float, float]:
     """A lower bound of the width and height (mm) of the box of `mechanism_view` (not
-    ``single``) with these arguments, found without drawing: the lines of the positions other
-    than the thick one (a line is broken only within `BREAK_MM` of a text's box, and the box
+    ``single``) with these arguments (``thick``: the bold position's number, 1…n), found
+    without drawing: the lines of the positions other than the thick one (a line is broken only within `BREAK_MM` of a text's box, and the box
     counts), the view's margin, and the title's lines above everything. A sheet passes over a
     scale whose bound fits nowhere, or leaves the plans no chance, undrawn."""
     t = position_index(thick, len(kin))
