@@ -15,7 +15,7 @@ import velplan
 from velplan.errors import VelplanError
 from velplan.mechanism.loader import catalogue_names
 from velplan.render.i18n import label
-from velplan.render.layout import label_box, overlapping_labels
+from velplan.render.layout import crossed_letters, label_box, overlapping_labels
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
 from velplan.render.shapes import MIN_WIDTH_FACTOR, script_size, text_runs
 from velplan.sheets.dynamics import build_dynamics_sheet
@@ -493,30 +493,4 @@ def crossed_by_any_line(scene) -> list[str]:
     too (construction and Kennedy lines, other texts' leaders, outlines) — except the text's
     own leader (a thin segment ending at its box) and the frame: the whole of "no text crossed
     by a drawn line other than its own leader"."""
-    lines, leaders = [], []
-    for p in scene.primitives:
-        if getattr(p, "layer", "") == "frame":
-            continue
-        if isinstance(p, Polyline) and len(p.points) > 1:
-            lines.append(shapely.LineString(p.points))
-            leaders.append(p.line == "thin" and len(p.points) == 2)
-        elif isinstance(p, Arrow) and p.length > 0:
-            lines.append(shapely.LineString([p.start, p.end]))
-            leaders.append(False)
-        elif isinstance(p, Polygon):
-            lines.append(shapely.LinearRing(p.points))
-            leaders.append(False)
-    if not lines:
-        return []
-    tree = shapely.STRtree(lines)
-    out = []
-    for t in scene.of_kind(Text):
-        box = label_box(t)
-        own_end = box.buffer(0.6)
-        for j in tree.query(box, predicate="intersects"):
-            if leaders[j] and own_end.contains(shapely.Point(lines[j].coords[-1])):
-                continue  # its own leader
-            if lines[j].intersection(box).length > 1.0:
-                out.append(t.text)
-                break
-    return out
+    return [t.text for t in crossed_letters([p for p in scene.primitives if getattr(p, "layer", "") != "frame"])]

@@ -58,26 +58,34 @@ def test_the_bound_spares_a_shaper_plan(monkeypatch):
 
 
 @pytest.mark.parametrize("name,fmt", [("shaper", "A1"), ("whitworth", "A2"), ("slider-press", "A3"),
-                                      ("four-bar", "A1")])
+                                      ("four-bar", "A1"), ("triad-press", "A1")])
 def test_score_bound_is_never_below_the_fitted_score(name, fmt):
+    """Both bounds: the plans' least sizes (`_score_bound`) and the tighter one of their
+    construction and title alone (`_drawn_vector_bound`), never below the score fitted."""
+    import functools
+
     from velplan.errors import ScaleError
+    from velplan.sheets.layout import MIN_PLAN_MM
     from velplan.sheets.skeleton import sheet_request
 
     req = sheet_request(Study(name, n=12), n=12, fmt=fmt, lang="en", frame_style=None, style=None)
     chosen = kinematic.default_plan_positions(req.study.plan("velocity"))
     draw = kinematic._Drawings(req, chosen)
     kinds = ("velocity", "acceleration")
+    tight = functools.partial(kinematic._drawn_vector_bound, draw, MIN_PLAN_MM[fmt])
     fx0, fy0, fx1, fy1 = req.area
     checked = 0
     for left in (0.3, 0.45, 0.6):
         for bottom in (0.2, 0.5, 0.7):
             region = (fx0 + left * (fx1 - fx0), fy0 + bottom * (fy1 - fy0), fx1, fy1)
             bound = kinematic._score_bound(req.study, chosen, kinds, region, req.gap)
+            tighter = kinematic._score_bound(req.study, chosen, kinds, region, req.gap, tight)
+            assert tighter <= bound
             try:
                 score, _ = kinematic._fit_plans(req, draw, chosen, kinds, region)
             except ScaleError:
                 continue
-            assert score <= bound
+            assert score <= tighter
             checked += 1
     assert checked
 

@@ -1,9 +1,6 @@
 """A scheme's least size (`least_scheme_size`: its positions' lines, margin and title, no
-letters) never exceeds its drawing; the plans' tighter score bound (their construction and
-title alone, `_drawn_vector_bound`) is never below the score fitted; and the kinematic sheet
+letters) never exceeds its drawing (the plans' score bounds: test_plan_bounds.py); and the kinematic sheet
 that passes over a scheme that cannot be chosen, undrawn, is the sheet that draws it."""
-
-import functools
 
 import pytest
 
@@ -29,34 +26,6 @@ def test_least_scheme_size_never_exceeds_the_drawing(name):
         w, h = least_scheme_size(study.mechanism, study.kinematics, mu_l=mu, thick=thick, sizes=sizes)
         assert 0.5 * view.width_mm < w <= view.width_mm
         assert 0.5 * view.height_mm < h <= view.height_mm
-
-
-@pytest.mark.parametrize("name,fmt", [("shaper", "A1"), ("whitworth", "A2"), ("slider-press", "A3"),
-                                      ("four-bar", "A1"), ("triad-press", "A1")])
-def test_drawn_vector_bound_is_never_below_the_fitted_score(name, fmt):
-    from velplan.errors import ScaleError
-    from velplan.sheets.layout import MIN_PLAN_MM
-    from velplan.sheets.skeleton import sheet_request
-
-    req = sheet_request(Study(name, n=12), n=12, fmt=fmt, lang="en", frame_style=None, style=None)
-    chosen = kinematic.default_plan_positions(req.study.plan("velocity"))
-    draw = kinematic._Drawings(req, chosen)
-    kinds = ("velocity", "acceleration")
-    tight = functools.partial(kinematic._drawn_vector_bound, draw, MIN_PLAN_MM[fmt])
-    fx0, fy0, fx1, fy1 = req.area
-    checked = 0
-    for left in (0.3, 0.45, 0.6):
-        for bottom in (0.2, 0.5, 0.7):
-            region = (fx0 + left * (fx1 - fx0), fy0 + bottom * (fy1 - fy0), fx1, fy1)
-            bound = kinematic._score_bound(req.study, chosen, kinds, region, req.gap, tight)
-            assert bound <= kinematic._score_bound(req.study, chosen, kinds, region, req.gap)
-            try:
-                score, _ = kinematic._fit_plans(req, draw, chosen, kinds, region)
-            except ScaleError:
-                continue
-            assert score <= bound
-            checked += 1
-    assert checked
 
 
 @pytest.mark.parametrize("name,fmt,lang", [("shaper", "A1", "ru"), ("whitworth", "A1", "en"),
