@@ -180,7 +180,7 @@ def test_lever_balance_written_equals_kinetostatics_to_the_printed_digits(name, 
                                                                           force_canvases):
     sheet, canvas = force_sheets[name], force_canvases[name]
     text = force_sheet_text(sheet)
-    written = re.findall(r"^M_\{ур\} = (\S+) Н·м \(рычаг\) / (\S+) Н·м \(кинетостатика\), "
+    written = re.findall(r"^Mур = (\S+) Н·м \(рычаг\) / (\S+) Н·м \(кинетостатика\), "
                          r"Δ = (\S+) %$", text, flags=re.M)
     assert len(written) == len(sheet.positions)
     mb = sheet.analysis.kinetostatics.balancing_moment

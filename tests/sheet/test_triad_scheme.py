@@ -101,9 +101,9 @@ def test_data_table_and_readings_of_a_triad(rocker):
 
     text = "\n".join(data_lines(rocker, "en"))
     (g,) = rocker.mechanism.groups
-    for symbol, value in (("lBC", g.sides[0]), ("lCD", g.sides[1]), ("lDB", g.sides[2]),
-                          ("lAB", g.leads[0].length), ("lEC", g.leads[1].length),
-                          ("lFD", g.leads[2].length)):
+    for symbol, value in (("l_{BC}", g.sides[0]), ("l_{CD}", g.sides[1]), ("l_{DB}", g.sides[2]),
+                          ("l_{AB}", g.leads[0].length), ("l_{EC}", g.leads[1].length),
+                          ("l_{FD}", g.leads[2].length)):
         assert f"{symbol} = {value:g} m" in text
     rows = rocker.table.rows
     assert {"V_B", "V_C", "V_D"} <= set(rows) and "V_K3" not in rows

@@ -12,7 +12,7 @@ from velplan.note.model import Equation, Heading, Para
 from velplan.note.text import balancing, group_kind, p
 from velplan.render.i18n import label
 from velplan.sheets.forces import solving_order
-from velplan.notation import fixed, number as _num, plain_text
+from velplan.notation import fixed, number as _num, plain_text, unicode_text
 from velplan.views.forces import force_text, moment_decimals, newton, newton_metre, slug
 
 
@@ -43,7 +43,7 @@ def _group(note, sheet, k: int, group: str) -> None:
     rows = []
     for name, vector in poly.vectors:
         value = abs(complex(vector[i]))
-        rows.append([force_text(name), _num(value, lang),
+        rows.append([unicode_text(force_text(name)), _num(value, lang),
                      fixed(value / mu_f, lang, 1) if mu_f else "—"])  # a drawn length: 0.1 mm
     unit_mm = "мм" if lang in ("ru", "uk") else "mm"
     note.table(title, [p("quantity", lang), f"{p('value', lang)}, {newton(lang)}", f"{p('segment', lang)}, {unit_mm}"], rows,

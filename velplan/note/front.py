@@ -5,6 +5,7 @@ from __future__ import annotations
 from velplan.mechanism.structure import structure, pairs
 from velplan.note.model import Contents, Equation, Heading, PageBreak, Para, TitlePage
 from velplan.note.text import group_kind, group_name, mechanism_of, p, roman
+from velplan.notation import unicode_text
 from velplan.views.data import data_lines
 
 BLANK = "____________"
@@ -35,7 +36,7 @@ def data_section(note, study) -> None:
     """The input data as the sheet writes them, one line per paragraph."""
     note.add(Heading(p("sec_data", note.lang), 1))
     for line in data_lines(study, note.lang):
-        note.add(Para.of(line))
+        note.add(Para.of(unicode_text(line)))  # lO₂A: the note's text sets its symbols
 
 
 def structure_section(note, study) -> None:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from velplan.note.formulas import force, txt
 from velplan.note.model import Equation, Para
 from velplan.note.text import balancing, p
-from velplan.notation import fixed, number as _num
+from velplan.notation import fixed, number as _num, unicode_text
 from velplan.views.forces import force_text, newton
 from velplan.views.forces.lever import lever_balance
 
@@ -57,7 +57,7 @@ def lever_equations(note, fa, k: int, i: int, mu_v: float) -> int:
     lang = note.lang
     terms, arm_b, fb = lever_terms(fa, i, mu_v)
     mm = "мм" if lang in ("ru", "uk") else "mm"
-    rows = [[force_text(lab), _num(size, lang), fixed(h, lang, 1), _num(moment, lang)]
+    rows = [[unicode_text(force_text(lab)), _num(size, lang), fixed(h, lang, 1), _num(moment, lang)]
             for lab, size, h, moment in terms]
     note.add(Para.of(p("lever_arms", lang, _num(mu_v, lang))))
     note.table(p("lever_table", lang, k), [p("quantity", lang), f"F, {newton(lang)}", f"h, {mm}",

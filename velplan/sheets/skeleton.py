@@ -23,6 +23,7 @@ from velplan.errors import ScaleError, VelplanError
 from velplan.mechanism.model import Mechanism
 from velplan.options import Format, FrameStyle, Language
 from velplan.render.i18n import check_language, label
+from velplan.notation import unicode_text
 from velplan.render.scene import Bounds, Scene, Text
 from velplan.render.style import SheetStyle
 from velplan.sheets.frame import TitleInfo, sheet_scene
@@ -229,5 +230,6 @@ def compose(req: Request, views: Mapping[str, PlacedView], order: Iterable[str],
 
 
 def sheet_text(sheet: SheetOutput) -> str:
-    """Every text of the sheet, one per line (for tests and search)."""
-    return "\n".join(t.text for t in sheet.scene.of_kind(Text))
+    """Every text of the sheet, one per line (for tests and search), as one reads it on a line:
+    marked indices in Unicode where it has them (``l_{O2A}`` → ``lO₂A``, ``M_{ур}`` → ``Mур``)."""
+    return "\n".join(unicode_text(t.text) for t in sheet.scene.of_kind(Text))

@@ -14,8 +14,9 @@ from velplan.views.base import ROUND_OFF, View, digits_down, make_view, number, 
 
 
 def _l(a: str, b: str) -> str:
-    """The length symbol of a link between two points: ``l_O2A`` → ``lO₂A``."""
-    return f"l{subscript(a)}{subscript(b)}"
+    """The length symbol of a link between two points, its points below the line (``l_{O2A}``:
+    an "l" followed by full-size capitals reads as "I")."""
+    return f"l_{{{a}{b}}}"
 
 
 def data_lines(study, lang: Language) -> list[str]:
@@ -41,7 +42,7 @@ def data_lines(study, lang: Language) -> list[str]:
         lines.append("; ".join(offsets))
     lines += [f"{ground}, {m}", crank]
     masses = [f"m{digits_down(ms.link)} = {number(ms.mass, lang)} {unit('kg', lang)}"
-              + (f", J{subscript('S' + ms.link)} = {number(ms.inertia, lang)} {unit('kg·m²', lang)}"
+              + (f", J_{{S{ms.link}}} = {number(ms.inertia, lang)} {unit('kg·m²', lang)}"
                  if ms.inertia else "") for ms in mech.masses]
     lines += ["; ".join(masses[k:k + 3]) for k in range(0, len(masses), 3)]
     loads = []
@@ -53,7 +54,7 @@ def data_lines(study, lang: Language) -> list[str]:
         lines.append("; ".join(loads))
     st = study.stroke
     if st is not None:
-        sym = "H" if st.quantity.startswith("slide") or st.quantity.startswith("point") else "ψmax"
+        sym = "H" if st.quantity.startswith("slide") or st.quantity.startswith("point") else "ψ_{max}"
         value = number(st.H, lang) + " " + (m if sym == "H" else unit("rad", lang))
         lines.append(f"{sym} = {value}; θ = {number(math.degrees(st.theta), lang, scale=180.0)}°; "
                      f"K = {number(st.K, lang)}")

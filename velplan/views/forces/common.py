@@ -11,6 +11,7 @@ import numpy as np
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
+from velplan.render.shapes import DESCENDER_DEPTH, text_depth
 from velplan.views.base import bounds_of, digits_down
 from velplan.notation import number as _num
 
@@ -66,11 +67,28 @@ def lever_layers(number: int) -> tuple[str, str, str]:
     return base, f"{base}-forces", f"{base}-labels"
 
 
+_COMPONENT = re.compile(r"^(?P<head>[A-Za-zΦ]+?)(?P<index>\d+)(?P<mark>[τn⊥∥])$")
+"""A reaction's component: its mark (τ, n, ⊥, ∥) after the pair's index (``R12τ``)."""
+_COUPLE = re.compile(r"^M(?P<index>Φ\d+)$")
+"""The moment of a link's inertia couple (``MΦ4``)."""
+
+
 def force_text(name: str) -> str:
-    """A force's label as written: digits as subscripts (``"R12τ"`` → ``"R₁₂τ"``); a force
-    of the pair replacing a couple on the lever (``"MΦ4@B"``) → ``"F(MΦ₄)"``."""
+    """A force's label as drawn, in the note's notation: the pair's index below the line and a
+    component's mark above it (``"R12τ"`` → ``"R_{12}^{τ}"``, R₁₂ with τ raised), an inertia
+    couple's moment with its force's name below (``"MΦ4"`` → ``"M_{Φ4}"``), other digits as
+    subscripts (``"G4"`` → ``"G₄"``); the force of the pair replacing a couple on the lever
+    (``"MΦ4@B"``) → ``"F(M_{Φ4})"``. `velplan.notation.unicode_text` gives it back on one line (R₁₂τ, MΦ₄).
+
+    >>> force_text("R12τ"), force_text("R45n"), force_text("MΦ4@B"), force_text("Fc")
+    ('R_{12}^{τ}', 'R_{45}^{n}', 'F(M_{Φ4})', 'Fc')
+    """
     if "@" in name:
-        return f"F({digits_down(name.split('@', 1)[0])})"
+        return f"F({force_text(name.split('@', 1)[0])})"
+    if m := _COMPONENT.match(name):
+        return f"{m['head']}_{{{m['index']}}}^{{{m['mark']}}}"
+    if m := _COUPLE.match(name):
+        return f"M_{{{m['index']}}}"
     return digits_down(name)
 
 
@@ -134,12 +152,15 @@ def title_lines(items, lines: list[tuple[str, float]], layer: str) -> list[Text]
 
 
 def note_lines(items, lines: list[tuple[str, float]], layer: str) -> list[Text]:
-    """Lines (text, height mm) written under everything in `items`."""
+    """Lines (text, height mm) written under everything in `items`, 1.6 heights apart, farther
+    where a raised index (R_{12}^{τ}) or a descending subscript would come nearer the line
+    beside it than plain lines come (`text_depth`)."""
     x0, y0, _, _ = bounds_of(items)
     out = []
-    y = y0 - 2.0
+    y, below = y0 - 2.0, 0.0  # the line above: how far it reaches below its baseline, plus the gap
     for text, size in lines:
-        y -= size
+        down, up = text_depth(text, size)
+        y -= max(size, up) + below
         out.append(Text((x0, y), text, layer, size))
-        y -= 0.6 * size
+        below = down + (0.6 - DESCENDER_DEPTH) * size
     return out

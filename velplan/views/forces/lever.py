@@ -226,7 +226,7 @@ def _balance_lines(mech, mb_lever: float, mb_kin: float, pct: float, fb: float,
     balance = (f"{mb} = {_num(mb_lever, lang)} {nm} ({label('method_lever', lang)}) / "
                f"{_num(mb_kin, lang)} {nm} ({label('method_kinetostatics', lang)}), "
                f"Δ = {fixed(pct, lang, 2)} %")
-    lab = f"l{subscript(mech.crank.pivot)}{subscript(mech.crank.tip)}"
+    lab = f"l_{{{mech.crank.pivot}{mech.crank.tip}}}"  # the crank's length, l with O₂A below the line
     return [f"{symbol_fb} = {_num(abs(fb), lang)} {newton(lang)}; {mb} = {symbol_fb}·{lab}",
             balance]
 
