@@ -20,7 +20,7 @@ import shapely
 from velplan.views.base import View
 from velplan.views.letters import (
     _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
-    _beyond, _centred, _settle)
+    _beyond, _centred, _first_hits, _settle)
 from velplan.views.mechanism import LetterRequest
 
 
@@ -56,7 +56,9 @@ class _Call:
             raise ValueError(f"place_together answers thin, taken and soft_mm only, not {sorted(kw)}")
         self.texts, self.anchors = list(texts), list(anchors)
         shapes = [g for g in obstacles if g is not None and not g.is_empty]
+        self.shapes = shapes
         self.tree = shapely.STRtree(shapes) if shapes else None
+        self.number = 0
         self.taken = list(kw.get("taken", ()))
         thin = [g for g in kw.get("thin", ()) if not g.is_empty]
         self.soft = shapely.STRtree(thin) if thin else None
@@ -71,12 +73,36 @@ def place_together(requests: list[LetterRequest]) -> list[tuple[list, list]]:
     """`place_letters(*r.args, **r.kwargs)` for each request (keyword arguments ``thin``,
     ``taken`` and ``soft_mm`` only), the same letters and leaders, letter k of every call placed in one pass."""
     calls = [_Call(r) for r in requests]
+    together = _Obstacles(calls)
     for k in range(max([len(c.texts) for c in calls] + [0])):
-        _place_kth([c for c in calls if len(c.texts) > k], k)
+        _place_kth([c for c in calls if len(c.texts) > k], k, together)
     return [(c.out, c.leaders) for c in calls]
 
 
-def _place_kth(calls: list[_Call], k: int) -> None:
+class _Obstacles:
+    """The obstacles of all the calls, one array: each call's tree finds the candidates of its
+    own boxes, and the exact tests of all the calls' boxes run together."""
+
+    def __init__(self, calls: list[_Call]):
+        self.calls = calls
+        self.start = np.cumsum([0] + [len(c.shapes) for c in calls])
+        self.geoms = np.array([g for c in calls for g in c.shapes], dtype=object)
+        for c, call in enumerate(calls):
+            call.number = c
+
+    def blocked(self, boxes: np.ndarray, first: np.ndarray, calls: list[_Call]) -> np.ndarray:
+        """Whether each of `boxes` meets an obstacle of its call (the boxes of ``calls[r]`` are
+        ``first[r]:first[r + 1]``): `velplan.views.letters._blocked` of each call's own tree."""
+        pairs = [(first[r] + i, self.start[call.number] + j)
+                 for r, call in enumerate(calls) if call.tree is not None and first[r] < first[r + 1]
+                 for i, j in [call.tree.query(boxes[first[r]:first[r + 1]])]]
+        if not pairs:
+            return np.zeros(len(boxes), dtype=bool)
+        return _first_hits(boxes, self.geoms, np.concatenate([i for i, _ in pairs]),
+                           np.concatenate([j for _, j in pairs]))
+
+
+def _place_kth(calls: list[_Call], k: int, together: _Obstacles) -> None:
     """Letter k of each call: the first `_choose` of `place_letters` for all at once, the rest
     (a letter with no clear spot near its point) as `place_letters` does it."""
     rows = []
@@ -88,7 +114,7 @@ def _place_kth(calls: list[_Call], k: int) -> None:
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = c.allp[np.hypot(*(c.allp - p).T) > SAME_POINT_MM]
         rows.append((c, text, p, centred, offset, half, wanted, others))
-    found = _first_choices(rows)
+    found = _first_choices(rows, together)
     for (c, text, p, centred, offset, half, wanted, others), hit in zip(rows, found):
         led = hit is None
         if led:
@@ -128,7 +154,7 @@ def _nearest(centres: np.ndarray, rows) -> np.ndarray:
     return dist[..., 1:].min(axis=2) > dist[..., 0] + _MARGIN_MM
 
 
-def _first_choices(rows) -> list:
+def _first_choices(rows, together: _Obstacles) -> list:
     """For each row, `_choose` at `GAPS_MM` with its own point nearest: the centre and the
     padded box chosen, or None; the stages of `_choose` run for all rows at once."""
     centres, base = _candidates(rows)
@@ -144,7 +170,8 @@ def _first_choices(rows) -> list:
         idx = np.sort(order[live, start:min(stop, n)], axis=1)
         c = centres[np.array(live)[:, None], idx]
         ok = _nearest(c, [rows[a] for a in live])
-        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx])):
+        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx],
+                                       together)):
             if hit is not None and (best[a] is None or hit[:2] < best[a][:2]):
                 best[a] = hit
     return [None if b is None else (centres[a, b[1]], b[2]) for a, b in enumerate(best)]
@@ -156,7 +183,7 @@ def _box_run(c: np.ndarray, half: np.ndarray, pad: float):
                        c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad)
 
 
-def _stage(rows, c, idx, ok, cost) -> list:
+def _stage(rows, c, idx, ok, cost, together: _Obstacles) -> list:
     """One stage of `_choose` for each row, its candidates (r, s, 2) and their indices, nearness
     `ok` and costs (r, s) known: the best clear candidate's (cost, index, padded box), or None.
     The boxes of all rows are made in one call; each row's own shapes are asked of shapely."""
@@ -164,16 +191,12 @@ def _stage(rows, c, idx, ok, cost) -> list:
     at, col = np.nonzero(ok)
     padded = _box_run(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
     first = np.searchsorted(at, np.arange(len(rows) + 1))
-    keep = np.ones(len(at), dtype=bool)
+    keep = ~together.blocked(padded, first, [r[0] for r in rows])
     for r, row in enumerate(rows):
         call, mine = row[0], slice(first[r], first[r + 1])
-        if first[r] == first[r + 1]:
-            continue
-        if call.taken:
-            keep[mine] &= ~shapely.intersects(padded[mine, None], np.array(call.taken)[None, :]).any(axis=1)
-        if call.tree is not None and keep[mine].any():
+        if call.taken and keep[mine].any():
             here = first[r] + np.flatnonzero(keep[mine])
-            keep[here[call.tree.query(padded[here], predicate="intersects")[0]]] = False
+            keep[here] = ~shapely.intersects(padded[here, None], np.array(call.taken)[None, :]).any(axis=1)
     ok = ok.copy()
     ok[at, col] = keep
     at, col, padded = at[keep], col[keep], padded[keep]
