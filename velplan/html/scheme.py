@@ -20,7 +20,7 @@ import shapely
 from velplan.views.base import View
 from velplan.views.letters import (
     _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
-    _beyond, _centred, _first_hits, _settle)
+    _beyond, _centred, _settle)
 from velplan.views.mechanism import LetterRequest
 
 
@@ -60,8 +60,8 @@ class _Call:
         self.tree = shapely.STRtree(shapes) if shapes else None
         self.number = 0
         self.taken = list(kw.get("taken", ()))
-        thin = [g for g in kw.get("thin", ()) if not g.is_empty]
-        self.soft = shapely.STRtree(thin) if thin else None
+        self.thin = [g for g in kw.get("thin", ()) if not g.is_empty]
+        self.soft = shapely.STRtree(self.thin) if self.thin else None
         self.soft_mm = float(kw.get("soft_mm", SOFT_MM))
         allp = np.asarray(points, float).reshape(-1, 2)
         self.allp = allp[np.all(np.isfinite(allp), axis=1)]
@@ -80,26 +80,80 @@ def place_together(requests: list[LetterRequest]) -> list[tuple[list, list]]:
 
 
 class _Obstacles:
-    """The obstacles of all the calls, one array: each call's tree finds the candidates of its
-    own boxes, and the exact tests of all the calls' boxes run together."""
+    """The obstacles and the thin lines of all the calls, each kind in one array with its
+    envelopes, a call's own a run of it (``start[k]:stop[k]`` of call k)."""
 
     def __init__(self, calls: list[_Call]):
-        self.calls = calls
-        self.start = np.cumsum([0] + [len(c.shapes) for c in calls])
-        self.geoms = np.array([g for c in calls for g in c.shapes], dtype=object)
-        for c, call in enumerate(calls):
-            call.number = c
+        for k, call in enumerate(calls):
+            call.number = k
+        self.hard = _Shapes([c.shapes for c in calls])
+        self.thin = _Shapes([c.thin for c in calls])
 
-    def blocked(self, boxes: np.ndarray, first: np.ndarray, calls: list[_Call]) -> np.ndarray:
-        """Whether each of `boxes` meets an obstacle of its call (the boxes of ``calls[r]`` are
-        ``first[r]:first[r + 1]``): `velplan.views.letters._blocked` of each call's own tree."""
-        pairs = [(first[r] + i, self.start[call.number] + j)
-                 for r, call in enumerate(calls) if call.tree is not None and first[r] < first[r + 1]
-                 for i, j in [call.tree.query(boxes[first[r]:first[r + 1]])]]
-        if not pairs:
-            return np.zeros(len(boxes), dtype=bool)
-        return _first_hits(boxes, self.geoms, np.concatenate([i for i, _ in pairs]),
-                           np.concatenate([j for _, j in pairs]))
+
+class _Shapes:
+    """Geometries of many calls in one array, with their envelopes."""
+
+    def __init__(self, per_call: list[list]):
+        sizes = [len(g) for g in per_call]
+        self.stop = np.cumsum(sizes)
+        self.start = self.stop - sizes
+        self.geoms = np.array([g for gs in per_call for g in gs], dtype=object)
+        self.bounds = shapely.bounds(self.geoms).reshape(-1, 4)
+
+    def meeting(self, boxes: np.ndarray, calls: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs (box, geometry) of each box (bounds (k, 4)) and the geometries of its own
+        call (`calls`: each box's call) whose envelopes meet; the geometries whose envelope
+        lies within the box flagged (a box meets them for sure)."""
+        size = self.stop[calls] - self.start[calls]
+        most = int(size.max(initial=0))
+        if most == 0:
+            return np.zeros(0, int), np.zeros(0, int), np.zeros(0, bool)
+        at = self.start[calls][:, None] + np.arange(most)[None, :]
+        g = self.bounds[np.minimum(at, len(self.bounds) - 1)]  # (k, most, 4)
+        b = boxes[:, None, :]
+        meet = ((np.arange(most)[None, :] < size[:, None]) & (b[..., 0] <= g[..., 2]) & (b[..., 2] >= g[..., 0])
+                & (b[..., 1] <= g[..., 3]) & (b[..., 3] >= g[..., 1]))
+        i, m = np.nonzero(meet)
+        inside = ((b[..., 0] <= g[..., 0]) & (b[..., 2] >= g[..., 2]) & (b[..., 1] <= g[..., 1])
+                  & (b[..., 3] >= g[..., 3]))[i, m]
+        return i, at[i, m], inside
+
+    def blocked(self, boxes: np.ndarray, calls: np.ndarray) -> np.ndarray:
+        """Whether each box (bounds (k, 4)) meets a geometry of its call: the answer of the
+        call's tree's "intersects" query, the exact tests in rounds, the geometry whose
+        envelope the box covers most first, a box leaving at its first hit."""
+        i, j, inside = self.meeting(boxes, calls)
+        hit = np.zeros(len(boxes), dtype=bool)
+        hit[i[inside]] = True
+        keep = ~hit[i]
+        i, j = i[keep], j[keep]
+        if not len(i):
+            return hit
+        a, g = boxes[i], self.bounds[j]
+        covered = ((np.minimum(a[:, 2], g[:, 2]) - np.maximum(a[:, 0], g[:, 0]))
+                   * (np.minimum(a[:, 3], g[:, 3]) - np.maximum(a[:, 1], g[:, 1]))
+                   / np.maximum((g[:, 2] - g[:, 0]) * (g[:, 3] - g[:, 1]), 1e-12))
+        order = np.lexsort((-covered, i))
+        i, j = i[order], j[order]
+        made = np.empty(len(boxes), dtype=object)
+        while len(i):  # each round tests the first candidate left of each box not yet hit
+            first = np.empty(len(i), dtype=bool)
+            first[0] = True
+            np.not_equal(i[1:], i[:-1], out=first[1:])
+            now = i[first]
+            made[now] = shapely.box(*boxes[now].T)
+            hit[now[shapely.intersects(self.geoms[j[first]], made[now])]] = True
+            rest = ~first & ~hit[i]
+            i, j = i[rest], j[rest]
+        return hit
+
+    def crossings(self, boxes: np.ndarray, calls: np.ndarray) -> np.ndarray:
+        """How many geometries of its call each box (bounds (k, 4)) meets."""
+        i, j, inside = self.meeting(boxes, calls)
+        test = ~inside
+        if test.any():
+            inside[test] = shapely.intersects(self.geoms[j[test]], shapely.box(*boxes[i[test]].T))
+        return np.bincount(i[inside], minlength=len(boxes))
 
 
 def _place_kth(calls: list[_Call], k: int, together: _Obstacles) -> None:
@@ -177,41 +231,41 @@ def _first_choices(rows, together: _Obstacles) -> list:
     return [None if b is None else (centres[a, b[1]], b[2]) for a, b in enumerate(best)]
 
 
-def _box_run(c: np.ndarray, half: np.ndarray, pad: float):
-    """`_boxes` of candidates (k, 2) of many rows at once, each row's half sizes (k, 2)."""
-    return shapely.box(c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
-                       c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad)
+def _box_bounds(c: np.ndarray, half: np.ndarray, pad: float) -> np.ndarray:
+    """Bounds (k, 4) of the `_boxes` of candidates (k, 2) of many rows at once, each row's half
+    sizes (k, 2): the coordinates `shapely.box` is given."""
+    return np.column_stack([c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
+                            c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad])
 
 
 def _stage(rows, c, idx, ok, cost, together: _Obstacles) -> list:
     """One stage of `_choose` for each row, its candidates (r, s, 2) and their indices, nearness
     `ok` and costs (r, s) known: the best clear candidate's (cost, index, padded box), or None.
-    The boxes of all rows are made in one call; each row's own shapes are asked of shapely."""
+    The boxes of all rows are tested together, each against its own call's shapes."""
     half = np.array([r[5] for r in rows])
+    number = np.array([r[0].number for r in rows])
     at, col = np.nonzero(ok)
-    padded = _box_run(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
-    first = np.searchsorted(at, np.arange(len(rows) + 1))
-    keep = ~together.blocked(padded, first, [r[0] for r in rows])
-    for r, row in enumerate(rows):
-        call, mine = row[0], slice(first[r], first[r + 1])
-        if call.taken and keep[mine].any():
-            here = first[r] + np.flatnonzero(keep[mine])
-            keep[here] = ~shapely.intersects(padded[here, None], np.array(call.taken)[None, :]).any(axis=1)
+    padded = _box_bounds(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
+    keep = ~together.hard.blocked(padded, number[at])
+    taken = _Shapes([r[0].taken for r in rows])
+    here = np.flatnonzero(keep)
+    keep[here] = ~taken.blocked(padded[here], at[here])
     ok = ok.copy()
     ok[at, col] = keep
     at, col, padded = at[keep], col[keep], padded[keep]
     first = np.searchsorted(at, np.arange(len(rows) + 1))
     cost = cost.copy()
-    soft = _box_run(c[at, col], half[at], 0.2)
+    crossed = together.thin.crossings(_box_bounds(c[at, col], half[at], 0.2), number[at])
     out: list[tuple[float, int, Any] | None] = []
+    chosen = []
     for r, row in enumerate(rows):
         call, mine = row[0], slice(first[r], first[r + 1])
         if first[r] == first[r + 1]:
             out.append(None)
             continue
-        if call.soft is not None:
-            crossed = call.soft.query(soft[mine], predicate="intersects")[0]
-            cost[r, ok[r]] += call.soft_mm * np.bincount(crossed, minlength=first[r + 1] - first[r])
+        cost[r, ok[r]] += call.soft_mm * crossed[mine]
         j = int(np.argmin(np.where(ok[r], cost[r], np.inf)))
-        out.append((float(cost[r, j]), int(idx[r, j]), padded[first[r] + int(ok[r, :j].sum())]))
-    return out
+        out.append((float(cost[r, j]), int(idx[r, j])))
+        chosen.append(first[r] + int(ok[r, :j].sum()))
+    boxes = iter(shapely.box(*padded[chosen].T).tolist() if chosen else ())
+    return [None if hit is None else (*hit, next(boxes)) for hit in out]

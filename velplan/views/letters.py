@@ -204,22 +204,17 @@ def _blocked(tree, boxes) -> np.ndarray:
     tree's "intersects" query with fewer exact tests. A box's candidates (the geometries whose
     envelopes meet it) are tested in rounds, the one whose envelope the box covers most
     first; a box leaves at its first hit."""
-    i, j = tree.query(boxes)
-    return _first_hits(boxes, tree.geometries, i, j)
-
-
-def _first_hits(boxes, geoms, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-    """Whether each of `boxes` meets one of its candidates (pairs: box `i`, geometry `j` of
-    `geoms` whose envelopes meet), tested in rounds as `_blocked` tests them."""
     hit = np.zeros(len(boxes), dtype=bool)
+    i, j = tree.query(boxes)
     if not len(i):
         return hit
-    a, b = shapely.bounds(boxes)[i], shapely.bounds(geoms)[j]
+    a, b = shapely.bounds(boxes)[i], shapely.bounds(tree.geometries)[j]
     covered = ((np.minimum(a[:, 2], b[:, 2]) - np.maximum(a[:, 0], b[:, 0]))
                * (np.minimum(a[:, 3], b[:, 3]) - np.maximum(a[:, 1], b[:, 1]))
                / np.maximum((b[:, 2] - b[:, 0]) * (b[:, 3] - b[:, 1]), 1e-12))
     order = np.lexsort((-covered, i))
     i, j = i[order], j[order]
+    geoms = tree.geometries
     while len(i):  # each round tests the first candidate left of each box not yet hit
         first = np.empty(len(i), dtype=bool)
         first[0] = True
