@@ -77,3 +77,23 @@ def _mode_for(target: Path) -> int:
         return target.stat().st_mode & 0o777
     except OSError:
         return 0o644
+
+
+def cores() -> int:
+    """CPU cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not on Linux
+        return os.cpu_count() or 1
+
+
+def core_free(n: int | None = None) -> bool:
+    """Whether a second core is free for a helper process: two cores or more (`n`, by default
+    `cores`), and the 1-minute load average (this process's own 1 included) at most the cores
+    less half a core."""
+    n = cores() if n is None else n
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # no load average (Windows): trust the cores
+        load = 1.0
+    return n >= 2 and load <= n - 0.5

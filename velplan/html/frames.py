@@ -69,10 +69,37 @@ def scheme_scale(study: Study) -> float:
     return next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM), eskd_scales()[-1])
 
 
-def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False) -> dict:
+def scheme_records(study: Study, positions: list[int], lang: Language, style: SheetStyle, *,
+                   centres: bool = False) -> dict[int, list[list]]:
+    """The scheme's records at each of the position indices `positions` (valid ones): each
+    position's drawing (the scheme's own, `scheme_steps`, at `scheme_scale`), the letters of
+    all placed together. A position's records do not depend on the others drawn with it."""
+    mech, kin = study.mechanism, study.kinematics
+    fine = study.turn.take(slice(None, None, 3))
+    mu_l = scheme_scale(study)
+    n = len(kin)
+    reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
+    steps = []
+    for i in positions:
+        idx = sorted(set(reference) | {i})
+        steps.append(scheme_steps(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
+                                  thick=position_number(idx.index(i)), lang=lang, single=True, title=False))
+    out = {}
+    known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
+    for i, view in zip(positions, draw_together(steps)):
+        drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
+        out[i] = [r for p in drawn
+                  for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),
+                                                                          encode(p, style, view.origin)))]
+    return out
+
+
+def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False,
+                  drawn: dict[int, list[list]] | None = None) -> dict:
     """The scheme at every position: ``under`` (trajectories, drawn first), ``shared`` records,
     ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``; with
-    ``centres``, each position's instant centres found by Kennedy lines marked on it."""
+    ``centres``, each position's instant centres found by Kennedy lines marked on it. The
+    positions in `drawn` (`scheme_records` of them, by index) are taken as drawn there."""
     mech, kin = study.mechanism, study.kinematics
     fine = study.turn.take(slice(None, None, 3))
     mu_l = scheme_scale(study)
@@ -83,21 +110,12 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
         if len(path) >= 2 and np.ptp(path, axis=0).max() / mu_l > 0.5:
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
-    reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    # each position's drawing (the scheme's own, `scheme_steps`), the letters of all placed together
-    valid = [i for i in range(n) if kin.valid[i]]
-    steps = []
-    for i in valid:
-        idx = sorted(set(reference) | {i})
-        steps.append(scheme_steps(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
-                                  thick=position_number(idx.index(i)), lang=lang, single=True, title=False))
+    drawn = drawn or {}
     per_position: list[list[list] | None] = [None] * n
-    known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
-    for i, view in zip(valid, draw_together(steps)):
-        drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
-        per_position[i] = [r for p in drawn
-                           for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),
-                                                                                   encode(p, style, view.origin)))]
+    here = scheme_records(study, [i for i in range(n) if kin.valid[i] and i not in drawn], lang, style,
+                          centres=centres)
+    for i, recs in (*drawn.items(), *here.items()):
+        per_position[i] = recs
     # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
     keys = [[tuple(r) for r in recs or ()] for recs in per_position]
     count: dict[tuple, int] = {}

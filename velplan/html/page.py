@@ -19,7 +19,8 @@ from velplan.plans.drafting import Drafting
 from velplan.render.i18n import LANGUAGES, label
 from velplan.render.style import LINE_TYPES, SheetStyle
 from velplan.study import Study
-from velplan.html.frames import phi_degrees, plan_frames, rates, scheme_frames
+from velplan.html.aside import Aside
+from velplan.html.frames import phi_degrees, plan_frames, rates, scheme_frames, scheme_records
 from velplan.html.records import stroke_table
 from velplan.html.text import page_words, word
 from velplan.views.base import number, unit
@@ -46,22 +47,46 @@ def _stroke_css(style: SheetStyle) -> str:
     return "svg " + "\nsvg ".join(rules)
 
 
+#: The share of the scheme's positions a fork draws beside its plans (`velplan.html.aside`):
+#: every third, which makes the two processes' work about even on the bundled mechanisms.
+ASIDE_EVERY = 3
+
+
 def build_data(study: Study, lang: Language, *, scale_v: float | None = None, scale_a: float | None = None,
                drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> dict:
-    """Everything the page's script draws and writes, as a JSON-ready dict."""
+    """Everything the page's script draws and writes, as a JSON-ready dict. Within
+    `velplan.html.aside.building_aside`, a fork draws the plans and a share of the scheme's
+    positions meanwhile (the same dict)."""
     style = SheetStyle(language=lang)
     kin = study.kinematics
     # one μv and one μa for the whole turn (the standard ones unless given)
     mu_v = study.plan("velocity", scale_v=scale_v).scale
     mu_a = study.plan("acceleration", scale_a=scale_a).scale
-    plans = [plan_frames(study, kind, lang, style, scale_v=mu_v, scale_a=mu_a, drafting=drafting)
-             for kind in ("velocity", "acceleration")]
+    _ = study.turn  # the trajectories, solved once for both processes
+    theirs = [i for i in range(len(kin)) if kin.valid[i]][::ASIDE_EVERY]
+
+    def plans(positions: list[int]) -> tuple[list[dict], dict[int, list[list]]]:
+        return ([plan_frames(study, kind, lang, style, scale_v=mu_v, scale_a=mu_a, drafting=drafting)
+                 for kind in ("velocity", "acceleration")],
+                scheme_records(study, positions, lang, style, centres=centres))
+
+    part = Aside(lambda: plans(theirs))
+    if part.pid is None:  # no fork: all here, the scheme's positions drawn together
+        pv_pa, drawn = plans([])
+    else:
+        try:
+            mine = scheme_records(study, [i for i in range(len(kin)) if kin.valid[i] and i not in theirs], lang,
+                                  style, centres=centres)
+            pv_pa, drawn = part.result()
+        finally:
+            part.close()
+        drawn.update(mine)
     return {
         "n": len(kin), "comma": lang in ("ru", "uk"),
         "phi": phi_degrees(study), "valid": [bool(v) for v in kin.valid],
         "words": page_words(lang), "stroke": stroke_table(style),
         "units": {"omega": unit("rad/s", lang), "epsilon": unit("rad/s²", lang)},
-        "scheme": scheme_frames(study, lang, style, centres=centres), "plans": plans,
+        "scheme": scheme_frames(study, lang, style, centres=centres, drawn=drawn), "plans": pv_pa,
         "rates": rates(study),
     }
 

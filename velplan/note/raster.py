@@ -20,6 +20,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from velplan import io
+
 _START = ("import sys; sys.argv[2] in sys.path or sys.path.insert(0, sys.argv[2]); "
           "from velplan.render.raster_worker import serve; serve()")
 FORK = sys.platform.startswith("linux") and hasattr(os, "fork")
@@ -27,22 +29,13 @@ FORK = sys.platform.startswith("linux") and hasattr(os, "fork")
 
 
 def cores() -> int:
-    """CPU cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # not on Linux
-        return os.cpu_count() or 1
+    """CPU cores this process may run on (`velplan.io.cores`)."""
+    return io.cores()
 
 
 def core_free() -> bool:
-    """Whether a second core is free for the helper: two cores or more, and the 1-minute load
-    average (this process's own 1 included) at most the cores less half a core."""
-    n = cores()
-    try:
-        load = os.getloadavg()[0]
-    except (AttributeError, OSError):  # no load average (Windows): trust the cores
-        load = 1.0
-    return n >= 2 and load <= n - 0.5
+    """Whether a second core is free for the helper (`velplan.io.core_free`)."""
+    return io.core_free(cores())
 
 
 class Helper:
