@@ -48,8 +48,8 @@ def _stroke_css(style: SheetStyle) -> str:
 
 
 #: The share of the scheme's positions a fork draws beside its plans (`velplan.html.aside`):
-#: every third, which makes the two processes' work about even on the bundled mechanisms.
-ASIDE_EVERY = 3
+#: every fourth, which makes the two processes' work about even on the bundled mechanisms.
+ASIDE_EVERY = 4
 
 
 def build_data(study: Study, lang: Language, *, scale_v: float | None = None, scale_a: float | None = None,

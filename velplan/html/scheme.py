@@ -19,7 +19,7 @@ import shapely
 
 from velplan.views.base import View
 from velplan.views.letters import (
-    _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
+    _MARGIN_MM, _REACH, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
     _beyond, _centred, _settle)
 from velplan.views.mechanism import LetterRequest
 
@@ -136,12 +136,14 @@ class _Shapes:
         order = np.lexsort((-covered, i))
         i, j = i[order], j[order]
         made = np.empty(len(boxes), dtype=object)
+        fresh = np.ones(len(boxes), dtype=bool)
         while len(i):  # each round tests the first candidate left of each box not yet hit
             first = np.empty(len(i), dtype=bool)
             first[0] = True
             np.not_equal(i[1:], i[:-1], out=first[1:])
             now = i[first]
-            made[now] = shapely.box(*boxes[now].T)
+            new = now[fresh[now]]
+            made[new], fresh[new] = shapely.box(*boxes[new].T), False
             hit[now[shapely.intersects(self.geoms[j[first]], made[now])]] = True
             rest = ~first & ~hit[i]
             i, j = i[rest], j[rest]
@@ -208,6 +210,12 @@ def _nearest(centres: np.ndarray, rows) -> np.ndarray:
     return dist[..., 1:].min(axis=2) > dist[..., 0] + _MARGIN_MM
 
 
+#: Candidates examined a stage at a time, the cheapest first (`velplan.views.letters._STAGES`,
+#: finer: most letters find a clear spot among their few cheapest). The choice is the same at
+#: any stages: the least (cost, index) of the clear candidates, as `_choose` makes it.
+STAGES = (4, 12, 36, 96)
+
+
 def _first_choices(rows, together: _Obstacles) -> list:
     """For each row, `_choose` at `GAPS_MM` with its own point nearest: the centre and the
     padded box chosen, or None; the stages of `_choose` run for all rows at once."""
@@ -215,7 +223,7 @@ def _first_choices(rows, together: _Obstacles) -> list:
     n = centres.shape[1]
     order = np.lexsort((np.broadcast_to(np.arange(n), base.shape), base), axis=-1)
     best: list = [None] * len(rows)  # (cost, index, padded box)
-    for start, stop in zip((0, *_STAGES), (*_STAGES, n)):
+    for start, stop in zip((0, *STAGES), (*STAGES, n)):
         if start >= n:
             break
         live = [a for a in range(len(rows)) if best[a] is None or not best[a][0] < base[a, order[a, start]]]

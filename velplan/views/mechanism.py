@@ -81,6 +81,9 @@ def _unit(angle: float) -> np.ndarray:
 #: The link lines of the positions drawn so far, by `_Geometry.row_key` (the mechanism kept
 #: with them, so that a reused id is not mistaken for it); cleared when full.
 _SEGMENTS: dict[tuple, tuple] = {}
+#: Per mechanism (by id, kept with it): its points' links, its hinges and its fixed pivots.
+_FACTS: dict[int, tuple] = {}
+_FACTS_KEPT = 64
 _ROWS_KEPT = 20000
 
 
@@ -89,10 +92,14 @@ class _Geometry:
 
     def __init__(self, mech: Mechanism, kin: Kinematics):
         self.mech, self.kin = mech, kin
-        self.owner = point_owners(mech)
-        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
-        self.ground_pivots = [p.point for p in pairs(mech)
-                              if p.kind == "R" and GROUND in p.links]
+        hit = _FACTS.get(id(mech))
+        if hit is None or hit[0] is not mech:  # worked out once per mechanism (read only)
+            if len(_FACTS) >= _FACTS_KEPT:
+                _FACTS.clear()
+            hinges = [p for p in pairs(mech) if p.kind == "R"]
+            hit = _FACTS[id(mech)] = (mech, point_owners(mech), {p.point for p in hinges},
+                                      [p.point for p in hinges if GROUND in p.links])
+        self.owner, self.revolute, self.ground_pivots = hit[1:]
 
     def p(self, i: int, name: str) -> np.ndarray:
         return self.kin.positions[i, self.kin.point_index[name]]
@@ -513,11 +520,11 @@ def _broken_under_texts(items: list) -> list:
     stands on it (the letters went to the spots clear of them where their points have one):
     the parts outside the texts' boxes (:data:`BREAK_MM` round), in the line's place."""
     texts = [p for p in items if isinstance(p, Text)]
-    if not texts:
-        return items
-    holes = _grown(texts, BREAK_MM)
     thin = [k for k, p in enumerate(items)
             if isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS]
+    if not texts or not thin:
+        return items
+    holes = _grown(texts, BREAK_MM)
     lines = np.array(_lines([items[k].points for k in thin]), dtype=object)
     crossed, hole = shapely.STRtree(holes).query(lines, predicate="intersects")  # by line, in one call
     if not len(crossed):
