@@ -91,32 +91,31 @@ class _Obstacles:
 
 
 class _Shapes:
-    """Geometries of many calls in one array, with their envelopes."""
+    """Geometries of many calls in one array, with their envelopes, and per call a row of its
+    geometries' indices and envelopes (NaN past its last: NaN meets nothing)."""
 
     def __init__(self, per_call: list[list]):
-        sizes = [len(g) for g in per_call]
-        self.stop = np.cumsum(sizes)
-        self.start = self.stop - sizes
         self.geoms = np.array([g for gs in per_call for g in gs], dtype=object)
         self.bounds = shapely.bounds(self.geoms).reshape(-1, 4)
+        most = max([len(g) for g in per_call] + [1])
+        self.index = np.zeros((len(per_call), most), dtype=int)
+        self.rows = np.full((4, len(per_call), most), np.nan)  # xmin, ymin, xmax, ymax
+        start = 0
+        for k, gs in enumerate(per_call):
+            self.index[k, :len(gs)] = np.arange(start, start + len(gs))
+            self.rows[:, k, :len(gs)] = self.bounds[start:start + len(gs)].T
+            start += len(gs)
 
-    def meeting(self, boxes: np.ndarray, calls: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def meeting(self, boxes: np.ndarray, calls: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The pairs (box, geometry) of each box (bounds (k, 4)) and the geometries of its own
         call (`calls`: each box's call) whose envelopes meet; the geometries whose envelope
         lies within the box flagged (a box meets them for sure)."""
-        size = self.stop[calls] - self.start[calls]
-        most = int(size.max(initial=0))
-        if most == 0:
-            return np.zeros(0, int), np.zeros(0, int), np.zeros(0, bool)
-        at = self.start[calls][:, None] + np.arange(most)[None, :]
-        g = self.bounds[np.minimum(at, len(self.bounds) - 1)]  # (k, most, 4)
-        b = boxes[:, None, :]
-        meet = ((np.arange(most)[None, :] < size[:, None]) & (b[..., 0] <= g[..., 2]) & (b[..., 2] >= g[..., 0])
-                & (b[..., 1] <= g[..., 3]) & (b[..., 3] >= g[..., 1]))
-        i, m = np.nonzero(meet)
-        inside = ((b[..., 0] <= g[..., 0]) & (b[..., 2] >= g[..., 2]) & (b[..., 1] <= g[..., 1])
-                  & (b[..., 3] >= g[..., 3]))[i, m]
-        return i, at[i, m], inside
+        x0, y0, x1, y1 = self.rows[:, calls]  # (k, most) each
+        b = boxes.T[:, :, None]
+        i, m = np.nonzero((b[0] <= x1) & (b[2] >= x0) & (b[1] <= y1) & (b[3] >= y0))
+        g, c = self.bounds[self.index[calls[i], m]], boxes[i]
+        inside = (c[:, 0] <= g[:, 0]) & (c[:, 2] >= g[:, 2]) & (c[:, 1] <= g[:, 1]) & (c[:, 3] >= g[:, 3])
+        return i, self.index[calls[i], m], inside
 
     def blocked(self, boxes: np.ndarray, calls: np.ndarray) -> np.ndarray:
         """Whether each box (bounds (k, 4)) meets a geometry of its call: the answer of the
