@@ -110,12 +110,12 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
         if len(path) >= 2 and np.ptp(path, axis=0).max() / mu_l > 0.5:
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
-    drawn = drawn or {}
+    given = drawn or {}
     per_position: list[list[list] | None] = [None] * n
-    here = scheme_records(study, [i for i in range(n) if kin.valid[i] and i not in drawn], lang, style,
+    here = scheme_records(study, [i for i in range(n) if kin.valid[i] and i not in given], lang, style,
                           centres=centres)
-    for i, recs in (*drawn.items(), *here.items()):
-        per_position[i] = recs
+    for i, own in (*given.items(), *here.items()):
+        per_position[i] = own
     # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
     keys = [[tuple(r) for r in recs or ()] for recs in per_position]
     count: dict[tuple, int] = {}

@@ -12,7 +12,7 @@ steps.
 
 from __future__ import annotations
 
-from typing import Any, Generator
+from typing import Generator
 
 import numpy as np
 import shapely
@@ -263,7 +263,7 @@ def _stage(rows, c, idx, ok, cost, together: _Obstacles) -> list:
     first = np.searchsorted(at, np.arange(len(rows) + 1))
     cost = cost.copy()
     crossed = together.thin.crossings(_box_bounds(c[at, col], half[at], 0.2), number[at])
-    out: list[tuple[float, int, Any] | None] = []
+    out: list[tuple[float, int] | None] = []
     chosen = []
     for r, row in enumerate(rows):
         call, mine = row[0], slice(first[r], first[r + 1])
