@@ -12,6 +12,7 @@ import json
 from importlib import resources
 from pathlib import Path
 
+from velplan.analysis.numbering import position_number
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
 from velplan.options import Language
@@ -63,7 +64,8 @@ def build_data(study: Study, lang: Language, *, scale_v: float | None = None, sc
     mu_v = study.plan("velocity", scale_v=scale_v).scale
     mu_a = study.plan("acceleration", scale_a=scale_a).scale
     _ = study.turn  # the trajectories, solved once for both processes
-    theirs = [i for i in range(len(kin)) if kin.valid[i]][::ASIDE_EVERY]
+    valid = [position_number(i) for i in range(len(kin)) if kin.valid[i]]
+    theirs = valid[::ASIDE_EVERY]
 
     def plans(positions: list[int]) -> tuple[list[dict], dict[int, list[list]]]:
         return ([plan_frames(study, kind, lang, style, scale_v=mu_v, scale_a=mu_a, drafting=drafting)
@@ -75,8 +77,7 @@ def build_data(study: Study, lang: Language, *, scale_v: float | None = None, sc
         pv_pa, drawn = plans([])
     else:
         try:
-            mine = scheme_records(study, [i for i in range(len(kin)) if kin.valid[i] and i not in theirs], lang,
-                                  style, centres=centres)
+            mine = scheme_records(study, [p for p in valid if p not in theirs], lang, style, centres=centres)
             pv_pa, drawn = part.result()
         finally:
             part.close()
