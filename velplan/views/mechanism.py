@@ -854,11 +854,9 @@ def _guide_side(tr: GuideTrack, mu_l: float, centre_mm, slider_mm, segs, mm) -> 
     d = _unit(tr.angle)
     n = np.array([-d[1], d[0]])
     pull = np.zeros(2)
-    for seg in segs:
-        for here, other in ((mm(seg.a), mm(seg.b)), (mm(seg.b), mm(seg.a))):
-            if np.hypot(*(here - slider_mm)) < 0.5:
-                v = other - here
-                pull += v / max(np.hypot(*v), 1e-9)
+    for here, other in _ends_at(_segment_ends(segs, mm), slider_mm):
+        v = other - here
+        pull += v / max(np.hypot(*v), 1e-9)
     if abs(float(pull @ n)) > 0.05:
         return -n if float(pull @ n) > 0 else n
     return -n if float((centre_mm - tr.base / mu_l) @ n) > 0 else n
@@ -928,6 +926,20 @@ def _lead_blocks(mech: Mechanism) -> set[str]:
     return {j for g in mech.groups for j in drawing_of(g).lead_blocks(g)}
 
 
+def _segment_ends(segs, mm) -> np.ndarray:
+    """The ends of the segments `segs` on the drawing (``mm`` of each end), shape (n, 2, 2)."""
+    return mm(np.array([(s.a, s.b) for s in segs], float).reshape(-1, 2, 2))
+
+
+def _ends_at(ends: np.ndarray, p: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The segments' ends (`_segment_ends`) within 0.5 mm of `p` (mm), each with the other end
+    of its segment: (end, other), in the order of the segments, an end before its other."""
+    here = ends.reshape(-1, 2)
+    other = ends[:, ::-1].reshape(-1, 2)
+    near = np.hypot(here[:, 0] - p[0], here[:, 1] - p[1]) < 0.5
+    return [(here[k], other[k]) for k in np.flatnonzero(near)]
+
+
 def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
                   guide_sides=None) -> list[tuple[Text, np.ndarray]]:
     """Letters of the points at position t, each with its point (mm), off the lines that meet
@@ -936,6 +948,7 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
+    ends = _segment_ends(segs, mm)
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
@@ -944,11 +957,9 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
         away = np.zeros(2)
-        for s in segs:
-            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
-                if np.hypot(*(here - p)) < 0.5:
-                    d = other - here
-                    away -= d / max(np.hypot(*d), 1e-9)
+        for here, other in _ends_at(ends, p):
+            d = other - here
+            away -= d / max(np.hypot(*d), 1e-9)
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
