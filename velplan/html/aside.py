@@ -13,6 +13,7 @@ builds the part itself when it asks for it, errors included. The part is the sam
 from __future__ import annotations
 
 import contextlib
+import gc
 import os
 import pickle
 import select
@@ -50,12 +51,16 @@ class Aside:
         self.told = -1
         if not ENABLED:
             return
+        gc.freeze()  # the fork's collections leave this process's objects (and their pages) alone
         try:
             read, write = os.pipe()
             self.pid = os.fork()
         except OSError:
             self.pid = None
             return
+        finally:
+            if self.pid != 0:
+                gc.unfreeze()
         if self.pid == 0:  # the fork: ends at os._exit, nothing of the parent's flushed twice
             code = 1
             try:

@@ -49,9 +49,9 @@ def _stroke_css(style: SheetStyle) -> str:
 
 
 #: The share of the scheme's positions a fork draws beside its plans (`velplan.html.aside`),
-#: spread over the turn: the two processes' work about even on the shaper (CPU s, 72
-#: positions: the plans ≈ 0.25, a scheme's position ≈ 6 ms, this process's assembly ≈ 0.07).
-ASIDE_SHARE = 0.3
+#: spread over the turn: the two processes' work about even on the shaper (72 positions,
+#: CPU s: this process ≈ 0.43 before it takes the fork's part, the fork ≈ 0.44).
+ASIDE_SHARE = 0.25
 
 
 def build_data(study: Study, lang: Language, *, scale_v: float | None = None, scale_a: float | None = None,
