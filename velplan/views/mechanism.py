@@ -650,11 +650,13 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         strokes = plate_corners(mm(corners))
         items += strokes
         obstacles += _corner_hulls(mm(corners), strokes)  # no letter on a plate's hatched corner
+    ends = []
     for s in thick_segments:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
                       trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
-        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+        ends.append((a, b))
+    obstacles += _capsules(ends, 0.6)
     blocks = geo.blocks(t)
     for bl in blocks:
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
@@ -666,6 +668,14 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
     _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+def _capsules(ends: list, radius: float) -> list:
+    """Each segment (a, b) (mm) grown by `radius`, as ``LineString([a, b]).buffer(radius)``,
+    made in one call."""
+    if not ends:
+        return []
+    return list(shapely.buffer(shapely.linestrings(np.array(ends, float).reshape(-1, 2, 2)), radius, quad_segs=16))
 
 
 #: Guides and supports drawn so far, by all they depend on (cleared when full): a page's frames
