@@ -1,9 +1,11 @@
 """A part of the page built by a fork of this process while this process builds the rest.
 
 Only within `building_aside` (the ``velplan html`` command), on Linux, where a second core is
-free (`velplan.io.core_free`): elsewhere, and wherever the fork fails in any way, this process
-builds the part itself when it asks for it, errors included. The part is the same either way
-(it is computed by the same code from the same study), so the page is the same bytes.
+free (`velplan.io.core_free`, on average or at this instant): elsewhere, and wherever the fork
+fails in any way, this process builds the part itself when it asks for it, errors included.
+The part is the same either way (it is computed by the same code from the same study), so
+the page is the same bytes. On a busy machine the fork made the page slower (both processes
+share what the others leave), which is why it waits for a free core.
 
 >>> part = Aside(lambda: sum(range(10)))   # not within building_aside: built when asked
 >>> part.result()
@@ -34,7 +36,7 @@ def building_aside(enabled: bool = True):
     """Within the block, each `Aside` builds its part in a fork where a core is free for it."""
     global ENABLED
     was = ENABLED
-    ENABLED = enabled and sys.platform.startswith("linux") and hasattr(os, "fork") and core_free()
+    ENABLED = enabled and sys.platform.startswith("linux") and hasattr(os, "fork") and core_free(now=True)
     try:
         yield
     finally:
