@@ -77,3 +77,44 @@ def _mode_for(target: Path) -> int:
         return target.stat().st_mode & 0o777
     except OSError:
         return 0o644
+
+
+def cores() -> int:
+    """CPU cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not on Linux
+        return os.cpu_count() or 1
+
+
+def core_free(n: int | None = None, *, now: bool = False) -> bool:
+    """Whether a second core is free for a helper process: two cores or more (`n`, by default
+    `cores`), and the 1-minute load average (this process's own 1 included) at most the cores
+    less half a core; or, with `now`, fewer processes running at this instant than the cores
+    (`running_now`, this one included): a busy spell that has just ended keeps the average
+    high for minutes."""
+    n = cores() if n is None else n
+    if n < 2:
+        return False
+    if now:
+        running = running_now()
+        if running is not None and running <= n - 1:
+            return True
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # no load average (Windows): trust the cores
+        load = 1.0
+    return load <= n - 0.5
+
+
+def running_now() -> int | None:
+    """Processes running at this instant, this one included (Linux's ``procs_running``), or
+    None where the system does not say."""
+    try:
+        with open("/proc/stat", "rb") as stat:
+            for line in stat:
+                if line.startswith(b"procs_running "):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        return None
+    return None

@@ -36,6 +36,7 @@ def register(sub) -> None:
 
 def run_html(args) -> int:
     from velplan.html import MAX_POSITIONS, Page
+    from velplan.html.aside import building_aside
     from velplan.plans.drafting import Drafting
     from velplan.study import Study
 
@@ -50,8 +51,9 @@ def run_html(args) -> int:
     if not out.parent.is_dir():
         raise VelplanError(f"cannot write {out}: directory {out.parent} does not exist")
     study = Study(args.mechanism, n=args.positions)
-    page = Page(study, lang=args.lang, scale_v=args.scale_v, scale_a=args.scale_a,
-                drafting=Drafting(args.precision, args.angle_precision), centres=args.centres)
+    with building_aside():  # a fork draws the plans meanwhile where a core is free
+        page = Page(study, lang=args.lang, scale_v=args.scale_v, scale_a=args.scale_a,
+                    drafting=Drafting(args.precision, args.angle_precision), centres=args.centres)
     page.save(out)
     sys.stdout.write(f"wrote {out}\n")
     return 0

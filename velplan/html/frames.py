@@ -16,7 +16,7 @@ import re
 
 import numpy as np
 
-from velplan.analysis.numbering import position_number
+from velplan.analysis.numbering import position_index, position_number
 from velplan.options import Language
 from velplan.plans.drafting import Drafting
 from velplan.plans.engine import PlanResult
@@ -69,10 +69,40 @@ def scheme_scale(study: Study) -> float:
     return next((m for m in eskd_scales() if max(wx, wy) / m <= SCHEME_MM), eskd_scales()[-1])
 
 
-def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False) -> dict:
+def scheme_records(study: Study, positions: list[int], lang: Language, style: SheetStyle, *,
+                   centres: bool = False) -> dict[int, list[list]]:
+    """The scheme's records at each of the `positions` (numbers 1…n of the study's, where it
+    assembles), by position number: each position's drawing (the scheme's own, `scheme_steps`,
+    at `scheme_scale`), the letters of all placed together. A position's records do not depend
+    on the others drawn with it."""
+    mech, kin = study.mechanism, study.kinematics
+    fine = study.turn.take(slice(None, None, 3))
+    mu_l = scheme_scale(study)
+    n = len(kin)
+    reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
+    indices = [position_index(p, n) for p in positions]
+    steps = []
+    for i in indices:
+        idx = sorted(set(reference) | {i})
+        steps.append(scheme_steps(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
+                                  thick=position_number(idx.index(i)), lang=lang, single=True, title=False))
+    out = {}
+    known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
+    for i, view in zip(indices, draw_together(steps)):
+        drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
+        out[position_number(i)] = [r for p in drawn
+                  for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),
+                                                                          encode(p, style, view.origin)))]
+    return out
+
+
+def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: bool = False,
+                  drawn: dict[int, list[list]] | None = None) -> dict:
     """The scheme at every position: ``under`` (trajectories, drawn first), ``shared`` records,
     ``frames`` (per position: shared indices and own records), ``box`` and ``mu_l``; with
-    ``centres``, each position's instant centres found by Kennedy lines marked on it."""
+    ``centres``, each position's instant centres found by Kennedy lines marked on it. The
+    positions in `drawn` (`scheme_records` of them, by position number 1…n) are taken as
+    drawn there."""
     mech, kin = study.mechanism, study.kinematics
     fine = study.turn.take(slice(None, None, 3))
     mu_l = scheme_scale(study)
@@ -83,21 +113,12 @@ def scheme_frames(study: Study, lang: Language, style: SheetStyle, *, centres: b
         if len(path) >= 2 and np.ptp(path, axis=0).max() / mu_l > 0.5:
             under += encode(Polyline(path / mu_l, "trajectory", "thin"), style)
     n = len(kin)
-    reference = sorted({int(round(k * n / REFERENCE_POSITIONS)) % n for k in range(REFERENCE_POSITIONS)})
-    # each position's drawing (the scheme's own, `scheme_steps`), the letters of all placed together
-    valid = [i for i in range(n) if kin.valid[i]]
-    steps = []
-    for i in valid:
-        idx = sorted(set(reference) | {i})
-        steps.append(scheme_steps(mech, kin=kin.take(idx), fine=fine, mu_l=mu_l, n=len(idx),
-                                  thick=position_number(idx.index(i)), lang=lang, single=True, title=False))
+    given = drawn or {}
     per_position: list[list[list] | None] = [None] * n
-    known: dict = {}  # (primitive, origin) → its records: what every position draws alike is encoded once
-    for i, view in zip(valid, draw_together(steps)):
-        drawn = view.primitives + (tuple(_centre_marks(study, i, view, mu_l)) if centres else ())
-        per_position[i] = [r for p in drawn
-                           for r in (known.get((p, view.origin)) or known.setdefault((p, view.origin),
-                                                                                   encode(p, style, view.origin)))]
+    numbers = [position_number(i) for i in range(n) if kin.valid[i]]
+    here = scheme_records(study, [p for p in numbers if p not in given], lang, style, centres=centres)
+    for number, own in (*given.items(), *here.items()):
+        per_position[position_index(number, n)] = own
     # a record drawn at two positions or more is stored once (a record is a flat list of scalars)
     keys = [[tuple(r) for r in recs or ()] for recs in per_position]
     count: dict[tuple, int] = {}

@@ -12,6 +12,7 @@ import json
 from importlib import resources
 from pathlib import Path
 
+from velplan.analysis.numbering import position_number
 from velplan.errors import VelplanError
 from velplan.io import write_atomic
 from velplan.notation import digits_down
@@ -20,7 +21,8 @@ from velplan.plans.drafting import Drafting
 from velplan.render.i18n import LANGUAGES, label
 from velplan.render.style import LINE_TYPES, SheetStyle
 from velplan.study import Study
-from velplan.html.frames import phi_degrees, plan_frames, rates, scheme_frames
+from velplan.html.aside import Aside
+from velplan.html.frames import phi_degrees, plan_frames, rates, scheme_frames, scheme_records
 from velplan.html.records import stroke_table
 from velplan.html.text import page_words, word
 from velplan.views.base import number, unit
@@ -47,22 +49,48 @@ def _stroke_css(style: SheetStyle) -> str:
     return "svg " + "\nsvg ".join(rules)
 
 
+#: The share of the scheme's positions a fork draws beside its plans (`velplan.html.aside`),
+#: spread over the turn: the two processes' work about even on the shaper (72 positions,
+#: CPU s: this process ≈ 0.43 before it takes the fork's part, the fork ≈ 0.44).
+ASIDE_SHARE = 0.25
+
+
 def build_data(study: Study, lang: Language, *, scale_v: float | None = None, scale_a: float | None = None,
                drafting: Drafting = Drafting(0.5, 0.5), centres: bool = False) -> dict:
-    """Everything the page's script draws and writes, as a JSON-ready dict."""
+    """Everything the page's script draws and writes, as a JSON-ready dict. Within
+    `velplan.html.aside.building_aside`, a fork draws the plans and a share of the scheme's
+    positions meanwhile (the same dict)."""
     style = SheetStyle(language=lang)
     kin = study.kinematics
     # one μv and one μa for the whole turn (the standard ones unless given)
     mu_v = study.plan("velocity", scale_v=scale_v).scale
     mu_a = study.plan("acceleration", scale_a=scale_a).scale
-    plans = [plan_frames(study, kind, lang, style, scale_v=mu_v, scale_a=mu_a, drafting=drafting)
-             for kind in ("velocity", "acceleration")]
+    _ = study.turn  # the trajectories, solved once for both processes
+    valid = [position_number(i) for i in range(len(kin)) if kin.valid[i]]
+    share = round(len(valid) * ASIDE_SHARE)
+    theirs = [valid[k * len(valid) // share] for k in range(share)]
+
+    def plans(positions: list[int]) -> tuple[list[dict], dict[int, list[list]]]:
+        return ([plan_frames(study, kind, lang, style, scale_v=mu_v, scale_a=mu_a, drafting=drafting)
+                 for kind in ("velocity", "acceleration")],
+                scheme_records(study, positions, lang, style, centres=centres))
+
+    part = Aside(lambda: plans(theirs))
+    if part.pid is None:  # no fork: all here, the scheme's positions drawn together
+        pv_pa, drawn = plans([])
+    else:
+        try:
+            mine = scheme_records(study, [p for p in valid if p not in theirs], lang, style, centres=centres)
+            pv_pa, drawn = part.result()
+        finally:
+            part.close()
+        drawn.update(mine)
     return {
         "n": len(kin), "comma": lang in ("ru", "uk"),
         "phi": phi_degrees(study), "valid": [bool(v) for v in kin.valid],
         "words": page_words(lang), "stroke": stroke_table(style),
         "units": {"omega": unit("rad/s", lang), "epsilon": unit("rad/s²", lang)},
-        "scheme": scheme_frames(study, lang, style, centres=centres), "plans": plans,
+        "scheme": scheme_frames(study, lang, style, centres=centres, drawn=drawn), "plans": pv_pa,
         "rates": rates(study),
     }
 

@@ -12,14 +12,14 @@ steps.
 
 from __future__ import annotations
 
-from typing import Any, Generator
+from typing import Generator
 
 import numpy as np
 import shapely
 
 from velplan.views.base import View
 from velplan.views.letters import (
-    _MARGIN_MM, _REACH, _STAGES, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
+    _MARGIN_MM, _REACH, _TILED, _TURN_MM, _UNITS, GAPS_MM, LEADER_GAPS_MM, SAME_POINT_MM, SOFT_MM,
     _beyond, _centred, _settle)
 from velplan.views.mechanism import LetterRequest
 
@@ -56,10 +56,12 @@ class _Call:
             raise ValueError(f"place_together answers thin, taken and soft_mm only, not {sorted(kw)}")
         self.texts, self.anchors = list(texts), list(anchors)
         shapes = [g for g in obstacles if g is not None and not g.is_empty]
+        self.shapes = shapes
         self.tree = shapely.STRtree(shapes) if shapes else None
+        self.number = 0
         self.taken = list(kw.get("taken", ()))
-        thin = [g for g in kw.get("thin", ()) if not g.is_empty]
-        self.soft = shapely.STRtree(thin) if thin else None
+        self.thin = [g for g in kw.get("thin", ()) if not g.is_empty]
+        self.soft = shapely.STRtree(self.thin) if self.thin else None
         self.soft_mm = float(kw.get("soft_mm", SOFT_MM))
         allp = np.asarray(points, float).reshape(-1, 2)
         self.allp = allp[np.all(np.isfinite(allp), axis=1)]
@@ -71,12 +73,91 @@ def place_together(requests: list[LetterRequest]) -> list[tuple[list, list]]:
     """`place_letters(*r.args, **r.kwargs)` for each request (keyword arguments ``thin``,
     ``taken`` and ``soft_mm`` only), the same letters and leaders, letter k of every call placed in one pass."""
     calls = [_Call(r) for r in requests]
+    together = _Obstacles(calls)
     for k in range(max([len(c.texts) for c in calls] + [0])):
-        _place_kth([c for c in calls if len(c.texts) > k], k)
+        _place_kth([c for c in calls if len(c.texts) > k], k, together)
     return [(c.out, c.leaders) for c in calls]
 
 
-def _place_kth(calls: list[_Call], k: int) -> None:
+class _Obstacles:
+    """The obstacles and the thin lines of all the calls, each kind in one array with its
+    envelopes, a call's own a run of it (``start[k]:stop[k]`` of call k)."""
+
+    def __init__(self, calls: list[_Call]):
+        for k, call in enumerate(calls):
+            call.number = k
+        self.hard = _Shapes([c.shapes for c in calls])
+        self.thin = _Shapes([c.thin for c in calls])
+
+
+class _Shapes:
+    """Geometries of many calls in one array, with their envelopes, and per call a row of its
+    geometries' indices and envelopes (NaN past its last: NaN meets nothing)."""
+
+    def __init__(self, per_call: list[list]):
+        self.geoms = np.array([g for gs in per_call for g in gs], dtype=object)
+        self.bounds = shapely.bounds(self.geoms).reshape(-1, 4)
+        most = max([len(g) for g in per_call] + [1])
+        self.index = np.zeros((len(per_call), most), dtype=int)
+        self.rows = np.full((4, len(per_call), most), np.nan)  # xmin, ymin, xmax, ymax
+        start = 0
+        for k, gs in enumerate(per_call):
+            self.index[k, :len(gs)] = np.arange(start, start + len(gs))
+            self.rows[:, k, :len(gs)] = self.bounds[start:start + len(gs)].T
+            start += len(gs)
+
+    def meeting(self, boxes: np.ndarray, calls: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The pairs (box, geometry) of each box (bounds (k, 4)) and the geometries of its own
+        call (`calls`: each box's call) whose envelopes meet; the geometries whose envelope
+        lies within the box flagged (a box meets them for sure)."""
+        x0, y0, x1, y1 = self.rows[:, calls]  # (k, most) each
+        b = boxes.T[:, :, None]
+        i, m = np.nonzero((b[0] <= x1) & (b[2] >= x0) & (b[1] <= y1) & (b[3] >= y0))
+        g, c = self.bounds[self.index[calls[i], m]], boxes[i]
+        inside = (c[:, 0] <= g[:, 0]) & (c[:, 2] >= g[:, 2]) & (c[:, 1] <= g[:, 1]) & (c[:, 3] >= g[:, 3])
+        return i, self.index[calls[i], m], inside
+
+    def blocked(self, boxes: np.ndarray, calls: np.ndarray) -> np.ndarray:
+        """Whether each box (bounds (k, 4)) meets a geometry of its call: the answer of the
+        call's tree's "intersects" query, the exact tests in rounds, the geometry whose
+        envelope the box covers most first, a box leaving at its first hit."""
+        i, j, inside = self.meeting(boxes, calls)
+        hit = np.zeros(len(boxes), dtype=bool)
+        hit[i[inside]] = True
+        keep = ~hit[i]
+        i, j = i[keep], j[keep]
+        if not len(i):
+            return hit
+        a, g = boxes[i], self.bounds[j]
+        covered = ((np.minimum(a[:, 2], g[:, 2]) - np.maximum(a[:, 0], g[:, 0]))
+                   * (np.minimum(a[:, 3], g[:, 3]) - np.maximum(a[:, 1], g[:, 1]))
+                   / np.maximum((g[:, 2] - g[:, 0]) * (g[:, 3] - g[:, 1]), 1e-12))
+        order = np.lexsort((-covered, i))
+        i, j = i[order], j[order]
+        made = np.empty(len(boxes), dtype=object)
+        fresh = np.ones(len(boxes), dtype=bool)
+        while len(i):  # each round tests the first candidate left of each box not yet hit
+            first = np.empty(len(i), dtype=bool)
+            first[0] = True
+            np.not_equal(i[1:], i[:-1], out=first[1:])
+            now = i[first]
+            new = now[fresh[now]]
+            made[new], fresh[new] = shapely.box(*boxes[new].T), False
+            hit[now[shapely.intersects(self.geoms[j[first]], made[now])]] = True
+            rest = ~first & ~hit[i]
+            i, j = i[rest], j[rest]
+        return hit
+
+    def crossings(self, boxes: np.ndarray, calls: np.ndarray) -> np.ndarray:
+        """How many geometries of its call each box (bounds (k, 4)) meets."""
+        i, j, inside = self.meeting(boxes, calls)
+        test = ~inside
+        if test.any():
+            inside[test] = shapely.intersects(self.geoms[j[test]], shapely.box(*boxes[i[test]].T))
+        return np.bincount(i[inside], minlength=len(boxes))
+
+
+def _place_kth(calls: list[_Call], k: int, together: _Obstacles) -> None:
     """Letter k of each call: the first `_choose` of `place_letters` for all at once, the rest
     (a letter with no clear spot near its point) as `place_letters` does it."""
     rows = []
@@ -88,7 +169,7 @@ def _place_kth(calls: list[_Call], k: int) -> None:
         wanted = wanted / np.hypot(*wanted) if np.hypot(*wanted) > 1e-9 else np.array([0.7071, 0.7071])
         others = c.allp[np.hypot(*(c.allp - p).T) > SAME_POINT_MM]
         rows.append((c, text, p, centred, offset, half, wanted, others))
-    found = _first_choices(rows)
+    found = _first_choices(rows, together)
     for (c, text, p, centred, offset, half, wanted, others), hit in zip(rows, found):
         led = hit is None
         if led:
@@ -128,14 +209,20 @@ def _nearest(centres: np.ndarray, rows) -> np.ndarray:
     return dist[..., 1:].min(axis=2) > dist[..., 0] + _MARGIN_MM
 
 
-def _first_choices(rows) -> list:
+#: Candidates examined a stage at a time, the cheapest first (`velplan.views.letters._STAGES`,
+#: finer: most letters find a clear spot among their few cheapest). The choice is the same at
+#: any stages: the least (cost, index) of the clear candidates, as `_choose` makes it.
+STAGES = (4, 12, 36, 96)
+
+
+def _first_choices(rows, together: _Obstacles) -> list:
     """For each row, `_choose` at `GAPS_MM` with its own point nearest: the centre and the
     padded box chosen, or None; the stages of `_choose` run for all rows at once."""
     centres, base = _candidates(rows)
     n = centres.shape[1]
     order = np.lexsort((np.broadcast_to(np.arange(n), base.shape), base), axis=-1)
     best: list = [None] * len(rows)  # (cost, index, padded box)
-    for start, stop in zip((0, *_STAGES), (*_STAGES, n)):
+    for start, stop in zip((0, *STAGES), (*STAGES, n)):
         if start >= n:
             break
         live = [a for a in range(len(rows)) if best[a] is None or not best[a][0] < base[a, order[a, start]]]
@@ -144,51 +231,48 @@ def _first_choices(rows) -> list:
         idx = np.sort(order[live, start:min(stop, n)], axis=1)
         c = centres[np.array(live)[:, None], idx]
         ok = _nearest(c, [rows[a] for a in live])
-        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx])):
+        for a, hit in zip(live, _stage([rows[a] for a in live], c, idx, ok, base[np.array(live)[:, None], idx],
+                                       together)):
             if hit is not None and (best[a] is None or hit[:2] < best[a][:2]):
                 best[a] = hit
     return [None if b is None else (centres[a, b[1]], b[2]) for a, b in enumerate(best)]
 
 
-def _box_run(c: np.ndarray, half: np.ndarray, pad: float):
-    """`_boxes` of candidates (k, 2) of many rows at once, each row's half sizes (k, 2)."""
-    return shapely.box(c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
-                       c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad)
+def _box_bounds(c: np.ndarray, half: np.ndarray, pad: float) -> np.ndarray:
+    """Bounds (k, 4) of the `_boxes` of candidates (k, 2) of many rows at once, each row's half
+    sizes (k, 2): the coordinates `shapely.box` is given."""
+    return np.column_stack([c[:, 0] - half[:, 0] - pad, c[:, 1] - half[:, 1] - pad,
+                            c[:, 0] + half[:, 0] + pad, c[:, 1] + half[:, 1] + pad])
 
 
-def _stage(rows, c, idx, ok, cost) -> list:
+def _stage(rows, c, idx, ok, cost, together: _Obstacles) -> list:
     """One stage of `_choose` for each row, its candidates (r, s, 2) and their indices, nearness
     `ok` and costs (r, s) known: the best clear candidate's (cost, index, padded box), or None.
-    The boxes of all rows are made in one call; each row's own shapes are asked of shapely."""
+    The boxes of all rows are tested together, each against its own call's shapes."""
     half = np.array([r[5] for r in rows])
+    number = np.array([r[0].number for r in rows])
     at, col = np.nonzero(ok)
-    padded = _box_run(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
-    first = np.searchsorted(at, np.arange(len(rows) + 1))
-    keep = np.ones(len(at), dtype=bool)
-    for r, row in enumerate(rows):
-        call, mine = row[0], slice(first[r], first[r + 1])
-        if first[r] == first[r + 1]:
-            continue
-        if call.taken:
-            keep[mine] &= ~shapely.intersects(padded[mine, None], np.array(call.taken)[None, :]).any(axis=1)
-        if call.tree is not None and keep[mine].any():
-            here = first[r] + np.flatnonzero(keep[mine])
-            keep[here[call.tree.query(padded[here], predicate="intersects")[0]]] = False
+    padded = _box_bounds(c[at, col], (1.12 * half)[at], 0.4)  # rendered glyphs run wider than the estimate
+    keep = ~together.hard.blocked(padded, number[at])
+    taken = _Shapes([r[0].taken for r in rows])
+    here = np.flatnonzero(keep)
+    keep[here] = ~taken.blocked(padded[here], at[here])
     ok = ok.copy()
     ok[at, col] = keep
     at, col, padded = at[keep], col[keep], padded[keep]
     first = np.searchsorted(at, np.arange(len(rows) + 1))
     cost = cost.copy()
-    soft = _box_run(c[at, col], half[at], 0.2)
-    out: list[tuple[float, int, Any] | None] = []
+    crossed = together.thin.crossings(_box_bounds(c[at, col], half[at], 0.2), number[at])
+    out: list[tuple[float, int] | None] = []
+    chosen = []
     for r, row in enumerate(rows):
         call, mine = row[0], slice(first[r], first[r + 1])
         if first[r] == first[r + 1]:
             out.append(None)
             continue
-        if call.soft is not None:
-            crossed = call.soft.query(soft[mine], predicate="intersects")[0]
-            cost[r, ok[r]] += call.soft_mm * np.bincount(crossed, minlength=first[r + 1] - first[r])
+        cost[r, ok[r]] += call.soft_mm * crossed[mine]
         j = int(np.argmin(np.where(ok[r], cost[r], np.inf)))
-        out.append((float(cost[r, j]), int(idx[r, j]), padded[first[r] + int(ok[r, :j].sum())]))
-    return out
+        out.append((float(cost[r, j]), int(idx[r, j])))
+        chosen.append(first[r] + int(ok[r, :j].sum()))
+    boxes = iter(shapely.box(*padded[chosen].T).tolist() if chosen else ())
+    return [None if hit is None else (*hit, next(boxes)) for hit in out]

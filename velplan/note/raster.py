@@ -7,24 +7,17 @@ from __future__ import annotations
 import os
 import sys
 
+from velplan import io
+
 FORK = sys.platform.startswith("linux") and hasattr(os, "fork")
 """Whether a helper can be a fork of this process (Linux)."""
 
 
 def cores() -> int:
-    """CPU cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # not on Linux
-        return os.cpu_count() or 1
+    """CPU cores this process may run on (`velplan.io.cores`)."""
+    return io.cores()
 
 
 def core_free() -> bool:
-    """Whether a second core is free for the helper: two cores or more, and the 1-minute load
-    average (this process's own 1 included) at most the cores less half a core."""
-    n = cores()
-    try:
-        load = os.getloadavg()[0]
-    except (AttributeError, OSError):  # no load average (Windows): trust the cores
-        load = 1.0
-    return n >= 2 and load <= n - 0.5
+    """Whether a second core is free for the helper (`velplan.io.core_free`)."""
+    return io.core_free(cores())

@@ -46,10 +46,21 @@ NEAR_MM = 5.5
 
 def _centred(text: Text) -> tuple[Text, np.ndarray, np.ndarray]:
     """`text` anchored at its middle, with its box's centre offset from its position and its
-    half sizes, mm."""
-    t = dataclasses.replace(text, anchor="middle", baseline="middle", position=(0.0, 0.0))
-    x0, y0, x1, y1 = label_box(t).bounds
-    return t, np.array([0.5 * (x0 + x1), 0.5 * (y0 + y1)]), np.array([0.5 * (x1 - x0), 0.5 * (y1 - y0)])
+    half sizes, mm (read only: made once per text, size and type)."""
+    key = (text.text, text.layer, text.size_mm, text.rotation_deg, text.width_factor)
+    hit = _CENTRED.get(key)
+    if hit is None:
+        t = dataclasses.replace(text, anchor="middle", baseline="middle", position=(0.0, 0.0))
+        x0, y0, x1, y1 = label_box(t).bounds
+        offset, half = np.array([0.5 * (x0 + x1), 0.5 * (y0 + y1)]), np.array([0.5 * (x1 - x0), 0.5 * (y1 - y0)])
+        offset.flags.writeable = half.flags.writeable = False
+        if len(_CENTRED) >= 4096:
+            _CENTRED.clear()
+        hit = _CENTRED[key] = (t, offset, half)
+    return hit
+
+
+_CENTRED: dict[tuple, tuple[Text, np.ndarray, np.ndarray]] = {}
 
 
 #: Unit vectors of `_DIRECTIONS`, their absolute values, and per number of gaps the vectors

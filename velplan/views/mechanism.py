@@ -81,6 +81,9 @@ def _unit(angle: float) -> np.ndarray:
 #: The link lines of the positions drawn so far, by `_Geometry.row_key` (the mechanism kept
 #: with them, so that a reused id is not mistaken for it); cleared when full.
 _SEGMENTS: dict[tuple, tuple] = {}
+#: Per mechanism (by id, kept with it): its points' links, its hinges and its fixed pivots.
+_FACTS: dict[int, tuple] = {}
+_FACTS_KEPT = 64
 _ROWS_KEPT = 20000
 
 
@@ -89,10 +92,14 @@ class _Geometry:
 
     def __init__(self, mech: Mechanism, kin: Kinematics):
         self.mech, self.kin = mech, kin
-        self.owner = point_owners(mech)
-        self.revolute = {p.point for p in pairs(mech) if p.kind == "R"}
-        self.ground_pivots = [p.point for p in pairs(mech)
-                              if p.kind == "R" and GROUND in p.links]
+        hit = _FACTS.get(id(mech))
+        if hit is None or hit[0] is not mech:  # worked out once per mechanism (read only)
+            if len(_FACTS) >= _FACTS_KEPT:
+                _FACTS.clear()
+            hinges = [p for p in pairs(mech) if p.kind == "R"]
+            hit = _FACTS[id(mech)] = (mech, point_owners(mech), {p.point for p in hinges},
+                                      [p.point for p in hinges if GROUND in p.links])
+        self.owner, self.revolute, self.ground_pivots = hit[1:]
 
     def p(self, i: int, name: str) -> np.ndarray:
         return self.kin.positions[i, self.kin.point_index[name]]
@@ -536,11 +543,11 @@ def _broken_under_texts(items: list) -> list:
     stands on it (the letters went to the spots clear of them where their points have one):
     the parts outside the texts' boxes (:data:`BREAK_MM` round), in the line's place."""
     texts = [p for p in items if isinstance(p, Text)]
-    if not texts:
-        return items
-    holes = _grown(texts, BREAK_MM)
     thin = [k for k, p in enumerate(items)
             if isinstance(p, Polyline) and p.line == "thin" and p.layer in _BROKEN_LAYERS]
+    if not texts or not thin:
+        return items
+    holes = _grown(texts, BREAK_MM)
     lines = np.array(_lines([items[k].points for k in thin]), dtype=object)
     crossed, hole = shapely.STRtree(holes).query(lines, predicate="intersects")  # by line, in one call
     if not len(crossed):
@@ -666,11 +673,13 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         strokes = plate_corners(mm(corners))
         items += strokes
         obstacles += _corner_hulls(mm(corners), strokes)  # no letter on a plate's hatched corner
+    ends = []
     for s in thick_segments:
         a, b = mm(s.a), mm(s.b)
         items += link(a, b, trim_a_mm=JOINT_RADIUS_MM if s.joints[0] else 0.0,
                       trim_b_mm=JOINT_RADIUS_MM if s.joints[1] else 0.0, layer="mechanism")
-        obstacles.append(shapely.LineString([a, b]).buffer(0.6))
+        ends.append((a, b))
+    obstacles += _capsules(ends, 0.6)
     blocks = geo.blocks(t)
     for bl in blocks:
         body = slider_block(mm(bl.centre), math.degrees(bl.angle), length_mm=BLOCK_MM[0],
@@ -682,6 +691,14 @@ def _thick_position(items: list, obstacles: list, geo: _Geometry, fine: Kinemati
         items += revolute_joint(mm(geo.p(t, name)), layer="mechanism")
     _mass_signs(items, obstacles, geo, t, mm)
     return _Thick(centre, tracks, thick_segments, blocks, guide_sides, special_letters)
+
+
+def _capsules(ends: list, radius: float) -> list:
+    """Each segment (a, b) (mm) grown by `radius`, as ``LineString([a, b]).buffer(radius)``,
+    made in one call."""
+    if not ends:
+        return []
+    return list(shapely.buffer(shapely.linestrings(np.array(ends, float).reshape(-1, 2, 2)), radius, quad_segs=16))
 
 
 #: Guides and supports drawn so far, by all they depend on (cleared when full): a page's frames
@@ -870,11 +887,9 @@ def _guide_side(tr: GuideTrack, mu_l: float, centre_mm, slider_mm, segs, mm) -> 
     d = _unit(tr.angle)
     n = np.array([-d[1], d[0]])
     pull = np.zeros(2)
-    for seg in segs:
-        for here, other in ((mm(seg.a), mm(seg.b)), (mm(seg.b), mm(seg.a))):
-            if np.hypot(*(here - slider_mm)) < 0.5:
-                v = other - here
-                pull += v / max(np.hypot(*v), 1e-9)
+    for here, other in _ends_at(_segment_ends(segs, mm), slider_mm):
+        v = other - here
+        pull += v / max(np.hypot(*v), 1e-9)
     if abs(float(pull @ n)) > 0.05:
         return -n if float(pull @ n) > 0 else n
     return -n if float((centre_mm - tr.base / mu_l) @ n) > 0 else n
@@ -944,6 +959,20 @@ def _lead_blocks(mech: Mechanism) -> set[str]:
     return {j for g in mech.groups for j in drawing_of(g).lead_blocks(g)}
 
 
+def _segment_ends(segs, mm) -> np.ndarray:
+    """The ends of the segments `segs` on the drawing (``mm`` of each end), shape (n, 2, 2)."""
+    return mm(np.array([(s.a, s.b) for s in segs], float).reshape(-1, 2, 2))
+
+
+def _ends_at(ends: np.ndarray, p: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The segments' ends (`_segment_ends`) within 0.5 mm of `p` (mm), each with the other end
+    of its segment: (end, other), in the order of the segments, an end before its other."""
+    here = ends.reshape(-1, 2)
+    other = ends[:, ::-1].reshape(-1, 2)
+    near = np.hypot(here[:, 0] - p[0], here[:, 1] - p[1]) < 0.5
+    return [(here[k], other[k]) for k in np.flatnonzero(near)]
+
+
 def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
                   guide_sides=None) -> list[tuple[Text, np.ndarray]]:
     """Letters of the points at position t, each with its point (mm), off the lines that meet
@@ -952,6 +981,7 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
     kin = geo.kin
     placed: list[np.ndarray] = []
     out = []
+    ends = _segment_ends(segs, mm)
     for name in kin.point_index:
         if name.startswith("K") and name not in geo.revolute and name != output_point(geo.mech):
             continue  # the runner's origin is a construction point, not lettered
@@ -960,11 +990,9 @@ def _point_labels(geo: _Geometry, t: int, mm, size: float, segs, blocks,
             continue  # a coincident point (A4 at A) takes the letter already written
         placed.append(p)
         away = np.zeros(2)
-        for s in segs:
-            for here, other in ((mm(s.a), mm(s.b)), (mm(s.b), mm(s.a))):
-                if np.hypot(*(here - p)) < 0.5:
-                    d = other - here
-                    away -= d / max(np.hypot(*d), 1e-9)
+        for here, other in _ends_at(ends, p):
+            d = other - here
+            away -= d / max(np.hypot(*d), 1e-9)
         if name in geo.ground_pivots:
             g = math.radians(_ground_side(geo, name, t, mm))
             away -= 1.5 * np.array([math.cos(g), math.sin(g)])
