@@ -66,7 +66,7 @@ Every view of the slider press's force sheet at position 2, from its study's res
 >>> polygon_layers(2, "2-3")
 ('fpoly-2-2-3', 'fpoly-2-2-3-lines', 'fpoly-2-2-3-labels')
 >>> force_text("R12τ"), force_text("MΦ4@B"), slug("Crank A")
-('R₁₂τ', 'F(MΦ₄)', 'crank-a')
+('R_{12}^{τ}', 'F(M_{Φ4})', 'crank-a')
 >>> newton("ru"), newton_metre("en"), number_text(1234.5678, "ru")
 ('Н', 'N·m', '1235')
 >>> LINE_OVERRUN_MM, SHORT_VECTOR_MM   # lines run past their points; shorter: listed as ≈ 0
