@@ -180,3 +180,20 @@ def test_a_centres_sentence_marks_its_centres_and_joints(name):
             marks = [x.text for x in s.parts if isinstance(x, Sym)]
             assert marks and all(re.fullmatch(r"P[0-9,]+|[A-Z][0-9]*", m) for m in marks), marks
             assert readable(s) == readable(str(s))
+
+
+def test_a_force_is_one_symbol_on_the_sheet_in_the_notes_tables_and_in_its_formulas():
+    """R₁₂ with τ raised, M with Φ₄ below, a load Fc as F with c below: the sheet's marks
+    (`force_text`), the note's TeX (`formulas.force`) and the note's cells (`split_symbol`)."""
+    from velplan.note.cells import cell_markdown
+    from velplan.note.formulas import force
+    from velplan.views.forces import force_text
+
+    cases = {"R12τ": ("R_{12}^{τ}", r"{R_{12}}^{\tau}", "R~12~^τ^"),
+             "MΦ4": ("M_{Φ4}", r"M_{\Phi_{4}}", "M~Φ4~"),
+             "Fc": ("F_{c}", "F_{c}", "F~c~"),
+             "Fg5": ("F_{g5}", "F_{g5}", "F~g5~"),
+             "G4": ("G₄", "G_{4}", "G~4~")}
+    for name, (drawn, tex, cell) in cases.items():
+        assert force_text(name) == drawn and force(name) == tex, name
+        assert cell_markdown(N.unicode_text(drawn), str) == cell, name

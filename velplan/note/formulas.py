@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from velplan.notation import MINUS, plain_digits
+from velplan.notation import MINUS, plain_digits, split_symbol
 
 GREEK = {"ω": r"\omega", "ε": r"\varepsilon", "μ": r"\mu", "π": r"\pi", "Φ": r"\Phi", "φ": r"\varphi",
          "δ": r"\delta", "Δ": r"\Delta", "τ": r"\tau", "ψ": r"\psi", "θ": r"\theta"}
@@ -69,6 +69,10 @@ def link_rate(kind: str, link: str) -> str:
 
 def force(label: str) -> str:
     """A force label of the kinetostatics (``R05``, ``Φ4``, ``G5``, ``R12τ``, ``MΦ4``) in TeX."""
+    found = split_symbol(label)
+    if found and not found[1].isdigit() and not re.search(r"\d[τn⊥∥]$|^MΦ", label):  # a load: Fc, Fg5
+        index = found[1] if found[1].isascii() else f"\\text{{{found[1]}}}"  # Cyrillic set upright
+        return f"{GREEK.get(found[0], found[0])}_{{{index}}}"
     m = re.match(r"^(M?)([A-Za-zΦ]+?)(\d*)(τ|n|⊥|∥)?$", label)
     if not m:
         return txt(label)

@@ -10,6 +10,7 @@ import math
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
+from velplan.views.forces.common import force_text
 from velplan.views.base import ROUND_OFF, View, digits_down, make_view, number, subscript, unit
 
 
@@ -49,7 +50,7 @@ def data_lines(study, lang: Language) -> list[str]:
     for ld in mech.loads:  # as the file gives them (parsing them would place them on the stroke)
         value = ld.get("force", ld.get("p_max"))
         if isinstance(value, (int, float)) and not isinstance(value, bool) and value:
-            loads.append(f"{ld.get('name', '')} = {number(float(value), lang)} {unit('N', lang)}")
+            loads.append(f"{force_text(ld.get('name', ''))} = {number(float(value), lang)} {unit('N', lang)}")
     if loads:
         lines.append("; ".join(loads))
     st = study.stroke

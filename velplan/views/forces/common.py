@@ -13,7 +13,7 @@ from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_depth
 from velplan.views.base import bounds_of, digits_down
-from velplan.notation import number as _num
+from velplan.notation import number as _num, split_symbol
 
 
 @dataclass(frozen=True)
@@ -77,11 +77,12 @@ def force_text(name: str) -> str:
     """A force's label as drawn, in the note's notation: the pair's index below the line and a
     component's mark above it (``"R12τ"`` → ``"R_{12}^{τ}"``, R₁₂ with τ raised), an inertia
     couple's moment with its force's name below (``"MΦ4"`` → ``"M_{Φ4}"``), other digits as
-    subscripts (``"G4"`` → ``"G₄"``); the force of the pair replacing a couple on the lever
+    subscripts (``"G4"`` → ``"G₄"``), a load's name as the note reads it (``"Fc"`` → ``"F_{c}"``,
+    `velplan.notation.split_symbol`); the force of the pair replacing a couple on the lever
     (``"MΦ4@B"``) → ``"F(M_{Φ4})"``. `velplan.notation.unicode_text` gives it back on one line (R₁₂τ, MΦ₄).
 
-    >>> force_text("R12τ"), force_text("R45n"), force_text("MΦ4@B"), force_text("Fc")
-    ('R_{12}^{τ}', 'R_{45}^{n}', 'F(M_{Φ4})', 'Fc')
+    >>> force_text("R12τ"), force_text("R45n"), force_text("MΦ4@B"), force_text("Fc"), force_text("G4")
+    ('R_{12}^{τ}', 'R_{45}^{n}', 'F(M_{Φ4})', 'F_{c}', 'G₄')
     """
     if "@" in name:
         return f"F({force_text(name.split('@', 1)[0])})"
@@ -89,6 +90,8 @@ def force_text(name: str) -> str:
         return f"{m['head']}_{{{m['index']}}}^{{{m['mark']}}}"
     if m := _COUPLE.match(name):
         return f"M_{{{m['index']}}}"
+    if (found := split_symbol(name)) and not found[1].isdigit():  # a load's name: Fc → F_{c}, Fg5 → F_{g5}
+        return f"{found[0]}_{{{found[1]}}}"
     return digits_down(name)
 
 
