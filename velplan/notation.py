@@ -218,3 +218,31 @@ def split_symbol(word: str) -> tuple[str, str] | None:
     if head.isascii() and head.islower() and not (digits or capitals):
         return None
     return m.group("delta") + head, plain_digits(index)
+
+
+_COMPONENT = re.compile(r"^(?P<head>[A-Za-zΦ]+?)(?P<index>\d+)(?P<mark>[τn⊥∥])$")
+"""A reaction's component: its mark (τ, n, ⊥, ∥) after the pair's index (``R12τ``)."""
+_COUPLE = re.compile(r"^M(?P<index>Φ\d+)$")
+"""The moment of a link's inertia couple (``MΦ4``)."""
+
+
+def force_text(name: str) -> str:
+    """A force's label as drawn, in the note's notation: the pair's index below the line and a
+    component's mark above it (``"R12τ"`` → ``"R_{12}^{τ}"``, R₁₂ with τ raised), an inertia
+    couple's moment with its force's name below (``"MΦ4"`` → ``"M_{Φ4}"``), other digits as
+    subscripts (``"G4"`` → ``"G₄"``), a load's name as the note reads it (``"Fc"`` → ``"F_{c}"``,
+    `velplan.notation.split_symbol`); the force of the pair replacing a couple on the lever
+    (``"MΦ4@B"``) → ``"F(M_{Φ4})"``. `unicode_text` gives it back on one line (R₁₂τ, MΦ₄).
+
+    >>> force_text("R12τ"), force_text("R45n"), force_text("MΦ4@B"), force_text("Fc"), force_text("G4")
+    ('R_{12}^{τ}', 'R_{45}^{n}', 'F(M_{Φ4})', 'F_{c}', 'G₄')
+    """
+    if "@" in name:
+        return f"F({force_text(name.split('@', 1)[0])})"
+    if m := _COMPONENT.match(name):
+        return f"{m['head']}_{{{m['index']}}}^{{{m['mark']}}}"
+    if m := _COUPLE.match(name):
+        return f"M_{{{m['index']}}}"
+    if (found := split_symbol(name)) and not found[1].isdigit():  # a load's name: Fc → F_{c}, Fg5 → F_{g5}
+        return f"{found[0]}_{{{found[1]}}}"
+    return digits_down(name)

@@ -10,7 +10,7 @@ import math
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Primitive, Text
-from velplan.views.forces.common import force_text
+from velplan.notation import force_text
 from velplan.views.base import ROUND_OFF, View, digits_down, make_view, number, subscript, unit
 
 

@@ -12,8 +12,8 @@ from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
 from velplan.render.shapes import DESCENDER_DEPTH, text_depth
-from velplan.views.base import bounds_of, digits_down
-from velplan.notation import number as _num, split_symbol
+from velplan.views.base import bounds_of
+from velplan.notation import force_text, number as _num  # noqa: F401  (force_text: named here too)
 
 
 @dataclass(frozen=True)
@@ -65,34 +65,6 @@ def lever_layers(number: int) -> tuple[str, str, str]:
     """(lever, forces, labels) layers of Zhukovsky's lever at position `number`."""
     base = f"lever-{number}"
     return base, f"{base}-forces", f"{base}-labels"
-
-
-_COMPONENT = re.compile(r"^(?P<head>[A-Za-zΦ]+?)(?P<index>\d+)(?P<mark>[τn⊥∥])$")
-"""A reaction's component: its mark (τ, n, ⊥, ∥) after the pair's index (``R12τ``)."""
-_COUPLE = re.compile(r"^M(?P<index>Φ\d+)$")
-"""The moment of a link's inertia couple (``MΦ4``)."""
-
-
-def force_text(name: str) -> str:
-    """A force's label as drawn, in the note's notation: the pair's index below the line and a
-    component's mark above it (``"R12τ"`` → ``"R_{12}^{τ}"``, R₁₂ with τ raised), an inertia
-    couple's moment with its force's name below (``"MΦ4"`` → ``"M_{Φ4}"``), other digits as
-    subscripts (``"G4"`` → ``"G₄"``), a load's name as the note reads it (``"Fc"`` → ``"F_{c}"``,
-    `velplan.notation.split_symbol`); the force of the pair replacing a couple on the lever
-    (``"MΦ4@B"``) → ``"F(M_{Φ4})"``. `velplan.notation.unicode_text` gives it back on one line (R₁₂τ, MΦ₄).
-
-    >>> force_text("R12τ"), force_text("R45n"), force_text("MΦ4@B"), force_text("Fc"), force_text("G4")
-    ('R_{12}^{τ}', 'R_{45}^{n}', 'F(M_{Φ4})', 'F_{c}', 'G₄')
-    """
-    if "@" in name:
-        return f"F({force_text(name.split('@', 1)[0])})"
-    if m := _COMPONENT.match(name):
-        return f"{m['head']}_{{{m['index']}}}^{{{m['mark']}}}"
-    if m := _COUPLE.match(name):
-        return f"M_{{{m['index']}}}"
-    if (found := split_symbol(name)) and not found[1].isdigit():  # a load's name: Fc → F_{c}, Fg5 → F_{g5}
-        return f"{found[0]}_{{{found[1]}}}"
-    return digits_down(name)
 
 
 def newton(lang: Language) -> str:
