@@ -55,6 +55,10 @@ def test_ink_boxes_cover_every_line_and_leave_the_room(jaw):
                 x, y = line.interpolate(d).coords[0]
                 assert np.any((boxes[:, 0] <= x + 0.06) & (x - 0.06 <= boxes[:, 2])
                               & (boxes[:, 1] <= y + 0.06) & (y - 0.06 <= boxes[:, 3]))
+    for p in scheme.primitives:  # a plate or a block: not a room to put a detail in
+        if type(p).__name__ == "Polygon":
+            x, y = np.asarray(p.points).mean(axis=0)
+            assert np.any((boxes[:, 0] <= x) & (x <= boxes[:, 2]) & (boxes[:, 1] <= y) & (y <= boxes[:, 3]))
     covered = sum((b[2] - b[0]) * (b[3] - b[1]) for b in boxes)
     x0, y0, x1, y1 = scheme.bounds
     assert covered < 0.5 * (x1 - x0) * (y1 - y0)  # pieces, not the whole box

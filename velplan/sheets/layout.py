@@ -203,17 +203,20 @@ INK_PIECE_MM = 4.0
 
 
 def ink_boxes(placed: PlacedView, piece_mm: float = INK_PIECE_MM) -> list[tuple[float, float, float, float]]:
-    """Boxes (sheet mm) that cover what `placed` draws: its lines, outlines and vectors cut into
-    pieces of at most `piece_mm`, and its texts' boxes; a box clear of them all lies in the
-    view's empty room (the inside of a tall mechanism's plan of positions)."""
+    """Boxes (sheet mm) that cover what `placed` draws: its lines, circles and vectors cut into
+    pieces of at most `piece_mm`, its texts' boxes and its closed outlines' (a link's plate, a
+    block) whole boxes; a box clear of them all lies in the view's empty room (the inside of a
+    tall mechanism's plan of positions), not inside a part of it."""
     chains, boxes = [], []
     for p in placed.primitives:
         if isinstance(p, Text):
             x, y = text_box(p).T
             boxes.append((x.min(), y.min(), x.max(), y.max()))
-        elif isinstance(p, (Polyline, Polygon)):
-            pts = np.asarray(p.points, float)
-            chains.append(np.vstack([pts, pts[:1]]) if isinstance(p, Polygon) else pts)
+        elif isinstance(p, Polygon):  # a plate, a block, a hatched ground: its whole box
+            x, y = np.asarray(p.points, float).T
+            boxes.append((x.min(), y.min(), x.max(), y.max()))
+        elif isinstance(p, Polyline):
+            chains.append(np.asarray(p.points, float))
         elif isinstance(p, Circle):
             chains.append(circle_outline(p.centre, p.radius, segments=36))
         elif isinstance(p, Arrow):
