@@ -193,7 +193,9 @@ def test_a_force_is_one_symbol_on_the_sheet_in_the_notes_tables_and_in_its_formu
              "MΦ4": ("M_{Φ4}", r"M_{\Phi_{4}}", "M~Φ4~"),
              "Fc": ("F_{c}", "F_{c}", "F~c~"),
              "Fg5": ("F_{g5}", "F_{g5}", "F~g5~"),
-             "G4": ("G₄", "G_{4}", "G~4~")}
+             "G4": ("G₄", "G_{4}", "G~4~"),
+             "R45n": ("R_{45}^{n}", r"{R_{45}}^{n}", "R~45~^n^"),
+             "R23⊥": ("R_{23}^{⊥}", r"{R_{23}}^{\perp}", "R~23~^⊥^")}
     for name, (drawn, tex, cell) in cases.items():
         assert force_text(name) == drawn and force(name) == tex, name
         assert cell_markdown(N.unicode_text(drawn), str) == cell, name
