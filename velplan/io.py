@@ -118,3 +118,37 @@ def running_now() -> int | None:
     except (OSError, ValueError, IndexError):
         return None
     return None
+
+
+#: How long a parent waits for a fork's answer before building the part itself, s: a fork stuck
+#: (on a lock another thread held when it was made) is not waited on forever.
+FORK_WAIT_S = 120.0
+
+
+def fork_answer(fd: int, wait_s: float = FORK_WAIT_S) -> bytes:
+    """All a fork writes to the pipe end ``fd`` (the parent's), or b"" where nothing comes within
+    ``wait_s`` or the pipe fails."""
+    import select
+
+    try:
+        if select.select([fd], [], [], wait_s)[0]:
+            with open(fd, "rb", closefd=False) as got:
+                return got.read()
+    except OSError:
+        pass
+    return b""
+
+
+def end_fork(pid: int | None, *fds: int) -> None:
+    """Close the parent's pipe ends ``fds`` and end the fork ``pid`` (if any): killed, reaped."""
+    import contextlib
+    import signal
+
+    for fd in fds:
+        with contextlib.suppress(OSError):
+            os.close(fd)
+    if pid is not None:
+        with contextlib.suppress(OSError):
+            os.kill(pid, signal.SIGKILL)
+        with contextlib.suppress(OSError):
+            os.waitpid(pid, 0)

@@ -18,17 +18,15 @@ import contextlib
 import gc
 import os
 import pickle
-import select
-import signal
 import sys
 from typing import Any, Callable
 
-from velplan.io import core_free
+from velplan.io import FORK_WAIT_S, core_free, end_fork, fork_answer
 
 ENABLED = False
 """Whether `Aside` hands its part to a fork (within `building_aside`)."""
-WAIT_S = 120.0
-"""How long this process waits for the fork's first byte, s; then it builds the part itself."""
+WAIT_S = FORK_WAIT_S
+"""How long this process waits for the fork's answer, s; then it builds the part itself."""
 
 
 @contextlib.contextmanager
@@ -83,27 +81,15 @@ class Aside:
         """The part: the fork's where it made it, else built here."""
         data = b""
         if self.pid is not None:
-            try:
-                # a fork stuck (a lock another thread held when it was made) is not waited on forever
-                if select.select([self.told], [], [], WAIT_S)[0]:
-                    with open(self.told, "rb", closefd=False) as got:
-                        data = got.read()
-            except OSError:
-                data = b""
+            data = fork_answer(self.told, WAIT_S)
             self.close()
         return pickle.loads(data) if data else self.work()
 
     def close(self) -> None:
         """End the fork (if running) and close the pipe."""
         pid, self.pid = self.pid, None
-        with contextlib.suppress(OSError):
-            os.close(self.told)
+        end_fork(pid, self.told)
         self.told = -1
-        if pid is not None:
-            with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
-            with contextlib.suppress(OSError):
-                os.waitpid(pid, 0)
 
 
 def _serve(told: int, work: Callable[[], Any]) -> None:

@@ -12,13 +12,13 @@ from __future__ import annotations
 import contextlib
 import os
 import pickle
-import select
-import signal
+
+from velplan.io import FORK_WAIT_S, end_fork, fork_answer
 
 ENABLED = False
 """Whether `build_note` hands the part on forces to a fork (within `building_aside`)."""
-WAIT_S = 120.0
-"""How long the note waits for the fork's first byte, s; then it writes the part itself."""
+WAIT_S = FORK_WAIT_S
+"""How long the note waits for the fork's answer, s; then it writes the part itself."""
 
 
 @contextlib.contextmanager
@@ -64,11 +64,7 @@ class ForcesAside:
             return False
         try:
             os.write(self.ask, f"{note.figures} {note.tables}\n".encode("ascii"))
-            data = b""
-            # a fork stuck (a lock another thread held when it was made) is not waited on forever
-            if select.select([self.told], [], [], WAIT_S)[0]:
-                with open(self.told, "rb", closefd=False) as got:
-                    data = got.read()
+            data = fork_answer(self.told, WAIT_S)
         except OSError:
             data = b""
         self.close()
@@ -81,15 +77,8 @@ class ForcesAside:
     def close(self) -> None:
         """End the fork (if running) and close the pipes."""
         pid, self.pid = self.pid, None
-        for fd in (self.ask, self.told):
-            with contextlib.suppress(OSError):
-                os.close(fd)
+        end_fork(pid, self.ask, self.told)
         self.ask = self.told = -1
-        if pid is not None:
-            with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
-            with contextlib.suppress(OSError):
-                os.waitpid(pid, 0)
 
 
 def _serve(ask: int, told: int, study, positions, fmt, lang) -> None:
