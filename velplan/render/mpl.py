@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from velplan.notation import plain_text
+from velplan.notation import unicode_text
 from velplan.render.canvas import render
 from velplan.render.fonts import GENERIC_FAMILIES, candidate_families, register_with_matplotlib
 from velplan.render.scene import Arrow, Circle, Polygon, Polyline, Text
@@ -149,7 +149,7 @@ class MplCanvas:
             self._narrow_text(item, x, y)
             return
         size_pt = self.style.font_size_em(item.size_mm) * self._pt_per_mm
-        self.ax.text(x, y, plain_text(item.text), fontsize=size_pt,
+        self.ax.text(x, y, unicode_text(item.text), fontsize=size_pt,
                      family=_installed_families(self.style.font_families),
                      style="italic" if self.style.italic else "normal",
                      color=self.style.stroke_colour(item.layer),
@@ -167,7 +167,7 @@ class MplCanvas:
 
         prop = FontProperties(family=_installed_families(self.style.font_families),
                               style="italic" if self.style.italic else "normal")
-        path = TextPath((0.0, 0.0), plain_text(item.text),
+        path = TextPath((0.0, 0.0), unicode_text(item.text),
                         size=self.style.font_size_em(item.size_mm), prop=prop)
         width = path.get_extents().x1 if len(path.vertices) else 0.0
         shift = {"start": 0.0, "middle": 0.5, "end": 1.0}[item.anchor] * width
