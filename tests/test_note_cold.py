@@ -5,6 +5,7 @@ one line."""
 
 from __future__ import annotations
 
+import os
 import sys
 import zipfile
 
@@ -84,9 +85,9 @@ def test_a_helper_only_where_a_core_is_free(monkeypatch):
     monkeypatch.setattr(raster, "cores", lambda: 1)
     assert not raster.core_free()  # one core
     monkeypatch.setattr(raster, "cores", lambda: 2)
-    monkeypatch.setattr(raster.os, "getloadavg", lambda: (3.0, 3.0, 3.0))
+    monkeypatch.setattr(os, "getloadavg", lambda: (3.0, 3.0, 3.0))
     assert not raster.core_free()  # a busy machine
-    monkeypatch.setattr(raster.os, "getloadavg", lambda: (1.2, 3.0, 3.0))
+    monkeypatch.setattr(os, "getloadavg", lambda: (1.2, 3.0, 3.0))
     assert raster.core_free()
 
 

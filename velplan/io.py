@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 import tempfile
 from pathlib import Path
 
@@ -118,6 +119,25 @@ def running_now() -> int | None:
     except (OSError, ValueError, IndexError):
         return None
     return None
+
+
+FORK = sys.platform.startswith("linux") and hasattr(os, "fork")
+"""Whether a part may be built by a fork of this process (Linux)."""
+
+
+def forked(child) -> int:
+    """Fork: in the fork run ``child()`` and end at ``os._exit`` (nothing of the parent's
+    flushed or cleaned up twice; status 0 where it returned, 1 where it raised); in this
+    process return the fork's pid. OSError where the system cannot fork."""
+    pid = os.fork()
+    if pid == 0:
+        code = 1
+        try:
+            child()
+            code = 0
+        finally:
+            os._exit(code)
+    return pid
 
 
 #: How long a parent waits for a fork's answer before building the part itself, s: a fork stuck

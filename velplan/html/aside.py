@@ -18,10 +18,9 @@ import contextlib
 import gc
 import os
 import pickle
-import sys
 from typing import Any, Callable
 
-from velplan.io import FORK_WAIT_S, core_free, end_fork, fork_answer
+from velplan.io import FORK, FORK_WAIT_S, core_free, end_fork, fork_answer, forked
 
 ENABLED = False
 """Whether `Aside` hands its part to a fork (within `building_aside`)."""
@@ -37,7 +36,7 @@ def building_aside(enabled: bool = True):
     generation walked all the modules' objects again (≈ 5 % of the command's CPU)."""
     global ENABLED
     was = ENABLED
-    ENABLED = enabled and sys.platform.startswith("linux") and hasattr(os, "fork") and core_free(now=True)
+    ENABLED = enabled and FORK and core_free(now=True)
     froze = enabled and gc.get_freeze_count() == 0  # a freeze made by others is theirs
     if froze:
         gc.freeze()
@@ -62,18 +61,15 @@ class Aside:
         gc.freeze()  # the fork's collections leave this process's objects (and their pages) alone
         try:
             read, write = os.pipe()
-            self.pid = os.fork()
+
+            def child() -> None:
+                os.close(read)
+                _serve(write, work)
+
+            self.pid = forked(child)
         except OSError:
             self.pid = None
             return
-        if self.pid == 0:  # the fork: ends at os._exit, nothing of the parent's flushed twice
-            code = 1
-            try:
-                os.close(read)
-                _serve(write, work)
-                code = 0
-            finally:
-                os._exit(code)
         os.close(write)
         self.told = read
 

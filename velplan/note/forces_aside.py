@@ -13,7 +13,7 @@ import contextlib
 import os
 import pickle
 
-from velplan.io import FORK_WAIT_S, end_fork, fork_answer
+from velplan.io import FORK_WAIT_S, end_fork, fork_answer, forked
 
 ENABLED = False
 """Whether `build_note` hands the part on forces to a fork (within `building_aside`)."""
@@ -42,16 +42,13 @@ class ForcesAside:
     def __init__(self, study, positions, fmt, lang):
         self.positions = tuple(positions)
         ask, told = os.pipe(), os.pipe()
-        self.pid = os.fork()
-        if self.pid == 0:  # the fork: ends at os._exit, nothing of the parent's flushed twice
-            code = 1
-            try:
-                os.close(ask[1])
-                os.close(told[0])
-                _serve(ask[0], told[1], study, self.positions, fmt, lang)
-                code = 0
-            finally:
-                os._exit(code)
+
+        def child() -> None:
+            os.close(ask[1])
+            os.close(told[0])
+            _serve(ask[0], told[1], study, self.positions, fmt, lang)
+
+        self.pid = forked(child)
         os.close(ask[0])
         os.close(told[1])
         self.ask, self.told = ask[1], told[0]

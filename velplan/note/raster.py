@@ -4,13 +4,10 @@ overhead (a fork's copied pages, ≈ 5 % more CPU) made the note slower, measure
 
 from __future__ import annotations
 
-import os
-import sys
-
 from velplan import io
 
-FORK = sys.platform.startswith("linux") and hasattr(os, "fork")
-"""Whether a helper can be a fork of this process (Linux)."""
+FORK = io.FORK
+"""Whether a helper can be a fork of this process (Linux; `velplan.io.FORK`)."""
 
 
 def cores() -> int:
