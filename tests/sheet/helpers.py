@@ -33,3 +33,22 @@ def assert_views_placed(sheet, *, overlap_below_mm2: float | None = None) -> dic
         for p in placed.primitives:
             assert box.contains(shapely.box(*p.bounds)), (k, p)
     return boxes
+
+
+def calls_with_and_without(monkeypatch, sheet, counted: str, shortcuts) -> tuple[int, int]:
+    """(the calls of ``kinematic.<counted>`` that building ``sheet()`` makes, the calls with
+    every ``(owner, name, value)`` of ``shortcuts`` patched in to turn a shortcut off), after
+    asserting that both builds give the same SVG: a shortcut of the layout search may save
+    drawings, never change the sheet."""
+    from velplan.sheets import kinematic
+
+    calls = []
+    real = getattr(kinematic, counted)
+    monkeypatch.setattr(kinematic, counted, lambda *a, **kw: calls.append(1) or real(*a, **kw))
+    quick = sheet().svg()
+    saved = len(calls)
+    for owner, name, value in shortcuts:
+        monkeypatch.setattr(owner, name, value)
+    calls.clear()
+    assert sheet().svg() == quick
+    return saved, len(calls)

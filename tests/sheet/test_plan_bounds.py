@@ -6,6 +6,7 @@ import pytest
 
 from velplan.sheets import kinematic
 from velplan.study import Study
+from tests.sheet.helpers import calls_with_and_without
 from velplan.views.plan import PlanSizes, least_plan_size, plan_steps, plan_view
 
 MECHS = ("shaper", "four-bar", "press", "whitworth", "triad-press")
@@ -32,15 +33,10 @@ def test_least_plan_size_never_exceeds_the_drawing(name):
 @pytest.mark.parametrize("name,fmt,lang", [("shaper", "A1", "ru"), ("press", "A2", "en"),
                                            ("whitworth", "A3", "zh"), ("four-bar", "A1", "en")])
 def test_sheet_is_the_same_without_the_bound(name, fmt, lang, monkeypatch):
-    drawn = []
-    real = kinematic.plan_view
-    monkeypatch.setattr(kinematic, "plan_view", lambda *a, **kw: drawn.append(a[1]) or real(*a, **kw))
-    with_bound = kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang).svg()
-    bounded = len(drawn)
-    monkeypatch.setattr(kinematic._Drawings, "plan_fits", lambda self, *a: True)
-    drawn.clear()
-    assert kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang).svg() == with_bound
-    assert bounded <= len(drawn)
+    bounded, every = calls_with_and_without(
+        monkeypatch, lambda: kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang), "plan_view",
+        [(kinematic._Drawings, "plan_fits", lambda self, *a: True)])
+    assert bounded <= every
 
 
 def test_the_bound_spares_a_shaper_plan(monkeypatch):
@@ -93,12 +89,7 @@ def test_score_bound_is_never_below_the_fitted_score(name, fmt):
 @pytest.mark.parametrize("name,fmt,lang", [("shaper", "A1", "ru"), ("whitworth", "A1", "en"),
                                            ("four-bar", "A2", "uk"), ("slider-press", "A1", "en")])
 def test_sheet_is_the_same_without_the_score_bound(name, fmt, lang, monkeypatch):
-    fitted = []
-    real = kinematic._fit_plans
-    monkeypatch.setattr(kinematic, "_fit_plans", lambda *a: fitted.append(a[-1]) or real(*a))
-    with_bound = kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang).svg()
-    bounded = len(fitted)
-    monkeypatch.setattr(kinematic, "_cannot_change", lambda *a: False)
-    fitted.clear()
-    assert kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang).svg() == with_bound
-    assert bounded <= len(fitted)
+    bounded, every = calls_with_and_without(
+        monkeypatch, lambda: kinematic.build_sheet(Study(name, n=12), fmt=fmt, lang=lang), "_fit_plans",
+        [(kinematic, "_cannot_change", lambda *a: False)])
+    assert bounded <= every
