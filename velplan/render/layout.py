@@ -226,17 +226,19 @@ def _lines_in(text: str, room_w: float, room_h: float, size: float) -> list[str]
         return None
     most = int((room_h - first + _EPS) // (LINE_PITCH * size)) + 1
     lines = _wrap(text, room_w, size, most)
-    if lines is not None and first + sum(_pitches(lines, size)) > room_h + _EPS:
+    if lines is not None and first + sum(line_pitches(lines, size)) > room_h + _EPS:
         return None  # a raised index took a line's room
     return lines
 
 
-def _pitches(lines: list[str], size: float) -> list[float]:
-    """The baseline-to-baseline distance of each line after the first, mm: :data:`LINE_PITCH`
-    of the height, more where a raised index ("aᵗ") would reach the line above's descenders
-    (`text_depth`): the gap between them kept as plain lines keep it."""
-    gap = (LINE_PITCH - 1.0 - DESCENDER_DEPTH) * size
-    return [max(LINE_PITCH * size, text_depth(a, size)[0] + text_depth(b, size)[1] + gap)
+def line_pitches(lines: list[str], size: float, pitch: float = 0.0) -> list[float]:
+    """The baseline-to-baseline distance of each line after the first, mm: `pitch` (by default
+    :data:`LINE_PITCH`) of the height, more where a raised index ("aᵗ") or a descending
+    subscript would come nearer the line beside it (`text_depth`): the gap between them kept as
+    plain lines keep it."""
+    pitch = pitch or LINE_PITCH
+    gap = (pitch - 1.0 - DESCENDER_DEPTH) * size
+    return [max(pitch * size, text_depth(a, size)[0] + text_depth(b, size)[1] + gap)
             for a, b in zip(lines, lines[1:])]
 
 
@@ -280,7 +282,7 @@ def glued_words(text: str) -> list[str]:
 def _cell_lines(lines, cell, layer, size, anchor, padding, width_factor=1.0) -> tuple[Text, ...]:
     x = cell[0] + padding if anchor == "start" else (cell[0] + cell[2]) / 2
     centre = (cell[1] + cell[3]) / 2
-    down = np.concatenate([[0.0], np.cumsum(_pitches(list(lines), size))])
+    down = np.concatenate([[0.0], np.cumsum(line_pitches(list(lines), size))])
     offsets = down - down[-1] / 2
     return tuple(Text((x, centre - dy), line, layer, size, anchor, "middle", 0.0, float(width_factor))
                  for line, dy in zip(lines, offsets))

@@ -11,7 +11,8 @@ import numpy as np
 from velplan.options import Language
 from velplan.render.i18n import label
 from velplan.render.scene import Text
-from velplan.render.shapes import DESCENDER_DEPTH, text_depth
+from velplan.render.layout import line_pitches
+from velplan.render.shapes import text_depth
 from velplan.views.base import bounds_of
 from velplan.notation import force_text, number as _num  # noqa: F401  (force_text: named here too)
 
@@ -126,16 +127,20 @@ def title_lines(items, lines: list[tuple[str, float]], layer: str) -> list[Text]
     return out
 
 
-def note_lines(items, lines: list[tuple[str, float]], layer: str) -> list[Text]:
-    """Lines (text, height mm) written under everything in `items`, 1.6 heights apart, farther
-    where a raised index (R_{12}^{τ}) or a descending subscript would come nearer the line
-    beside it than plain lines come (`text_depth`)."""
+#: Baseline-to-baseline distance of the lines under a force drawing, in text heights.
+NOTE_PITCH = 1.6
+
+
+def note_lines(items, lines: list[str], size: float, layer: str) -> list[Text]:
+    """Lines `size` mm high written under everything in `items`, `NOTE_PITCH` heights apart,
+    farther where a raised index (R_{12}^{τ}) or a descending subscript would come nearer the
+    line beside it (`line_pitches`)."""
+    if not lines:
+        return []
     x0, y0, _, _ = bounds_of(items)
-    out = []
-    y, below = y0 - 2.0, 0.0  # the line above: how far it reaches below its baseline, plus the gap
-    for text, size in lines:
-        down, up = text_depth(text, size)
-        y -= max(size, up) + below
+    y = y0 - 2.0 - text_depth(lines[0], size)[1]  # the first line's capitals 2 mm under them
+    out = [Text((x0, y), lines[0], layer, size)]
+    for text, step in zip(lines[1:], line_pitches(lines, size, NOTE_PITCH)):
+        y -= step
         out.append(Text((x0, y), text, layer, size))
-        below = down + (0.6 - DESCENDER_DEPTH) * size
     return out

@@ -92,7 +92,7 @@ def lever_view(fa: ForceAnalysis, position: int, *, mu_v: float, lang: Language 
     pct = float(fa.lever_difference_percent[i])
     fb = float(lever.balancing_force[i])
     notes = _balance_lines(fa.kinetostatics.mechanism, mb_lever, mb_kin, pct, fb, lang)
-    items += note_lines(items, _wrapped(notes, items, sizes), text_layer)
+    items += note_lines(items, _wrapped(notes, items, sizes), sizes.label_mm, text_layer)
     items += title_lines(items, [
         (label("zhukovsky_lever", lang), sizes.title_mm),
         (scale_text("μv", res.scale, "(m/s)/mm", lang), sizes.label_mm),
@@ -231,14 +231,13 @@ def _balance_lines(mech, mb_lever: float, mb_kin: float, pct: float, fb: float,
             balance]
 
 
-def _wrapped(notes: list[str], items, sizes: ForceSizes) -> list[tuple[str, float]]:
-    """The lines at the label height; on small formats the balance, where it is wider than the
+def _wrapped(notes: list[str], items, sizes: ForceSizes) -> list[str]:
+    """The lines (at the label height); on small formats the balance, where it is wider than the
     lever itself, on two lines (the two methods)."""
     force_line, balance = notes
-    out = [(force_line, sizes.label_mm), (balance, sizes.label_mm)]
     x0, _, x1, _ = bounds_of(items)
     if sizes.wrap_balance and text_extent(balance, sizes.label_mm)[0] > max(
             x1 - x0, text_extent(force_line, sizes.label_mm)[0]):
         cut = balance.index(" / ") + 3
-        out[1:] = [(balance[:cut].rstrip(), sizes.label_mm), (balance[cut:], sizes.label_mm)]
-    return out
+        return [force_line, balance[:cut].rstrip(), balance[cut:]]
+    return [force_line, balance]

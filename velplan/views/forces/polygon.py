@@ -84,7 +84,7 @@ def polygon_view(fa: ForceAnalysis, group: str, position: int, *, mu_f: float, l
     notes = (_small_lines(small, mu_f, lang, width, sizes.label_mm)
              + [part for r in _results(fa, group, number, lang)
                 for part in _broken(r, width, sizes.label_mm)])
-    items += note_lines(items, [(r, sizes.label_mm) for r in notes], text_layer)
+    items += note_lines(items, notes, sizes.label_mm, text_layer)
     return make_view(f"polygon-{number}-{slug(group)}", items, pad_mm=2.0, mu=None,
                      origin=(0.0, 0.0),
                      meta={"group": group, "number": number, "index": i, "mu_f": mu_f,
