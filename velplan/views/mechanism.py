@@ -497,10 +497,10 @@ def scheme_steps(mech: Mechanism, *, kin: Kinematics, fine: Kinematics, mu_l: fl
         {"thin": thin, "taken": _grown([*placed_letters, *placed], 1.5),  # not read as one with a letter
          "soft_mm": SCHEME_SOFT_MM})
     items += placed_letters + leaders + list(placed) + numbers + number_leaders
-    if not single and out is not None:
-        kept = [k for k in range(len(labels)) if k not in moved]  # a moved one has its leader already
-        items += _number_leaders([labels[k] for k in kept], [placed[k] for k in kept], mm(kin.position(out)),
-                                 mm(kin.position(mech.crank.tip)))
+    if not single and out is not None and out != mech.crank.tip:
+        # the output's numbers, the first len(kin) labels (`_scheme_labels`); a moved one has its leader already
+        kept = [k for k in range(len(kin)) if k not in moved]
+        items += _number_leaders([placed[k] for k in kept], mm(kin.position(out)))
     items = _broken_under_texts(items)
     if title:
         items += _title(items, thick, single, mu_l, lang, sizes, plans)
@@ -1065,24 +1065,19 @@ def _output_numbers(kin: Kinematics, point: str, mm, size: float, on_track: bool
 NUMBER_LEADER_MM = 4.0
 
 
-def _number_leaders(wanted: list[Text], placed, points, tips) -> list[Polyline]:
-    """Thin leaders from the output point's positions (`points`, mm, one a position) to
-    their numbers that stand more than `NUMBER_LEADER_MM` off: the numbers stepped out of a
-    crowd (an extreme position, where the points nearly coincide). A number wanted nearer
-    the crank's tip in that position (`tips`, mm) is the crank's, one wanted over 15 mm off
-    the point a link's: they have none."""
+def _number_leaders(placed: list[Text], points) -> list[Polyline]:
+    """Thin leaders from the output point's positions (`points`, mm, one a position) to their
+    numbers (`placed`, the output's only) that stand more than `NUMBER_LEADER_MM` off: the
+    numbers stepped out of a crowd (an extreme position, where the points nearly coincide),
+    however far the crowd pushed them."""
     from velplan.render.layout import label_box
 
     out = []
     grown: list = []  # the numbers' boxes grown by 0.4 mm, made at the first leader
-    for before, text in zip(wanted, placed):
-        if not text.text.isdigit() or not 1 <= int(text.text) <= len(points):
+    for text in placed:
+        p = points[int(text.text) - 1]
+        if not np.all(np.isfinite(p)):
             continue
-        k = int(text.text) - 1
-        p, here = points[k], np.asarray(before.position)
-        if (not np.all(np.isfinite(p)) or np.hypot(*(here - tips[k])) < np.hypot(*(here - p))
-                or np.hypot(*(here - p)) > 15.0):
-            continue  # the crank's number, or a link's
         box = label_box(text)
         if box.distance(shapely.Point(p)) > NUMBER_LEADER_MM:
             near = shapely.shortest_line(box.buffer(0.4), shapely.Point(p)).coords[0]
